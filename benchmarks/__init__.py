@@ -1,0 +1,1 @@
+"""Benchmark runner, result store, plots and the ``voot-bench`` command line."""

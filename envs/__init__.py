@@ -1,0 +1,1 @@
+"""MuJoCo benchmark environments (needs the ``[envs]`` extra)."""

@@ -1,0 +1,20 @@
+"""Gymnasium ids of voot's environments, registered when ``voot`` is imported.
+
+Registration stores entry-point strings only, so it costs nothing and imports no MuJoCo.
+"""
+
+from __future__ import annotations
+
+#: id -> entry point ("module:Class"). Filled in by the environment modules' issues.
+ENV_IDS: dict[str, str] = {}
+
+
+def register_envs() -> None:
+    """Register every id in :data:`ENV_IDS` with gymnasium (idempotent)."""
+    try:
+        import gymnasium
+    except ImportError:  # pragma: no cover - gymnasium is a core dependency
+        return
+    for env_id, entry_point in ENV_IDS.items():
+        if env_id not in gymnasium.registry:
+            gymnasium.register(id=env_id, entry_point=entry_point)

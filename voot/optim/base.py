@@ -1,0 +1,304 @@
+"""The ask/tell interface shared by every black-box optimiser in voot.
+
+All optimisers *maximise* a function over a box ``[lower, upper]`` (a :class:`Bounds`).
+The loop a user writes is::
+
+    opt = make_optimizer("voo", bounds, seed=0)
+    for _ in range(budget):
+        x = opt.ask()
+        opt.tell(x, f(x))
+    opt.best_x, opt.best_value
+
+``ask`` proposes one point, ``tell`` reports its value. Optimisers that work in batches
+(CMA-ES) buffer internally, so the caller always sees one point at a time and the
+best-so-far can be logged after every single evaluation.
+
+Tree search (:mod:`voot.tree`) uses the same objects as per-node action samplers. There
+the value of a tried action (its Q-hat) changes as the subtree below it is explored, so
+optimisers that can take a changed value implement :meth:`Optimizer.revalue`.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, eq=False)
+class Bounds:
+    """A box ``[lower, upper]`` in R^d with finite, strictly ordered bounds.
+
+    Arrays are stored as read-only float64 copies, so a ``Bounds`` can be shared safely.
+    """
+
+    lower: FloatArray
+    upper: FloatArray
+
+    def __init__(self, lower: ArrayLike, upper: ArrayLike) -> None:
+        lo = np.array(lower, dtype=np.float64, copy=True).reshape(-1)
+        hi = np.array(upper, dtype=np.float64, copy=True).reshape(-1)
+        if lo.shape != hi.shape:
+            raise ValueError(
+                f"bounds: lower has {lo.size} entries but upper has {hi.size}; they must match"
+            )
+        if lo.size == 0:
+            raise ValueError("bounds: the box must have at least one dimension")
+        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+            raise ValueError(f"bounds must be finite, got lower={lo.tolist()} upper={hi.tolist()}")
+        bad = np.flatnonzero(lo >= hi)
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(
+                f"bounds are inverted or empty in dimension {i}: lower={lo[i]} >= upper={hi[i]}"
+                " (need lower < upper in every dimension)"
+            )
+        lo.setflags(write=False)
+        hi.setflags(write=False)
+        object.__setattr__(self, "lower", lo)
+        object.__setattr__(self, "upper", hi)
+
+    @classmethod
+    def cube(cls, low: float, high: float, dim: int) -> Bounds:
+        """The box ``[low, high]^dim``."""
+        if dim < 1:
+            raise ValueError(f"dim must be >= 1, got {dim}")
+        return cls(np.full(dim, low), np.full(dim, high))
+
+    @classmethod
+    def coerce(cls, bounds: Bounds | Sequence[Sequence[float]] | ArrayLike) -> Bounds:
+        """Accept a ``Bounds``, a ``(lower, upper)`` pair, or a ``(d, 2)`` array."""
+        if isinstance(bounds, Bounds):
+            return bounds
+        arr = np.asarray(bounds, dtype=np.float64)
+        if arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2:
+            return cls(arr[0], arr[1])
+        if arr.ndim == 2 and arr.shape[1] == 2:
+            return cls(arr[:, 0], arr[:, 1])
+        if arr.ndim == 2 and arr.shape == (2, 2):
+            return cls(arr[0], arr[1])
+        raise ValueError(
+            "bounds must be a Bounds, a (lower, upper) pair of equal-length vectors, or a"
+            f" (d, 2) array of [low, high] rows; got an array of shape {arr.shape}"
+        )
+
+    @property
+    def dim(self) -> int:
+        return int(self.lower.size)
+
+    @property
+    def width(self) -> FloatArray:
+        return self.upper - self.lower
+
+    @property
+    def center(self) -> FloatArray:
+        return 0.5 * (self.lower + self.upper)
+
+    @property
+    def diameter(self) -> float:
+        """Euclidean length of the box diagonal (delta_max in the paper)."""
+        return float(np.linalg.norm(self.width))
+
+    def sample(self, rng: np.random.Generator, n: int | None = None) -> FloatArray:
+        """Uniform samples: shape ``(d,)`` if ``n`` is None, else ``(n, d)``."""
+        if n is None:
+            return self.lower + rng.random(self.dim) * self.width
+        return self.lower + rng.random((n, self.dim)) * self.width
+
+    def clip(self, x: ArrayLike) -> FloatArray:
+        return np.clip(np.asarray(x, dtype=np.float64), self.lower, self.upper)
+
+    def contains(self, x: ArrayLike) -> bool:
+        arr = np.asarray(x, dtype=np.float64)
+        return bool(np.all(arr >= self.lower) and np.all(arr <= self.upper))
+
+    def check_point(self, x: ArrayLike, name: str = "x") -> FloatArray:
+        """Return ``x`` as a float vector of this box's dimension, or raise ValueError."""
+        arr = np.asarray(x, dtype=np.float64)
+        if arr.shape != (self.dim,):
+            raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        return arr
+
+    def __eq__(self, other: object) -> bool:
+        return (
+            isinstance(other, Bounds)
+            and np.array_equal(self.lower, other.lower)
+            and np.array_equal(self.upper, other.upper)
+        )
+
+    def __hash__(self) -> int:
+        return hash((self.lower.tobytes(), self.upper.tobytes()))
+
+    def __repr__(self) -> str:
+        return f"Bounds(lower={self.lower.tolist()}, upper={self.upper.tolist()})"
+
+
+@dataclass(frozen=True)
+class OptimizerConfig:
+    """Base of every optimiser's configuration dataclass.
+
+    Subclasses add their hyperparameters as fields with the paper's values as defaults
+    and validate them in ``__post_init__`` (raise ValueError naming the field and the
+    valid range).
+    """
+
+    def to_dict(self) -> dict[str, Any]:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    @classmethod
+    def paper_grid(cls) -> dict[str, list[Any]]:
+        """Hyperparameter grid searched in the paper (field name -> values).
+
+        The benchmark runs every combination and selects, per optimiser, the one with the
+        best mean final value. Empty means "defaults only".
+        """
+        return {}
+
+
+def check_value(value: float, name: str = "value") -> float:
+    """A told value must be a finite real number (NaN is an error, not a silent -inf)."""
+    v = float(value)
+    if math.isnan(v):
+        raise ValueError(
+            f"{name} is NaN; tell finite values (use a large negative number for failures)"
+        )
+    if math.isinf(v) and v > 0:
+        raise ValueError(f"{name} is +inf; tell finite values")
+    return v
+
+
+class Optimizer(ABC):
+    """Sequential ask/tell maximiser on a box.
+
+    Determinism: all randomness comes from ``self.rng = np.random.default_rng(seed)``,
+    so the same seed and the same told values give the same asked points.
+
+    Subclasses implement :meth:`_ask` and may override :meth:`_tell`; the base class keeps
+    the history (``xs``, ``values``), the best point and input validation.
+    """
+
+    #: Registry name (set by subclasses), e.g. ``"voo"``.
+    name: ClassVar[str] = ""
+    #: Configuration dataclass of this optimiser.
+    config_class: ClassVar[type[OptimizerConfig]] = OptimizerConfig
+    #: Whether :meth:`revalue` is supported (needed by tree search samplers).
+    supports_revalue: ClassVar[bool] = False
+
+    def __init__(
+        self,
+        bounds: Bounds | ArrayLike,
+        config: OptimizerConfig | None = None,
+        seed: int | np.random.SeedSequence | None = None,
+        initial_point: ArrayLike | None = None,
+    ) -> None:
+        self.bounds = Bounds.coerce(bounds)
+        if config is None:
+            config = self.config_class()
+        if not isinstance(config, self.config_class):
+            raise TypeError(
+                f"{type(self).__name__} needs a {self.config_class.__name__}, got {type(config).__name__}"
+            )
+        self.config = config
+        self.rng = np.random.default_rng(seed)
+        self.initial_point: FloatArray | None = None
+        if initial_point is not None:
+            x0 = self.bounds.check_point(initial_point, "initial_point")
+            if not self.bounds.contains(x0):
+                raise ValueError(f"initial_point {x0.tolist()} lies outside {self.bounds}")
+            self.initial_point = x0
+        self._xs = np.empty((16, self.bounds.dim))
+        self._values = np.empty(16)
+        self._n = 0
+        self._best_index = -1
+        self._pending: FloatArray | None = None
+
+    # ----- public API -----------------------------------------------------------------
+    def ask(self) -> FloatArray:
+        """Propose the next point to evaluate (shape ``(d,)``, inside the bounds)."""
+        if self._n == 0 and self.initial_point is not None:
+            x = self.initial_point.copy()
+        else:
+            x = self._ask()
+        self._pending = x
+        return x
+
+    def tell(self, x: ArrayLike, value: float) -> None:
+        """Report ``f(x) = value``. ``x`` is normally the point just asked."""
+        xa = self.bounds.check_point(x)
+        v = check_value(value)
+        self._append(xa, v)
+        self._tell(xa, v)
+        self._pending = None
+
+    def revalue(self, index: int, value: float) -> None:
+        """Replace the value of the ``index``-th told point (its Q-hat changed)."""
+        if not self.supports_revalue:
+            raise NotImplementedError(f"{type(self).__name__} does not support revalue()")
+        if not 0 <= index < self._n:
+            raise IndexError(f"index {index} out of range for {self._n} told points")
+        v = check_value(value)
+        self._values[index] = v
+        self._revalue(index, v)
+        if index == self._best_index or v > self._values[self._best_index]:
+            self._best_index = int(np.argmax(self._values[: self._n]))
+
+    @property
+    def n_told(self) -> int:
+        return self._n
+
+    @property
+    def xs(self) -> FloatArray:
+        """Told points, shape ``(n, d)`` (a view: do not modify)."""
+        return self._xs[: self._n]
+
+    @property
+    def values(self) -> FloatArray:
+        """Told values, shape ``(n,)`` (a view: do not modify)."""
+        return self._values[: self._n]
+
+    @property
+    def best_index(self) -> int:
+        """Index of the best told point (first argmax); -1 before any tell."""
+        return self._best_index
+
+    @property
+    def best_x(self) -> FloatArray | None:
+        return None if self._best_index < 0 else self._xs[self._best_index].copy()
+
+    @property
+    def best_value(self) -> float:
+        return -math.inf if self._best_index < 0 else float(self._values[self._best_index])
+
+    # ----- for subclasses -------------------------------------------------------------
+    @abstractmethod
+    def _ask(self) -> FloatArray:
+        """Return a new point inside the bounds."""
+
+    def _tell(self, x: FloatArray, value: float) -> None:  # noqa: B027 - optional hook
+        """Hook after ``x`` was appended to the history (index ``n_told - 1``)."""
+
+    def _revalue(self, index: int, value: float) -> None:  # noqa: B027 - optional hook
+        """Hook after the value of point ``index`` changed."""
+
+    def _append(self, x: FloatArray, value: float) -> None:
+        if self._n == self._xs.shape[0]:
+            cap = 2 * self._n
+            xs = np.empty((cap, self.bounds.dim))
+            xs[: self._n] = self._xs[: self._n]
+            vals = np.empty(cap)
+            vals[: self._n] = self._values[: self._n]
+            self._xs, self._values = xs, vals
+        self._xs[self._n] = x
+        self._values[self._n] = value
+        if self._best_index < 0 or value > self._values[self._best_index]:
+            self._best_index = self._n
+        self._n += 1

@@ -1,0 +1,1 @@
+"""Rerun recordings of searches and plans (needs the ``[record]`` extra)."""

@@ -1,0 +1,1 @@
+"""Monte Carlo tree search with a pluggable action optimiser at every node (VOOT)."""
