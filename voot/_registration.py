@@ -6,7 +6,12 @@ Registration stores entry-point strings only, so it costs nothing and imports no
 from __future__ import annotations
 
 #: id -> entry point ("module:Class"). Filled in by the environment modules' issues.
-ENV_IDS: dict[str, str] = {}
+ENV_IDS: dict[str, str] = {
+    # Synthetic planning chains (voot.tree.chain_env); keyword: dim=3 | 10 | 20.
+    "voot/ShekelChain-v0": "voot.tree.chain_env:ShekelChainEnv",
+    "voot/GriewankChain-v0": "voot.tree.chain_env:GriewankChainEnv",
+    "voot/RastriginChain-v0": "voot.tree.chain_env:RastriginChainEnv",
+}
 
 
 def register_envs() -> None:

@@ -104,6 +104,86 @@ class VOOConfig(OptimizerConfig):
         return {"omega": [0.001, 0.01, 0.05, 0.1, 0.3, 0.5]}
 
 
+#: Size of the cached set of x*'s nearest neighbours that every proposal is tested against
+#: first (speed only: the test stays exact, see :meth:`VOO.sample_best_cell`).
+NEIGHBOURS = 64
+
+
+class _BestCell:
+    """What the best-cell test needs about the current best point ``x*`` (index ``b``).
+
+    Coordinates are relative to ``x*``: with :math:`v_i = x_i - x^*` and a proposal
+    :math:`p = x^* + q`, :math:`\\|p - x^*\\| \\le \\|p - x_i\\|` iff
+    :math:`q \\cdot v_i \\le \\|v_i\\|^2 / 2`. Relative coordinates keep this test accurate
+    when the points cluster far below the scale of the box (they do: after a few thousand
+    evaluations VOO's best neighbours are ~1e-6 apart in a box of width 2).
+
+    Attributes:
+        d2: squared distance of every incorporated point to ``x*`` (``inf`` for ``x*``).
+        idx, v, h, k2: the (up to) :data:`NEIGHBOURS` points nearest to ``x*`` (indices,
+            offsets :math:`v_i`, :math:`\\|v_i\\|^2/2`, :math:`\\|v_i\\|^2`), exactly.
+        out2: squared distance of the nearest point *not* in that set (``inf`` if none).
+    """
+
+    __slots__ = ("a", "b", "best", "c", "count", "d2", "h", "idx", "k2", "n", "out2", "v")
+
+    def __init__(self, xs: FloatArray, b: int, lower: FloatArray, upper: FloatArray) -> None:
+        n = xs.shape[0]
+        self.b = b
+        self.n = n
+        self.best = xs[b].copy()
+        self.a = lower - self.best  # the box, relative to x*
+        self.c = upper - self.best
+        diff = xs - self.best
+        d2 = np.einsum("ij,ij->i", diff, diff)
+        d2[b] = math.inf  # x* is not its own neighbour
+        self.d2 = np.empty(max(16, 2 * n))
+        self.d2[:n] = d2
+        k = min(NEIGHBOURS, n - 1)
+        if n - 1 > k:
+            part = np.argpartition(d2, k)
+            idx = part[:k]
+            self.out2 = float(d2[part[k]])
+        else:
+            idx = np.flatnonzero(d2 < math.inf) if n > 1 else np.empty(0, dtype=np.intp)
+            self.out2 = math.inf
+        self.count = idx.size
+        self.idx = np.empty(NEIGHBOURS, dtype=np.intp)
+        self.idx[: self.count] = idx
+        self.v = np.empty((NEIGHBOURS, xs.shape[1]))
+        self.v[: self.count] = diff[idx]
+        self.k2 = np.empty(NEIGHBOURS)
+        self.k2[: self.count] = d2[idx]
+        self.h = 0.5 * self.k2
+
+    def extend(self, xs: FloatArray) -> None:
+        """Incorporate the points ``xs[self.n:]`` told since (``x*`` unchanged)."""
+        n0, n = self.n, xs.shape[0]
+        diff = xs[n0:] - self.best
+        d2 = np.einsum("ij,ij->i", diff, diff)
+        if self.d2.shape[0] < n:
+            grown = np.empty(2 * n)
+            grown[:n0] = self.d2[:n0]
+            self.d2 = grown
+        self.d2[n0:n] = d2
+        for j, dj in enumerate(d2.tolist()):
+            if self.count < NEIGHBOURS:
+                slot = self.count
+                self.count += 1
+            else:
+                slot = int(self.k2.argmax())
+                far = float(self.k2[slot])
+                if dj >= far:
+                    self.out2 = min(self.out2, dj)
+                    continue
+                self.out2 = min(self.out2, far)  # the evicted point is now outside
+            self.idx[slot] = n0 + j
+            self.v[slot] = diff[j]
+            self.k2[slot] = dj
+            self.h[slot] = 0.5 * dj
+        self.n = n
+
+
 class VOO(Optimizer):
     """Voronoi Optimistic Optimization (maximisation). See the module docstring."""
 
@@ -120,148 +200,141 @@ class VOO(Optimizer):
         initial_point: ArrayLike | None = None,
     ) -> None:
         super().__init__(bounds, config, seed, initial_point)
-        self._sqnorm = np.empty(self._xs.shape[0])
-        self._dist_best = np.empty(0)
-        self._dist_best_n = 0
-        self._dist_best_index = -1
-        self._nearest = np.empty(0, dtype=np.intp)
-        self._nearest_key = (-1, -1)
         self.sampler = BestCellSampler(self.config.sampler)
         #: Number of proposals rejected so far (a diagnostic of the best-cell sampler).
         self.n_rejected = 0
         #: Number of asks that hit a try cap and returned the closest proposal.
         self.n_fallbacks = 0
+        self._cell: _BestCell | None = None
+        self._lower = self.bounds.lower
+        self._upper = self.bounds.upper
+        self._width = self.bounds.width
+        self._omega = float(self.config.omega)
+        # proposals of the first batch of an ask: grows to cover the try that was
+        # accepted last time, so that one matrix product usually settles an ask
+        self._first_batch = self.config.batch_size
+        cap = max(self.config.max_tries, self.config.uniform_max_tries)
+        #: e^{-k} for tries k = 1..cap, as a column to scale a batch of proposals
+        self._shrink = np.exp(-np.arange(1.0, cap + 1.0))[:, None]
 
     # ----- hooks --------------------------------------------------------------------
-    def _tell(self, x: FloatArray, value: float) -> None:
-        i = self._n - 1
-        if self._sqnorm.shape[0] < self._xs.shape[0]:
-            grown = np.empty(self._xs.shape[0])
-            grown[:i] = self._sqnorm[:i]
-            self._sqnorm = grown
-        self._sqnorm[i] = float(x @ x)
-
     def _ask(self) -> FloatArray:
-        explore = self.rng.random() <= self.config.omega
-        if explore or self._n < 2:
+        if self._n < 2 or self.rng.random() < self._omega:
             return self.bounds.sample(self.rng)
         return self.sample_best_cell()
 
     # ----- best-cell sampling ---------------------------------------------------------
-    def in_best_cell(self, proposals: FloatArray) -> np.ndarray:
-        """Boolean mask: is each row of ``proposals`` (m, d) in the best point's cell?"""
+    def in_best_cell(self, proposals: ArrayLike) -> np.ndarray:
+        """Boolean mask: is each row of ``proposals`` (m, d) in the best point's cell?
+
+        Brute force against every told point (ties count as inside, as x* is the first
+        point of its cell).
+        """
+        props = np.atleast_2d(np.asarray(proposals, dtype=np.float64))
         xs = self._xs[: self._n]
+        b = self._best_index
         metric = self.config.metric
         if metric is not None:
-            mask = np.empty(proposals.shape[0], dtype=bool)
-            for k, p in enumerate(proposals):
-                d = metric(xs, p)
-                mask[k] = d[self._best_index] <= d.min()
+            mask = np.empty(props.shape[0], dtype=bool)
+            for k, p in enumerate(props):
+                d = np.asarray(metric(xs, p), dtype=np.float64)
+                mask[k] = d[b] <= d.min()
             return mask
-        return self._closer_to_best(proposals, np.arange(self._n))
+        v = xs - xs[b]
+        q = props - xs[b]
+        return np.all(q @ v.T <= 0.5 * np.einsum("ij,ij->i", v, v), axis=1)
 
-    def _closer_to_best(self, proposals: FloatArray, idx: np.ndarray) -> np.ndarray:
-        """Mask: is each proposal at least as close to x* as to every point in ``idx``?"""
-        b = self._best_index
-        best = self._xs[b]
-        pts = self._xs[idx]
-        # |p - x_i|^2 >= |p - x*|^2  <=>  2 p.(x_i - x*) <= |x_i|^2 - |x*|^2
-        lhs = 2.0 * (proposals @ pts.T - (proposals @ best)[:, None])
-        rhs = self._sqnorm[idx] - self._sqnorm[b]
-        return np.all(lhs <= rhs + 1e-12 * (1.0 + np.abs(rhs)), axis=1)
+    def _best_cell(self) -> _BestCell:
+        """The best-cell cache, rebuilt when x* changed, extended by new points."""
+        cell = self._cell
+        n = self._n
+        if cell is None or cell.b != self._best_index:
+            cell = self._cell = _BestCell(self._xs[:n], self._best_index, self._lower, self._upper)
+        elif cell.n < n:
+            cell.extend(self._xs[:n])
+        return cell
 
-    def _first_in_best_cell(self, proposals: FloatArray) -> int:
-        """Index of the first proposal inside the best cell, or -1 if none is.
+    def _offsets(self, cell: _BestCell, first_try: int, count: int) -> FloatArray:
+        """Proposals ``q = p - x*`` for tries ``first_try + 1 .. first_try + count``."""
+        d = cell.best.shape[0]
+        sampler = self.sampler
+        if sampler is BestCellSampler.CENTERED_UNIFORM:
+            # uniform in [x* + (lb - x*) e^-k, x* + (ub - x*) e^-k]
+            u = self.rng.random((count, d))
+            return (u * self._width + cell.a) * self._shrink[first_try : first_try + count]
+        if sampler is BestCellSampler.GAUSSIAN:
+            # N(x*, s_k^2) clipped to the box, s_k = max(|ub - x*|, |lb - x*|) e^-k
+            z = self.rng.standard_normal((count, d))
+            scale = np.maximum(cell.c, -cell.a)
+            return np.clip(z * scale * self._shrink[first_try : first_try + count], cell.a, cell.c)
+        return self.rng.random((count, d)) * self._width + cell.a  # uniform in the box
 
-        Exact, and much cheaper than testing every point when n is large: a proposal at
-        distance r from x* can only be closer to points within 2r of x* (triangle
-        inequality), and it is usually rejected by one of x*'s nearest neighbours, which
-        are tested first for the whole batch.
+    def _inside(self, cell: _BestCell, q: FloatArray) -> bool:
+        """Exact test of one proposal that passed the nearest-neighbour test.
+
+        Only points within :math:`2\\|q\\|` of x* can be closer to :math:`x^* + q`
+        than x* is (triangle inequality); if none lies outside the cached neighbours, the
+        neighbour test was already exhaustive.
         """
-        if self.config.metric is not None:
-            ok = np.flatnonzero(self.in_best_cell(proposals))
+        r2 = float(q @ q)
+        if 4.0 * r2 * (1.0 + 1e-9) < cell.out2:
+            return True
+        near = np.flatnonzero(cell.d2[: cell.n] <= 4.0 * r2 * (1.0 + 1e-9))
+        v = self._xs[near] - cell.best
+        return bool(np.all(v @ q <= 0.5 * np.einsum("ij,ij->i", v, v)))
+
+    def _first_inside(self, cell: _BestCell, q: FloatArray) -> int:
+        """Index of the first proposal (row of ``q``) inside the best cell, or -1."""
+        metric = self.config.metric
+        if metric is not None:
+            ok = np.flatnonzero(self.in_best_cell(q + cell.best))
             return int(ok[0]) if ok.size else -1
-        dist = self._distances_to_best()
-        survivors = np.flatnonzero(self._closer_to_best(proposals, self._nearest_to_best()))
-        best = self._xs[self._best_index]
-        for i in survivors:
-            p = proposals[i : i + 1]
-            r = float(np.sqrt(np.sum((p[0] - best) ** 2)))
-            near = np.flatnonzero(dist <= 2.0 * r * (1.0 + 1e-9))
-            if self._closer_to_best(p, near)[0]:
-                return int(i)
+        ok = (q @ cell.v[: cell.count].T <= cell.h[: cell.count]).all(axis=1)
+        j = int(ok.argmax())
+        while ok[j]:
+            if self._inside(cell, q[j]):
+                return j
+            ok[j] = False
+            j = int(ok.argmax())
         return -1
 
-    def _nearest_to_best(self, k: int = 32) -> np.ndarray:
-        """Indices of the (up to) k told points nearest to x* (cached until n or x* change)."""
-        key = (self._best_index, self._n)
-        if self._nearest_key != key:
-            dist = self._distances_to_best()
-            if dist.size <= k:
-                self._nearest = np.arange(dist.size)
-            else:
-                self._nearest = np.argpartition(dist, k)[:k]
-            self._nearest_key = key
-        return self._nearest
-
-    def _distances_to_best(self) -> FloatArray:
-        """Euclidean distance of every told point to the best one (cached, O(d) per tell)."""
-        b, n = self._best_index, self._n
-        if self._dist_best_index != b:
-            self._dist_best = np.empty(self._xs.shape[0])
-            self._dist_best_n = 0
-            self._dist_best_index = b
-        if self._dist_best.shape[0] < n:
-            grown = np.empty(self._xs.shape[0])
-            grown[: self._dist_best_n] = self._dist_best[: self._dist_best_n]
-            self._dist_best = grown
-        if self._dist_best_n < n:
-            diff = self._xs[self._dist_best_n : n] - self._xs[b]
-            self._dist_best[self._dist_best_n : n] = np.sqrt(np.einsum("ij,ij->i", diff, diff))
-            self._dist_best_n = n
-        return self._dist_best[:n]
-
-    def _proposals(self, first_try: int, count: int) -> FloatArray:
-        """Proposals for tries ``first_try .. first_try + count - 1`` (1-based)."""
-        best = self._xs[self._best_index]
-        lb, ub = self.bounds.lower, self.bounds.upper
-        if self.sampler is BestCellSampler.UNIFORM:
-            return self.bounds.sample(self.rng, count)
-        k = np.arange(first_try, first_try + count, dtype=np.float64)[:, None]
-        shrink = np.exp(-k)
-        if self.sampler is BestCellSampler.CENTERED_UNIFORM:
-            lo = best + (lb - best) * shrink
-            hi = best + (ub - best) * shrink
-            return lo + self.rng.random((count, best.size)) * (hi - lo)
-        scale = np.maximum(np.abs(ub - best), np.abs(lb - best)) * shrink
-        return np.clip(best + scale * self.rng.standard_normal((count, best.size)), lb, ub)
-
     def sample_best_cell(self) -> FloatArray:
-        """Draw one point from the best Voronoi cell (with the configured sampler)."""
+        """Draw one point from the best Voronoi cell (with the configured sampler).
+
+        Tries are drawn in batches; a batch is tested against x*'s cached nearest
+        neighbours with one matrix product, and the first survivor is checked exactly
+        against every point that could reject it. Accept/reject decisions are those of
+        the brute-force test (up to floating-point ties), so the batching changes the
+        random stream but not the distribution of the returned point.
+        """
         cfg = self.config
         uniform = self.sampler is BestCellSampler.UNIFORM
         cap = cfg.uniform_max_tries if uniform else cfg.max_tries
-        best = self._xs[self._best_index]
+        cell = self._best_cell()
         closest: FloatArray | None = None
-        closest_d = math.inf
+        closest_r2 = math.inf
         tried = 0
-        batch = cfg.batch_size
+        batch = self._first_batch
         while tried < cap:
             m = min(batch, cap - tried)
-            props = self._proposals(tried + 1, m)
-            first = self._first_in_best_cell(props)
-            if first >= 0:
-                self.n_rejected += first
-                return props[first]
-            self.n_rejected += m
-            d = np.einsum("ij,ij->i", props - best, props - best)
-            j = int(np.argmin(d))
-            if d[j] < closest_d:
-                closest, closest_d = props[j], float(d[j])
+            q = self._offsets(cell, tried, m)
+            j = self._first_inside(cell, q)
+            if j >= 0:
+                self.n_rejected += tried + j
+                self._first_batch = max(
+                    cfg.batch_size, min(256, tried + j + 1 + (tried + j) // 4 + 2)
+                )
+                return np.clip(cell.best + q[j], self._lower, self._upper)
+            r2 = np.einsum("ij,ij->i", q, q)
+            k = int(r2.argmin())
+            if r2[k] < closest_r2:
+                closest, closest_r2 = q[k], float(r2[k])
             tried += m
             batch = min(batch * 2, 256)
+        self.n_rejected += tried
         self.n_fallbacks += 1
+        self._first_batch = max(cfg.batch_size, min(256, cap))
         if uniform and cfg.uniform_switch_to_gaussian:
             self.sampler = BestCellSampler.GAUSSIAN
         assert closest is not None
-        return closest.copy()
+        return np.clip(cell.best + closest, self._lower, self._upper)

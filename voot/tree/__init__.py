@@ -1,1 +1,71 @@
-"""Monte Carlo tree search with a pluggable action optimiser at every node (VOOT)."""
+"""Monte Carlo tree search with a pluggable action optimiser at every node (VOOT).
+
+The paper's Algorithms 1-2 over a small planning-problem protocol
+(:mod:`voot.tree.problem`). Every planner (VOOT, DOOT, RAND-DOOT, PW-UCT, Voronoi
+progressive widening, HOOT) is the same :class:`MCTS` with a different
+:class:`MCTSConfig`::
+
+    from voot.tree import plan, make_chain
+    result = plan(make_chain("shekel", 10), "voot", n_simulations=1000, seed=0)
+    result.best_return, result.best_return_curve
+
+This package needs numpy only (gymnasium for the adapters and chain environments);
+it never imports MuJoCo at import time.
+"""
+
+from voot.tree.chains import (
+    CHAIN_SPECS,
+    SyntheticChain,
+    chain_planner_options,
+    make_chain,
+)
+from voot.tree.config import (
+    PLANNERS,
+    Backup,
+    BestReturnOver,
+    FinalAction,
+    MCTSConfig,
+    Selection,
+    available_planners,
+    available_samplers,
+    planner_config,
+)
+from voot.tree.execute import EpisodeResult, run_episode
+from voot.tree.gym_adapters import GymProblem, MujocoGymProblem
+from voot.tree.hoo import HOO, HOOConfig
+from voot.tree.mcts import MCTS, PlanResult, plan
+from voot.tree.node import Node
+from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.samplers import ActionSampler, OptimizerSampler, UniformSampler
+
+__all__ = [
+    "CHAIN_SPECS",
+    "HOO",
+    "MCTS",
+    "PLANNERS",
+    "ActionSampler",
+    "Backup",
+    "BestReturnOver",
+    "EpisodeResult",
+    "FeasibilityCheck",
+    "FinalAction",
+    "GymProblem",
+    "HOOConfig",
+    "MCTSConfig",
+    "MujocoGymProblem",
+    "Node",
+    "OptimizerSampler",
+    "PlanResult",
+    "PlanningProblem",
+    "Selection",
+    "StepResult",
+    "SyntheticChain",
+    "UniformSampler",
+    "available_planners",
+    "available_samplers",
+    "chain_planner_options",
+    "make_chain",
+    "plan",
+    "planner_config",
+    "run_episode",
+]

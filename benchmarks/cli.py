@@ -1,0 +1,362 @@
+"""The ``voot-bench`` command line.
+
+Subcommands::
+
+    voot-bench demo                       VOO on Shekel-20D with the paper's budget (5000)
+    voot-bench bbfo --out results/bbfo    the Figure-3 sweep (resumable, parallel)
+    voot-bench select results/bbfo        the selected hyperparameters per method
+    voot-bench plot results/bbfo --png fig.png --markdown table.md
+    voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
+
+Errors in the input (unknown function or method, inverted ranges, a corrupt or foreign
+result directory) print one line ``voot-bench: error: ...`` and exit with status 2.
+Progress bars go to stderr, results and tables to stdout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+
+from voot.bench.store import Row, StoreError
+
+EXIT_USAGE = 2
+EXIT_INTERRUPTED = 130
+
+#: Default cases of ``voot-bench speed``: (method, number of told points).
+SPEED_CASES: tuple[tuple[str, int], ...] = (
+    ("voo", 1000),
+    ("voo", 5000),
+    ("cmaes", 1000),
+    ("cmaes", 5000),
+    ("gp_ucb", 500),
+)
+
+
+class CLIError(ValueError):
+    """A user error reported as ``voot-bench: error: ...``."""
+
+
+def split_list(values: Sequence[str] | None) -> list[str]:
+    """Flatten ``["a,b", "c"]`` into ``["a", "b", "c"]``."""
+    out: list[str] = []
+    for v in values or []:
+        out.extend(p for p in (s.strip() for s in v.split(",")) if p)
+    return out
+
+
+def parse_int_list(values: Sequence[str] | None, what: str) -> list[int]:
+    """Integers from ``["3", "10,20"]``; ``"A:B"`` expands to ``A .. B-1``."""
+    out: list[int] = []
+    for item in split_list(values):
+        if ":" in item:
+            out.extend(parse_range(item, what))
+            continue
+        try:
+            out.append(int(item))
+        except ValueError:
+            raise CLIError(f"{what}: {item!r} is not an integer") from None
+    return out
+
+
+def parse_range(text: str, what: str) -> list[int]:
+    """``"N"`` -> ``0 .. N-1``; ``"A:B"`` -> ``A .. B-1`` (error if ``B <= A``)."""
+    parts = text.split(":")
+    try:
+        if len(parts) == 1:
+            start, stop = 0, int(parts[0])
+        elif len(parts) == 2:
+            start, stop = int(parts[0]), int(parts[1])
+        else:
+            raise ValueError
+    except ValueError:
+        raise CLIError(f"{what}: {text!r} is not N or START:STOP") from None
+    if start < 0:
+        raise CLIError(f"{what}: {text!r} starts below 0")
+    if stop <= start:
+        raise CLIError(
+            f"{what}: inverted or empty range {text!r} (need START < STOP, e.g. 0:20)"
+            if len(parts) == 2
+            else f"{what}: need at least 1, got {text!r}"
+        )
+    return list(range(start, stop))
+
+
+# ----- bbfo ----------------------------------------------------------------------------
+def _add_filters(p: argparse.ArgumentParser, defaults: bool) -> None:
+    from voot.bench.sweep import PAPER_DIMS, PAPER_FUNCTIONS, PAPER_METHODS
+
+    def hint(values: Sequence[object]) -> str:
+        return f" (default: {' '.join(map(str, values))})" if defaults else " (default: all)"
+
+    p.add_argument(
+        "--functions", nargs="+", metavar="NAME", help="test functions" + hint(PAPER_FUNCTIONS)
+    )
+    p.add_argument("--dims", nargs="+", metavar="D", help="dimensions" + hint(PAPER_DIMS))
+    p.add_argument("--methods", nargs="+", metavar="NAME", help="optimisers" + hint(PAPER_METHODS))
+
+
+def cmd_bbfo(args: argparse.Namespace) -> int:
+    from voot.bench.store import ResultStore
+    from voot.bench.sweep import (
+        PAPER_DIMS,
+        PAPER_FUNCTIONS,
+        PAPER_METHODS,
+        build_specs,
+        make_backend,
+        run_sweep,
+        summarize_specs,
+    )
+
+    seeds = parse_range(args.seeds, "--seeds")
+    specs = build_specs(
+        split_list(args.functions) or PAPER_FUNCTIONS,
+        parse_int_list(args.dims, "--dims") or PAPER_DIMS,
+        split_list(args.methods) or PAPER_METHODS,
+        seeds,
+        grid=args.grid,
+        budget_scale=args.budget_scale,
+        budget=args.budget,
+    )
+    if not specs:
+        raise CLIError("the grid is empty (e.g. rembo is not run in 3-D); widen --dims/--methods")
+    evaluations = sum(s.budget for s in specs)
+    print(
+        f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}",
+        file=sys.stderr,
+    )
+    if args.dry_run:
+        print(summarize_specs(specs))
+        return 0
+    store = ResultStore(args.out)
+    backend = make_backend(args.backend, args.workers)
+    print(f"results: {store.path}", file=sys.stderr)
+    summary = run_sweep(
+        specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
+    )
+    print(summary)
+    return 1 if summary.failed else 0
+
+
+# ----- select / plot -------------------------------------------------------------------
+def _load_bbfo(path: str) -> list[Row]:
+    from voot.bench.store import ResultStore
+
+    store = ResultStore(path, create=False)
+    rows = store.load(kind="bbfo", status="ok", arrays=True)
+    if not rows:
+        raise CLIError(f"{store.path}: no finished bbfo runs in this store")
+    return rows
+
+
+def cmd_select(args: argparse.Namespace) -> int:
+    from voot.bench.select import largest_budget, select_hyperparameters, selection_table
+
+    rows = largest_budget(_load_bbfo(args.results))
+    print(selection_table(select_hyperparameters(rows), all_candidates=args.all))
+    return 0
+
+
+def cmd_plot(args: argparse.Namespace) -> int:
+    from voot.bench.plot import figure_data, final_table, plot_figure3, settings_table
+    from voot.optim.registry import normalize_method
+
+    if args.log and not args.regret:
+        raise CLIError("--log needs --regret (best values can be negative)")
+    rows = _load_bbfo(args.results)
+    functions = [f.lower() for f in split_list(args.functions)] or None
+    dims = parse_int_list(args.dims, "--dims") or None
+    methods = [normalize_method(m) for m in split_list(args.methods)] or None
+    data = figure_data(rows, regret=args.regret, functions=functions, dims=dims, methods=methods)
+    if not data:
+        raise CLIError("no finished runs match --functions/--dims/--methods")
+    table = final_table(data, regret=args.regret)
+    settings = settings_table(data)
+    print(table)
+    print()
+    print(settings)
+    if args.png:
+        path = plot_figure3(data, args.png, regret=args.regret, log=args.log)
+        print(f"figure: {path}", file=sys.stderr)
+    if args.markdown:
+        md = Path(args.markdown)
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(f"{table}\n\nSelected hyperparameters:\n\n{settings}\n")
+        print(f"markdown: {md}", file=sys.stderr)
+    return 0
+
+
+# ----- speed ---------------------------------------------------------------------------
+def parse_cases(values: Sequence[str] | None) -> list[tuple[str, int]]:
+    """``["voo:1000", "cmaes:5000"]`` -> ``[("voo", 1000), ("cmaes", 5000)]``."""
+    from voot.optim.registry import normalize_method
+
+    if not values:
+        return list(SPEED_CASES)
+    out = []
+    for item in split_list(values):
+        method, _, n = item.partition(":")
+        try:
+            count = int(n)
+        except ValueError:
+            raise CLIError(f"--cases: {item!r} is not METHOD:N (e.g. voo:1000)") from None
+        if count < 1:
+            raise CLIError(f"--cases: N must be >= 1 in {item!r}")
+        out.append((normalize_method(method), count))
+    return out
+
+
+def cmd_speed(args: argparse.Namespace) -> int:
+    cases = parse_cases(args.cases)
+    try:
+        from voot.bench.speed import measure_ask_cost
+    except ImportError as exc:
+        raise CLIError(f"voot.bench.speed is not available ({exc})") from None
+    if args.dim < 1 or args.repeats < 1:
+        raise CLIError("--dim and --repeats must be >= 1")
+    print(f"cost of one ask after n told points, d = {args.dim}, median of {args.repeats} repeats")
+    print("| method | n | ms per ask |")
+    print("| --- | ---: | ---: |")
+    failed = 0
+    for method, n in cases:
+        try:
+            seconds = measure_ask_cost(method, n, args.dim, args.repeats, args.seed)
+            cell = f"{1000.0 * seconds:.3f}"
+        except Exception as exc:  # report and go on with the other cases
+            failed += 1
+            cell = f"error: {type(exc).__name__}: {exc}"
+        print(f"| {method} | {n} | {cell} |", flush=True)
+    return 1 if failed else 0
+
+
+# ----- demo ----------------------------------------------------------------------------
+def cmd_demo(args: argparse.Namespace) -> int:
+    from voot.bench.sweep import RunSpec, check_functions, paper_budget, run_spec
+    from voot.functions import get_function
+    from voot.optim.registry import normalize_method
+
+    function = check_functions([args.function])[0]
+    method = normalize_method(args.method)
+    if args.dim < 1:
+        raise CLIError(f"--dim must be >= 1, got {args.dim}")
+    budget = args.budget if args.budget is not None else paper_budget(function, args.dim)
+    if budget < 1:
+        raise CLIError(f"--budget must be >= 1, got {budget}")
+    spec = RunSpec(function, args.dim, method, (), budget, args.seed)
+    print(
+        f"{method} on {function}-{args.dim}D, {budget} evaluations, seed {args.seed} ...",
+        file=sys.stderr,
+    )
+    start = time.perf_counter()
+    row = run_spec(spec)
+    elapsed = time.perf_counter() - start
+    if row["status"] != "ok":
+        print(f"voot-bench: run failed: {row['error']}", file=sys.stderr)
+        return 1
+    best = float(row["best_so_far"][-1])
+    optimum = get_function(function, args.dim).optimum_value
+    print(
+        f"{method} on {function}-{args.dim}D: {budget} evaluations in {elapsed:.1f} s (seed {args.seed})"
+    )
+    print(f"  best value found  {best:.6g}")
+    if optimum is not None:
+        print(f"  known optimum     {float(optimum):.6g}")
+        print(f"  regret            {float(optimum) - best:.6g}")
+    for k in (10, 100, 1000):
+        if k < budget:
+            print(f"  best after {k:>5}  {float(row['best_so_far'][k - 1]):.6g}")
+    return 0
+
+
+# ----- parser --------------------------------------------------------------------------
+def build_parser() -> argparse.ArgumentParser:
+    from voot.bench.sweep import BACKENDS, GRIDS
+
+    parser = argparse.ArgumentParser(
+        prog="voot-bench", description="Benchmarks of voot: VOO and baselines (paper Figure 3)."
+    )
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser("demo", help="VOO on Shekel-20D with the paper's budget")
+    p.add_argument("--function", default="shekel")
+    p.add_argument("--dim", type=int, default=20)
+    p.add_argument("--method", default="voo")
+    p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
+    p.add_argument("--seed", type=int, default=0)
+    p.set_defaults(func=cmd_demo)
+
+    p = sub.add_parser("bbfo", help="run the black-box sweep of Figure 3 (resumable)")
+    p.add_argument(
+        "--out", default="results/bbfo", help="result store directory (default: %(default)s)"
+    )
+    _add_filters(p, defaults=True)
+    p.add_argument(
+        "--seeds", default="20", help="N (seeds 0..N-1) or START:STOP (default: %(default)s)"
+    )
+    p.add_argument(
+        "--grid", choices=GRIDS, default="paper", help="hyperparameter grid (default: %(default)s)"
+    )
+    p.add_argument("--budget-scale", type=float, default=1.0, help="multiply the paper budgets")
+    p.add_argument("--budget", type=int, default=None, help="one fixed budget for every run")
+    p.add_argument(
+        "--workers", type=int, default=os.cpu_count() or 1, help="processes (default: %(default)s)"
+    )
+    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--dry-run", action="store_true", help="list the runs per cell and exit")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_bbfo)
+
+    p = sub.add_parser("select", help="selected hyperparameters per method (best mean final value)")
+    p.add_argument("results", help="result store directory")
+    p.add_argument("--all", action="store_true", help="list every setting tried")
+    p.set_defaults(func=cmd_select)
+
+    p = sub.add_parser("plot", help="Figure 3 and the table of final values")
+    p.add_argument("results", help="result store directory")
+    p.add_argument("--png", help="write the figure here")
+    p.add_argument("--markdown", help="write the tables here as markdown")
+    p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
+    p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
+    _add_filters(p, defaults=False)
+    p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser("speed", help="cost per ask of VOO, CMA-ES and GP-UCB")
+    p.add_argument(
+        "--cases",
+        nargs="+",
+        metavar="METHOD:N",
+        help="default: " + " ".join(f"{m}:{n}" for m, n in SPEED_CASES),
+    )
+    p.add_argument("--dim", type=int, default=20)
+    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--seed", type=int, default=0)
+    p.set_defaults(func=cmd_speed)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of ``voot-bench``; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args))
+    except (CLIError, StoreError, ValueError) as exc:
+        print(f"voot-bench: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print(
+            "\nvoot-bench: interrupted; finished runs are saved, run the same command again to resume",
+            file=sys.stderr,
+        )
+        return EXIT_INTERRUPTED
+
+
+if __name__ == "__main__":
+    sys.exit(main())

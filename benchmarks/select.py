@@ -1,0 +1,172 @@
+"""Per-optimiser hyperparameter selection, as in the paper.
+
+The paper tuned every optimiser on every problem: for each (function, dim) and each
+method, run every setting of the method's grid on all seeds and keep the setting with the
+**best mean final value** (the mean over seeds of the best value after the whole budget;
+the functions are maximised, so higher is better). Figure 3 then draws each method with
+its selected setting.
+
+Ties (equal means) go to the setting whose label sorts first, so the choice is
+deterministic. Only rows with status ``"ok"`` count; runs of different budgets are kept
+apart (the budget is part of the cell).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from voot.bench.store import Row
+from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, params_key
+
+#: (function, dim, budget, method)
+CellKey = tuple[str, int, int, str]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One hyperparameter setting of a method in a cell, summarised over seeds."""
+
+    params: dict[str, Any]
+    label: str
+    finals: tuple[float, ...]
+
+    @property
+    def n(self) -> int:
+        return len(self.finals)
+
+    @property
+    def mean(self) -> float:
+        return float(np.mean(self.finals))
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The selected setting of ``method`` on ``function``-``dim`` at ``budget``.
+
+    ``candidates`` are all settings tried, best mean first; ``candidates[0]`` is the
+    selected one.
+    """
+
+    function: str
+    dim: int
+    budget: int
+    method: str
+    candidates: tuple[Candidate, ...]
+
+    @property
+    def best(self) -> Candidate:
+        return self.candidates[0]
+
+    @property
+    def params(self) -> dict[str, Any]:
+        return self.best.params
+
+    @property
+    def key(self) -> CellKey:
+        return (self.function, self.dim, self.budget, self.method)
+
+
+def _order(names: Iterable[str], preferred: Sequence[str]) -> list[str]:
+    rank = {n: i for i, n in enumerate(preferred)}
+    return sorted(set(names), key=lambda n: (rank.get(n, len(rank)), n))
+
+
+def function_order(names: Iterable[str]) -> list[str]:
+    """The paper's functions first (Griewank, Rastrigin, Shekel), then the rest by name."""
+    return _order(names, PAPER_FUNCTIONS)
+
+
+def method_order(names: Iterable[str]) -> list[str]:
+    """Methods in the paper's order (VOO first), then the rest by name."""
+    return _order(names, PAPER_METHODS)
+
+
+def final_value(row: Row) -> float:
+    """The best value after the last evaluation of a row."""
+    best = row["best_so_far"]
+    if len(best) == 0:
+        raise ValueError(f"row {row.get('run_id')} has an empty best_so_far")
+    return float(best[-1])
+
+
+def select_hyperparameters(rows: Iterable[Row]) -> list[Selection]:
+    """Select each method's setting per (function, dim, budget): best mean final value.
+
+    Returns the selections sorted by function (paper order), dim, budget and method.
+    """
+    groups: dict[CellKey, dict[str, tuple[dict[str, Any], list[float]]]] = {}
+    for row in rows:
+        if row.get("status") != "ok":
+            continue
+        cfg = row["config"]
+        key: CellKey = (cfg["function"], int(cfg["dim"]), int(cfg["budget"]), cfg["method"])
+        params = dict(cfg.get("params") or {})
+        label = params_key(params)
+        entry = groups.setdefault(key, {}).setdefault(label, (params, []))
+        entry[1].append(final_value(row))
+    selections = []
+    for key, settings in groups.items():
+        cands = [Candidate(p, label, tuple(f)) for label, (p, f) in settings.items()]
+        cands.sort(key=lambda c: (-c.mean, c.label))
+        selections.append(Selection(*key, candidates=tuple(cands)))
+    f_rank = {f: i for i, f in enumerate(function_order(s.function for s in selections))}
+    m_rank = {m: i for i, m in enumerate(method_order(s.method for s in selections))}
+    selections.sort(key=lambda s: (f_rank[s.function], s.dim, s.budget, m_rank[s.method]))
+    return selections
+
+
+def largest_budget(rows: Iterable[Row]) -> list[Row]:
+    """Keep, per (function, dim), only the rows of the largest budget present.
+
+    A store can hold a quick scaled-down sweep beside the full one; plots and tables
+    compare methods at one budget per cell.
+    """
+    rows = list(rows)
+    top: dict[tuple[str, int], int] = {}
+    for r in rows:
+        cfg = r["config"]
+        k = (cfg["function"], int(cfg["dim"]))
+        top[k] = max(top.get(k, 0), int(cfg["budget"]))
+    return [
+        r
+        for r in rows
+        if int(r["config"]["budget"]) == top[(r["config"]["function"], int(r["config"]["dim"]))]
+    ]
+
+
+def selected_rows(rows: Iterable[Row], selections: Iterable[Selection]) -> list[Row]:
+    """The ``"ok"`` rows that belong to a selected setting."""
+    chosen = {s.key: s.best.label for s in selections}
+    out = []
+    for r in rows:
+        if r.get("status") != "ok":
+            continue
+        cfg = r["config"]
+        key = (cfg["function"], int(cfg["dim"]), int(cfg["budget"]), cfg["method"])
+        if chosen.get(key) == params_key(cfg.get("params") or {}):
+            out.append(r)
+    return out
+
+
+def selection_table(selections: Sequence[Selection], *, all_candidates: bool = False) -> str:
+    """A markdown table of the selected settings (mean final value, seeds, runner-up).
+
+    With ``all_candidates`` every setting gets a row (selected ones marked ``*``).
+    """
+    lines = [
+        "| function | dim | budget | method | selected | mean final | seeds | settings tried |",
+        "| --- | ---: | ---: | --- | --- | ---: | ---: | ---: |",
+    ]
+    for s in selections:
+        cands = s.candidates if all_candidates else s.candidates[:1]
+        for i, c in enumerate(cands):
+            mark = "*" if all_candidates and i == 0 else ""
+            lines.append(
+                f"| {s.function} | {s.dim} | {s.budget} | {s.method} | {c.label}{mark} |"
+                f" {c.mean:.6g} | {c.n} | {len(s.candidates)} |"
+            )
+    return "\n".join(lines)

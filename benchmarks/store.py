@@ -1,0 +1,452 @@
+"""The result store: one JSON file per finished run, in a directory with a header.
+
+Every benchmark (the black-box sweep of ``voot-bench bbfo`` now, the tree-search sweeps
+of ``voot-bench plan`` later, local or on Ray) writes the same kind of *row*, one per run::
+
+    {
+      "schema": 1,
+      "run_id": "3f1c...",            # stable hash of kind + config (the seed is in config)
+      "kind": "bbfo",                 # "bbfo" | "plan" | ...
+      "config": {"function": "shekel", "dim": 20, "method": "voo",
+                 "params": {"omega": 0.001}, "budget": 5000, "seed": 7, ...},
+      "status": "ok",                 # or "failed"
+      "error": null,                  # "ValueError: ..." when failed
+      "wall_time": 2.61,              # seconds spent in the run
+      "best_so_far": [0.01, 0.01, ...],  # best value after every evaluation
+      "versions": {"voot": "0.1.0", "numpy": "2.4.0", "python": "3.11.9"},
+      "finished_at": "2025-01-01T12:00:00+00:00",
+      ...                             # optional extras (best_x, traceback, ...)
+    }
+
+Layout on disk (chosen over an append-only JSONL because a rename is atomic on every
+POSIX file system, so there is no recovery rule to get wrong)::
+
+    RESULTS/
+      voot-results.json      header: {"format": "voot-results", "schema": 1, ...}
+      runs/<run_id>.json     one row per finished run
+
+Guarantees:
+
+* **Atomic rows.** A row is written to a hidden temporary file in ``runs/``, flushed and
+  fsynced, then moved into place with :func:`os.replace`. A reader sees either the whole
+  row or no row; a sweep killed mid-write leaves at most a stray ``.tmp`` file, which
+  readers ignore.
+* **Resume.** A sweep asks :meth:`ResultStore.finished_ids` and runs only the rest, so an
+  interrupted sweep restarted with the same command skips every finished run and loses
+  none. A run that *failed* (status ``"failed"``) is not finished: it is retried by
+  default and its row replaced by the new outcome, because a failure is usually a bug
+  fixed since.
+* **Never clobber foreign data.** A directory that exists, is not empty and has no
+  header, a header of another format or a newer schema, or a row file that does not
+  parse, raises :class:`StoreError` naming the file, before anything is written.
+  Nothing in this module ever deletes or rewrites a file it did not just create.
+
+Loading reads every row file (``json.loads`` on bytes; about 1 s per 100 MB of rows);
+:func:`curves` turns rows into a NumPy array for plotting.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import functools
+import hashlib
+import importlib.metadata
+import io
+import json
+import os
+import platform
+import tempfile
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: Name written in the header; anything else is a foreign directory.
+FORMAT_NAME = "voot-results"
+#: Version of the header and row layout. Bump on incompatible changes.
+SCHEMA_VERSION = 1
+#: Header file name inside the store directory.
+HEADER_NAME = "voot-results.json"
+#: Cache of parsed rows (derived data, rebuilt when missing or unreadable).
+INDEX_NAME = ".index-v1.npz"
+#: Folder with one ``<run_id>.json`` per finished run.
+RUNS_DIR = "runs"
+#: Keys every row must have.
+REQUIRED_KEYS = (
+    "schema",
+    "run_id",
+    "kind",
+    "config",
+    "status",
+    "wall_time",
+    "best_so_far",
+    "versions",
+)
+#: Allowed values of a row's ``status``.
+STATUSES = ("ok", "failed")
+
+Row = dict[str, Any]
+
+
+class StoreError(ValueError):
+    """A result store (or one of its files) is corrupt, foreign or incompatible."""
+
+
+def _canonical(obj: Any) -> str:
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False)
+
+
+def make_run_id(kind: str, config: Mapping[str, Any]) -> str:
+    """Stable id of a run: the first 20 hex digits of SHA-256 of ``kind`` and ``config``.
+
+    ``config`` must be JSON-serialisable and include the seed. Keys are sorted, so the id
+    does not depend on dict order, Python's hash seed or the process.
+    """
+    return hashlib.sha256(_canonical({"kind": kind, "config": dict(config)}).encode()).hexdigest()[
+        :20
+    ]
+
+
+@functools.cache
+def versions() -> dict[str, str]:
+    """Versions recorded with every row: voot, numpy, python, and scipy and cma if installed.
+
+    Read from the package metadata, so recording them imports nothing heavy.
+    """
+    import voot
+
+    out = {"voot": voot.__version__, "numpy": np.__version__, "python": platform.python_version()}
+    for name in ("scipy", "cma"):
+        try:
+            out[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:  # pragma: no cover - core dependencies
+            continue
+    return out
+
+
+def make_row(
+    kind: str,
+    config: Mapping[str, Any],
+    *,
+    status: str,
+    wall_time: float,
+    best_so_far: Sequence[float] | NDArray[np.float64],
+    error: str | None = None,
+    **extra: Any,
+) -> Row:
+    """Assemble a row with its run id, versions and finish time (see the module docstring)."""
+    if status not in STATUSES:
+        raise ValueError(f"status must be one of {STATUSES}, got {status!r}")
+    row: Row = {
+        "schema": SCHEMA_VERSION,
+        "run_id": make_run_id(kind, config),
+        "kind": kind,
+        "config": dict(config),
+        "status": status,
+        "error": error,
+        "wall_time": float(wall_time),
+        "best_so_far": [float(v) for v in np.asarray(best_so_far, dtype=np.float64)],
+        "versions": dict(versions()),
+        "finished_at": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+    }
+    row.update(extra)
+    return row
+
+
+def check_row(row: Any, source: str = "row") -> Row:
+    """Return ``row`` if it has the row layout, else raise :class:`StoreError` naming ``source``."""
+    if not isinstance(row, dict):
+        raise StoreError(f"{source}: a row must be a JSON object, got {type(row).__name__}")
+    missing = [k for k in REQUIRED_KEYS if k not in row]
+    if missing:
+        raise StoreError(f"{source}: not a voot result row (missing keys {missing})")
+    if row["schema"] != SCHEMA_VERSION:
+        raise StoreError(
+            f"{source}: row schema {row['schema']!r}, this voot reads schema {SCHEMA_VERSION}"
+        )
+    if row["status"] not in STATUSES:
+        raise StoreError(f"{source}: status {row['status']!r} is not one of {STATUSES}")
+    if not isinstance(row["config"], dict) or not isinstance(row["best_so_far"], list):
+        raise StoreError(f"{source}: 'config' must be an object and 'best_so_far' a list")
+    return row
+
+
+def _current_umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+_UMASK = _current_umask()
+
+
+def _write_atomic(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` via a fsynced temporary file and :func:`os.replace`."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; rows are ordinary files
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    try:  # make the rename itself durable
+        dir_fd = os.open(path.parent, os.O_RDONLY)
+    except OSError:  # pragma: no cover - e.g. platforms without directory fds
+        return
+    try:
+        os.fsync(dir_fd)
+    except OSError:  # pragma: no cover
+        pass
+    finally:
+        os.close(dir_fd)
+
+
+class ResultStore:
+    """A directory of result rows (see the module docstring for layout and guarantees).
+
+    Args:
+        path: the store directory.
+        create: create the directory and header if ``path`` does not exist or is an
+            empty directory. With ``create=False`` a missing store raises
+            :class:`StoreError`.
+
+    Raises:
+        StoreError: ``path`` is a file, a non-empty directory without header, or has a
+            header of another format or schema.
+    """
+
+    def __init__(self, path: str | os.PathLike[str], *, create: bool = True) -> None:
+        self.path = Path(path)
+        self.header_path = self.path / HEADER_NAME
+        self.runs_path = self.path / RUNS_DIR
+        if self.path.exists() and not self.path.is_dir():
+            raise StoreError(f"{self.path}: is a file, not a voot result store directory")
+        if not self.header_path.exists():
+            if self.path.is_dir() and any(self.path.iterdir()):
+                raise StoreError(
+                    f"{self.path}: directory is not empty and has no {HEADER_NAME}, so it is"
+                    " not a voot result store; refusing to write into it (choose another"
+                    " --out directory)"
+                )
+            if not create:
+                raise StoreError(f"{self.path}: no voot result store here (no {HEADER_NAME})")
+            self._create()
+        self.header = self._read_header()
+        self.runs_path.mkdir(exist_ok=True)
+
+    # ----- header ---------------------------------------------------------------------
+    def _create(self) -> None:
+        self.path.mkdir(parents=True, exist_ok=True)
+        header = {
+            "format": FORMAT_NAME,
+            "schema": SCHEMA_VERSION,
+            "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+            "created_by": dict(versions()),
+        }
+        _write_atomic(self.header_path, (json.dumps(header, indent=1) + "\n").encode())
+
+    def _read_header(self) -> dict[str, Any]:
+        try:
+            header = json.loads(self.header_path.read_bytes())
+        except (OSError, ValueError) as exc:
+            raise StoreError(f"{self.header_path}: corrupt store header ({exc})") from None
+        if not isinstance(header, dict) or header.get("format") != FORMAT_NAME:
+            raise StoreError(
+                f"{self.header_path}: not a voot result store header (expected format"
+                f" {FORMAT_NAME!r}); refusing to use {self.path}"
+            )
+        schema = header.get("schema")
+        if schema != SCHEMA_VERSION:
+            raise StoreError(
+                f"{self.header_path}: store schema {schema!r}, but this voot reads and writes"
+                f" schema {SCHEMA_VERSION}; use a matching voot version or another directory"
+            )
+        return header
+
+    # ----- rows -----------------------------------------------------------------------
+    def row_path(self, run_id: str) -> Path:
+        """Where the row of ``run_id`` lives."""
+        if not run_id or any(c in run_id for c in "/\\.") or run_id != run_id.strip():
+            raise ValueError(f"invalid run id {run_id!r}")
+        return self.runs_path / f"{run_id}.json"
+
+    def write(self, row: Row) -> Path:
+        """Atomically write ``row`` and return its path.
+
+        An earlier *failed* row of the same run id is replaced. A finished (``"ok"``) row
+        is never replaced: the store keeps it and the call returns its path. An existing
+        file that does not parse raises :class:`StoreError` and is left as it is.
+        """
+        check_row(row)
+        path = self.row_path(str(row["run_id"]))
+        if path.exists() and self._read_row(path)["status"] == "ok":
+            return path
+        data = json.dumps(row, separators=(",", ":")).encode() + b"\n"
+        _write_atomic(path, data)
+        return path
+
+    def _read_row(self, path: Path) -> Row:
+        try:
+            row = json.loads(path.read_bytes())
+        except (OSError, ValueError) as exc:
+            raise StoreError(
+                f"{path}: corrupt result row ({exc}); move or delete this file to rerun that run"
+            ) from None
+        check_row(row, str(path))
+        if path.stem != row["run_id"]:
+            raise StoreError(f"{path}: file name does not match its run_id {row['run_id']!r}")
+        return row
+
+    def row_files(self) -> list[Path]:
+        """Row files in a stable (sorted) order, ignoring temporary files."""
+        if not self.runs_path.is_dir():
+            return []
+        with os.scandir(self.runs_path) as it:
+            names = sorted(
+                e.name
+                for e in it
+                if e.name.endswith(".json") and not e.name.startswith(".") and e.is_file()
+            )
+        return [self.runs_path / n for n in names]
+
+    def iter_rows(self) -> Iterator[Row]:
+        """Every row read from its file, validated; raises :class:`StoreError` on the first
+        corrupt file. (:meth:`load` is faster: it reuses the index.)"""
+        for path in self.row_files():
+            yield self._read_row(path)
+
+    def load(
+        self, kind: str | None = None, status: str | None = "ok", *, arrays: bool = False
+    ) -> list[Row]:
+        """All rows of ``kind`` (any if None) with ``status`` (any if None), in file order.
+
+        With ``arrays`` each ``best_so_far`` is a read-only float64 array (no list copy).
+        Rows are read through the index (see :meth:`_load_indexed`), so only row files
+        written or changed since the last load are parsed.
+        """
+        return [
+            r
+            for r in self._load_indexed(arrays)
+            if (kind is None or r["kind"] == kind) and (status is None or r["status"] == status)
+        ]
+
+    # ----- index: a cache of parsed rows -----------------------------------------------
+    def _scan(self) -> list[tuple[str, tuple[int, int, int]]]:
+        """(file name, (size, mtime_ns, inode)) of every row file, sorted by name."""
+        if not self.runs_path.is_dir():
+            return []
+        out = []
+        with os.scandir(self.runs_path) as it:
+            for e in it:
+                if e.name.endswith(".json") and not e.name.startswith(".") and e.is_file():
+                    st = e.stat()
+                    out.append((e.name, (st.st_size, st.st_mtime_ns, st.st_ino)))
+        out.sort()
+        return out
+
+    def _read_index(self) -> dict[str, tuple[list[int], Row, NDArray[np.float64]]]:
+        """The index as ``name -> (stat, row without best_so_far, curve)``; empty if it is
+        missing or unreadable (it is derived data and is then rebuilt)."""
+        path = self.path / INDEX_NAME
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                meta = json.loads(data["meta"].tobytes())
+                offsets = data["offsets"]
+                values = data["values"]
+            if len(meta) + 1 != offsets.size or offsets[-1] != values.size:
+                return {}
+            values.setflags(write=False)
+            return {
+                m["file"]: (m["stat"], m["row"], values[offsets[i] : offsets[i + 1]])
+                for i, m in enumerate(meta)
+            }
+        except (OSError, ValueError, KeyError, TypeError):
+            return {}
+
+    def _write_index(self, entries: list[tuple[str, list[int], Row, NDArray[np.float64]]]) -> None:
+        meta = [{"file": name, "stat": stat, "row": row} for name, stat, row, _ in entries]
+        lengths = [c.size for *_, c in entries]
+        offsets = np.zeros(len(entries) + 1, dtype=np.int64)
+        np.cumsum(lengths, out=offsets[1:])
+        values = (
+            np.concatenate([c for *_, c in entries]) if entries else np.empty(0, dtype=np.float64)
+        )
+        buf = io.BytesIO()
+        np.savez(
+            buf,
+            meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
+            offsets=offsets,
+            values=values,
+        )
+        try:
+            _write_atomic(self.path / INDEX_NAME, buf.getvalue())
+        except OSError:  # e.g. a read-only copy of a store: loading still works
+            pass
+
+    def _load_indexed(self, arrays: bool) -> list[Row]:
+        """Rows via the index ``.index-v1.npz``: a cache of every parsed row keyed by its
+        file's (size, mtime, inode). Unchanged files come from the cache; new or changed
+        ones are parsed and validated, and the index is rewritten atomically. Row files
+        stay the source of truth: deleting the index only costs one slow load."""
+        index = self._read_index()
+        entries: list[tuple[str, list[int], Row, NDArray[np.float64]]] = []
+        changed = False
+        for name, stat in self._scan():
+            cached = index.get(name)
+            if cached is not None and list(cached[0]) == list(stat):
+                entries.append((name, list(stat), cached[1], cached[2]))
+                continue
+            row = self._read_row(self.runs_path / name)
+            curve = np.asarray(row.pop("best_so_far"), dtype=np.float64)
+            curve.setflags(write=False)
+            entries.append((name, list(stat), row, curve))
+            changed = True
+        if changed or len(entries) != len(index):
+            self._write_index(entries)
+        out = []
+        for _, _, row, curve in entries:
+            full = dict(row)
+            full["best_so_far"] = curve if arrays else curve.tolist()
+            out.append(full)
+        return out
+
+    def get(self, run_id: str) -> Row | None:
+        """The row of ``run_id``, or None."""
+        path = self.row_path(run_id)
+        return self._read_row(path) if path.exists() else None
+
+    def finished_ids(self, kind: str | None = None) -> set[str]:
+        """Run ids with an ``"ok"`` row: a resumed sweep skips these."""
+        return {r["run_id"] for r in self.load(kind=kind, status="ok", arrays=True)}
+
+    def __len__(self) -> int:
+        return len(self.row_files())
+
+    def __repr__(self) -> str:
+        return f"ResultStore({str(self.path)!r})"
+
+
+def curves(rows: Iterable[Row]) -> NDArray[np.float64]:
+    """Stack the rows' best-so-far lists into an ``(n_rows, max_len)`` array.
+
+    Shorter curves (smaller budgets) are padded with NaN.
+    """
+    lists = [r["best_so_far"] for r in rows]
+    if not lists:
+        return np.empty((0, 0))
+    width = max(len(c) for c in lists)
+    if all(len(c) == width for c in lists):
+        return np.array(lists, dtype=np.float64).reshape(len(lists), width)
+    out = np.full((len(lists), width), np.nan)
+    for i, c in enumerate(lists):
+        out[i, : len(c)] = c
+    return out

@@ -1,0 +1,545 @@
+"""The black-box optimisation sweep of the paper's Figure 3, resumable and parallel.
+
+A sweep is a grid of functions x dimensions x optimisers (each with its hyperparameter
+grid) x seeds. :func:`build_specs` turns the grid into :class:`RunSpec` values,
+:func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store`), and
+:func:`run_sweep` runs every spec not yet in a :class:`~voot.bench.store.ResultStore` on a
+:class:`Backend` (in-process, or a local process pool; a Ray backend plugs in the same
+way), writing each row as soon as its run finishes.
+
+The protocol of one run (``PROTOCOL = 1``):
+
+* **Budget** (paper): 500 evaluations for d = 3 and for Griewank, 5000 for Shekel-20D,
+  1000 otherwise (:func:`paper_budget`), optionally scaled for quick sweeps.
+* **Common initial point** (paper: "all algorithms evaluate the same initial point"): the
+  first point of every run of a (function, dim, seed) is uniform in the function's box,
+  drawn from ``default_rng(SeedSequence([key("initial-point"), seed, key(function), dim]))``
+  (:func:`initial_point`), so it is the same for every method and hyperparameter.
+* **Optimiser seed**: ``SeedSequence([seed, key(function), dim, key(method)])``
+  (:func:`optimizer_seed`). The hyperparameters are deliberately not in it: every
+  grid point of a method sees the same random stream (common random numbers), which
+  makes the selection of :mod:`voot.bench.select` less noisy.
+  ``key(name)`` is the first 4 bytes of SHA-256 of the name (never Python's ``hash``,
+  which changes between processes).
+* **Record**: the best value so far after every evaluation, the wall time and the best
+  point; an exception inside the run gives a row with status ``"failed"`` and the error.
+
+Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import itertools
+import multiprocessing
+import os
+import sys
+import time
+import traceback
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Protocol, TypeVar
+
+import numpy as np
+
+from voot.bench.store import ResultStore, Row, make_row, make_run_id
+from voot.optim.base import FloatArray
+from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
+
+#: Version of the run protocol (initial point and seeding rules); part of every run id.
+PROTOCOL = 1
+#: The paper's test functions (Figure 3 rows).
+PAPER_FUNCTIONS: tuple[str, ...] = ("griewank", "rastrigin", "shekel")
+#: The paper's dimensions (Figure 3 columns).
+PAPER_DIMS: tuple[int, ...] = (3, 10, 20)
+#: The optimisers compared in Figure 3, in plotting order.
+PAPER_METHODS: tuple[str, ...] = (
+    "voo",
+    "doo",
+    "soo",
+    "rand_doo",
+    "gp_ucb",
+    "cmaes",
+    "random",
+    "rembo",
+    "bamsoo",
+)
+#: Seeds per configuration in the paper.
+PAPER_SEEDS = 20
+#: Hyperparameter grids: each method's ``paper_grid()``, or its defaults only.
+GRIDS: tuple[str, ...] = ("paper", "default")
+#: Methods the paper did not run in low dimensions: method -> smallest dimension run.
+#: ("We also omit testing REMBO in problems with 3-dimensional search spaces.")
+MIN_DIM: dict[str, int] = {"rembo": 4}
+
+
+def paper_budget(function: str, dim: int) -> int:
+    """Evaluations per run in the paper: 500 for d = 3 and Griewank, 5000 for Shekel-20D,
+    1000 otherwise."""
+    if dim <= 3 or function == "griewank":
+        return 500
+    if function == "shekel" and dim >= 20:
+        return 5000
+    return 1000
+
+
+def name_key(name: str) -> int:
+    """A process-independent 32-bit integer for a name (SHA-256 based)."""
+    return int.from_bytes(hashlib.sha256(name.encode()).digest()[:4], "little")
+
+
+def initial_point(
+    function: str, dim: int, seed: int, lower: FloatArray, upper: FloatArray
+) -> FloatArray:
+    """The first point of every run of ``(function, dim, seed)``: uniform in the box."""
+    ss = np.random.SeedSequence(
+        [name_key("initial-point"), int(seed), name_key(function), int(dim)]
+    )
+    rng = np.random.default_rng(ss)
+    return lower + rng.random(int(dim)) * (upper - lower)
+
+
+def optimizer_seed(seed: int, function: str, dim: int, method: str) -> np.random.SeedSequence:
+    """Seed of the optimiser of a run (the same for every hyperparameter of ``method``)."""
+    return np.random.SeedSequence([int(seed), name_key(function), int(dim), name_key(method)])
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One black-box optimisation run: ``method`` with ``params`` on ``function`` in ``dim``
+    dimensions, ``budget`` evaluations, ``seed``.
+
+    ``params`` holds only the hyperparameters set by the grid (sorted ``(name, value)``
+    pairs); the rest are the method's defaults.
+    """
+
+    function: str
+    dim: int
+    method: str
+    params: tuple[tuple[str, Any], ...]
+    budget: int
+    seed: int
+
+    kind: ClassVar[str] = "bbfo"
+
+    @property
+    def params_dict(self) -> dict[str, Any]:
+        return dict(self.params)
+
+    def config(self) -> dict[str, Any]:
+        """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
+        return {
+            "function": self.function,
+            "dim": self.dim,
+            "method": self.method,
+            "params": self.params_dict,
+            "budget": self.budget,
+            "seed": self.seed,
+            "protocol": PROTOCOL,
+        }
+
+    @property
+    def run_id(self) -> str:
+        return make_run_id(self.kind, self.config())
+
+
+def method_grid(method: str, grid: str = "paper") -> list[dict[str, Any]]:
+    """Hyperparameter settings of ``method``: every combination of its ``paper_grid()``
+    (``grid="paper"``) or just the defaults (``grid="default"``, one empty dict).
+
+    Raises:
+        ValueError: unknown method or grid, or the method's module cannot be imported
+            (not implemented yet); the message lists the valid choices.
+    """
+    if grid not in GRIDS:
+        raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
+    key = normalize_method(method)
+    try:
+        cls = optimizer_class(key)
+    except ImportError as exc:
+        raise ValueError(
+            f"method {key!r} is registered but cannot be imported ({exc}); leave it out"
+            " with --methods"
+        ) from None
+    if grid == "default":
+        return [{}]
+    axes = cls.config_class.paper_grid()
+    if not axes:
+        return [{}]
+    names = sorted(axes)
+    combos = itertools.product(*(list(axes[n]) for n in names))
+    return [dict(zip(names, values, strict=True)) for values in combos]
+
+
+def _check_int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
+    out: list[int] = []
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < minimum:
+            raise ValueError(f"{what} must be integers >= {minimum}, got {v!r}")
+        out.append(int(v))
+    if not out:
+        raise ValueError(f"no {what} given")
+    return out
+
+
+def check_functions(functions: Iterable[str]) -> list[str]:
+    """Lower-cased function names, each checked against ``available_functions()``."""
+    from voot.functions import available_functions
+
+    valid = list(available_functions())
+    out = []
+    for name in functions:
+        key = str(name).strip().lower()
+        if key not in valid:
+            raise ValueError(
+                f"unknown function {name!r}; valid functions are: {', '.join(sorted(valid))}"
+            )
+        out.append(key)
+    if not out:
+        raise ValueError("no functions given")
+    return out
+
+
+def build_specs(
+    functions: Sequence[str] = PAPER_FUNCTIONS,
+    dims: Sequence[int] = PAPER_DIMS,
+    methods: Sequence[str] = PAPER_METHODS,
+    seeds: Iterable[int] = range(PAPER_SEEDS),
+    *,
+    grid: str = "paper",
+    budget_scale: float = 1.0,
+    budget: int | None = None,
+) -> list[RunSpec]:
+    """Every run of the sweep, in grid order (function, dim, method, params, seed).
+
+    Args:
+        functions, dims, methods, seeds: the grid axes (defaults: the paper's).
+        grid: ``"paper"`` (each method's ``paper_grid()``) or ``"default"``.
+        budget_scale: multiplies :func:`paper_budget` (rounded, at least 1).
+        budget: a fixed budget for every run instead (overrides ``budget_scale``).
+
+    Methods listed in :data:`MIN_DIM` are skipped below their smallest dimension.
+    """
+    funcs = check_functions(functions)
+    dim_list = _check_int_list(dims, "dims", 1)
+    seed_list = _check_int_list(seeds, "seeds", 0)
+    method_list = [normalize_method(m) for m in methods]
+    if not method_list:
+        raise ValueError("no methods given")
+    if not (isinstance(budget_scale, int | float) and budget_scale > 0):
+        raise ValueError(f"budget_scale must be > 0, got {budget_scale!r}")
+    if budget is not None:
+        _check_int_list([budget], "budget", 1)
+    grids = {m: method_grid(m, grid) for m in dict.fromkeys(method_list)}
+    from voot.functions import get_function
+
+    for function in dict.fromkeys(funcs):  # e.g. Shekel exists in 3, 10 and 20 dimensions only
+        for dim in dict.fromkeys(dim_list):
+            get_function(function, dim)
+    specs: list[RunSpec] = []
+    for function in dict.fromkeys(funcs):
+        for dim in dict.fromkeys(dim_list):
+            n = (
+                budget
+                if budget is not None
+                else max(1, round(paper_budget(function, dim) * budget_scale))
+            )
+            for method in grids:
+                if dim < MIN_DIM.get(method, 0):
+                    continue
+                for params in grids[method]:
+                    items = tuple(sorted(params.items()))
+                    for seed in dict.fromkeys(seed_list):
+                        specs.append(RunSpec(function, dim, method, items, int(n), seed))
+    return specs
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, str | int | float | bool) or value is None:
+        return value
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    return repr(value)
+
+
+def run_spec(spec: RunSpec) -> Row:
+    """Run one spec and return its row (status ``"failed"`` with the error on exception)."""
+    from voot.functions import get_function
+
+    start = time.perf_counter()
+    best: list[float] = []
+    try:
+        f = get_function(spec.function, spec.dim)
+        bounds = f.bounds
+        x0 = initial_point(spec.function, spec.dim, spec.seed, bounds.lower, bounds.upper)
+        config = make_config(spec.method, **spec.params_dict)
+        opt = make_optimizer(
+            spec.method,
+            bounds,
+            seed=optimizer_seed(spec.seed, spec.function, spec.dim, spec.method),
+            initial_point=x0,
+            config=config,
+        )
+        for _ in range(spec.budget):
+            x = opt.ask()
+            opt.tell(x, float(f(x)))
+        best = np.maximum.accumulate(opt.values).tolist()
+        best_x = opt.best_x
+        return make_row(
+            spec.kind,
+            spec.config(),
+            status="ok",
+            wall_time=time.perf_counter() - start,
+            best_so_far=best,
+            best_x=None if best_x is None else best_x.tolist(),
+            method_config={k: _jsonable(v) for k, v in config.to_dict().items()},
+        )
+    except Exception as exc:
+        return make_row(
+            spec.kind,
+            spec.config(),
+            status="failed",
+            wall_time=time.perf_counter() - start,
+            best_so_far=best,
+            error=f"{type(exc).__name__}: {exc}",
+            traceback=traceback.format_exc(limit=20),
+        )
+
+
+# ----- backends ------------------------------------------------------------------------
+T = TypeVar("T")
+
+
+class Backend(Protocol):
+    """Where runs execute. ``map_unordered`` yields one row per item, in completion order.
+
+    A backend must not drop rows: when the consumer stops early (exception, Ctrl-C) it
+    cancels what has not started. ``fn`` and the items must be picklable for backends
+    that run elsewhere.
+    """
+
+    name: str
+
+    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]: ...
+
+
+class SerialBackend:
+    """Runs everything in this process, in order (for tests, debugging, one core)."""
+
+    name = "serial"
+
+    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
+        for item in items:
+            yield fn(item)
+
+
+@contextlib.contextmanager
+def _single_threaded_children() -> Iterator[None]:
+    """Let worker processes start with one BLAS/OpenMP thread each (unless the user set
+    these variables): ``workers`` processes with many threads each oversubscribe the cores."""
+    names = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+    added = [n for n in names if n not in os.environ]
+    for n in added:
+        os.environ[n] = "1"
+    try:
+        yield
+    finally:
+        for n in added:
+            os.environ.pop(n, None)
+
+
+class ProcessBackend:
+    """A local :class:`~concurrent.futures.ProcessPoolExecutor` with ``workers`` processes.
+
+    Args:
+        workers: number of processes (default ``os.cpu_count()``).
+        start_method: multiprocessing start method; ``"spawn"`` (default) gives every
+            worker a fresh interpreter, so nothing of the parent's state leaks into runs.
+        max_pending: runs submitted ahead of completion (bounds memory on huge sweeps).
+    """
+
+    name = "process"
+
+    def __init__(
+        self,
+        workers: int | None = None,
+        start_method: str = "spawn",
+        max_pending: int | None = None,
+    ) -> None:
+        n = (os.cpu_count() or 1) if workers is None else workers
+        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+        valid = multiprocessing.get_all_start_methods()
+        if start_method not in valid:
+            raise ValueError(f"unknown start method {start_method!r}; valid: {', '.join(valid)}")
+        self.workers = n
+        self.start_method = start_method
+        self.max_pending = max_pending if max_pending is not None else 4 * n
+
+    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
+        ctx = multiprocessing.get_context(self.start_method)
+        with _single_threaded_children():
+            pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
+        try:
+            todo = iter(items)
+            pending: set[Future[Row]] = set()
+            for item in itertools.islice(todo, self.max_pending):
+                pending.add(pool.submit(fn, item))
+            while pending:
+                done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in done:
+                    nxt = next(todo, None)
+                    if nxt is not None:
+                        pending.add(pool.submit(fn, nxt))
+                    yield fut.result()
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
+
+
+BACKENDS: tuple[str, ...] = ("process", "serial")
+
+
+def make_backend(name: str = "process", workers: int | None = None) -> Backend:
+    """A backend by name (``process`` or ``serial``)."""
+    if name == "process":
+        if workers == 1:
+            return SerialBackend()
+        return ProcessBackend(workers)
+    if name == "serial":
+        return SerialBackend()
+    raise ValueError(f"unknown backend {name!r}; valid backends are: {', '.join(BACKENDS)}")
+
+
+# ----- the sweep -----------------------------------------------------------------------
+@dataclass
+class SweepSummary:
+    """What :func:`run_sweep` did."""
+
+    total: int = 0
+    skipped: int = 0
+    ran: int = 0
+    failed: int = 0
+    failed_errors: list[str] = field(default_factory=list)
+
+    def __str__(self) -> str:
+        text = (
+            f"{self.total} runs: {self.skipped} already in the store, {self.ran} ran"
+            f" ({self.failed} failed)"
+        )
+        if self.failed_errors:
+            text += "\nfirst failures:\n  " + "\n  ".join(self.failed_errors[:5])
+        return text
+
+
+def execution_order(specs: Sequence[RunSpec]) -> list[RunSpec]:
+    """Seed-major order, shuffled (deterministically) within each seed.
+
+    Every block of one seed holds the same mix of cheap and costly runs, so the progress
+    bar's time estimate is fair from the start, and an interrupted sweep leaves complete
+    seeds rather than complete methods.
+    """
+    rng = np.random.default_rng(0)
+    by_seed: dict[int, list[RunSpec]] = {}
+    for s in specs:
+        by_seed.setdefault(s.seed, []).append(s)
+    out: list[RunSpec] = []
+    for seed in sorted(by_seed):
+        block = by_seed[seed]
+        out.extend(block[i] for i in rng.permutation(len(block)))
+    return out
+
+
+def pending_specs(
+    specs: Sequence[RunSpec], store: ResultStore, *, retry_failed: bool = True
+) -> list[RunSpec]:
+    """The specs whose run is not finished in ``store`` (duplicates removed).
+
+    A run with an ``"ok"`` row is finished. With ``retry_failed=False`` a run with a
+    ``"failed"`` row counts as finished too.
+    """
+    rows = store.load(status=None, arrays=True)
+    done = {r["run_id"] for r in rows if r["status"] == "ok" or not retry_failed}
+    unique: dict[str, RunSpec] = {}
+    for s in specs:
+        unique.setdefault(s.run_id, s)
+    return [s for rid, s in unique.items() if rid not in done]
+
+
+def _progress_bar(total: int, enabled: bool, desc: str) -> Any:
+    if not enabled:
+        return None
+    try:
+        from tqdm import tqdm
+    except ImportError:  # pragma: no cover - tqdm is in the [bench] extra
+        return None
+    return tqdm(
+        total=total, desc=desc, unit="run", file=sys.stderr, smoothing=0.05, dynamic_ncols=True
+    )
+
+
+def run_sweep(
+    specs: Sequence[RunSpec],
+    store: ResultStore,
+    backend: Backend | None = None,
+    *,
+    progress: bool = True,
+    retry_failed: bool = True,
+    run: Callable[[RunSpec], Row] = run_spec,
+) -> SweepSummary:
+    """Run every spec not finished in ``store``, writing each row as its run finishes.
+
+    Interrupting (Ctrl-C, an exception, a kill) loses only the runs in flight; calling
+    again with the same specs resumes.
+    """
+    backend = backend if backend is not None else SerialBackend()
+    unique = {s.run_id for s in specs}
+    todo = execution_order(pending_specs(specs, store, retry_failed=retry_failed))
+    summary = SweepSummary(total=len(unique), skipped=len(unique) - len(todo))
+    bar = _progress_bar(
+        len(todo), progress, f"{specs[0].kind if specs else 'sweep'} ({backend.name})"
+    )
+    rows = backend.map_unordered(run, todo)
+    try:
+        for row in rows:
+            store.write(row)
+            summary.ran += 1
+            if row["status"] != "ok":
+                summary.failed += 1
+                cfg = row["config"]
+                summary.failed_errors.append(
+                    f"{cfg.get('method')} {cfg.get('params')} on {cfg.get('function')}-"
+                    f"{cfg.get('dim')}D seed {cfg.get('seed')}: {row.get('error')}"
+                )
+            if bar is not None:
+                bar.update(1)
+                if summary.failed:
+                    bar.set_postfix(failed=summary.failed, refresh=False)
+    finally:
+        close = getattr(rows, "close", None)
+        if close is not None:  # a generator backend: cancel what has not started
+            close()
+        if bar is not None:
+            bar.close()
+    return summary
+
+
+def summarize_specs(specs: Sequence[RunSpec]) -> str:
+    """One line per (function, dim): budget and number of runs per method."""
+    cells: dict[tuple[str, int, int], dict[str, int]] = {}
+    for s in specs:
+        counts = cells.setdefault((s.function, s.dim, s.budget), {})
+        counts[s.method] = counts.get(s.method, 0) + 1
+    lines = []
+    for (function, dim, budget), counts in cells.items():
+        per = ", ".join(f"{m} {n}" for m, n in counts.items())
+        lines.append(f"{function}-{dim}D budget {budget}: {per}")
+    return "\n".join(lines)
+
+
+def params_key(params: Mapping[str, Any]) -> str:
+    """A short stable label of a hyperparameter setting (``"omega=0.001"``; ``"default"``)."""
+    if not params:
+        return "default"
+    return ", ".join(f"{k}={params[k]}" for k in sorted(params))

@@ -1,0 +1,165 @@
+"""The mobile manipulator (``voot.models/robot.xml``): named access and its 2-D footprint.
+
+The robot is a PR2-class holonomic base (0.64 m square) with one 7-joint arm and a
+parallel gripper. This module gives named access to its joints and geoms inside a
+compiled scene (:class:`Robot`), its kinematic constants (used by the analytic IK seed in
+:mod:`voot.envs.feasibility`), and the disc model used for base motion planning.
+
+Base motion model: the robot is a disc of radius :data:`ROBOT_RADIUS` = 0.48 m centred at
+the base (the 0.64 m square's circumradius is 0.4525 m; the tucked arm stays inside the
+square). Carrying an object, the disc grows to the smallest disc centred at the base that
+holds the square and the object's footprint at its held pose (:func:`carry_radius`). A
+door of width ``w`` lets the disc through iff ``w > 2 r``: the kitchen's 0.9 m door stops
+the robot (0.96 m needed); the storage rooms' 1.95 m door passes the robot with any
+small box (r <= 0.92 m for the fixed conveyor grasp) and stops it with a big one
+(r >= 1.03 m).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot.envs.base_planner import Box2D
+
+FloatArray = NDArray[np.float64]
+
+#: Planar base joints (x slide, y slide, yaw hinge).
+BASE_JOINTS = ("base_x", "base_y", "base_yaw")
+#: The arm's revolute joints, shoulder to wrist.
+ARM_JOINTS = (
+    "shoulder_pan",
+    "shoulder_lift",
+    "upper_arm_roll",
+    "elbow_flex",
+    "forearm_roll",
+    "wrist_flex",
+    "wrist_roll",
+)
+#: The gripper's two finger slides (0 closed, 0.04 m open each).
+FINGER_JOINTS = ("finger_left", "finger_right")
+#: Finger opening used throughout (the planner is kinematic: fingers stay open).
+FINGER_OPEN = 0.04
+#: Tucked arm configuration: the whole arm inside the base footprint (max x 0.28 m).
+TUCK = np.array([0.0, 1.1, 0.0, -2.6, 0.0, -0.6, 0.0])
+TUCK.setflags(write=False)
+
+#: Shoulder centre in the base frame (all three shoulder axes meet here).
+SHOULDER = np.array([0.02, 0.0, 0.80])
+SHOULDER.setflags(write=False)
+#: Shoulder to elbow, elbow to wrist centre, wrist centre to grasp site (metres).
+UPPER_ARM = 0.40
+FOREARM = 0.35
+TOOL = 0.17
+#: Reach from the shoulder to the grasp site with the arm straight (the original's
+#: PR2_ARM_LENGTH was 0.9844 m); base distances of pick actions are fractions of it.
+ARM_REACH = UPPER_ARM + FOREARM + TOOL
+#: Half side of the square base footprint.
+BASE_HALF = 0.32
+#: Radius of the disc standing for the robot (without a carried object) in base motion.
+ROBOT_RADIUS = 0.48
+
+#: Names of the robot's gripper bodies (their geoms may touch the grasped object).
+GRIPPER_BODIES = ("gripper_link", "finger_left_link", "finger_right_link")
+
+
+def _subtree(model: mujoco.MjModel, root: int) -> list[int]:
+    """Bodies in the kinematic subtree of ``root`` (including it)."""
+    out = [root]
+    for b in range(root + 1, model.nbody):
+        parent = int(model.body_parentid[b])
+        if parent in out:
+            out.append(b)
+    return out
+
+
+class Robot:
+    """Named access to the robot's joints and geoms inside a compiled scene.
+
+    Args:
+        model: A scene that includes ``robot.xml``.
+    """
+
+    def __init__(self, model: mujoco.MjModel) -> None:
+        self.model = model
+
+        def qadr(name: str) -> int:
+            jid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+            if jid < 0:
+                raise ValueError(f"the model has no joint {name!r}; is robot.xml included?")
+            return int(model.jnt_qposadr[jid])
+
+        self.base_qadr = np.array([qadr(n) for n in BASE_JOINTS], dtype=np.intp)
+        self.arm_qadr = np.array([qadr(n) for n in ARM_JOINTS], dtype=np.intp)
+        self.finger_qadr = np.array([qadr(n) for n in FINGER_JOINTS], dtype=np.intp)
+        base = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "base")
+        bodies = _subtree(model, base)
+        self.bodies = tuple(bodies)
+        self.geoms = tuple(int(g) for g in np.flatnonzero(np.isin(model.geom_bodyid, bodies)))
+        grip = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) for n in GRIPPER_BODIES]
+        self.gripper_geoms = tuple(
+            int(g) for g in np.flatnonzero(np.isin(model.geom_bodyid, grip))
+        )
+        self.grasp_site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "grasp")
+        self.arm_range = np.array(
+            [
+                model.jnt_range[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n)]
+                for n in ARM_JOINTS
+            ]
+        )
+
+    def set_base(self, data: mujoco.MjData, pose: ArrayLike) -> None:
+        """Put the base at ``(x, y, theta)``."""
+        data.qpos[self.base_qadr] = np.asarray(pose, dtype=np.float64)
+
+    def base_pose(self, data: mujoco.MjData) -> FloatArray:
+        """The base pose ``(x, y, theta)`` (a copy)."""
+        out: FloatArray = data.qpos[self.base_qadr].copy()
+        return out
+
+    def set_arm(self, data: mujoco.MjData, q: ArrayLike) -> None:
+        """Set the 7 arm joints (and open the fingers)."""
+        data.qpos[self.arm_qadr] = np.asarray(q, dtype=np.float64)
+        data.qpos[self.finger_qadr] = FINGER_OPEN
+
+    def arm(self, data: mujoco.MjData) -> FloatArray:
+        """The 7 arm joint values (a copy)."""
+        out: FloatArray = data.qpos[self.arm_qadr].copy()
+        return out
+
+
+def base_footprint(pose: ArrayLike, name: str = "robot") -> Box2D:
+    """The base's square footprint at ``pose`` ``(x, y, theta)``."""
+    x, y, th = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    return Box2D(x, y, BASE_HALF, BASE_HALF, th, name)
+
+
+def carry_radius(held_corners_in_base: ArrayLike) -> float:
+    """Radius of the base-centred disc holding the robot and a carried object.
+
+    Args:
+        held_corners_in_base: Corners ``(k, 2)`` of the carried object's footprint in the
+            base frame.
+
+    Returns:
+        ``max(ROBOT_RADIUS, max_i ||corner_i||)``.
+    """
+    pts = np.asarray(held_corners_in_base, dtype=np.float64).reshape(-1, 2)
+    far = float(np.max(np.hypot(pts[:, 0], pts[:, 1]))) if len(pts) else 0.0
+    return max(ROBOT_RADIUS, far)
+
+
+def compose2d(a: Sequence[float], b: Sequence[float]) -> FloatArray:
+    """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return np.array([a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2]])
+
+
+def inverse2d(a: Sequence[float]) -> FloatArray:
+    """SE(2) inverse of ``(x, y, theta)``."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return np.array([-c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]])

@@ -1,0 +1,254 @@
+"""Tests of the optimiser interface (voot.optim.base): Bounds, check_value, Optimizer."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+import pytest
+
+from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig, check_value
+
+# ----- Bounds ---------------------------------------------------------------------------
+
+
+def test_bounds_stores_read_only_copies() -> None:
+    lo, hi = np.array([0.0, -1.0]), np.array([1.0, 2.0])
+    b = Bounds(lo, hi)
+    lo[0] = 5.0
+    assert b.lower[0] == 0.0
+    with pytest.raises(ValueError):
+        b.lower[0] = 3.0
+    assert b.dim == 2
+    np.testing.assert_array_equal(b.width, [1.0, 3.0])
+    np.testing.assert_array_equal(b.center, [0.5, 0.5])
+    assert b.diameter == pytest.approx(math.sqrt(10.0))
+
+
+@pytest.mark.parametrize(
+    ("lower", "upper", "match"),
+    [
+        ([0.0, 2.0], [1.0, 1.0], "inverted or empty in dimension 1"),
+        ([0.0, 1.0], [1.0, 1.0], "inverted or empty in dimension 1"),
+        ([0.0, np.nan], [1.0, 1.0], "finite"),
+        ([0.0, -np.inf], [1.0, 1.0], "finite"),
+        ([0.0], [1.0, np.inf], "lower has 1 entries but upper has 2"),
+        ([0.0, 0.0], [1.0], "must match"),
+        ([], [], "at least one dimension"),
+    ],
+)
+def test_bounds_validation(lower: list, upper: list, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        Bounds(lower, upper)
+
+
+def test_cube() -> None:
+    b = Bounds.cube(-2.0, 3.0, 4)
+    assert b == Bounds([-2.0] * 4, [3.0] * 4)
+    with pytest.raises(ValueError, match="dim must be >= 1"):
+        Bounds.cube(0.0, 1.0, 0)
+    with pytest.raises(ValueError, match="inverted"):
+        Bounds.cube(1.0, 0.0, 2)
+
+
+def test_coerce_formats() -> None:
+    b = Bounds([0.0, -1.0, 2.0], [1.0, 1.0, 3.0])
+    assert Bounds.coerce(b) is b
+    # (lower, upper) pair of vectors
+    assert Bounds.coerce(([0.0, -1.0, 2.0], [1.0, 1.0, 3.0])) == b
+    # (d, 2) rows of [low, high]
+    assert Bounds.coerce([[0.0, 1.0], [-1.0, 1.0], [2.0, 3.0]]) == b
+    assert Bounds.coerce(np.array([[0.0, 1.0]] * 3)) == Bounds.cube(0.0, 1.0, 3)
+    # a (2, 2) array is read as rows of [low, high]
+    assert Bounds.coerce([[0.0, 1.0], [2.0, 3.0]]) == Bounds([0.0, 2.0], [1.0, 3.0])
+
+
+@pytest.mark.parametrize("bad", [[0.0, 1.0], [[[0.0, 1.0]]], [[0.0, 1.0, 2.0]] * 3, 5.0])
+def test_coerce_rejects_other_shapes(bad: object) -> None:
+    with pytest.raises(ValueError, match="shape"):
+        Bounds.coerce(bad)  # type: ignore[arg-type]
+
+
+def test_coerce_validates() -> None:
+    with pytest.raises(ValueError, match="inverted"):
+        Bounds.coerce([[1.0, 0.0], [0.0, 1.0], [0.0, 1.0]])
+
+
+def test_sample_clip_contains_check_point() -> None:
+    b = Bounds([0.0, 10.0], [1.0, 20.0])
+    rng = np.random.default_rng(0)
+    one = b.sample(rng)
+    many = b.sample(rng, 500)
+    assert one.shape == (2,) and many.shape == (500, 2)
+    assert b.contains(one)
+    assert np.all(many >= b.lower) and np.all(many <= b.upper)
+    assert np.all(np.abs(many.mean(axis=0) - b.center) < 0.1 * b.width)
+    np.testing.assert_array_equal(b.clip([-1.0, 25.0]), [0.0, 20.0])
+    assert b.contains([0.0, 20.0]) and not b.contains([0.0, 20.0001])
+    np.testing.assert_array_equal(b.check_point([0.5, 11]), [0.5, 11.0])
+    with pytest.raises(ValueError, match=r"shape \(2,\)"):
+        b.check_point([0.5])
+    with pytest.raises(ValueError, match="finite"):
+        b.check_point([0.5, np.nan], "x0")
+
+
+def test_bounds_equality_and_hash() -> None:
+    a, b = Bounds([0.0], [1.0]), Bounds(np.array([0]), np.array([1]))
+    assert a == b and hash(a) == hash(b)
+    assert a != Bounds([0.0], [2.0])
+    assert a != "box"
+    assert "Bounds(lower=[0.0], upper=[1.0])" == repr(a)
+
+
+# ----- check_value ----------------------------------------------------------------------
+
+
+def test_check_value() -> None:
+    assert check_value(np.float32(1.5)) == 1.5
+    assert isinstance(check_value(np.int64(2)), float)
+    assert check_value(-math.inf) == -math.inf  # a failure value is allowed
+    with pytest.raises(ValueError, match="NaN"):
+        check_value(math.nan)
+    with pytest.raises(ValueError, match=r"\+inf"):
+        check_value(math.inf, "q")
+
+
+# ----- Optimizer ------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Cfg(OptimizerConfig):
+    step: float = 0.1
+
+
+class _Counter(Optimizer):
+    """Asks the lower corner shifted by step * n; records the hooks it receives."""
+
+    name: ClassVar[str] = "counter"
+    config_class: ClassVar[type[OptimizerConfig]] = _Cfg
+    supports_revalue: ClassVar[bool] = True
+    config: _Cfg
+
+    def __init__(self, *args, **kwargs) -> None:  # type: ignore[no-untyped-def]
+        super().__init__(*args, **kwargs)
+        self.hooks: list[tuple[str, int, float]] = []
+
+    def _ask(self) -> FloatArray:
+        return self.bounds.clip(self.bounds.lower + self.config.step * self._n)
+
+    def _tell(self, x: FloatArray, value: float) -> None:
+        self.hooks.append(("tell", self._n - 1, value))
+
+    def _revalue(self, index: int, value: float) -> None:
+        self.hooks.append(("revalue", index, value))
+
+
+class _NoRevalue(_Counter):
+    supports_revalue: ClassVar[bool] = False
+
+
+def test_history_grows_past_initial_capacity() -> None:
+    opt = _Counter(Bounds.cube(0.0, 100.0, 2))
+    assert opt.n_told == 0 and opt.best_index == -1
+    assert opt.best_x is None and opt.best_value == -math.inf
+    for i in range(40):
+        x = opt.ask()
+        opt.tell(x, float(i % 7))
+    assert opt.n_told == 40 and opt.xs.shape == (40, 2) and opt.values.shape == (40,)
+    np.testing.assert_allclose(opt.xs[:, 0], 0.1 * np.arange(40))
+    assert opt.values.tolist() == [float(i % 7) for i in range(40)]
+    assert opt.best_index == 6  # first argmax among ties
+    assert opt.best_value == 6.0
+    assert opt.hooks[-1] == ("tell", 39, 4.0)
+
+
+def test_best_x_is_a_copy() -> None:
+    opt = _Counter(Bounds.cube(0.0, 1.0, 2))
+    opt.tell(opt.ask(), 1.0)
+    bx = opt.best_x
+    assert bx is not None
+    bx[0] = 99.0
+    assert opt.xs[0, 0] == 0.0
+
+
+def test_tell_validates() -> None:
+    opt = _Counter(Bounds.cube(0.0, 1.0, 2))
+    with pytest.raises(ValueError, match="shape"):
+        opt.tell([0.0, 0.0, 0.0], 1.0)
+    with pytest.raises(ValueError, match="NaN"):
+        opt.tell([0.0, 0.0], math.nan)
+    with pytest.raises(ValueError, match="finite"):
+        opt.tell([0.0, math.inf], 1.0)
+    assert opt.n_told == 0
+    opt.tell([0.5, 0.5], -math.inf)
+    assert opt.best_index == 0 and opt.best_value == -math.inf
+    opt.tell([0.5, 0.5], -1e300)
+    assert opt.best_index == 1
+
+
+def test_revalue_semantics() -> None:
+    opt = _Counter(Bounds.cube(0.0, 1.0, 1))
+    for v in (1.0, 3.0, 2.0):
+        opt.tell(opt.ask(), v)
+    assert opt.best_index == 1
+    opt.revalue(2, 5.0)  # another point overtakes the best
+    assert opt.best_index == 2 and opt.best_value == 5.0
+    opt.revalue(2, 0.0)  # the best drops: recomputed over all points
+    assert opt.best_index == 1 and opt.values.tolist() == [1.0, 3.0, 0.0]
+    opt.revalue(0, 2.0)  # non-best point changes without overtaking
+    assert opt.best_index == 1
+    assert ("revalue", 2, 5.0) in opt.hooks
+    with pytest.raises(IndexError):
+        opt.revalue(3, 1.0)
+    with pytest.raises(IndexError):
+        opt.revalue(-1, 1.0)
+    with pytest.raises(ValueError, match="NaN"):
+        opt.revalue(0, math.nan)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="base.revalue keeps the old best on a tie with an earlier point (not first argmax)",
+)
+def test_revalue_tie_gives_first_argmax() -> None:
+    opt = _Counter(Bounds.cube(0.0, 1.0, 1))
+    for v in (1.0, 3.0):
+        opt.tell(opt.ask(), v)
+    opt.revalue(0, 3.0)
+    assert opt.best_index == int(np.argmax(opt.values)) == 0
+
+
+def test_revalue_unsupported() -> None:
+    opt = _NoRevalue(Bounds.cube(0.0, 1.0, 1))
+    opt.tell(opt.ask(), 1.0)
+    with pytest.raises(NotImplementedError, match="_NoRevalue"):
+        opt.revalue(0, 2.0)
+
+
+def test_initial_point() -> None:
+    box = Bounds.cube(0.0, 1.0, 2)
+    opt = _Counter(box, initial_point=[0.7, 0.2])
+    x = opt.ask()
+    np.testing.assert_array_equal(x, [0.7, 0.2])
+    x[0] = 0.0  # the caller's copy
+    np.testing.assert_array_equal(opt.ask(), [0.7, 0.2])  # still first until told
+    opt.tell([0.7, 0.2], 0.0)
+    np.testing.assert_array_equal(opt.ask(), [0.1, 0.1])
+    with pytest.raises(ValueError, match="outside"):
+        _Counter(box, initial_point=[1.5, 0.0])
+    with pytest.raises(ValueError, match="initial_point must have shape"):
+        _Counter(box, initial_point=[0.5])
+
+
+def test_config_and_seed() -> None:
+    box = [[0.0, 1.0]] * 2
+    opt = _Counter(box, config=_Cfg(step=0.2), seed=3)
+    assert opt.bounds == Bounds.cube(0.0, 1.0, 2)
+    assert opt.config.to_dict() == {"step": 0.2}
+    assert _Counter(box).config == _Cfg()
+    with pytest.raises(TypeError, match="needs a _Cfg"):
+        _Counter(box, config=OptimizerConfig())
+    assert opt.rng.random() == np.random.default_rng(3).random()
+    assert OptimizerConfig.paper_grid() == {}

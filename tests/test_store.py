@@ -1,0 +1,232 @@
+"""Tests of voot.bench.store: atomic rows, resume data, refusal to touch foreign files."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voot.bench import store as store_mod
+from voot.bench.store import (
+    HEADER_NAME,
+    INDEX_NAME,
+    ResultStore,
+    StoreError,
+    check_row,
+    curves,
+    make_row,
+    make_run_id,
+)
+
+
+def row(i: int, status: str = "ok", n: int = 5, kind: str = "bbfo") -> dict:
+    best = np.maximum.accumulate(np.arange(n, dtype=float) + i) if status == "ok" else []
+    return make_row(
+        kind,
+        {"function": "f", "dim": 3, "seed": i},
+        status=status,
+        wall_time=0.5,
+        best_so_far=best,
+        error=None if status == "ok" else "ValueError: boom",
+    )
+
+
+def test_new_store_has_header_and_empty_runs(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path / "r")
+    header = json.loads((tmp_path / "r" / HEADER_NAME).read_text())
+    assert header["format"] == "voot-results" and header["schema"] == 1
+    assert (tmp_path / "r" / "runs").is_dir()
+    assert len(s) == 0 and s.load() == []
+    # reopening an existing store works and keeps the header
+    assert ResultStore(tmp_path / "r").header == s.header
+
+
+def test_empty_existing_directory_becomes_a_store(tmp_path: Path) -> None:
+    ResultStore(tmp_path)
+    assert (tmp_path / HEADER_NAME).exists()
+
+
+def test_row_round_trip_and_fields(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path / "r")
+    r = row(3)
+    path = s.write(r)
+    assert path.name == f"{r['run_id']}.json"
+    got = s.get(r["run_id"])
+    assert got == r
+    assert got["versions"]["numpy"] == np.__version__ and "voot" in got["versions"]
+    assert got["best_so_far"] == [3.0, 4.0, 5.0, 6.0, 7.0]
+    assert s.get("0" * 20) is None
+
+
+def test_run_id_is_stable_and_order_independent() -> None:
+    a = make_run_id("bbfo", {"x": 1, "seed": 2, "params": {"a": 0.1, "b": 2}})
+    b = make_run_id("bbfo", {"params": {"b": 2, "a": 0.1}, "seed": 2, "x": 1})
+    assert a == b and len(a) == 20
+    assert a != make_run_id("bbfo", {"x": 1, "seed": 3, "params": {"a": 0.1, "b": 2}})
+    assert a != make_run_id("plan", {"x": 1, "seed": 2, "params": {"a": 0.1, "b": 2}})
+    code = (
+        "from voot.bench.store import make_run_id;"
+        "print(make_run_id('bbfo', {'x': 1, 'seed': 2, 'params': {'a': 0.1, 'b': 2}}))"
+    )
+    other = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**os.environ, "PYTHONHASHSEED": "123"},
+    )
+    assert other.stdout.strip() == a
+
+
+def test_failed_replaced_by_ok_but_ok_never_replaced(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    failed = row(1, status="failed")
+    s.write(failed)
+    assert s.get(failed["run_id"])["status"] == "failed"
+    ok = row(1)
+    assert ok["run_id"] == failed["run_id"]
+    s.write(ok)
+    assert s.get(ok["run_id"])["status"] == "ok"
+    before = s.row_path(ok["run_id"]).read_bytes()
+    s.write(failed)  # a finished run is never lost ...
+    other_ok = dict(ok, wall_time=99.0)
+    s.write(other_ok)  # ... nor redone
+    assert s.row_path(ok["run_id"]).read_bytes() == before
+
+
+def test_write_is_atomic_when_replace_fails(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    s = ResultStore(tmp_path)
+    r = row(1)
+
+    def broken_replace(src: str, dst: str) -> None:
+        raise OSError("disk on fire")
+
+    monkeypatch.setattr(store_mod.os, "replace", broken_replace)
+    with pytest.raises(OSError, match="disk on fire"):
+        s.write(r)
+    monkeypatch.undo()
+    # no row, and no temporary file left behind
+    assert list((tmp_path / "runs").iterdir()) == []
+    assert s.load(status=None) == []
+
+
+def test_stray_temp_file_from_a_killed_writer_is_ignored(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    s.write(row(1))
+    (tmp_path / "runs" / ".abc.json.x1y2.tmp").write_text('{"half": ')
+    (tmp_path / "runs" / ".hidden.json").write_text("{")
+    rows = s.load()
+    assert [r["config"]["seed"] for r in rows] == [1]
+    assert len(s) == 1
+
+
+def test_corrupt_row_names_the_file_and_is_not_overwritten(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    r = row(1)
+    path = s.write(r)
+    path.write_text('{"schema": 1, "run_id": ')  # truncated by some other tool
+    with pytest.raises(StoreError, match=str(path)):
+        s.load()
+    with pytest.raises(StoreError, match="corrupt"):
+        s.write(r)
+    assert path.read_text() == '{"schema": 1, "run_id": '
+
+
+def test_foreign_json_row_is_rejected(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    bad = tmp_path / "runs" / "abcdef.json"
+    bad.write_text(json.dumps({"hello": "world"}))
+    with pytest.raises(StoreError, match=r"abcdef\.json.*missing keys"):
+        s.load()
+    assert json.loads(bad.read_text()) == {"hello": "world"}
+
+
+def test_foreign_directory_is_refused_and_untouched(tmp_path: Path) -> None:
+    (tmp_path / "notes.txt").write_text("mine")
+    with pytest.raises(StoreError, match="not a voot result store"):
+        ResultStore(tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.txt"]
+    assert (tmp_path / "notes.txt").read_text() == "mine"
+
+
+def test_foreign_or_newer_header_is_refused(tmp_path: Path) -> None:
+    (tmp_path / HEADER_NAME).write_text(json.dumps({"format": "something-else", "schema": 1}))
+    with pytest.raises(StoreError, match=HEADER_NAME):
+        ResultStore(tmp_path)
+    (tmp_path / HEADER_NAME).write_text(json.dumps({"format": "voot-results", "schema": 99}))
+    with pytest.raises(StoreError, match="schema 99"):
+        ResultStore(tmp_path)
+    (tmp_path / HEADER_NAME).write_text("{not json")
+    with pytest.raises(StoreError, match="corrupt store header"):
+        ResultStore(tmp_path)
+    assert (tmp_path / HEADER_NAME).read_text() == "{not json"
+    assert not (tmp_path / "runs").exists()
+
+
+def test_file_path_and_missing_store(tmp_path: Path) -> None:
+    f = tmp_path / "results.json"
+    f.write_text("[]")
+    with pytest.raises(StoreError, match="is a file"):
+        ResultStore(f)
+    with pytest.raises(StoreError, match="no voot result store"):
+        ResultStore(tmp_path / "missing", create=False)
+    assert not (tmp_path / "missing").exists()
+
+
+def test_load_filters_and_arrays(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    for i in range(4):
+        s.write(row(i))
+    s.write(row(10, status="failed"))
+    s.write(row(20, kind="plan"))
+    assert len(s.load()) == 5
+    assert len(s.load(kind="bbfo")) == 4
+    assert len(s.load(status=None)) == 6
+    assert [r["status"] for r in s.load(status="failed")] == ["failed"]
+    arr = s.load(kind="bbfo", arrays=True)
+    assert all(isinstance(r["best_so_far"], np.ndarray) for r in arr)
+    with pytest.raises(ValueError):
+        arr[0]["best_so_far"][0] = 1.0  # read-only views of the index
+    assert s.finished_ids(kind="bbfo") == {r["run_id"] for r in s.load(kind="bbfo")}
+
+
+def test_index_cache_tracks_changes_and_survives_damage(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    for i in range(3):
+        s.write(row(i))
+    first = s.load(status=None)
+    assert (tmp_path / INDEX_NAME).exists()
+    assert s.load(status=None) == first  # from the index
+    failed = row(7, status="failed")
+    s.write(failed)
+    assert len(s.load(status=None)) == 4
+    s.write(row(7))  # replaces the failed row: the index must notice
+    assert s.get(failed["run_id"])["status"] == "ok"
+    assert [r["status"] for r in s.load(status=None)].count("failed") == 0
+    (tmp_path / INDEX_NAME).write_bytes(b"garbage")
+    assert s.load(status=None) == ResultStore(tmp_path).load(status=None)
+    assert len(s.load(status=None)) == 4
+    (tmp_path / INDEX_NAME).unlink()
+    assert len(s.load(status=None)) == 4
+
+
+def test_check_row_and_make_row_validation() -> None:
+    with pytest.raises(StoreError, match="JSON object"):
+        check_row([1, 2])
+    with pytest.raises(StoreError, match="status"):
+        check_row(dict(row(1), status="meh"))
+    with pytest.raises(ValueError, match="status"):
+        make_row("bbfo", {}, status="done", wall_time=0.0, best_so_far=[])
+
+
+def test_curves_pads_with_nan() -> None:
+    c = curves([{"best_so_far": [1.0, 2.0, 3.0]}, {"best_so_far": [5.0]}])
+    assert c.shape == (2, 3)
+    assert np.array_equal(c[0], [1.0, 2.0, 3.0])
+    assert c[1, 0] == 5.0 and np.isnan(c[1, 1:]).all()
+    assert curves([]).shape == (0, 0)

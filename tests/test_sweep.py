@@ -1,0 +1,279 @@
+"""Tests of voot.bench.sweep: the grid, the run protocol, determinism, resume."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from voot.bench.store import ResultStore, Row
+from voot.bench.sweep import (
+    PAPER_METHODS,
+    ProcessBackend,
+    RunSpec,
+    SerialBackend,
+    build_specs,
+    execution_order,
+    initial_point,
+    make_backend,
+    method_grid,
+    paper_budget,
+    pending_specs,
+    run_spec,
+    run_sweep,
+)
+from voot.functions import get_function
+from voot.optim.voo import VOOConfig
+
+TINY = {"functions": ["rastrigin"], "dims": [3], "methods": ["voo", "random"], "budget": 15}
+
+
+def tiny_specs(seeds: Sequence[int] = (0, 1), grid: str = "paper") -> list[RunSpec]:
+    return build_specs(
+        TINY["functions"], TINY["dims"], TINY["methods"], seeds, grid=grid, budget=TINY["budget"]
+    )
+
+
+def test_paper_budgets() -> None:
+    assert paper_budget("griewank", 20) == 500
+    assert paper_budget("rastrigin", 3) == 500
+    assert paper_budget("shekel", 3) == 500
+    assert paper_budget("shekel", 20) == 5000
+    assert paper_budget("shekel", 10) == 1000
+    assert paper_budget("rastrigin", 20) == 1000
+
+
+def test_grid_sizes_skips_and_budgets() -> None:
+    n_voo = len(VOOConfig.paper_grid()["omega"])
+    specs = build_specs(["rastrigin"], [3, 10], ["voo", "random"], range(3))
+    assert len(specs) == 2 * (n_voo + 1) * 3
+    assert {s.budget for s in specs if s.dim == 3} == {500}
+    assert {s.budget for s in specs if s.dim == 10} == {1000}
+    assert {s.params_dict["omega"] for s in specs if s.method == "voo"} == set(
+        VOOConfig.paper_grid()["omega"]
+    )
+    default = build_specs(["rastrigin"], [3], ["voo"], range(2), grid="default")
+    assert [s.params for s in default] == [(), ()]
+    scaled = build_specs(["shekel"], [20], ["random"], [0], budget_scale=0.01)
+    assert scaled[0].budget == 50
+    # the paper does not run REMBO in 3-D
+    rembo = build_specs(["shekel"], [3, 10], ["rembo"], [0], grid="default")
+    assert [s.dim for s in rembo] == [10]
+    assert len({s.run_id for s in specs}) == len(specs)
+
+
+def test_default_sweep_is_the_papers() -> None:
+    specs = build_specs(seeds=[0], grid="default")
+    assert {s.function for s in specs} == {"griewank", "rastrigin", "shekel"}
+    assert {s.dim for s in specs} == {3, 10, 20}
+    assert {s.method for s in specs} == set(PAPER_METHODS)
+    assert len(specs) == 9 * len(PAPER_METHODS) - 3  # no REMBO in the three 3-D cells
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"functions": ["nope"]}, "unknown function 'nope'; valid functions are: .*rastrigin"),
+        ({"methods": ["vooo"]}, "unknown method 'vooo'; valid methods are: .*voo"),
+        ({"dims": [0]}, "dims must be integers >= 1"),
+        ({"seeds": [-1]}, "seeds must be integers >= 0"),
+        ({"seeds": []}, "no seeds"),
+        ({"grid": "huge"}, "unknown grid 'huge'; valid grids are: paper, default"),
+        ({"budget_scale": 0.0}, "budget_scale must be > 0"),
+        ({"budget": 0}, "budget must be integers >= 1"),
+        ({"functions": ["shekel"], "dims": [5]}, "shekel"),
+    ],
+)
+def test_bad_sweep_arguments(kwargs: dict[str, Any], match: str) -> None:
+    args: dict[str, Any] = {
+        "functions": ["rastrigin"],
+        "dims": [3],
+        "methods": ["voo"],
+        "seeds": [0],
+        **kwargs,
+    }
+    with pytest.raises(ValueError, match=match):
+        build_specs(
+            args.pop("functions"), args.pop("dims"), args.pop("methods"), args.pop("seeds"), **args
+        )
+
+
+def test_method_grid_default_and_paper() -> None:
+    assert method_grid("voo", "default") == [{}]
+    assert method_grid("VOO") == [{"omega": w} for w in VOOConfig.paper_grid()["omega"]]
+    assert method_grid("random") == [{}]
+
+
+def test_all_methods_share_the_initial_point() -> None:
+    f = get_function("rastrigin", 3)
+    x0 = initial_point("rastrigin", 3, 4, f.bounds.lower, f.bounds.upper)
+    assert f.bounds.contains(x0)
+    assert not np.array_equal(x0, initial_point("rastrigin", 3, 5, f.bounds.lower, f.bounds.upper))
+    firsts = set()
+    for spec in build_specs(["rastrigin"], [3], ["voo", "random", "cmaes"], [4], budget=1):
+        r = run_spec(spec)
+        assert r["status"] == "ok", r.get("error")
+        firsts.add(r["best_so_far"][0])
+    assert firsts == {f(x0)}
+
+
+def test_run_row_contents() -> None:
+    spec = tiny_specs(seeds=[0])[0]
+    r = run_spec(spec)
+    assert r["status"] == "ok" and r["error"] is None
+    assert r["kind"] == "bbfo" and r["run_id"] == spec.run_id
+    assert r["config"] == spec.config() and r["config"]["params"] == spec.params_dict
+    best = np.array(r["best_so_far"])
+    assert best.size == spec.budget and np.all(np.diff(best) >= 0)
+    f = get_function(spec.function, spec.dim)
+    assert f(np.array(r["best_x"])) == best[-1]
+    assert r["method_config"]["omega"] == spec.params_dict["omega"]
+
+
+def test_failed_run_gives_a_failed_row() -> None:
+    spec = RunSpec("rastrigin", 3, "voo", (("omega", 2.0),), 10, 0)
+    r = run_spec(spec)
+    assert r["status"] == "failed"
+    assert r["error"].startswith("ValueError: omega")
+    assert "Traceback" in r["traceback"]
+
+
+def test_same_spec_same_curve_across_processes() -> None:
+    specs = tiny_specs()
+    here = {s.run_id: run_spec(s)["best_so_far"] for s in specs}
+    rows = list(ProcessBackend(workers=2).map_unordered(run_spec, specs))
+    assert len(rows) == len(specs)
+    there = {r["run_id"]: r["best_so_far"] for r in rows}
+    assert there == here  # bit-identical floats
+
+
+def test_execution_order_is_seed_major_and_deterministic() -> None:
+    specs = tiny_specs(seeds=[2, 0, 1])
+    order = execution_order(specs)
+    assert sorted(map(id, order)) == sorted(map(id, specs))
+    assert [s.seed for s in order] == sorted(s.seed for s in specs)
+    assert order == execution_order(specs)
+
+
+class Interrupting:
+    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
+
+    name = "interrupting"
+
+    def __init__(self, after: int) -> None:
+        self.after = after
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        for i, item in enumerate(items):
+            if i == self.after:
+                raise KeyboardInterrupt
+            yield fn(item)
+
+
+def test_interrupted_sweep_resumes_without_redoing_or_losing(tmp_path: Path) -> None:
+    specs = tiny_specs()
+    store = ResultStore(tmp_path / "r")
+    ran: list[str] = []
+
+    def counting(spec: RunSpec) -> Row:
+        ran.append(spec.run_id)
+        return run_spec(spec)
+
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(specs, store, Interrupting(after=5), progress=False, run=counting)
+    assert len(ran) == 5
+    first = {p.name: p.read_bytes() for p in store.row_files()}
+    assert len(first) == 5
+    summary = run_sweep(specs, store, SerialBackend(), progress=False, run=counting)
+    assert summary.skipped == 5 and summary.ran == len(specs) - 5 and summary.failed == 0
+    assert sorted(ran) == sorted(s.run_id for s in specs)  # each run exactly once
+    assert {r["run_id"] for r in store.load()} == {s.run_id for s in specs}
+    for name, data in first.items():  # finished rows untouched
+        assert (store.runs_path / name).read_bytes() == data
+    again = run_sweep(specs, store, SerialBackend(), progress=False, run=counting)
+    assert again.ran == 0 and again.skipped == len(specs)
+
+
+def test_failed_runs_are_retried_unless_skipped(tmp_path: Path) -> None:
+    store = ResultStore(tmp_path)
+    specs = tiny_specs(seeds=[0])
+    bad = specs[0]
+
+    def flaky(spec: RunSpec) -> Row:
+        row = run_spec(spec)
+        if spec == bad:
+            row.update(status="failed", error="RuntimeError: flaky")
+        return row
+
+    s1 = run_sweep(specs, store, progress=False, run=flaky)
+    assert s1.failed == 1 and "flaky" in str(s1)
+    assert [s.run_id for s in pending_specs(specs, store)] == [bad.run_id]
+    assert pending_specs(specs, store, retry_failed=False) == []
+    s2 = run_sweep(specs, store, progress=False)
+    assert s2.ran == 1 and s2.failed == 0
+    assert store.get(bad.run_id)["status"] == "ok"
+
+
+def test_killed_sweep_process_resumes(tmp_path: Path) -> None:
+    """SIGKILL a real `voot-bench bbfo` midway, rerun it, and check the store."""
+    out = tmp_path / "r"
+    args = [
+        sys.executable,
+        "-m",
+        "voot.bench.cli",
+        "bbfo",
+        "--out",
+        str(out),
+        "--functions",
+        "shekel",
+        "--dims",
+        "10",
+        "--methods",
+        "voo",
+        "--seeds",
+        "4",
+        "--budget",
+        "250",
+        "--workers",
+        "1",
+        "--no-progress",
+    ]
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    runs = out / "runs"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and proc.poll() is None:
+        if runs.is_dir() and sum(1 for p in runs.glob("[!.]*.json")) >= 3:
+            break
+        time.sleep(0.02)
+    if proc.poll() is None:
+        os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    store = ResultStore(out)
+    before = {p.name: p.read_bytes() for p in store.row_files()}
+    assert len(before) >= 3
+    specs = build_specs(["shekel"], [10], ["voo"], range(4), budget=250)
+    assert set(before) <= {f"{s.run_id}.json" for s in specs}
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert f"{len(before)} already in the store" in done.stdout
+    assert {r["run_id"] for r in store.load()} == {s.run_id for s in specs}
+    for name, data in before.items():
+        assert (store.runs_path / name).read_bytes() == data
+
+
+def test_make_backend() -> None:
+    assert isinstance(make_backend("process", 1), SerialBackend)
+    assert isinstance(make_backend("process", 2), ProcessBackend)
+    assert isinstance(make_backend("serial"), SerialBackend)
+    with pytest.raises(ValueError, match="valid backends are: process, serial"):
+        make_backend("ray-ish")
+    with pytest.raises(ValueError, match="workers"):
+        ProcessBackend(workers=0)

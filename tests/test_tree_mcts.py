@@ -1,0 +1,401 @@
+"""Tests of voot.tree.mcts: the search of paper Algorithms 1-2 and its options."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from voot.optim.base import Bounds
+from voot.tree import MCTS, MCTSConfig, Node, StepResult, plan, planner_config
+from voot.tree.overhead import NullProblem
+
+
+class OneStep:
+    """Reward 1 - |a - c|^2 on [-1, 1]^d: known optimum 1 at c."""
+
+    def __init__(self, dim: int = 2) -> None:
+        self.bounds = Bounds.cube(-1.0, 1.0, dim)
+        self.c = np.linspace(0.2, 0.6, dim)
+
+    def snapshot(self) -> None:
+        return None
+
+    def restore(self, snapshot: object) -> None:
+        pass
+
+    def action_bounds(self) -> Bounds:
+        return self.bounds
+
+    def step(self, action: np.ndarray) -> StepResult:
+        return StepResult(1.0 - float(np.sum((action - self.c) ** 2)))
+
+
+class Counter:
+    """A deterministic multi-step problem that counts its calls.
+
+    State: the depth t. Reward: a[0] (in [0, 1]). Actions with a[0] < infeasible_below
+    are infeasible. Reaching depth ``goal_depth`` is terminal with a bonus.
+    """
+
+    def __init__(
+        self,
+        dim: int = 2,
+        infeasible_below: float = -1.0,
+        goal_depth: int | None = None,
+        bonus: float = 0.0,
+        feasibility_check: bool = False,
+    ) -> None:
+        self.bounds = Bounds.cube(0.0, 1.0, dim)
+        self.t = 0
+        self.n_steps = 0
+        self.n_restores = 0
+        self.infeasible_below = infeasible_below
+        self.goal_depth = goal_depth
+        self.bonus = bonus
+        self.n_checks = 0
+        if feasibility_check:
+            self.is_feasible = self._is_feasible
+
+    def snapshot(self) -> int:
+        return self.t
+
+    def restore(self, snapshot: int) -> None:
+        self.n_restores += 1
+        self.t = snapshot
+
+    def action_bounds(self) -> Bounds:
+        return self.bounds
+
+    def _is_feasible(self, action: np.ndarray) -> bool:
+        self.n_checks += 1
+        return bool(action[0] >= self.infeasible_below)
+
+    def step(self, action: np.ndarray) -> StepResult:
+        self.n_steps += 1
+        if action[0] < self.infeasible_below:
+            return StepResult(-2.0, feasible=False, info={"t": self.t})
+        self.t += 1
+        goal = self.goal_depth is not None and self.t >= self.goal_depth
+        return StepResult(
+            float(action[0]), terminal=goal, bonus=self.bonus if goal else 0.0, info={"t": self.t}
+        )
+
+
+# ----- one-step problems: every planner finds the optimum --------------------------------
+# (planner, simulations, stated regret); one-step: depth_limit=1, regret = 1 - best return.
+ONE_STEP = [
+    ("voot", 200, 1e-3),
+    ("doot", 200, 1e-3),
+    ("rand_doot", 200, 0.1),
+    ("uniform_t", 200, 0.05),
+    ("pw_uct", 1000, 0.05),
+    ("voronoi_pw", 300, 0.05),
+    ("hoot", 300, 0.1),
+]
+
+
+@pytest.mark.parametrize(("planner", "n_sims", "regret"), ONE_STEP)
+def test_each_planner_finds_one_step_optimum(planner: str, n_sims: int, regret: float) -> None:
+    for seed in (0, 1):
+        res = plan(OneStep(), planner, n_sims, seed=seed, depth_limit=1)
+        assert 1.0 - res.best_return <= regret, (planner, seed, res.best_return)
+        assert res.best_return_curve.shape == (n_sims,)
+        # The plan is the best action, and its reward is the best return.
+        assert len(res.actions) == 1
+        assert res.rewards[0] == pytest.approx(res.best_return)
+
+
+def test_voot_beats_uniform_on_one_step_in_6d() -> None:
+    voot = np.mean([plan(OneStep(6), "voot", 150, seed=s, depth_limit=1).best_return for s in range(3)])
+    unif = np.mean(
+        [plan(OneStep(6), "uniform_t", 150, seed=s, depth_limit=1).best_return for s in range(3)]
+    )
+    assert voot > unif
+
+
+# ----- Algorithm 2's rules --------------------------------------------------------------
+def test_newest_action_is_reevaluated_w_times_then_a_new_one_is_sampled() -> None:
+    mcts = MCTS(Counter(), planner_config("voot", reevaluations=3, kappa_r=1.0, depth_limit=2, root_commitment=None), seed=0)
+    mcts.search(8)
+    assert mcts.root.n == [4, 4]  # 1 evaluation + 3 re-evaluations each
+    # At depth H - 1 every visit samples a new action (no re-evaluation at the leaves).
+    for child in mcts.root.children:
+        assert child.n == [1] * child.visits
+
+
+def test_reevaluation_budget_decays_with_kappa_r() -> None:
+    cfg = planner_config("uniform_t", reevaluations=4, kappa_r=0.5, depth_limit=3, root_commitment=None)
+    mcts = MCTS(Counter(), cfg, seed=0)
+    mcts.search(50)
+    child = mcts.root.children[0]
+    # depth 1: budget 4 * 0.5 = 2 re-evaluations -> 3 evaluations per action (all but the newest).
+    assert child.n[:-1] == [3] * (len(child.n) - 1)
+    assert mcts.root.n[0] == 5
+
+
+def test_deterministic_edges_are_stepped_once() -> None:
+    problem = Counter()
+    res = plan(problem, "voot", 200, seed=0, depth_limit=4, root_commitment=None)
+    assert problem.n_steps == res.n_steps == res.n_nodes - 1
+    assert res.n_node_visits == 200 * 4
+    assert res.n_steps < res.n_node_visits  # re-evaluations cost no step
+
+
+def test_infeasible_action_ends_the_rollout_and_gets_no_children() -> None:
+    problem = Counter(infeasible_below=0.5)
+    mcts = MCTS(problem, planner_config("uniform_t", depth_limit=3), seed=0)
+    mcts.search(100)
+    dead = [n for n in mcts.nodes if n.infeasible]
+    assert dead and all(not n.children and n.snapshot is None for n in dead)
+    for node in mcts.nodes:
+        for i, child in enumerate(node.children):
+            assert node.feasible[i] == (not child.infeasible)
+            if not node.feasible[i]:
+                assert node.q[i] == -2.0
+
+
+def test_feasibility_retries_and_last_infeasible_is_executed() -> None:
+    problem = Counter(infeasible_below=2.0, feasibility_check=True)  # nothing is feasible
+    mcts = MCTS(problem, planner_config("uniform_t", feasibility_retries=7), seed=0)
+    res = mcts.search(3)
+    assert res.n_steps == 3  # one new (infeasible) action per simulation
+    assert res.n_feasibility_checks == problem.n_checks == 21
+    assert mcts.root.feasible == [False, False, False]
+    assert res.best_return == -2.0
+
+
+def test_feasibility_check_filters_new_actions() -> None:
+    problem = Counter(infeasible_below=0.5, feasibility_check=True)
+    res = plan(problem, "voot", 100, seed=0, depth_limit=3)
+    mcts = res.mcts
+    assert mcts is not None
+    assert all(all(n.feasible) for n in mcts.nodes)
+    assert res.n_feasibility_checks > res.n_steps
+
+
+def test_max_backup_is_bellman_max_consistent() -> None:
+    gamma = 0.7
+    res = plan(Counter(goal_depth=3, bonus=5.0), "voot", 300, seed=3, gamma=gamma, depth_limit=4)
+    assert res.mcts is not None
+    for node in res.mcts.nodes:
+        for i, child in enumerate(node.children):
+            tail = max(child.q) if child.q else 0.0
+            assert node.q[i] == pytest.approx(node.rewards[i] + node.bonuses[i] + gamma * tail)
+
+
+@pytest.mark.parametrize("rule", ["mean", "jump_max_else_mean"])
+def test_mean_and_jump_backups(rule: str) -> None:
+    gamma = 0.5
+    cfg = planner_config(
+        "uniform_t", backup=rule, reevaluations=4, kappa_r=1.0, depth_limit=2, gamma=gamma, root_commitment=None
+    )
+    mcts = MCTS(Counter(), cfg, seed=1)
+    mcts.search(5)
+    root, child = mcts.root, mcts.root.children[0]
+    returns = [root.rewards[0] + gamma * r for r in child.rewards]  # the 5 simulations
+    expected = returns[0]
+    for k, g in enumerate(returns[1:], start=2):
+        expected = g if (rule == "jump_max_else_mean" and g > expected) else expected + (g - expected) / k
+    assert root.q[0] == pytest.approx(expected)
+
+
+def test_goal_bonus_counts_in_q_but_not_in_reported_return() -> None:
+    res = plan(Counter(goal_depth=1, bonus=10.0), "voot", 20, seed=0)
+    assert res.mcts is not None
+    root = res.mcts.root
+    assert all(child.terminal for child in root.children)
+    assert root.q[0] == pytest.approx(root.rewards[0] + 10.0)
+    assert res.best_return < 1.0  # rewards are in [0, 1]
+    assert res.bonuses.tolist() == [10.0]
+
+
+def test_root_commitment_moves_the_root_and_backs_up_to_the_original_root() -> None:
+    cfg = planner_config("voot", root_commitment=3, reevaluations=1, depth_limit=4)
+    mcts = MCTS(Counter(), cfg, seed=0)
+    mcts.search(60)
+    assert mcts.current_root is not mcts.root
+    assert mcts.root.visits == 60
+    # The first commitment went to the root's best feasible child.
+    first = mcts.current_root
+    while first.parent is not mcts.root:
+        assert first.parent is not None
+        first = first.parent
+    assert first.edge == mcts.root.best_edge()
+
+
+def test_root_commitment_off_keeps_the_root() -> None:
+    mcts = MCTS(Counter(), planner_config("voot", root_commitment=None, depth_limit=3), seed=0)
+    mcts.search(60)
+    assert mcts.current_root is mcts.root
+
+
+def test_progressive_widening_count() -> None:
+    cfg = planner_config("pw_uct", pw_k=2.0, pw_alpha=0.5, depth_limit=2, root_commitment=None)
+    mcts = MCTS(Counter(), cfg, seed=0)
+    mcts.search(100)
+    expected = 0
+    for visits in range(100):
+        if expected <= 2.0 * visits**0.5:
+            expected += 1
+    assert len(mcts.root.actions) == expected
+
+
+def test_final_action_rules() -> None:
+    for rule in ("max_q", "most_visited"):
+        res = plan(Counter(), "pw_uct", 200, seed=0, depth_limit=3, final_action=rule)
+        assert res.mcts is not None and res.best_action is not None
+        root = res.mcts.root
+        i = root.best_edge() if rule == "max_q" else root.most_visited_edge()
+        assert np.array_equal(res.best_action, root.actions[i])
+        if rule == "most_visited":
+            assert root.n[i] == max(root.n)
+
+
+def test_best_return_curve_and_plan_agree() -> None:
+    gamma = 0.9
+    res = plan(Counter(), "voot", 150, seed=2, depth_limit=3, gamma=gamma, best_return_over="nodes")
+    curve = res.best_return_curve
+    assert np.all(np.diff(curve) >= 0)  # over nodes: monotone
+    disc = gamma ** np.arange(len(res.rewards))
+    assert float(disc @ res.rewards) == pytest.approx(res.best_return) == pytest.approx(curve[-1])
+    leaves = plan(Counter(), "voot", 150, seed=2, depth_limit=3, gamma=gamma)
+    assert leaves.best_return <= res.best_return
+
+
+def test_callback_record_info_and_early_stop() -> None:
+    calls: list[int] = []
+
+    def cb(mcts: MCTS, i: int) -> bool:
+        calls.append(i)
+        return i == 4
+
+    res = plan(Counter(), "voot", 100, seed=0, callback=cb, record_info="t", depth_limit=3)
+    assert calls == [0, 1, 2, 3, 4]
+    assert res.n_simulations == 5 and res.best_return_curve.size == 5
+    assert res.info_curve is not None and len(res.info_curve) == 5
+    assert res.info_curve[-1] == res.best_leaf_info["t"]
+
+
+def test_search_continues_the_same_tree() -> None:
+    mcts = MCTS(Counter(), "voot", seed=0)
+    mcts.search(10)
+    res = mcts.search(15)
+    assert res.n_simulations == 25 and res.best_return_curve.size == 25
+
+
+def test_reroot_keeps_the_subtree() -> None:
+    mcts = MCTS(Counter(), planner_config("voot", depth_limit=4, root_commitment=None), seed=0)
+    mcts.search(100)
+    edge = mcts.recommended_edge()
+    child = mcts.root.children[edge]
+    size = sum(1 for _ in child.subtree())
+    new_root = mcts.reroot(edge)
+    assert new_root is child and mcts.root is child and new_root.parent is None
+    assert len(mcts.nodes) == size and [n.id for n in mcts.nodes] == list(range(size))
+    assert all(n.depth == (0 if n.parent is None else n.parent.depth + 1) for n in mcts.nodes)
+    res = mcts.search(10)
+    assert res.n_simulations == 10
+
+
+def test_nodes_are_inspectable() -> None:
+    res = plan(Counter(), "voot", 30, seed=0, depth_limit=3)
+    assert res.mcts is not None
+    root = res.mcts.root
+    assert isinstance(root, Node) and root.n_actions == len(root.q)
+    assert root.action_array().shape == (root.n_actions, 2)
+    assert root.q_values().shape == (root.n_actions,)
+    assert "Node(" in repr(root)
+    assert res.summary()["n_nodes"] == res.n_nodes
+
+
+# ----- determinism -----------------------------------------------------------------------
+def _fingerprint(planner: str) -> str:
+    res = plan(NullProblem(4), planner, 300, seed=123, depth_limit=4, root_commitment=5)
+    return (res.best_return_curve.tobytes() + b"".join(a.tobytes() for a in res.actions)).hex()
+
+
+@pytest.mark.parametrize("planner", ["voot", "rand_doot", "pw_uct", "hoot"])
+def test_same_seed_same_result_in_process(planner: str) -> None:
+    assert _fingerprint(planner) == _fingerprint(planner)
+
+
+def test_same_seed_bit_identical_across_processes() -> None:
+    planners = ["voot", "doot", "rand_doot", "voronoi_pw", "hoot"]
+    code = (
+        "from tests.test_tree_mcts import _fingerprint\n"
+        f"for p in {planners!r}: print(_fingerprint(p))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=_repo_root()
+    ).stdout.split()
+    assert out == [_fingerprint(p) for p in planners]
+
+
+def _repo_root() -> str:
+    import pathlib
+
+    return str(pathlib.Path(__file__).resolve().parent.parent)
+
+
+def test_different_seeds_differ() -> None:
+    a = plan(NullProblem(4), "voot", 50, seed=1, depth_limit=3)
+    b = plan(NullProblem(4), "voot", 50, seed=2, depth_limit=3)
+    assert not np.array_equal(a.actions[0], b.actions[0])
+
+
+# ----- bad input -------------------------------------------------------------------------
+@pytest.mark.parametrize("n", [-1, 0, 2.5, True, "10"])
+def test_bad_number_of_simulations(n: object) -> None:
+    with pytest.raises(ValueError, match="n_simulations must be an integer >= 1"):
+        plan(NullProblem(2), "voot", n)  # type: ignore[arg-type]
+    mcts = MCTS(NullProblem(2))
+    with pytest.raises(ValueError, match="n_simulations"):
+        mcts.search(n)  # type: ignore[arg-type]
+
+
+class BadBox(NullProblem):
+    def __init__(self, box: object) -> None:
+        super().__init__(3)
+        self.box = box
+
+    def action_bounds(self) -> Bounds:
+        return self.box  # type: ignore[return-value]
+
+
+@pytest.mark.parametrize(
+    "box",
+    [np.zeros((3, 3)), np.zeros((4,)), [[0.0, 1.0, 2.0], [1.0, 0.5, 3.0]]],
+)
+def test_action_box_of_wrong_shape_is_a_clear_error(box: object) -> None:
+    with pytest.raises(ValueError, match=r"action_bounds\(\) returned an invalid action box"):
+        MCTS(BadBox(box))
+
+
+def test_action_box_as_pairs_is_accepted() -> None:
+    res = plan(BadBox([[-1.0, 1.0]] * 3), "voot", 5, depth_limit=2)
+    assert res.actions[0].shape == (3,)
+
+
+def test_not_a_problem_is_a_type_error() -> None:
+    with pytest.raises(TypeError, match="no step"):
+        MCTS(object())  # type: ignore[arg-type]
+
+
+def test_step_must_return_a_step_result() -> None:
+    class Bad(NullProblem):
+        def step(self, action: np.ndarray) -> StepResult:
+            return 1.0  # type: ignore[return-value]
+
+    with pytest.raises(TypeError, match="must return a StepResult"):
+        plan(Bad(2), "voot", 1)
+
+
+def test_config_object_and_overrides() -> None:
+    cfg = MCTSConfig(sampler="voo", depth_limit=2)
+    res = plan(NullProblem(2), cfg, 10, gamma=0.5)
+    assert res.mcts is not None and res.mcts.config.gamma == 0.5 and res.mcts.config.depth_limit == 2
+    assert math.isfinite(res.best_return)

@@ -1,0 +1,225 @@
+r"""BaMSOO: Bayesian Multi-Scale Optimistic Optimization (Wang, Shakibi, Jin, de Freitas 2014).
+
+BaMSOO is SOO (Munos 2011) with a Gaussian process deciding which cell centres deserve a
+real evaluation. The tree partitions the box: a node is a cell with its centre; expanding
+it splits the cell into ``branching`` equal parts along its longest side (ties: the first
+such dimension). Every sweep walks the depths ``h = 0 .. min(depth, h_max(n))`` with
+:math:`h_{\max}(n) = n^{p}` (``h_max_exponent`` p, n the number of expansions so far)
+and expands, at each depth, the leaf with the largest value g if it is at least the largest
+g expanded earlier in the sweep (:math:`\nu_{\max}`). A new child centre x is
+
+* evaluated, :math:`g(x) = f(x)`, if its GP upper bound reaches the best value so far,
+  :math:`U_N(x) = \mu(x) + B_N\sigma(x) \ge f^+`;
+* otherwise *not* evaluated: :math:`g(x) = L_N(x) = \mu(x) - B_N\sigma(x)`;
+
+then :math:`f^+ \leftarrow \max(f^+, g(x))`. Here :math:`B_N = \sqrt{2\log(\pi^2N^2/(6\eta))}`
+with N the number of child centres considered so far and :math:`\eta \in (0, 1)`. With an
+odd ``branching`` the middle child shares its parent's centre and inherits its g (no
+evaluation, no GP query).
+
+The GP is that of :mod:`voot.optim.gp_ucb` (unit cube, RBF, marginal-likelihood fit on the
+shared refit schedule) and conditions on every real evaluation, the shared
+``initial_point`` included (which also seeds :math:`f^+`). ``ask``/``tell`` see real
+evaluations only; GP-only decisions happen inside the search loop.
+
+The authors' code (documented, not reproduced): binary splits, a random root point, and
+:math:`\mu \pm B_N\sigma^2` (variance instead of standard deviation; available as
+``bound_uses_variance=True``). Their grid over :math:`\eta` was {0.1, 0.7, 0.9}.
+
+Safety net (not in the paper): after ``max_skips`` consecutive GP-only children the next
+child is evaluated anyway, so a sweep can never spin without evaluating; cells whose
+longest side is below ``min_width`` (unit-cube units) are not expanded, and when no leaf
+can be expanded the search ends and asks fall back to uniform sampling.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from voot.optim._generator import GeneratorOptimizer, Search
+from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int
+from voot.optim.base import Bounds, FloatArray, OptimizerConfig
+from voot.optim.gp import GaussianProcess
+
+
+@dataclass(frozen=True)
+class BaMSOOConfig(SurrogateConfig):
+    """BaMSOO hyperparameters (GP options: see :class:`SurrogateConfig`).
+
+    Attributes:
+        eta: confidence parameter :math:`\\eta \\in (0, 1)` of :math:`B_N` (the authors'
+            grid {0.1, 0.7, 0.9}).
+        branching: children per expansion (3: trisection, as in SOO/DIRECT; 2: the
+            authors' binary split).
+        h_max_exponent: p in :math:`h_{\\max}(n) = n^p` (SOO's usual choice 1/2).
+        bound_uses_variance: use :math:`\\mu \\pm B_N\\sigma^2` like the authors' code
+            instead of the paper's :math:`\\mu \\pm B_N\\sigma`.
+        max_skips: consecutive GP-only children after which the next one is evaluated.
+        min_width: cells whose longest side (unit cube) is below this are not expanded.
+    """
+
+    eta: float = 0.1
+    branching: int = 3
+    h_max_exponent: float = 0.5
+    bound_uses_variance: bool = False
+    max_skips: int = 10_000
+    min_width: float = 1e-12
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        e = self.eta
+        if isinstance(e, bool) or not isinstance(e, int | float) or not 0.0 < e < 1.0:
+            raise ValueError(f"eta must be a number in (0, 1), got {e!r}")
+        if not _is_int(self.branching, 2):
+            raise ValueError(f"branching must be an integer >= 2, got {self.branching!r}")
+        p = self.h_max_exponent
+        if isinstance(p, bool) or not isinstance(p, int | float) or not 0.0 < p <= 1.0:
+            raise ValueError(f"h_max_exponent must be a number in (0, 1], got {p!r}")
+        if not isinstance(self.bound_uses_variance, bool | np.bool_):
+            raise ValueError(f"bound_uses_variance must be a bool, got {self.bound_uses_variance!r}")
+        if not _is_int(self.max_skips, 1):
+            raise ValueError(f"max_skips must be an integer >= 1, got {self.max_skips!r}")
+        w = self.min_width
+        if isinstance(w, bool) or not isinstance(w, int | float) or not 0.0 < w < 1.0:
+            raise ValueError(f"min_width must be a number in (0, 1), got {w!r}")
+
+    @classmethod
+    def paper_grid(cls) -> dict[str, list[Any]]:
+        return {"eta": [0.1, 0.7, 0.9]}
+
+
+@dataclass(eq=False)
+class _Node:
+    """A cell ``[lo, hi]`` of the unit cube, its centre and value g."""
+
+    lo: FloatArray
+    hi: FloatArray
+    depth: int
+    g: float = -math.inf
+    evaluated: bool = False
+    centre: FloatArray = field(init=False)
+    width: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.centre = 0.5 * (self.lo + self.hi)
+        self.width = float(np.max(self.hi - self.lo))
+
+    def split(self, k: int) -> list[_Node]:
+        """``k`` equal children along the longest side (first such dimension)."""
+        width = self.hi - self.lo
+        j = int(np.argmax(width))
+        edges = self.lo[j] + width[j] * np.arange(k + 1) / k
+        edges[-1] = self.hi[j]
+        children = []
+        for i in range(k):
+            lo, hi = self.lo.copy(), self.hi.copy()
+            lo[j], hi[j] = edges[i], edges[i + 1]
+            children.append(_Node(lo, hi, self.depth + 1))
+        if k % 2 == 1:  # the middle child's centre is the parent's, exactly
+            children[k // 2].centre = self.centre.copy()
+        return children
+
+
+class BaMSOO(GeneratorOptimizer):
+    """Bayesian Multi-Scale Optimistic Optimization. See the module docstring."""
+
+    name: ClassVar[str] = "bamsoo"
+    config_class: ClassVar[type[OptimizerConfig]] = BaMSOOConfig
+    config: BaMSOOConfig
+
+    def __init__(
+        self,
+        bounds: Bounds | ArrayLike,
+        config: OptimizerConfig | None = None,
+        seed: int | np.random.SeedSequence | None = None,
+        initial_point: ArrayLike | None = None,
+    ) -> None:
+        super().__init__(bounds, config, seed, initial_point)
+        self.surrogate = Surrogate(self.bounds.dim, self.config, self.rng)
+        #: Children whose value was set from the GP lower bound (not evaluated).
+        self.n_skipped = 0
+        #: Node expansions so far.
+        self.n_expansions = 0
+        #: Number of nodes in the tree.
+        self.n_nodes = 0
+
+    def _to_box(self, u: FloatArray) -> FloatArray:
+        return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
+
+    def _model(self) -> GaussianProcess:
+        xs = (self.xs - self.bounds.lower) / self.bounds.width
+        return self.surrogate.sync(xs, self.values)
+
+    def _bounds_at(self, u: FloatArray, n_considered: int) -> tuple[float, float]:
+        """``(U_N(u), L_N(u))`` from the current GP."""
+        mu, sd = self._model().predict(u[None, :])
+        b = math.sqrt(2.0 * math.log(math.pi**2 * n_considered**2 / (6.0 * self.config.eta)))
+        spread = float(sd[0]) ** 2 if self.config.bound_uses_variance else float(sd[0])
+        return float(mu[0]) + b * spread, float(mu[0]) - b * spread
+
+    def _search(self) -> Search:
+        cfg = self.config
+        k = int(cfg.branching)
+        d = self.bounds.dim
+        root = _Node(np.zeros(d), np.ones(d), 0)
+        root.g = yield self._to_box(root.centre)
+        root.evaluated = True
+        self.n_nodes = 1
+        f_plus = max(root.g, self.best_value)
+        # Expandable leaves per depth as max-heaps of (-g, creation order, node): the
+        # first-created leaf wins ties, and g never changes once set.
+        leaves: list[list[tuple[float, int, _Node]]] = [[(-root.g, 0, root)]]
+        order = 1
+        n_considered = 1  # N: child centres considered (root included)
+        skips = 0
+        unlimited = False
+        while True:
+            v_max = -math.inf
+            limit = math.inf if unlimited else float(self.n_expansions) ** cfg.h_max_exponent
+            expanded = False
+            h = 0
+            while h < len(leaves) and h <= limit:
+                level = leaves[h]
+                if not level or -level[0][0] < v_max:
+                    h += 1
+                    continue
+                node = heapq.heappop(level)[2]
+                children = node.split(k)
+                for child in children:
+                    if k % 2 == 1 and child is children[k // 2]:
+                        child.g, child.evaluated = node.g, node.evaluated
+                        continue
+                    n_considered += 1
+                    upper, lower = self._bounds_at(child.centre, n_considered)
+                    if upper >= f_plus or skips >= cfg.max_skips:
+                        child.g = yield self._to_box(child.centre)
+                        child.evaluated = True
+                        skips = 0
+                    else:
+                        child.g = lower
+                        self.n_skipped += 1
+                        skips += 1
+                    f_plus = max(f_plus, child.g)
+                if len(leaves) == h + 1:
+                    leaves.append([])
+                for child in children:
+                    if child.width >= cfg.min_width:
+                        heapq.heappush(leaves[h + 1], (-child.g, order, child))
+                    order += 1
+                self.n_nodes += len(children)
+                self.n_expansions += 1
+                v_max = node.g
+                expanded = True
+                h += 1
+            if not expanded:
+                if not any(leaves):
+                    return  # every cell is below min_width
+                unlimited = True  # all leaves lie deeper than h_max: lift it for one sweep
+            else:
+                unlimited = False

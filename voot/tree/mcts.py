@@ -1,0 +1,581 @@
+r"""Monte Carlo tree search with an action optimiser at every node (paper Algorithms 1-2).
+
+One *simulation* (Algorithm 2, written as a loop instead of a recursion) starts at the
+current root and, at every node :math:`s` reached at relative depth :math:`h`:
+
+1. picks an action :math:`u` by the configured selection rule (for VOOT: re-evaluate the
+   newest action while it has fewer than :math:`1 + w\,\kappa_r^h` evaluations, else ask
+   the node's optimiser for a new action, fed with the node's :math:`\hat Q`);
+2. a *new* action is proposed until it passes the problem's feasibility check (at most
+   ``feasibility_retries`` proposals; if all fail, the last is executed) and executed
+   with ``problem.step``; the resulting child is created with its snapshot;
+   an *existing* action is followed along its edge: the problem is deterministic, so the
+   child is already known and nothing is simulated (design.md's "main speed lever");
+3. stops at an infeasible action, a terminal state or the depth limit :math:`H`.
+
+The return is then backed up from the end of the path to the *original* root (also
+through the nodes the root was committed past):
+:math:`G = r + b + \gamma\,G_{\text{child}}`, with :math:`b` the goal bonus, and
+:math:`\hat Q(s, u)` absorbs :math:`G` by the backup rule (paper: the maximum).
+
+After every simulation the search records the best discounted sum of rewards (goal bonus
+excluded) over the paths from the original root: the paper's curve.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from voot.optim.base import Bounds, FloatArray
+from voot.tree.config import Backup, BestReturnOver, FinalAction, MCTSConfig, Selection, planner_config
+from voot.tree.hoo import HOO, HOOConfig
+from voot.tree.node import Node
+from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.samplers import UniformSampler, make_optimizer_sampler
+
+#: ``callback(mcts, simulation_index)`` after every simulation; return True to stop early.
+Callback = Callable[["MCTS", int], Any]
+
+
+def check_n_simulations(n_simulations: object) -> int:
+    """A number of simulations must be an integer >= 1."""
+    if (
+        isinstance(n_simulations, bool)
+        or not isinstance(n_simulations, int | np.integer)
+        or n_simulations < 1
+    ):
+        raise ValueError(f"n_simulations must be an integer >= 1, got {n_simulations!r}")
+    return int(n_simulations)
+
+
+def problem_bounds(problem: PlanningProblem) -> Bounds:
+    """``problem.action_bounds()`` as a :class:`Bounds`, or a ValueError saying what is wrong."""
+    raw = problem.action_bounds()
+    if isinstance(raw, Bounds):
+        return raw
+    try:
+        return Bounds.coerce(raw)
+    except ValueError as exc:
+        raise ValueError(
+            f"{type(problem).__name__}.action_bounds() returned an invalid action box: {exc}"
+        ) from None
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """The outcome of a search (everything since the tree was created or re-rooted).
+
+    Attributes:
+        actions: the best plan: the actions from the root to the best leaf.
+        rewards: their rewards (goal bonus excluded).
+        bonuses: their goal bonuses.
+        feasible: whether each action of the plan was feasible.
+        best_return: :math:`\\sum_t \\gamma^t r_t` of the best plan (bonus excluded).
+        best_return_curve: best return after every simulation (the paper's curve).
+        info_curve: ``best leaf info[record_info]`` after every simulation, if asked.
+        best_action: the recommended root action (``final_action`` rule), None if the
+            root has no action.
+        best_leaf_info: the step info of the last action of the best plan.
+        n_simulations: simulations run.
+        n_nodes: nodes in the tree.
+        n_steps: calls of ``problem.step`` (simulator steps).
+        n_feasibility_checks: calls of ``problem.is_feasible``.
+        n_node_visits: node visits (actions taken inside simulations, new or not).
+        wall_time: seconds spent in :meth:`MCTS.search`.
+        mcts: the search object, for inspecting the tree.
+    """
+
+    actions: tuple[FloatArray, ...]
+    rewards: FloatArray
+    bonuses: FloatArray
+    feasible: tuple[bool, ...]
+    best_return: float
+    best_return_curve: FloatArray
+    info_curve: tuple[Any, ...] | None
+    best_action: FloatArray | None
+    best_leaf_info: Mapping[str, Any]
+    n_simulations: int
+    n_nodes: int
+    n_steps: int
+    n_feasibility_checks: int
+    n_node_visits: int
+    wall_time: float
+    mcts: MCTS | None = field(default=None, repr=False, compare=False)
+
+    def summary(self) -> dict[str, Any]:
+        """Plain values for a results row (the curve as a list)."""
+        return {
+            "best_return": self.best_return,
+            "plan_length": len(self.actions),
+            "n_simulations": self.n_simulations,
+            "n_nodes": self.n_nodes,
+            "n_steps": self.n_steps,
+            "n_feasibility_checks": self.n_feasibility_checks,
+            "n_node_visits": self.n_node_visits,
+            "wall_time": self.wall_time,
+            "best_return_curve": self.best_return_curve.tolist(),
+        }
+
+
+class MCTS:
+    """The tree search over a :class:`~voot.tree.problem.PlanningProblem`.
+
+    Args:
+        problem: the world; its current state is the root.
+        config: a :class:`MCTSConfig` (default: VOOT), or a planner name (``"voot"``).
+        seed: seed of the one generator every node's sampler draws from.
+
+    ``search(n)`` runs ``n`` more simulations and returns a :class:`PlanResult`; call it
+    again to continue the same tree. The tree is open for inspection: :attr:`root`,
+    :attr:`nodes`, :attr:`current_root` (after root commitments).
+    """
+
+    def __init__(
+        self,
+        problem: PlanningProblem,
+        config: MCTSConfig | str | None = None,
+        seed: int | np.random.SeedSequence | None = None,
+    ) -> None:
+        if isinstance(config, str):
+            config = planner_config(config)
+        cfg = config if config is not None else MCTSConfig()
+        if not isinstance(cfg, MCTSConfig):
+            raise TypeError(f"config must be an MCTSConfig or a planner name, got {type(cfg).__name__}")
+        for method in ("snapshot", "restore", "step", "action_bounds"):
+            if not callable(getattr(problem, method, None)):
+                raise TypeError(
+                    f"{type(problem).__name__} is not a PlanningProblem: it has no {method}()"
+                )
+        self.problem = problem
+        self.config = cfg
+        self.rng = np.random.default_rng(seed)
+        self._check: Callable[[FloatArray], bool] | None = (
+            problem.is_feasible if isinstance(problem, FeasibilityCheck) else None
+        )
+        self._sampler_config = cfg.sampler_config()
+        self._optimizer_class: Any = None
+        if cfg.sampler not in ("uniform", "hoo"):
+            from voot.optim.registry import optimizer_class
+
+            self._optimizer_class = optimizer_class(cfg.sampler)
+        self._selection = Selection(cfg.selection)
+        self._backup = Backup(cfg.backup)
+        self._gamma = float(cfg.gamma)
+        self._H = cfg.depth_limit
+        self._reeval_budget: list[float] = []
+        root_bounds = problem_bounds(problem)
+        self._init_tree(Node(0, None, -1, 0, 1.0, 0.0, problem.snapshot()))
+        self.root.bounds = root_bounds
+        self.n_steps = 0
+        self.n_feasibility_checks = 0
+
+    def _init_tree(self, root: Node) -> None:
+        self.root = root
+        #: Every node, in creation order (``nodes[i].id == i``).
+        self.nodes: list[Node] = [root]
+        #: The root of the next simulation (moves down with root commitment).
+        self.current_root = root
+        self._prefix: list[tuple[Node, int]] = []
+        self._at: Node | None = None
+        self._commit_threshold = self.config.root_commitment
+        self._leaves: list[tuple[float, int]] = [(-root.path_return, root.id)]
+        self._best_node = root
+        self.best_return_curve: list[float] = []
+        self.info_curve: list[Any] = []
+        self.n_simulations = 0
+        self.n_node_visits = 0
+        self.wall_time = 0.0
+
+    # ----- public --------------------------------------------------------------------------
+    def search(
+        self,
+        n_simulations: int,
+        callback: Callback | None = None,
+        record_info: str | None = None,
+    ) -> PlanResult:
+        """Run ``n_simulations`` more simulations and return the result so far.
+
+        Args:
+            n_simulations: number of simulations (>= 1).
+            callback: called as ``callback(mcts, i)`` after simulation ``i`` (0-based,
+                counted over the tree's life); returning True stops the search.
+            record_info: a step-info key (e.g. ``"objects_left"``) to record at the best
+                leaf after every simulation, into :attr:`PlanResult.info_curve`.
+        """
+        n = check_n_simulations(n_simulations)
+        self._at = None  # the caller may have moved the problem between searches
+        t0 = time.perf_counter()
+        try:
+            for _ in range(n):
+                self._maybe_commit()
+                self._simulate()
+                self.n_simulations += 1
+                best = self.best_node()
+                self.best_return_curve.append(best.path_return)
+                if record_info is not None:
+                    self.info_curve.append(best.info.get(record_info))
+                if callback is not None and callback(self, self.n_simulations - 1):
+                    break
+        finally:
+            self.wall_time += time.perf_counter() - t0
+        return self.result(record_info is not None)
+
+    def best_node(self) -> Node:
+        """The end of the best path from the root (see ``best_return_over``)."""
+        if self.config.best_return_over is BestReturnOver.NODES:
+            return self._best_node
+        heap, nodes = self._leaves, self.nodes
+        while nodes[heap[0][1]].children:
+            heapq.heappop(heap)
+        return nodes[heap[0][1]]
+
+    @property
+    def best_return(self) -> float:
+        """Best discounted return (goal bonus excluded) over paths from the root."""
+        return self.best_node().path_return
+
+    def best_plan(self) -> list[tuple[Node, int]]:
+        """``(node, edge)`` pairs of the best path from the root."""
+        return self.best_node().path()
+
+    def recommended_edge(self) -> int:
+        """The root edge chosen by ``final_action`` (-1 if the root has no action)."""
+        if self.config.final_action is FinalAction.MOST_VISITED:
+            return self.root.most_visited_edge()
+        return self.root.best_edge()
+
+    def result(self, with_info_curve: bool = False) -> PlanResult:
+        """The :class:`PlanResult` of the tree as it is now."""
+        path = self.best_plan()
+        best = self.best_node()
+        i = self.recommended_edge()
+        return PlanResult(
+            actions=tuple(node.actions[e].copy() for node, e in path),
+            rewards=np.array([node.rewards[e] for node, e in path], dtype=np.float64),
+            bonuses=np.array([node.bonuses[e] for node, e in path], dtype=np.float64),
+            feasible=tuple(bool(node.feasible[e]) for node, e in path),
+            best_return=float(best.path_return),
+            best_return_curve=np.array(self.best_return_curve, dtype=np.float64),
+            info_curve=tuple(self.info_curve) if with_info_curve else None,
+            best_action=None if i < 0 else self.root.actions[i].copy(),
+            best_leaf_info=best.info,
+            n_simulations=self.n_simulations,
+            n_nodes=len(self.nodes),
+            n_steps=self.n_steps,
+            n_feasibility_checks=self.n_feasibility_checks,
+            n_node_visits=self.n_node_visits,
+            wall_time=self.wall_time,
+            mcts=self,
+        )
+
+    def reroot(self, edge: int) -> Node:
+        """Keep only the subtree below the root's ``edge`` (subtree reuse after executing it).
+
+        Depths, discounts and path returns are recomputed relative to the new root; the
+        curve and counters restart. Returns the new root.
+        """
+        if not 0 <= edge < len(self.root.children):
+            raise IndexError(f"edge {edge} out of range for a root with {len(self.root.children)} actions")
+        new_root = self.root.children[edge]
+        if not new_root.expandable:
+            raise ValueError("cannot re-root at a terminal or infeasible state")
+        new_root.parent, new_root.edge = None, -1
+        new_root.depth, new_root.discount, new_root.path_return = 0, 1.0, 0.0
+        new_root.info = {}
+        nodes: list[Node] = []
+        gamma = self._gamma
+        for node in new_root.subtree():
+            node.id = len(nodes)
+            nodes.append(node)
+            for e, child in enumerate(node.children):
+                child.depth = node.depth + 1
+                child.discount = node.discount * gamma
+                child.path_return = node.path_return + node.discount * node.rewards[e]
+        n_steps, n_checks = self.n_steps, self.n_feasibility_checks
+        self._init_tree(new_root)
+        self.nodes = nodes
+        self._leaves = [(-n.path_return, n.id) for n in nodes if not n.children]
+        heapq.heapify(self._leaves)
+        self._best_node = max(nodes, key=lambda n: n.path_return)
+        self.n_steps, self.n_feasibility_checks = n_steps, n_checks
+        return new_root
+
+    # ----- one simulation --------------------------------------------------------------------
+    def _simulate(self) -> None:
+        H = self._H
+        node = self.current_root
+        path_nodes: list[Node] = []
+        path_edges: list[int] = []
+        depth = 0
+        select = self._select
+        while not (node.terminal or node.infeasible) and (H is None or depth < H):
+            i = select(node, depth)
+            path_nodes.append(node)
+            path_edges.append(i)
+            node = node.children[i]
+            depth += 1
+        self.n_node_visits += depth
+        if self._prefix:
+            path_nodes = [p for p, _ in self._prefix] + path_nodes
+            path_edges = [e for _, e in self._prefix] + path_edges
+        self._backup_path(path_nodes, path_edges)
+
+    def _backup_path(self, path_nodes: list[Node], path_edges: list[int]) -> None:
+        gamma = self._gamma
+        rule = self._backup
+        is_max = rule is Backup.MAX
+        is_jump = rule is Backup.JUMP_MAX_ELSE_MEAN
+        hoo = self._selection is Selection.HOO
+        v = 0.0
+        for j in range(len(path_nodes) - 1, -1, -1):
+            node = path_nodes[j]
+            i = path_edges[j]
+            ret = node.rewards[i] + node.bonuses[i] + gamma * v
+            c = node.n[i] + 1
+            node.n[i] = c
+            node.visits += 1
+            q = node.q[i]
+            sampler = node.sampler
+            if hoo:
+                sampler.update(node.tags[i], ret)
+            if c == 1:
+                node.q[i] = ret
+                if not hoo and sampler is not None:
+                    sampler.add(node.actions[i], ret, node.feasible[i])
+                v = ret
+                continue
+            if is_max:
+                if ret > q:
+                    node.q[i] = ret
+                    if not hoo:
+                        sampler.update(i, ret)
+                    v = ret
+                else:
+                    v = q
+                continue
+            if is_jump and ret > q:
+                new = ret
+            else:
+                new = q + (ret - q) / c
+            if new != q:
+                node.q[i] = new
+                if not hoo:
+                    sampler.update(i, new)
+            v = ret
+
+    def _select(self, node: Node, depth: int) -> int:
+        sel = self._selection
+        if sel is Selection.REEVALUATE:
+            k = len(node.actions)
+            if (
+                k
+                and node.n_feasible
+                and node.feasible[k - 1]
+                and not node.children[k - 1].terminal
+                and not (node.n_terminal_children and self.config.terminal_child_forces_new)
+                and (self._H is None or depth != self._H - 1)
+                and node.reevaluations < self._budget(depth)
+            ):
+                node.reevaluations += 1
+                return k - 1
+            node.reevaluations = 0
+            return self._new_action(node)
+        if sel is Selection.PROGRESSIVE_WIDENING:
+            k = len(node.actions)
+            cfg = self.config
+            if (
+                k == 0
+                or node.n_feasible == 0
+                or (node.n_terminal_children and cfg.terminal_child_forces_new)
+                or k <= cfg.pw_k * node.visits**cfg.pw_alpha
+            ):
+                return self._new_action(node)
+            return self._ucb(node)
+        return self._hoo_action(node)
+
+    def _budget(self, depth: int) -> float:
+        """Re-evaluations allowed at relative depth ``depth``: ``w * kappa_r**depth``."""
+        budget = self._reeval_budget
+        while len(budget) <= depth:
+            budget.append(self.config.reevaluations * self.config.kappa_r ** len(budget))
+        return budget[depth]
+
+    def _ucb(self, node: Node) -> int:
+        """argmax over feasible edges of :math:`\\hat Q + c\\sqrt{\\ln N / n}` (first on ties)."""
+        q = np.array(node.q)
+        n = np.array(node.n, dtype=np.float64)
+        score = q + self.config.ucb_c * np.sqrt(math.log(max(node.visits, 1)) / n)
+        if node.n_feasible < len(node.q):
+            score[~np.array(node.feasible)] = -np.inf
+        return int(np.argmax(score))
+
+    # ----- new actions ----------------------------------------------------------------------
+    def _goto(self, node: Node) -> None:
+        if self._at is not node:
+            self.problem.restore(node.snapshot)
+            self._at = node
+
+    def _sampler(self, node: Node) -> Any:
+        """The node's sampler, created on its first new action (the problem is at ``node``)."""
+        if node.sampler is None:
+            if node.bounds is None:
+                node.bounds = problem_bounds(self.problem)
+            cfg = self.config
+            if cfg.sampler == "uniform":
+                node.sampler = UniformSampler(node.bounds, self.rng)
+            elif cfg.sampler == "hoo":
+                hoo_cfg = self._sampler_config
+                assert isinstance(hoo_cfg, HOOConfig)
+                node.sampler = HOO(node.bounds, hoo_cfg, self.rng)
+            else:
+                node.sampler = make_optimizer_sampler(
+                    self._optimizer_class,
+                    self._sampler_config,
+                    node.bounds,
+                    self.rng,
+                    cfg.voo_uniform_until_feasible and cfg.sampler == "voo",
+                )
+        return node.sampler
+
+    def _new_action(self, node: Node) -> int:
+        self._goto(node)
+        sampler = self._sampler(node)
+        x = sampler.propose()
+        check = self._check
+        if check is not None:
+            retries = self.config.feasibility_retries
+            for t in range(retries):
+                self.n_feasibility_checks += 1
+                if check(x) or t == retries - 1:
+                    break
+                sampler.reject(x)
+                previous, x = x, sampler.propose()
+                if np.array_equal(previous, x):  # a deterministic sampler repeats itself
+                    break
+        return self._execute(node, x)
+
+    def _hoo_action(self, node: Node) -> int:
+        self._goto(node)
+        hoo: HOO = self._sampler(node)
+        cell, is_new = hoo.select()
+        if not is_new:
+            return node.tag_to_edge[cell]
+        x = hoo.point(cell).copy()
+        check = self._check
+        if check is not None:
+            retries = self.config.feasibility_retries
+            for t in range(retries):
+                self.n_feasibility_checks += 1
+                if check(x) or t == retries - 1:
+                    break
+                x = hoo.redraw(cell).copy()
+        i = self._execute(node, x)
+        node.tags.append(cell)
+        node.tag_to_edge[cell] = i
+        return i
+
+    def _execute(self, node: Node, x: FloatArray) -> int:
+        """Step the problem (which is at ``node``) with ``x``; add the edge and its child."""
+        res = self.problem.step(x)
+        self.n_steps += 1
+        if not isinstance(res, StepResult):
+            raise TypeError(
+                f"{type(self.problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
+            )
+        reward = float(res.reward)
+        feasible = bool(res.feasible)
+        terminal = bool(res.terminal)
+        expandable = feasible and not terminal
+        child = Node(
+            len(self.nodes),
+            node,
+            len(node.actions),
+            node.depth + 1,
+            node.discount * self._gamma,
+            node.path_return + node.discount * reward,
+            self.problem.snapshot() if expandable else None,
+            terminal,
+            not feasible,
+            res.info,
+        )
+        self._at = child
+        self.nodes.append(child)
+        node.actions.append(x)
+        node.rewards.append(reward)
+        node.bonuses.append(float(res.bonus))
+        node.feasible.append(feasible)
+        node.children.append(child)
+        node.q.append(-math.inf)
+        node.n.append(0)
+        if feasible:
+            node.n_feasible += 1
+        if terminal:
+            node.n_terminal_children += 1
+        if self.config.best_return_over is BestReturnOver.NODES:
+            if child.path_return > self._best_node.path_return:
+                self._best_node = child
+        else:
+            heapq.heappush(self._leaves, (-child.path_return, child.id))
+        return len(node.actions) - 1
+
+    # ----- root commitment -----------------------------------------------------------------
+    def _maybe_commit(self) -> None:
+        """Move the root to its best feasible child once it has enough feasible actions."""
+        threshold = self._commit_threshold
+        root = self.current_root
+        if threshold is None or root.n_feasible < threshold:
+            return
+        if root.n_terminal_children:  # the original: stay, and ask for more next time
+            self._commit_threshold = 2 * threshold
+            return
+        best, best_q = -1, -math.inf
+        for i, child in enumerate(root.children):
+            if root.feasible[i] and child.expandable and (best < 0 or root.q[i] > best_q):
+                best, best_q = i, root.q[i]
+        if best < 0 or (self._H is not None and self._H <= 1):
+            return
+        self._prefix.append((root, best))
+        self.current_root = root.children[best]
+
+
+def plan(
+    problem: PlanningProblem,
+    planner: str | MCTSConfig = "voot",
+    n_simulations: int = 1000,
+    seed: int | None = 0,
+    *,
+    callback: Callback | None = None,
+    record_info: str | None = None,
+    **options: Any,
+) -> PlanResult:
+    """Run one planner on one problem with one seed: the unit of a benchmark.
+
+    Args:
+        problem: the planning problem (its current state is the root).
+        planner: a planner name (see :func:`voot.tree.available_planners`) or a config.
+        n_simulations: number of simulations.
+        seed: seed of the search.
+        callback: see :meth:`MCTS.search`.
+        record_info: see :meth:`MCTS.search`.
+        **options: :class:`MCTSConfig` fields overriding the planner's.
+
+    >>> from voot.tree.overhead import NullProblem
+    >>> res = plan(NullProblem(dim=2), "voot", n_simulations=50, seed=0, depth_limit=3)
+    >>> res.best_return_curve.shape
+    (50,)
+    """
+    check_n_simulations(n_simulations)
+    if isinstance(planner, MCTSConfig):
+        config = planner.replace(**options) if options else planner
+    else:
+        config = planner_config(planner, **options)
+    return MCTS(problem, config, seed=seed).search(
+        n_simulations, callback=callback, record_info=record_info
+    )
