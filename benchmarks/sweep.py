@@ -215,7 +215,10 @@ def build_specs(
     """Every run of the sweep, in grid order (function, dim, method, params, seed).
 
     Args:
-        functions, dims, methods, seeds: the grid axes (defaults: the paper's).
+        functions: test function names (default: the paper's three).
+        dims: dimensions (default: 3, 10, 20).
+        methods: registry names of the optimisers (default: the paper's nine).
+        seeds: seeds (default: 0..19).
         grid: ``"paper"`` (each method's ``paper_grid()``) or ``"default"``.
         budget_scale: multiplies :func:`paper_budget` (rounded, at least 1).
         budget: a fixed budget for every run instead (overrides ``budget_scale``).

@@ -64,21 +64,22 @@ Why not OMPL or an RRT
 ----------------------
 The original planned with a bidirectional RRT with shortcutting, retried with growing
 caps. OMPL's Python bindings (``ompl`` 2.0.1 on PyPI, nanobind) offer the same
-(``RRTConnect`` in ``SE2StateSpace``) and are deterministic once
-``ompl.util.RNG.setSeed`` is set, but (measured in ``docs/motion-planning.md``) every
-state-validity check is a Python callback, a single plan through the kitchen's doorway
-takes milliseconds to tens of milliseconds with a heavy tail, infeasible queries (a
-goal behind a door that is too narrow) run until a time limit because a sampling planner
-cannot prove that no path exists, and the path and its length vary with the seed. The
-visibility graph is exact, complete for the model above, answers "no path" as fast as
-"a path", gives the shortest path (so the reward's path length is a property of the
-state, not of a random seed) and needs only numpy.
+(``RRTConnect`` in ``SE2StateSpace``) and are deterministic when
+``ompl.util.RNG.setSeed`` is called before each plan, but every state-validity check is
+a Python callback: through the kitchen-sized floor plan's 1.0 m door a plan took 5-9 s
+and 20,000-33,000 callbacks (``docs/motion-planning.md``), against about 2 ms here. A
+sampling planner also cannot prove that no path exists (the answer for most infeasible
+place actions: it runs to its time limit), and its path length, which is the reward,
+varies with the seed. The visibility graph is exact for the disc model, complete,
+answers "no path" as fast as "a path", gives the shortest path (so the reward's path
+length is a property of the state, not of a random seed) and needs only numpy.
 """
 
 from __future__ import annotations
 
-import math
 import heapq
+import itertools
+import math
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -150,8 +151,10 @@ class Box2D:
     """An oriented rectangle: the floor footprint of a wall, a piece of furniture or an object.
 
     Attributes:
-        cx, cy: Centre in metres.
-        half_x, half_y: Half extents along the box's own axes (> 0).
+        cx: Centre x in metres.
+        cy: Centre y in metres.
+        half_x: Half extent along the box's own x axis (> 0).
+        half_y: Half extent along the box's own y axis (> 0).
         yaw: Rotation of the box's x axis from the world x axis, radians.
         name: Identifier reported by :func:`voot.envs.swept_volume.obstacles_on_path`
             and :meth:`BasePlanner.colliding`.
@@ -175,6 +178,15 @@ class Box2D:
             )
         if not isinstance(self.name, str):
             raise ValueError(f"Box2D.name must be a str, got {type(self.name).__name__}")
+        # boxes key the planner's graph cache: hash once (the fields are frozen)
+        object.__setattr__(
+            self,
+            "_hash",
+            hash((self.cx, self.cy, self.half_x, self.half_y, self.yaw, self.name)),
+        )
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined,no-any-return]
 
     @classmethod
     def from_bounds(
@@ -272,7 +284,7 @@ class BasePath:
             raise ValueError(f"max_step must be > 0, got {max_step}")
         w = self.waypoints
         out = [w[:1]]
-        for a, b in zip(w[:-1], w[1:], strict=True):
+        for a, b in itertools.pairwise(w):
             n = max(1, math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / step))
             t = np.arange(1, n + 1, dtype=np.float64)[:, None] / n
             seg = a + t * np.array([b[0] - a[0], b[1] - a[1], float(wrap_angle(b[2] - a[2]))])
@@ -313,6 +325,10 @@ class BasePlannerConfig:
             A door passes iff ``width > 2 * (radius + clearance + vertex_margin)``.
         contact_tolerance: Numerical slack (metres) of collision tests: a disc collides
             iff it is deeper than this inside an obstacle; in [0, vertex_margin).
+        radius_step: 0 (default) plans with the exact radius. A positive step (metres,
+            <= 0.05) rounds every inflated radius *up* to a multiple of it, so that
+            nearly equal radii (a carried object's enclosing disc varies with the grasp)
+            share cached graphs; conservative, it narrows doors by at most ``2 * step``.
         static_cache_size: Number of radii whose static visibility graph is kept; >= 1.
         graph_cache_size: Number of ``(radius, movable obstacles)`` graphs kept; >= 0
             (0 disables the cache: every query rebuilds the movable part).
@@ -323,6 +339,7 @@ class BasePlannerConfig:
     corner_segments: int = 2
     vertex_margin: float = 1e-6
     contact_tolerance: float = 1e-9
+    radius_step: float = 0.0
     static_cache_size: int = 8
     graph_cache_size: int = 32
 
@@ -348,9 +365,12 @@ class BasePlannerConfig:
         ct = _finite(self.contact_tolerance, "BasePlannerConfig.contact_tolerance")
         if not 0.0 <= ct < vm:
             raise ValueError(
-                "BasePlannerConfig.contact_tolerance must be in [0, vertex_margin="
-                f"{vm}), got {ct}"
+                f"BasePlannerConfig.contact_tolerance must be in [0, vertex_margin={vm}), got {ct}"
             )
+        rs = _finite(self.radius_step, "BasePlannerConfig.radius_step")
+        if not 0.0 <= rs <= 0.05:
+            raise ValueError(f"BasePlannerConfig.radius_step must be in [0, 0.05], got {rs}")
+        object.__setattr__(self, "radius_step", rs)
         for name, low in (("static_cache_size", 1), ("graph_cache_size", 0)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < low:
@@ -370,7 +390,8 @@ class BoxArrays:
 
     Attributes:
         center: ``(m, 2)`` centres.
-        cos, sin: ``(m,)`` cosine and sine of the yaw.
+        cos: ``(m,)`` cosine of the yaw.
+        sin: ``(m,)`` sine of the yaw.
         half: ``(m, 2)`` half extents.
         reach: ``(m,)`` circumradius ``hypot(half_x, half_y)`` (for prefilters).
         names: The boxes' names.
@@ -428,28 +449,32 @@ def points_hit_boxes(points: FloatArray, boxes: BoxArrays, radius: float) -> Boo
     return dx * dx + dy * dy < radius * radius
 
 
-def _slab_hit(
-    px: FloatArray, py: FloatArray, dx: FloatArray, dy: FloatArray, hx: Any, hy: Any
+_CORNER_SIGNS = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+
+
+def _segment_meets_open_box(
+    px: FloatArray,
+    py: FloatArray,
+    dx: FloatArray,
+    dy: FloatArray,
+    cross: FloatArray,
+    hx: FloatArray,
+    hy: FloatArray,
 ) -> BoolArray:
     """Does segment ``p + t d, t in [0, 1]`` meet the open box ``|x| < hx, |y| < hy``?
 
-    Liang-Barsky clipping; a segment only touching the boundary does not meet it (the
-    ``0 * inf`` NaNs of segments lying on a boundary line compare false).
+    Separating-axis test on the box axes and the segment's normal (``cross`` is
+    ``px * dy - py * dx``, the segment line's offset along the normal). Touching counts
+    as separated; a degenerate segment (a point) is tested by the box axes alone.
     """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ix = 1.0 / dx
-        iy = 1.0 / dy
-        tx1 = (-hx - px) * ix
-        tx2 = (hx - px) * ix
-        ty1 = (-hy - py) * iy
-        ty2 = (hy - py) * iy
-        t_enter = np.maximum(np.maximum(np.minimum(tx1, tx2), np.minimum(ty1, ty2)), 0.0)
-        t_exit = np.minimum(np.minimum(np.maximum(tx1, tx2), np.maximum(ty1, ty2)), 1.0)
-        result: BoolArray = t_enter < t_exit
+    qx = px + dx
+    qy = py + dy
+    sep = (np.maximum(px, qx) <= -hx) | (np.minimum(px, qx) >= hx)
+    sep |= (np.maximum(py, qy) <= -hy) | (np.minimum(py, qy) >= hy)
+    reach = np.abs(dy) * hx + np.abs(dx) * hy
+    sep |= (np.abs(cross) >= reach) & (reach > 0.0)
+    result: BoolArray = ~sep
     return result
-
-
-_CORNER_SIGNS = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
 
 
 def _segment_box_pairs_hit(
@@ -472,18 +497,16 @@ def _segment_box_pairs_hit(
     py = ry * c - rx * s
     dx = ex * c + ey * s
     dy = ey * c - ex * s
-    # the two axis-grown boxes at once: shape (2, k)
-    grown_x = np.stack([hx + radius, hx])
-    grown_y = np.stack([hy, hy + radius])
-    hit: BoolArray = _slab_hit(px, py, dx, dy, grown_x, grown_y).any(axis=0)
+    cross = px * dy - py * dx
+    hit = _segment_meets_open_box(px, py, dx, dy, cross, hx + radius, hy)
+    hit |= _segment_meets_open_box(px, py, dx, dy, cross, hx, hy + radius)
     # the four corner discs at once: shape (k, 4)
-    dd = dx * dx + dy * dy
-    inv_dd = np.where(dd > 0.0, 1.0 / np.where(dd > 0.0, dd, 1.0), 0.0)[:, None]
+    inv_dd = (1.0 / np.maximum(dx * dx + dy * dy, 1e-300))[:, None]
     vx = _CORNER_SIGNS[:, 0] * hx[:, None] - px[:, None]
     vy = _CORNER_SIGNS[:, 1] * hy[:, None] - py[:, None]
     dxc = dx[:, None]
     dyc = dy[:, None]
-    t = np.clip((vx * dxc + vy * dyc) * inv_dd, 0.0, 1.0)
+    t = np.minimum(np.maximum((vx * dxc + vy * dyc) * inv_dd, 0.0), 1.0)
     ox = vx - t * dxc
     oy = vy - t * dyc
     hit |= (ox * ox + oy * oy < radius * radius).any(axis=1)
@@ -504,22 +527,22 @@ def segments_hit_boxes(
     """
     p = np.asarray(p, dtype=np.float64).reshape(-1, 2)
     q = np.asarray(q, dtype=np.float64).reshape(-1, 2)
-    empty = np.zeros(0, dtype=np.intp)
     if len(boxes) == 0 or p.shape[0] == 0:
+        empty = np.zeros(0, dtype=np.intp)
         return empty, empty
-    d = q - p
-    dd = np.einsum("ij,ij->i", d, d)
-    inv_dd = np.where(dd > 0.0, 1.0 / np.where(dd > 0.0, dd, 1.0), 0.0)
+    dx = (q[:, 0] - p[:, 0])[:, None]
+    dy = (q[:, 1] - p[:, 1])[:, None]
+    inv_dd = 1.0 / np.maximum(dx * dx + dy * dy, 1e-300)
     # (e, m) distance from each box centre to each segment
-    ex = boxes.center[None, :, 0] - p[:, 0:1]
-    ey = boxes.center[None, :, 1] - p[:, 1:2]
-    t = np.clip((ex * d[:, 0:1] + ey * d[:, 1:2]) * inv_dd[:, None], 0.0, 1.0)
-    ox = ex - t * d[:, 0:1]
-    oy = ey - t * d[:, 1:2]
+    ex = boxes.center[:, 0] - p[:, 0:1]
+    ey = boxes.center[:, 1] - p[:, 1:2]
+    t = np.minimum(np.maximum((ex * dx + ey * dy) * inv_dd, 0.0), 1.0)
+    ox = ex - t * dx
+    oy = ey - t * dy
     lim = boxes.reach + radius
     seg_i, box_j = np.nonzero(ox * ox + oy * oy < lim * lim)
     if seg_i.size == 0:
-        return empty, empty
+        return seg_i, box_j
     hit = _segment_box_pairs_hit(p[seg_i], q[seg_i], boxes, box_j, radius)
     return seg_i[hit], box_j[hit]
 
@@ -576,6 +599,16 @@ class _Graph:
                 adj[b].append((a, w))
             self._adjacency = adj
         return self._adjacency
+
+
+@dataclass(eq=False)
+class _Scene:
+    """What one ``(radius, movable)`` pair needs: the obstacle arrays and, once built, the graph."""
+
+    radius: float
+    movable: BoxArrays
+    boxes: BoxArrays  # static then movable
+    graph: _Graph | None = None
 
 
 #: Lines through a vertex whose sines to both neighbours multiply to more than
@@ -680,8 +713,9 @@ class BasePlanner:
         self.config = config
         self.static_obstacles: tuple[Box2D, ...] = tuple(static_obstacles)
         self._static = BoxArrays.from_boxes(self.static_obstacles)
+        self._template = self._make_template(config.corner_segments)
         self._static_cache: OrderedDict[float, _Graph] = OrderedDict()
-        self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Graph] = OrderedDict()
+        self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
 
     # ----- public API -------------------------------------------------------------------
     def plan(
@@ -694,7 +728,8 @@ class BasePlanner:
         """Shortest collision-free path from ``start`` to ``goal``, or None.
 
         Args:
-            start, goal: Base poses (a :class:`Pose2D` or ``(x, y, theta)``).
+            start: Start base pose (a :class:`Pose2D` or ``(x, y, theta)``).
+            goal: Goal base pose.
             robot_radius: Radius of the disc enclosing the robot and what it carries (> 0).
             movable: Footprints of the movable objects (leave out the carried one).
 
@@ -704,20 +739,18 @@ class BasePlanner:
         """
         s = Pose2D.coerce(start, "start")
         g = Pose2D.coerce(goal, "goal")
-        radius = self._inflated_radius(robot_radius)
-        mov = self._movable(movable)
-        movable_arrays = BoxArrays.from_boxes(mov)
-        all_boxes = self._static.concat(movable_arrays)
-        r_hit = radius - self.config.contact_tolerance
+        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
+        r_hit = scene.radius - self.config.contact_tolerance
         ends = np.array([[s.x, s.y], [g.x, g.y]])
         if not np.all(self._inside(ends, r_hit)):
             return None
-        if points_hit_boxes(ends, all_boxes, r_hit).any():
+        if points_hit_boxes(ends, scene.boxes, r_hit).any():
             return None
-        if not segments_hit_any(ends[:1], ends[1:], all_boxes, r_hit)[0]:
+        if not segments_hit_any(ends[:1], ends[1:], scene.boxes, r_hit)[0]:
             return self._make_path(s, g, ends)
-        graph = self._graph(radius, mov, movable_arrays, all_boxes)
-        polyline = self._search(graph, ends, all_boxes, r_hit)
+        if scene.graph is None:
+            scene.graph = self._build_graph(scene)
+        polyline = self._search(scene.graph, ends, scene.boxes, r_hit)
         if polyline is None:
             return None
         return self._make_path(s, g, polyline)
@@ -727,12 +760,11 @@ class BasePlanner:
     ) -> bool:
         """Is the disc at ``pose`` inside the workspace and clear of every obstacle?"""
         p = Pose2D.coerce(pose, "pose")
-        r_hit = self._inflated_radius(robot_radius) - self.config.contact_tolerance
-        pt = np.array([[p.x, p.y]])
-        if not self._inside(pt, r_hit)[0]:
+        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
+        r_hit = scene.radius - self.config.contact_tolerance
+        if not self._inside_xy(p.x, p.y, r_hit):
             return False
-        boxes = self._static.concat(BoxArrays.from_boxes(self._movable(movable)))
-        return not bool(points_hit_boxes(pt, boxes, r_hit).any())
+        return not bool(points_hit_boxes(np.array([[p.x, p.y]]), scene.boxes, r_hit).any())
 
     def colliding(
         self, pose: Pose2D | ArrayLike, robot_radius: float, movable: Sequence[Box2D] = ()
@@ -743,12 +775,12 @@ class BasePlanner:
         environment's "collision with what" diagnostics.
         """
         p = Pose2D.coerce(pose, "pose")
-        r_hit = self._inflated_radius(robot_radius) - self.config.contact_tolerance
+        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
+        r_hit = scene.radius - self.config.contact_tolerance
         pt = np.array([[p.x, p.y]])
-        boxes = self._static.concat(BoxArrays.from_boxes(self._movable(movable)))
-        hits = np.flatnonzero(points_hit_boxes(pt, boxes, r_hit)[0])
-        names = [boxes.names[k] for k in hits]
-        if not self._inside(pt, r_hit)[0]:
+        hits = np.flatnonzero(points_hit_boxes(pt, scene.boxes, r_hit)[0])
+        names = [scene.boxes.names[k] for k in hits]
+        if not self._inside_xy(p.x, p.y, r_hit):
             names.insert(0, "workspace")
         return names
 
@@ -760,13 +792,13 @@ class BasePlanner:
         if w.ndim != 2 or w.shape[1] not in (2, 3) or w.shape[0] < 1:
             raise ValueError(f"waypoints must have shape (k, 2) or (k, 3), got {w.shape}")
         xy = w[:, :2]
-        r_hit = self._inflated_radius(robot_radius) - self.config.contact_tolerance
+        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
+        r_hit = scene.radius - self.config.contact_tolerance
         if not np.all(self._inside(xy, r_hit)):
             return False
-        boxes = self._static.concat(BoxArrays.from_boxes(self._movable(movable)))
-        if points_hit_boxes(xy, boxes, r_hit).any():
+        if points_hit_boxes(xy, scene.boxes, r_hit).any():
             return False
-        return not bool(segments_hit_any(xy[:-1], xy[1:], boxes, r_hit).any())
+        return not bool(segments_hit_any(xy[:-1], xy[1:], scene.boxes, r_hit).any())
 
     def clear_caches(self) -> None:
         """Drop the cached graphs (results do not change; only the next query's time)."""
@@ -778,7 +810,12 @@ class BasePlanner:
         r = _finite(robot_radius, "robot_radius")
         if r <= 0.0:
             raise ValueError(f"robot_radius must be > 0, got {robot_radius}")
-        return r + self.config.clearance
+        r += self.config.clearance
+        step = self.config.radius_step
+        if step > 0.0:
+            # round up; the 1e-9 keeps exact multiples (0.48 / 0.01 = 47.999...) in place
+            r = math.ceil(r / step - 1e-9) * step
+        return r
 
     @staticmethod
     def _movable(movable: Sequence[Box2D]) -> tuple[Box2D, ...]:
@@ -787,6 +824,10 @@ class BasePlanner:
             if not isinstance(b, Box2D):
                 raise ValueError(f"movable[{i}] must be a Box2D, got {type(b).__name__}")
         return mov
+
+    def _inside_xy(self, x: float, y: float, radius: float) -> bool:
+        xmin, xmax, ymin, ymax = self.workspace
+        return xmin + radius <= x <= xmax - radius and ymin + radius <= y <= ymax - radius
 
     def _inside(self, pts: FloatArray, radius: float) -> BoolArray:
         xmin, xmax, ymin, ymax = self.workspace
@@ -799,30 +840,48 @@ class BasePlanner:
         return result
 
     def _polygon_nodes(self, boxes: BoxArrays, radius: float) -> _Nodes:
-        """Vertices of the tangent polygons enclosing the boxes grown by ``radius``."""
-        m = self.config.corner_segments
+        """Vertices of the tangent polygons enclosing the boxes grown by ``radius``.
+
+        Corner ``k`` (signs ``(+,+), (-,+), (-,-), (+,-)``, counter-clockwise) carries ``m``
+        vertices at angles ``phi`` mid-way between consecutive tangent lines, at distance
+        ``(radius + vertex_margin) / cos(pi / (4 m))`` from the corner. The polygon edge
+        after a vertex is the tangent line at ``phi + pi / (4 m)`` (direction
+        ``phi + pi / (4 m) + pi / 2``), the edge before it the one at ``phi - pi / (4 m)``.
+        """
         if len(boxes) == 0:
             z = np.zeros((0, 2))
             return _Nodes(z, z, z)
+        m = self.config.corner_segments
+        corner, unit, to_prev, to_next = self._template
         dist = (radius + self.config.vertex_margin) / math.cos(math.pi / (4 * m))
-        corners = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
-        # corner k's arc spans angles [k pi/2, (k+1) pi/2]; its m vertices sit at the
-        # midpoints of m equal sub-arcs, where consecutive tangent lines meet
-        k = np.repeat(np.arange(4), m)
-        jj = np.tile(np.arange(m), 4)
-        ang = k * (math.pi / 2) + (jj + 0.5) * (math.pi / (2 * m))
-        offset = dist * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
-        local = corners[k][None, :, :] * boxes.half[:, None, :] + offset[None, :, :]
+        lx = corner[:, 0] * boxes.half[:, 0:1] + dist * unit[:, 0]  # (nb, 4m)
+        ly = corner[:, 1] * boxes.half[:, 1:2] + dist * unit[:, 1]
         c = boxes.cos[:, None]
         s = boxes.sin[:, None]
-        wx = boxes.center[:, 0:1] + c * local[..., 0] - s * local[..., 1]
-        wy = boxes.center[:, 1:2] + s * local[..., 0] + c * local[..., 1]
-        pos = np.stack([wx, wy], axis=-1)  # (nb, 4m, 2), counter-clockwise
-        to_prev = np.roll(pos, 1, axis=1) - pos
-        to_next = np.roll(pos, -1, axis=1) - pos
-        to_prev /= np.linalg.norm(to_prev, axis=-1, keepdims=True)
-        to_next /= np.linalg.norm(to_next, axis=-1, keepdims=True)
-        return _Nodes(pos.reshape(-1, 2), to_prev.reshape(-1, 2), to_next.reshape(-1, 2))
+        pos = np.empty((len(boxes), 4 * m, 2))
+        pos[..., 0] = boxes.center[:, 0:1] + c * lx - s * ly
+        pos[..., 1] = boxes.center[:, 1:2] + s * lx + c * ly
+        prev = np.empty_like(pos)
+        prev[..., 0] = c * to_prev[:, 0] - s * to_prev[:, 1]
+        prev[..., 1] = s * to_prev[:, 0] + c * to_prev[:, 1]
+        nxt = np.empty_like(pos)
+        nxt[..., 0] = c * to_next[:, 0] - s * to_next[:, 1]
+        nxt[..., 1] = s * to_next[:, 0] + c * to_next[:, 1]
+        return _Nodes(pos.reshape(-1, 2), prev.reshape(-1, 2), nxt.reshape(-1, 2))
+
+    @staticmethod
+    def _make_template(m: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Per-vertex corner signs, unit offsets and unit neighbour directions (local frame)."""
+        k = np.repeat(np.arange(4), m)
+        jj = np.tile(np.arange(m), 4)
+        phi = k * (math.pi / 2) + (jj + 0.5) * (math.pi / (2 * m))
+        half_step = math.pi / (4 * m)
+        unit = np.column_stack([np.cos(phi), np.sin(phi)])
+        after = phi + half_step + math.pi / 2
+        before = phi - half_step + math.pi / 2
+        to_next = np.column_stack([np.cos(after), np.sin(after)])
+        to_prev = -np.column_stack([np.cos(before), np.sin(before)])
+        return _CORNER_SIGNS[k], unit, to_prev, to_next
 
     def _free_nodes(self, nodes: _Nodes, boxes: BoxArrays, r_hit: float) -> _Nodes:
         free = self._inside(nodes.pos, r_hit) & ~points_hit_boxes(nodes.pos, boxes, r_hit).any(
@@ -831,25 +890,25 @@ class BasePlanner:
         return nodes.take(np.flatnonzero(free))
 
     @staticmethod
-    def _connect(
-        a: _Nodes, b: _Nodes, boxes: BoxArrays, r_hit: float, same: bool
-    ) -> tuple[IntArray, IntArray, FloatArray]:
-        """Bitangent, collision-free edges between node sets ``a`` and ``b``.
-
-        With ``same`` (``a is b``) only pairs ``i < j`` are considered. Returns indices into
-        ``a`` and ``b`` and the edge lengths.
-        """
+    def _candidates(a: _Nodes, b: _Nodes, same: bool) -> tuple[IntArray, IntArray]:
+        """Bitangent pairs between node sets ``a`` and ``b`` (``i < j`` if ``same``)."""
         ux = b.pos[None, :, 0] - a.pos[:, 0:1]
         uy = b.pos[None, :, 1] - a.pos[:, 1:2]
-        cand = _tangent_grid(a, ux, uy, 0) & _tangent_grid(b, ux, uy, 1)
+        ia, ib = np.nonzero(_tangent_grid(a, ux, uy, 0) & _tangent_grid(b, ux, uy, 1))
         if same:
-            cand = np.triu(cand, k=1)
-        ia, ib = np.nonzero(cand)
-        pa, pb = a.pos[ia], b.pos[ib]
+            upper = ia < ib
+            ia, ib = ia[upper], ib[upper]
+        return ia, ib
+
+    @staticmethod
+    def _keep_free(
+        pos: FloatArray, ia: IntArray, ib: IntArray, boxes: BoxArrays, r_hit: float
+    ) -> tuple[IntArray, IntArray, FloatArray]:
+        """The collision-free edges among ``(ia, ib)`` (indices into ``pos``) and their lengths."""
+        pa, pb = pos[ia], pos[ib]
         ok = ~segments_hit_any(pa, pb, boxes, r_hit)
-        ia, ib = ia[ok], ib[ok]
         d = pb[ok] - pa[ok]
-        return ia, ib, np.hypot(d[:, 0], d[:, 1])
+        return ia[ok], ib[ok], np.hypot(d[:, 0], d[:, 1])
 
     def _static_graph(self, radius: float) -> _Graph:
         """Free vertices of the grown static obstacles and their static visibility edges."""
@@ -859,57 +918,51 @@ class BasePlanner:
             return cached
         r_hit = radius - self.config.contact_tolerance
         nodes = self._free_nodes(self._polygon_nodes(self._static, radius), self._static, r_hit)
-        i, j, w = self._connect(nodes, nodes, self._static, r_hit, same=True)
-        graph = _Graph(nodes, i, j, w)
+        ia, ib = self._candidates(nodes, nodes, same=True)
+        graph = _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, self._static, r_hit))
         self._static_cache[radius] = graph
         if len(self._static_cache) > self.config.static_cache_size:
             self._static_cache.popitem(last=False)
         return graph
 
-    def _graph(
-        self,
-        radius: float,
-        movable: tuple[Box2D, ...],
-        movable_arrays: BoxArrays,
-        all_boxes: BoxArrays,
-    ) -> _Graph:
-        """The visibility graph among static and movable obstacles (cached)."""
+    def _scene(self, radius: float, movable: tuple[Box2D, ...]) -> _Scene:
+        """The (cached) obstacle arrays and graph slot for ``(radius, movable)``."""
         key = (radius, movable)
-        cached = self._graph_cache.get(key)
-        if cached is not None:
+        scene = self._graph_cache.get(key)
+        if scene is not None:
             self._graph_cache.move_to_end(key)
-            return cached
-        static = self._static_graph(radius)
-        if len(movable) == 0:
-            graph = static
-        else:
-            r_hit = radius - self.config.contact_tolerance
-            snodes = static.nodes
-            # static vertices not covered by a movable obstacle, re-indexed
-            alive = ~points_hit_boxes(snodes.pos, movable_arrays, r_hit).any(axis=1)
-            new_index = np.cumsum(alive) - 1
-            keep = alive[static.i] & alive[static.j]
-            si, sj, sw = static.i[keep], static.j[keep], static.w[keep]
-            ok = ~segments_hit_any(snodes.pos[si], snodes.pos[sj], movable_arrays, r_hit)
-            si, sj, sw = new_index[si[ok]], new_index[sj[ok]], sw[ok]
-            base = snodes.take(np.flatnonzero(alive))
-            mnodes = self._free_nodes(
-                self._polygon_nodes(movable_arrays, radius), all_boxes, r_hit
-            )
-            nb = len(base)
-            mi, bj, mbw = self._connect(mnodes, base, all_boxes, r_hit, same=False)
-            mi2, mj2, mmw = self._connect(mnodes, mnodes, all_boxes, r_hit, same=True)
-            graph = _Graph(
-                base.concat(mnodes),
-                np.concatenate([si, mi + nb, mi2 + nb]).astype(np.intp),
-                np.concatenate([sj, bj, mj2 + nb]).astype(np.intp),
-                np.concatenate([sw, mbw, mmw]),
-            )
+            return scene
+        movable_arrays = BoxArrays.from_boxes(movable)
+        scene = _Scene(radius, movable_arrays, self._static.concat(movable_arrays))
         if self.config.graph_cache_size > 0:
-            self._graph_cache[key] = graph
+            self._graph_cache[key] = scene
             if len(self._graph_cache) > self.config.graph_cache_size:
                 self._graph_cache.popitem(last=False)
-        return graph
+        return scene
+
+    def _build_graph(self, scene: _Scene) -> _Graph:
+        """The visibility graph among the static and movable obstacles of ``scene``."""
+        radius = scene.radius
+        static = self._static_graph(radius)
+        if len(scene.movable) == 0:
+            return static
+        r_hit = radius - self.config.contact_tolerance
+        # static vertices not covered by a movable obstacle, re-indexed
+        covered = points_hit_boxes(static.nodes.pos, scene.movable, r_hit).any(axis=1)
+        alive = np.asarray(~covered, dtype=bool)
+        new_index = np.cumsum(alive) - 1
+        keep = alive[static.i] & alive[static.j]
+        base = static.nodes.take(np.flatnonzero(alive))
+        mnodes = self._free_nodes(self._polygon_nodes(scene.movable, radius), scene.boxes, r_hit)
+        nodes = base.concat(mnodes)
+        nb = len(base)
+        # candidate edges: surviving static ones (only the movable obstacles can block
+        # them), movable-to-static and movable-to-movable bitangents (all obstacles)
+        mi, bj = self._candidates(mnodes, base, same=False)
+        mi2, mj2 = self._candidates(mnodes, mnodes, same=True)
+        ia = np.concatenate([new_index[static.i[keep]], mi + nb, mi2 + nb])
+        ib = np.concatenate([new_index[static.j[keep]], bj, mj2 + nb])
+        return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, scene.boxes, r_hit))
 
     def _search(
         self, graph: _Graph, ends: FloatArray, boxes: BoxArrays, r_hit: float

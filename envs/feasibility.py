@@ -182,7 +182,7 @@ class IKConfig:
 
     position_tolerance: float = 1e-3
     orientation_tolerance: float = 1e-2
-    max_iterations: int = 15
+    max_iterations: int = 10
     solver: str = "daqp"
     damping: float = 1e-6
     orientation_cost: float = 0.5

@@ -5,20 +5,23 @@ parallel gripper. This module gives named access to its joints and geoms inside 
 compiled scene (:class:`Robot`), its kinematic constants (used by the analytic IK seed in
 :mod:`voot.envs.feasibility`), and the disc model used for base motion planning.
 
-Base motion model: the robot is a disc of radius :data:`ROBOT_RADIUS` = 0.48 m centred at
-the base (the 0.64 m square's circumradius is 0.4525 m; the tucked arm stays inside the
-square). Carrying an object, the disc grows to the smallest disc centred at the base that
-holds the square and the object's footprint at its held pose (:func:`carry_radius`). A
-door of width ``w`` lets the disc through iff ``w > 2 r``: the kitchen's 0.9 m door stops
-the robot (0.96 m needed); the storage rooms' 1.95 m door passes the robot with any
-small box (r <= 0.92 m for the fixed conveyor grasp) and stops it with a big one
-(r >= 1.03 m).
+Base motion model (:class:`CarryDisc`): the robot is a disc of radius
+:data:`ROBOT_RADIUS` = 0.48 m centred at the base (the 0.64 m square's circumradius is
+0.4525 m; the tucked arm stays inside the square). Carrying an object, the disc is the
+one enclosing the base square and the object's footprint at its held pose, centred at
+the centre of their bounding box in the base frame (:func:`carry_disc`); the planner
+plans the path of that centre, and since the disc holds the robot and its load whatever
+the heading, the base may turn freely along the path. A door of width ``w`` lets the
+disc through iff ``w > 2 r``: the kitchen's 0.9 m door stops the robot (0.96 m needed);
+the storage rooms' door passes the robot carrying any small box and stops it carrying
+one of the two big ones (see :mod:`voot.envs.conveyor`).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -138,19 +141,56 @@ def base_footprint(pose: ArrayLike, name: str = "robot") -> Box2D:
     return Box2D(x, y, BASE_HALF, BASE_HALF, th, name)
 
 
-def carry_radius(held_corners_in_base: ArrayLike) -> float:
-    """Radius of the base-centred disc holding the robot and a carried object.
+@dataclass(frozen=True)
+class CarryDisc:
+    """The disc standing for the robot (and what it carries) in base motion planning.
+
+    Attributes:
+        offset: Centre of the disc in the base frame ``(x, y)``; the base planner plans
+            the path of this point, and the base follows at ``-offset`` (rotated).
+        radius: The disc's radius.
+    """
+
+    offset: tuple[float, float]
+    radius: float
+
+    def center(self, base_pose: ArrayLike) -> FloatArray:
+        """The disc's centre pose ``(x, y, theta)`` for the base at ``base_pose``."""
+        b = np.asarray(base_pose, dtype=np.float64)
+        return compose2d(b, (self.offset[0], self.offset[1], 0.0))
+
+    def base(self, center_poses: ArrayLike) -> FloatArray:
+        """Base poses ``(k, 3)`` for disc-centre poses ``(k, 3)``."""
+        c = np.array(center_poses, dtype=np.float64).reshape(-1, 3)
+        cos, sin = np.cos(c[:, 2]), np.sin(c[:, 2])
+        c[:, 0] -= cos * self.offset[0] - sin * self.offset[1]
+        c[:, 1] -= sin * self.offset[0] + cos * self.offset[1]
+        return c
+
+
+#: The robot alone: a disc of :data:`ROBOT_RADIUS` centred at the base.
+ROBOT_DISC = CarryDisc((0.0, 0.0), ROBOT_RADIUS)
+
+
+def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
+    """The disc holding the robot's base square and a carried object's footprint.
+
+    Its centre is the centre of the bounding box (base frame) of the square's and the
+    object's corners, its radius the largest distance from there to a corner plus the
+    robot's margin ``ROBOT_RADIUS - sqrt(2) BASE_HALF`` (2.75 cm). Rotating the robot
+    about that centre keeps robot and object inside the disc, so a path planned for the
+    disc (any headings along it) is collision-free for the carried assembly.
 
     Args:
         held_corners_in_base: Corners ``(k, 2)`` of the carried object's footprint in the
             base frame.
-
-    Returns:
-        ``max(ROBOT_RADIUS, max_i ||corner_i||)``.
     """
-    pts = np.asarray(held_corners_in_base, dtype=np.float64).reshape(-1, 2)
-    far = float(np.max(np.hypot(pts[:, 0], pts[:, 1]))) if len(pts) else 0.0
-    return max(ROBOT_RADIUS, far)
+    square = BASE_HALF * np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+    pts = np.concatenate([square, np.asarray(held_corners_in_base, dtype=np.float64).reshape(-1, 2)])
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+    far = float(np.max(np.hypot(pts[:, 0] - centre[0], pts[:, 1] - centre[1])))
+    margin = ROBOT_RADIUS - math.sqrt(2.0) * BASE_HALF
+    return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
 def compose2d(a: Sequence[float], b: Sequence[float]) -> FloatArray:

@@ -16,15 +16,15 @@ Geometry (metres), after the original problems (see the reference page):
 
 * Kitchen house: the house interior is x in [-2, 6], y in [-4, 4]. The kitchen
   (x in [-2, 2.8], y in [-1, 3]) has counters along the north and west walls with the
-  sink at (0, 3.65), a fridge and a dining table; south of it is a hall. A wall at
+  sink at (0, 3.65), a fridge and a side table; south of it is a hall. A wall at
   x = 2.8 with a 0.9 m door at y = 2 (the original's 1.0 m door was sized for a PR2 with
   its arms out; ours is sized for the base-motion disc, see ``voot.envs.robot``) leads to
   two large rooms (x in [2.8, 6]) split by a wall at y = 0. Seven obstacles (boxes and
   chairs) stand on the straight path from the start (-1.5, -1.5) to the sink pose
-  (0, 2.5), as in the original problem; three more objects stand elsewhere.
+  (0, 2.5), as in the original problem; two more chairs stand by the east wall.
 * Storage rooms: the robot starts at (0, 1.05) facing the belt (x >= 1.5, y in
   [0.55, 1.55]) that carries 20 boxes. West of the start, a 2.6 m wide entrance at
-  x = -0.7 opens into the small first room (x in [-4, -0.7], y in [-1, 3]); a 1.95 m
+  x = -0.7 opens into the small first room (x in [-4, -0.7], y in [-1, 3]); a 1.48 m
   door in its south wall leads to the larger rooms (x in [-4, -0.7], y in [-7.5, -1]
   and x in [-7.4, -4], y in [-7.5, 3], joined by a 3.5 m opening). Box sizes follow the
   original's generator: the first two are big (x size U[0.6, 0.7], y size 0.7), the
@@ -283,10 +283,9 @@ def kitchen_xml() -> str:
     out.append('    <geom name="sink_spout" class="decor" type="capsule" fromto="0 3.92 1.14 0 3.78 1.14" size="0.018" material="steel"/>\n')
     out.append('    <geom name="stove" class="decor" type="box" size="0.28 0.3 0.005" pos="-1.67 2.6 0.902" material="belt"/>\n')
     out.append('    <geom name="fridge_handle" class="decor" type="box" size="0.01 0.01 0.3" pos="2.1 3.28 1.1" material="rail"/>\n')
-    out.append(_table("dining_table", Rect(1.3, 2.4, 0.3, 1.1, 0.75)))
+    out.append(_table("side_table", Rect(2.15, 2.8, 1.2, 2.4, 0.75)))
     # hall and rooms furniture
-    out.append("    " + Rect(0.8, 2.6, -4.0, -3.2, 0.75).geom("sofa", "scene", "fabric") + "\n")
-    out.append("    " + Rect(-2.0, -1.5, -4.0, -3.3, 1.0).geom("hall_cabinet", "scene", "dark_wood") + "\n")
+    out.append("    " + Rect(1.3, 2.8, -4.0, -3.25, 0.75).geom("sofa", "scene", "fabric") + "\n")
     out.append("    " + Rect(4.2, 6.0, 2.2, 4.0, 0.5).geom("bed", "scene", "bed") + "\n")
     out.append("    " + Rect(2.95, 3.35, 2.8, 3.9, 1.6).geom("shelf_n", "scene", "dark_wood") + "\n")
     out.append(_table("desk", Rect(4.8, 6.0, -4.0, -3.2, 0.75)))
@@ -299,13 +298,13 @@ def kitchen_xml() -> str:
     out.append(f'    <geom name="goal_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(gx, gy, 0.003)}" rgba="1 0.8 0.1 1"/>\n')
     # obstacles on the path (s along the path from the start, d to its left)
     on_path = [
-        ("obj_box1", "box", 0.80, -0.30, 0.3, (0.40, 0.40, 0.60)),
-        ("obj_chair1", "chair", 1.40, 0.35, 2.2, None),
-        ("obj_box2", "box", 2.00, -0.25, -0.4, (0.50, 0.36, 0.45)),
-        ("obj_chair2", "chair", 2.60, 0.30, -2.6, None),
-        ("obj_box3", "box", 3.15, -0.30, 0.9, (0.32, 0.32, 0.85)),
-        ("obj_box4", "box", 3.70, 0.25, 0.2, (0.44, 0.44, 0.50)),
-        ("obj_chair3", "chair", 4.25, -0.10, 1.3, None),
+        ("obj_box1", "box", 0.70, -0.40, 0.3, (0.40, 0.40, 0.60)),
+        ("obj_chair1", "chair", 1.30, 0.05, 2.2, None),
+        ("obj_box2", "box", 1.90, -0.50, -0.4, (0.50, 0.36, 0.45)),
+        ("obj_chair2", "chair", 2.50, 0.00, -2.6, None),
+        ("obj_box3", "box", 3.10, -0.50, 0.9, (0.32, 0.32, 0.85)),
+        ("obj_box4", "box", 3.65, 0.05, 0.2, (0.40, 0.40, 0.50)),
+        ("obj_chair3", "chair", 4.25, -0.40, 1.3, None),
     ]
     for name, kind, s, d, yaw, size in on_path:
         x, y = _along_path(s, d)
@@ -315,9 +314,8 @@ def kitchen_xml() -> str:
         else:
             out.append(_chair_object(name, x, y, yaw))
     # other movable objects, off the path
-    out.append(_chair_object("obj_chair4", 1.85, 1.5, -math.pi / 2))
-    out.append(_chair_object("obj_chair5", 0.95, 0.7, 0.0))
-    out.append(_box_object("obj_box5", 2.1, -2.2, 0.5, (0.45, 0.35, 0.55), "clutter"))
+    out.append(_chair_object("obj_chair4", 2.5, -0.45, math.pi))
+    out.append(_chair_object("obj_chair5", 2.5, 0.25, math.pi))
     out.append("  </worldbody>\n</mujoco>\n")
     return "".join(out)
 
@@ -379,9 +377,9 @@ def conveyor_xml() -> str:
         # east wall of the rooms with the 2.6 m entrance y in [0, 2.6] into the first room
         ("wall_east_s", -0.7, -0.7 + t, -7.5, 0.0),
         ("wall_east_n", -0.7, -0.7 + t, 2.6, 3.0),
-        # first room's south wall, door x in [-3.2, -1.25] (1.95 m)
-        ("wall_room1_s_w", -4.0, -3.2, -1.05, -0.95),
-        ("wall_room1_s_e", -1.25, -0.7, -1.05, -0.95),
+        # first room's south wall, door x in [-2.92, -1.44] (1.48 m)
+        ("wall_room1_s_w", -4.0, -2.92, -1.05, -0.95),
+        ("wall_room1_s_e", -1.44, -0.7, -1.05, -0.95),
         # first room's west wall (no door) and the wall between the larger rooms with a
         # 3.5 m opening y in [-4.5, -1.05]
         ("wall_room1_w", -4.05, -3.95, -1.05, 3.0),

@@ -21,8 +21,8 @@ def run(opt: CMAES, f, budget: int, disturb: bool = False) -> np.ndarray:
     xs = []
     for i in range(budget):
         if disturb:  # reseed and consume numpy's global RNG between calls
-            np.random.seed(1000 + i)
-            np.random.rand(3)
+            np.random.seed(1000 + i)  # noqa: NPY002
+            np.random.rand(3)  # noqa: NPY002
         x = opt.ask()
         xs.append(x)
         opt.tell(x, f(x))
@@ -43,11 +43,11 @@ def test_same_seed_same_asks_despite_global_rng(restarts: str) -> None:
 
 
 def test_global_rng_untouched() -> None:
-    np.random.seed(5)
-    before = np.random.get_state()
+    np.random.seed(5)  # noqa: NPY002
+    before = np.random.get_state()  # noqa: NPY002
     opt = make_optimizer("cmaes", Bounds.cube(-5.12, 5.12, 2), seed=0, restarts="bipop")
     run(opt, rastrigin, 1000)
-    after = np.random.get_state()
+    after = np.random.get_state()  # noqa: NPY002
     assert opt.n_restarts >= 1
     np.testing.assert_array_equal(before[1], after[1])
     assert before[2:] == after[2:]

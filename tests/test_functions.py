@@ -179,7 +179,7 @@ def test_shekel_optimum_beats_random_multistart() -> None:
     f = get_function("shekel", 10)
     rng = np.random.default_rng(0)
     grad = f.kernel.gradient  # type: ignore[attr-defined]
-    for start in rng.random((100, 10)) * 10:  # random starts where the peaks are
+    for start in rng.random((30, 10)) * 10:  # random starts where the peaks are
         res = minimize(lambda x: -f(x), start, jac=lambda x: -grad(x), method="L-BFGS-B")
         assert -res.fun <= f.optimum_value + 1e-9
 

@@ -25,7 +25,9 @@ from voot.bench.store import (
 
 
 def row(i: int, status: str = "ok", n: int = 5, kind: str = "bbfo") -> dict:
-    best = np.maximum.accumulate(np.arange(n, dtype=float) + i) if status == "ok" else []
+    best: list[float] = (
+        np.maximum.accumulate(np.arange(n, dtype=float) + i).tolist() if status == "ok" else []
+    )
     return make_row(
         kind,
         {"function": "f", "dim": 3, "seed": i},
@@ -99,7 +101,9 @@ def test_failed_replaced_by_ok_but_ok_never_replaced(tmp_path: Path) -> None:
     assert s.row_path(ok["run_id"]).read_bytes() == before
 
 
-def test_write_is_atomic_when_replace_fails(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_write_is_atomic_when_replace_fails(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     s = ResultStore(tmp_path)
     r = row(1)
 

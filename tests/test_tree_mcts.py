@@ -110,7 +110,9 @@ def test_each_planner_finds_one_step_optimum(planner: str, n_sims: int, regret: 
 
 
 def test_voot_beats_uniform_on_one_step_in_6d() -> None:
-    voot = np.mean([plan(OneStep(6), "voot", 150, seed=s, depth_limit=1).best_return for s in range(3)])
+    voot = np.mean(
+        [plan(OneStep(6), "voot", 150, seed=s, depth_limit=1).best_return for s in range(3)]
+    )
     unif = np.mean(
         [plan(OneStep(6), "uniform_t", 150, seed=s, depth_limit=1).best_return for s in range(3)]
     )
@@ -119,7 +121,11 @@ def test_voot_beats_uniform_on_one_step_in_6d() -> None:
 
 # ----- Algorithm 2's rules --------------------------------------------------------------
 def test_newest_action_is_reevaluated_w_times_then_a_new_one_is_sampled() -> None:
-    mcts = MCTS(Counter(), planner_config("voot", reevaluations=3, kappa_r=1.0, depth_limit=2, root_commitment=None), seed=0)
+    mcts = MCTS(
+        Counter(),
+        planner_config("voot", reevaluations=3, kappa_r=1.0, depth_limit=2, root_commitment=None),
+        seed=0,
+    )
     mcts.search(8)
     assert mcts.root.n == [4, 4]  # 1 evaluation + 3 re-evaluations each
     # At depth H - 1 every visit samples a new action (no re-evaluation at the leaves).
@@ -128,7 +134,9 @@ def test_newest_action_is_reevaluated_w_times_then_a_new_one_is_sampled() -> Non
 
 
 def test_reevaluation_budget_decays_with_kappa_r() -> None:
-    cfg = planner_config("uniform_t", reevaluations=4, kappa_r=0.5, depth_limit=3, root_commitment=None)
+    cfg = planner_config(
+        "uniform_t", reevaluations=4, kappa_r=0.5, depth_limit=3, root_commitment=None
+    )
     mcts = MCTS(Counter(), cfg, seed=0)
     mcts.search(50)
     child = mcts.root.children[0]
@@ -191,7 +199,13 @@ def test_max_backup_is_bellman_max_consistent() -> None:
 def test_mean_and_jump_backups(rule: str) -> None:
     gamma = 0.5
     cfg = planner_config(
-        "uniform_t", backup=rule, reevaluations=4, kappa_r=1.0, depth_limit=2, gamma=gamma, root_commitment=None
+        "uniform_t",
+        backup=rule,
+        reevaluations=4,
+        kappa_r=1.0,
+        depth_limit=2,
+        gamma=gamma,
+        root_commitment=None,
     )
     mcts = MCTS(Counter(), cfg, seed=1)
     mcts.search(5)
@@ -199,7 +213,9 @@ def test_mean_and_jump_backups(rule: str) -> None:
     returns = [root.rewards[0] + gamma * r for r in child.rewards]  # the 5 simulations
     expected = returns[0]
     for k, g in enumerate(returns[1:], start=2):
-        expected = g if (rule == "jump_max_else_mean" and g > expected) else expected + (g - expected) / k
+        expected = (
+            g if (rule == "jump_max_else_mean" and g > expected) else expected + (g - expected) / k
+        )
     assert root.q[0] == pytest.approx(expected)
 
 
@@ -397,5 +413,7 @@ def test_step_must_return_a_step_result() -> None:
 def test_config_object_and_overrides() -> None:
     cfg = MCTSConfig(sampler="voo", depth_limit=2)
     res = plan(NullProblem(2), cfg, 10, gamma=0.5)
-    assert res.mcts is not None and res.mcts.config.gamma == 0.5 and res.mcts.config.depth_limit == 2
+    assert (
+        res.mcts is not None and res.mcts.config.gamma == 0.5 and res.mcts.config.depth_limit == 2
+    )
     assert math.isfinite(res.best_return)

@@ -79,8 +79,8 @@ __all__ = [
     "shekel_parameters",
 ]
 
-#: Kernel of a test function: points of shape (n, d) -> values of shape (n,).
 Kernel = Callable[[FloatArray], FloatArray]
+"""Vectorised formula of a test function: points ``(n, d)`` -> values ``(n,)``."""
 
 
 # ----------------------------------------------------------------------------------------
@@ -234,9 +234,9 @@ def _rosenbrock(xs: FloatArray) -> FloatArray:
 
 #: DEAP's Schwefel offset, :math:`\max_x x \sin\sqrt{|x|}` to 16 digits.
 _SCHWEFEL_OFFSET = 418.9828872724339
-#: Maximiser of :math:`x \sin\sqrt{|x|}` on [-500, 500] (root of
-#: :math:`\sin u + \tfrac{u}{2}\cos u = 0`, :math:`u = \sqrt{x}`, by Brent's method).
 SCHWEFEL_ARGMAX = 420.96874635998194
+r"""Maximiser of :math:`x \sin\sqrt{|x|}` on [-500, 500]: the root of
+:math:`\sin u + \tfrac{u}{2}\cos u = 0` with :math:`u = \sqrt{x}` (Brent's method)."""
 
 
 def _schwefel(xs: FloatArray) -> FloatArray:
@@ -269,15 +269,13 @@ class _Shekel:
 # ----------------------------------------------------------------------------------------
 # Shekel instances
 # ----------------------------------------------------------------------------------------
-#: Dimensions of the paper's Shekel instances.
 SHEKEL_DIMS: tuple[int, ...] = (3, 10, 20)
-#: Legacy ``np.random.seed`` of each instance's A and c.
+"""Dimensions of the paper's Shekel instances."""
 SHEKEL_SEEDS: dict[int, int] = {3: 0, 10: 301, 20: 301}
-#: Optimum lines drawn in the original's Figure-3 plots (they do not match these A, c).
+"""Legacy ``np.random.seed`` of each instance's A and c."""
 SHEKEL_REFERENCE_OPTIMA: dict[int, float] = {3: 4.78739, 10: 6.04759, 20: 3.93869}
+"""Optimum lines drawn in the original's Figure-3 plots (they do not match these A, c)."""
 
-#: Maximiser and maximum of each paper instance, from :func:`shekel_optimum`
-#: (``tests/test_functions.py`` recomputes them).
 SHEKEL_OPTIMA: dict[int, tuple[tuple[float, ...], float]] = {
     3: (
         (
@@ -328,6 +326,8 @@ SHEKEL_OPTIMA: dict[int, tuple[tuple[float, ...], float]] = {
         5.330105852882616,
     ),
 }
+"""Maximiser and maximum of each paper instance, from :func:`shekel_optimum`
+(``tests/test_functions.py`` recomputes them)."""
 
 
 def shekel_parameters(dim: int) -> tuple[FloatArray, FloatArray]:

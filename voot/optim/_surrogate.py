@@ -46,7 +46,8 @@ class SubsetRule(StrEnum):
 
 
 def _is_int(value: object, low: int) -> bool:
-    return isinstance(value, int | np.integer) and not isinstance(value, bool) and value >= low
+    """``value`` is an integer (not a bool) and ``>= low``."""
+    return isinstance(value, int | np.integer) and not isinstance(value, bool) and int(value) >= low
 
 
 def _check_pair(name: str, value: object) -> tuple[float, float]:
@@ -239,11 +240,8 @@ def maximize_ucb(
     """
     d = gp.dim
     C = rng.random((n_candidates, d))
-    mu, sd = gp.predict(C, return_std=zeta > 0.0, chunk=chunk)
-    acq = mu + zeta * sd
-    k = min(n_starts, n_candidates)
-    order = np.argsort(-acq, kind="stable")[:k]
-    best_x, best_v = C[order[0]].copy(), float(acq[order[0]])
+    order, scores = gp.top_ucb(C, zeta, min(n_starts, n_candidates), chunk=chunk)
+    best_x, best_v = C[order[0]].copy(), float(scores[0])
     if maxiter < 1:
         return best_x, best_v
 

@@ -82,7 +82,9 @@ class BaMSOOConfig(SurrogateConfig):
         if isinstance(p, bool) or not isinstance(p, int | float) or not 0.0 < p <= 1.0:
             raise ValueError(f"h_max_exponent must be a number in (0, 1], got {p!r}")
         if not isinstance(self.bound_uses_variance, bool | np.bool_):
-            raise ValueError(f"bound_uses_variance must be a bool, got {self.bound_uses_variance!r}")
+            raise ValueError(
+                f"bound_uses_variance must be a bool, got {self.bound_uses_variance!r}"
+            )
         if not _is_int(self.max_skips, 1):
             raise ValueError(f"max_skips must be an integer >= 1, got {self.max_skips!r}")
         w = self.min_width

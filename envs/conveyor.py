@@ -1,0 +1,398 @@
+"""``voot/ConveyorPacking-v0``: pack the boxes arriving on a belt into the storage rooms.
+
+The paper's conveyor-belt domain (Figure 1 left; reference page "Conveyor-belt
+packing"). Boxes arrive on a belt east of the robot's start pose (0, 1.05, 0). West of
+the start, a wide entrance opens into a small first room; its 1.48 m door leads to the
+larger rooms. The first two boxes are big: carrying one, the robot's base-motion disc is
+too wide for that door, so they must go into the first room, leaving space for the rest.
+
+Picks are fixed (as in the original): each box is taken from the belt with the same
+side grasp and presented in front of the robot at the start pose, and every placement's
+base path starts there. Each action places the **next three boxes**: 9 numbers, three
+object poses ``(x, y, theta)`` in the loading region x in [-7.4, -0.5],
+y in [-7.5, 3], theta in [0, 2 pi) (normalised to [-1, 1]). The placements are checked
+in sequence (each sees the ones before it): the box must lie in the loading region, the
+robot's base footprint in the workspace, robot and box must collide with nothing, and a
+base path must exist from the start pose to the placing pose for the robot carrying the
+box. If all three are feasible the reward is ``sum_i exp(-0.1 L_i)`` over the three base
+paths' lengths ``L_i``; if any is infeasible the action earns -2 and nothing moves.
+The episode terminates when every box is placed (no goal bonus in this domain:
+``info["goal_bonus"]`` is 0) and is truncated after ``horizon`` steps. When fewer than
+three boxes remain, the action's trailing entries are ignored.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot.envs.base_planner import BasePath, BasePlannerConfig
+from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
+from voot.envs.robot import (
+    BASE_HALF,
+    ROBOT_RADIUS,
+    CarryDisc,
+    base_footprint,
+    carry_disc,
+    compose2d,
+    inverse2d,
+)
+from voot.envs.scene import object_footprint, rect_inside
+from voot.envs.task_env import (
+    ManipulationEnv,
+    StepTiming,
+    add_marker_box,
+    check_bounds,
+    check_pose,
+    check_positive,
+    check_range,
+    denormalize,
+)
+from voot.optim.base import Bounds
+
+FloatArray = NDArray[np.float64]
+
+#: Boxes placed by one action.
+OBJECTS_PER_ACTION = 3
+#: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
+BELT_FIRST_X = 2.3
+BELT_SPACING = 1.1
+BELT_Y = 1.05
+BELT_TOP = 0.06
+
+
+@dataclass(frozen=True)
+class ConveyorConfig:
+    """Settings of :class:`ConveyorPackingEnv` (defaults: the paper's / original's values).
+
+    Attributes:
+        start: The robot's base pose where every box is presented ((0, 1.05, 0)).
+        loading_region: Where boxes may be placed ``(xmin, xmax, ymin, ymax)``; also the
+            x, y ranges of the action.
+        workspace: Where the robot's base may go (the base planner's workspace).
+        place_theta: Range of a placed box's heading (radians).
+        n_objects: Boxes to pack, the first ``n_objects`` of the belt (1..20).
+        grasp_angle: The fixed grasp's roll about the approach axis (radians).
+        height_fraction: The fixed grasp's height as a fraction of the box height.
+        depth_fraction: The fixed grasp's position across the grasped face.
+        present_gap: Gap between the base's front and the presented box (metres).
+        length_scale: ``c`` in the placement reward ``exp(-c L)``.
+        infeasible_reward: Reward of an infeasible action.
+        horizon: Steps after which an episode is truncated.
+        render_overlays: Draw the loading region in rendered images.
+        ik: IK settings.
+        planner: Base planner settings.
+    """
+
+    start: tuple[float, float, float] = (0.0, 1.05, 0.0)
+    loading_region: tuple[float, float, float, float] = (-7.4, -0.5, -7.5, 3.0)
+    workspace: tuple[float, float, float, float] = (-7.4, 1.5, -7.5, 3.0)
+    place_theta: tuple[float, float] = (0.0, 2.0 * math.pi)
+    n_objects: int = 20
+    grasp_angle: float = math.pi / 2
+    height_fraction: float = 0.75
+    depth_fraction: float = 0.5
+    present_gap: float = 0.15
+    length_scale: float = 0.1
+    infeasible_reward: float = -2.0
+    horizon: int = 20
+    render_overlays: bool = True
+    ik: IKConfig = field(default_factory=IKConfig)
+    planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "start", check_pose("ConveyorConfig.start", self.start))
+        for name in ("loading_region", "workspace"):
+            object.__setattr__(self, name, check_bounds(f"ConveyorConfig.{name}", getattr(self, name)))
+        object.__setattr__(
+            self, "place_theta", check_range("ConveyorConfig.place_theta", self.place_theta)
+        )
+        if isinstance(self.n_objects, bool) or not isinstance(self.n_objects, int):
+            raise ValueError(f"ConveyorConfig.n_objects must be an int in [1, 20], got {self.n_objects!r}")
+        if not 1 <= self.n_objects <= 20:
+            raise ValueError(f"ConveyorConfig.n_objects must be in [1, 20], got {self.n_objects}")
+        for name in ("grasp_angle", "present_gap", "length_scale"):
+            object.__setattr__(self, name, check_positive(f"ConveyorConfig.{name}", getattr(self, name)))
+        for name in ("height_fraction", "depth_fraction"):
+            v = float(getattr(self, name))
+            if not 0.0 <= v <= 1.0:
+                raise ValueError(f"ConveyorConfig.{name} must be in [0, 1], got {v}")
+            object.__setattr__(self, name, v)
+        r = float(self.infeasible_reward)
+        if not (math.isfinite(r) and r < 0):
+            raise ValueError(f"ConveyorConfig.infeasible_reward must be a finite number < 0, got {r}")
+        object.__setattr__(self, "infeasible_reward", r)
+        if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
+            raise ValueError(f"ConveyorConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        if not isinstance(self.ik, IKConfig):
+            raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
+        if not isinstance(self.planner, BasePlannerConfig):
+            raise ValueError(
+                f"ConveyorConfig.planner must be a BasePlannerConfig, got {type(self.planner).__name__}"
+            )
+
+    @property
+    def place_ranges(self) -> tuple[tuple[float, float], ...]:
+        """Ranges of one placement's parameters (x, y, theta)."""
+        r = self.loading_region
+        return ((r[0], r[1]), (r[2], r[3]), self.place_theta)
+
+
+@dataclass(frozen=True)
+class ConveyorTask:
+    """The task's progress (immutable; part of every snapshot).
+
+    Attributes:
+        steps: Steps taken in this episode (feasible or not).
+        placed: Boxes placed so far (they are the first ``placed`` boxes).
+        done: Every box is placed (terminated).
+    """
+
+    steps: int
+    placed: int
+    done: bool
+
+
+@dataclass(frozen=True)
+class FixedPick:
+    """The fixed grasp of one box: its pose in the base frame, the arm, the motion disc."""
+
+    rel: tuple[float, float, float]
+    arm_q: tuple[float, ...]
+    disc: CarryDisc
+
+
+class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
+    """The conveyor-belt packing domain as a gymnasium environment (module docstring).
+
+    Args:
+        config: Settings; defaults to :class:`ConveyorConfig` (the paper's values).
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
+
+    Raises:
+        RuntimeError: If the fixed grasp of some box is infeasible (a broken scene).
+    """
+
+    def __init__(
+        self,
+        config: ConveyorConfig | None = None,
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+    ) -> None:
+        self.config = config if config is not None else ConveyorConfig()
+        if not isinstance(self.config, ConveyorConfig):
+            raise ValueError(f"config must be a ConveyorConfig, got {type(self.config).__name__}")
+        cfg = self.config
+        super().__init__(
+            "conveyor", cfg.workspace, cfg.ik, cfg.planner, render_mode, render_camera, render_size
+        )
+        if len(self.objects) < cfg.n_objects:  # pragma: no cover - scene drift
+            raise ValueError(f"the scene has {len(self.objects)} boxes, fewer than n_objects={cfg.n_objects}")
+        self.n = cfg.n_objects
+        self._reset_physics()
+        self.picks = tuple(self._fixed_pick(i) for i in range(self.n))
+        self.action_space = gym.spaces.Box(
+            -1.0, 1.0, shape=(3 * OBJECTS_PER_ACTION,), dtype=np.float64
+        )
+        self.observation_space = gym.spaces.Box(
+            -50.0, 50.0, shape=(4 + 5 * len(self.objects) + 2,), dtype=np.float64
+        )
+
+    # ----- fixed picks ---------------------------------------------------------------------
+    def _fixed_pick(self, i: int) -> FixedPick:
+        """Grasp box ``i`` presented on the floor in front of the robot at ``start``."""
+        cfg = self.config
+        obj = self.objects[i]
+        depth = float(obj.half[0])
+        rel = (BASE_HALF + cfg.present_gap + depth - float(obj.center[0]), -float(obj.center[1]), 0.0)
+        pose = compose2d(cfg.start, rel)
+        grasp = side_grasp(
+            obj,
+            (pose[0], pose[1], 0.0, pose[2]),
+            cfg.start[2],
+            cfg.grasp_angle,
+            cfg.height_fraction,
+            cfg.depth_fraction,
+        )
+        rb = rot_z(cfg.start[2])
+        ik = self.ik.solve(
+            rb.T @ (grasp.position - np.array([cfg.start[0], cfg.start[1], 0.0])), rb.T @ grasp.rotation
+        )
+        if not ik.success or ik.q is None:
+            raise RuntimeError(f"the fixed grasp of {obj.name} is out of the arm's reach ({ik.reason})")
+        report = self.collision.check(
+            self.data.qpos, cfg.start, ik.q, held=i, object_poses={i: (pose[0], pose[1], 0.0, pose[2])}
+        )
+        if not report.free:
+            raise RuntimeError(f"the fixed grasp of {obj.name} collides: {', '.join(report.hits)}")
+        box = object_footprint(obj, *rel)
+        disc = carry_disc(box.corners())
+        disc = replace(disc, radius=max(disc.radius, ROBOT_RADIUS))
+        return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
+
+    # ----- ManipulationEnv hooks -------------------------------------------------------------
+    def _queue_pose(self, i: int, placed: int) -> tuple[float, float, float, float]:
+        """Where box ``i`` waits on the belt when ``placed`` boxes are gone."""
+        k = i - placed if i < self.n else i
+        return (BELT_FIRST_X + BELT_SPACING * k, BELT_Y, BELT_TOP, 0.0)
+
+    def _reset_physics(self) -> None:
+        mujoco.mj_resetData(self.model, self.data)
+        self._set_robot(self.config.start)
+
+    def _initial_task(self) -> ConveyorTask:
+        return ConveyorTask(steps=0, placed=0, done=False)
+
+    def _observation(self) -> FloatArray:
+        t = self.task
+        base = self.robot.base_pose(self.data)
+        parts = [base[0], base[1], math.cos(base[2]), math.sin(base[2])]
+        for i in range(len(self.objects)):
+            x, y, _, yaw = self.object_pose(i)
+            parts += [x, y, math.cos(yaw), math.sin(yaw), float(i < t.placed)]
+        parts += [t.placed / self.n, t.steps / self.config.horizon]
+        return np.array(parts, dtype=np.float64)
+
+    def _info_reset(self) -> dict[str, Any]:
+        return {"next_operator": "place", "objects_left": self.n, "next_objects": self._next_names()}
+
+    def _next_names(self) -> list[str]:
+        p = self.task.placed
+        return [self.objects[i].name for i in range(p, min(p + OBJECTS_PER_ACTION, self.n))]
+
+    def action_bounds(self) -> Bounds:
+        """The 9-D action box in normalised units."""
+        return Bounds.cube(-1.0, 1.0, 3 * OBJECTS_PER_ACTION)
+
+    # ----- stepping ------------------------------------------------------------------------
+    def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:
+        """The base pose placing box ``i`` at ``(x, y, theta)`` with its fixed grasp."""
+        return compose2d(np.asarray(obj_pose, dtype=np.float64), inverse2d(self.picks[i].rel))
+
+    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+        a, clipped = self._validate_action(action)
+        cfg, t = self.config, self.task
+        if t.done or t.steps >= cfg.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        start_time = time.perf_counter()
+        m = min(OBJECTS_PER_ACTION, self.n - t.placed)
+        params = np.stack([denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)])
+        names = [self.objects[t.placed + k].name for k in range(m)]
+        moved: dict[int, tuple[float, float, float, float]] = {}
+        lengths: list[float] = []
+        paths: list[FloatArray] = []
+        col_time = plan_time = 0.0
+        reason = ""
+        for k in range(m):
+            i = t.placed + k
+            reason, dt_col, dt_plan = self._check_place(i, params[k], moved, lengths, paths)
+            col_time += dt_col
+            plan_time += dt_plan
+            if reason:
+                reason = f"box {k + 1}/{m} ({names[k]}): {reason}"
+                break
+        self.last_timing = StepTiming(
+            collision=col_time, planning=plan_time, total=time.perf_counter() - start_time
+        )
+        if reason:
+            reward = cfg.infeasible_reward
+            self.task = replace(t, steps=t.steps + 1)
+            feasible = False
+        else:
+            for i, pose in moved.items():
+                set_object_pose(self.data, self.objects[i], pose)
+            placed = t.placed + m
+            for i in range(placed, len(self.objects)):
+                set_object_pose(self.data, self.objects[i], self._queue_pose(i, placed))
+            reward = float(sum(math.exp(-cfg.length_scale * length) for length in lengths))
+            self.task = replace(t, steps=t.steps + 1, placed=placed, done=placed == self.n)
+            feasible = True
+        t = self.task
+        terminated = t.done
+        truncated = (not terminated) and t.steps >= cfg.horizon
+        info: dict[str, Any] = {
+            "operator": "place",
+            "objects": names,
+            "feasible": feasible,
+            "reason": reason,
+            "base_path_length": float(sum(lengths)) if feasible else 0.0,
+            "base_path_lengths": lengths if feasible else [],
+            "base_paths": paths if feasible else [],
+            "parameters": params,
+            "action_clipped": clipped,
+            "next_operator": "place",
+            "next_objects": self._next_names(),
+            "objects_left": self.n - t.placed,
+            "objects_placed": t.placed,
+            "goal_bonus": 0.0,
+        }
+        return self._observation(), float(reward), terminated, truncated, info
+
+    def _check_place(
+        self,
+        i: int,
+        xyt: FloatArray,
+        moved: dict[int, tuple[float, float, float, float]],
+        lengths: list[float],
+        paths: list[FloatArray],
+    ) -> tuple[str, float, float]:
+        """Check placing box ``i`` at ``xyt`` after the placements in ``moved``.
+
+        On success, records the placement in ``moved`` and its path in ``lengths`` and
+        ``paths``. Returns why it is infeasible (``""`` if feasible) and the seconds spent
+        in collision checks and base planning.
+        """
+        cfg = self.config
+        col_time = plan_time = 0.0
+        x, y, theta = (float(v) for v in xyt)
+        box = object_footprint(self.objects[i], x, y, theta)
+        if not rect_inside(box, cfg.loading_region):
+            return "outside region: the box leaves the loading region", col_time, plan_time
+        pick = self.picks[i]
+        base = self.place_base_pose(i, (x, y, theta))
+        if not rect_inside(base_footprint(base), cfg.workspace):
+            return "outside region: the robot leaves the workspace", col_time, plan_time
+        t0 = time.perf_counter()
+        poses = dict(moved)
+        poses[i] = (x, y, 0.0, theta)
+        report = self.collision.check(self.data.qpos, base, pick.arm_q, held=i, object_poses=poses)
+        col_time = time.perf_counter() - t0
+        if not report.free:
+            return "collision: " + ", ".join(report.hits), col_time, plan_time
+        t0 = time.perf_counter()
+        movable = [self.object_box(j) for j in range(self.task.placed)] + [
+            object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
+        ]
+        disc = pick.disc
+        path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
+        plan_time = time.perf_counter() - t0
+        if path is None:
+            return "no base path", col_time, plan_time
+        base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        moved[i] = (x, y, 0.0, theta)
+        lengths.append(float(base_path.length))
+        paths.append(base_path.waypoints)
+        return "", col_time, plan_time
+
+    # ----- rendering -----------------------------------------------------------------------
+    def _decorate(self, scene: mujoco.MjvScene) -> None:
+        if not self.config.render_overlays:
+            return
+        xmin, xmax, ymin, ymax = self.config.loading_region
+        add_marker_box(
+            scene,
+            (0.5 * (xmin + xmax), 0.5 * (ymin + ymax), 0.006),
+            (0.5 * (xmax - xmin), 0.5 * (ymax - ymin), 0.002),
+            0.0,
+            (1.0, 0.85, 0.1, 0.10),
+        )

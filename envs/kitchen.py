@@ -1,0 +1,539 @@
+"""``voot/KitchenClearing-v0``: clear the obstacles from the robot's path to the sink.
+
+The paper's object-clearing domain (Figure 1 right; reference page "Object clearing").
+The robot stands at ``start`` = (-1.5, -1.5, pi/2); a fixed base path leads to the sink
+pose ``goal`` = (0, 2.5, pi/2). The obstacles are the objects whose footprint meets the
+swept volume of the robot's disc along that path (7 at the start: boxes and chairs).
+The robot clears them one at a time, in a fixed order (the first object on the path in
+the handling order, which sorts the initial obstacles by their position along the path),
+alternating pick and place actions:
+
+* **pick** (6-D): grasp angle in [45, 180] deg, grasp height fraction in [0.5, 1], grasp
+  depth fraction in [0.1, 0.9], base distance in [0.4, 0.9] x arm reach (0.92 m), base
+  angle around the object (object frame) in [0, 2 pi), heading offset from facing the
+  object in [-30, 30] deg. Feasible iff the base footprint is inside the house, the arm's
+  IK reaches the grasp (:mod:`voot.envs.feasibility`) and the robot at the grasp
+  collides with nothing (the gripper may touch the grasped object).
+* **place** (3-D): the object's new pose (x, y, theta) in the house box
+  x in [-2, 6], y in [-4, 4], theta in [0, 2 pi); the base pose follows from the grasp.
+  Feasible iff the object is inside the house and not in the forbidden rooms
+  (x >= 2.8), the robot's base footprint is inside the house, robot and object collide
+  with nothing, and a base path exists from the pick pose to the new base pose for the
+  robot carrying the object (a disc, :mod:`voot.envs.robot`).
+
+Rewards (reference page): pick +1 if the previous place reduced the number of
+obstacles on the path, else 0; place ``min(1/L, 2)`` if it reduced that number, else
+``max(-L, -2)``, with ``L`` the base path's length; an infeasible action -2 (the state
+does not change). When nothing is left on the path the episode terminates and a goal
+bonus of +2 is reported in ``info["goal_bonus"]`` (not added to the reward). Episodes
+are truncated after ``horizon`` steps.
+
+The action space is one ``Box(-1, 1, (6,))`` in normalised units for both operators (a
+fixed space keeps gymnasium's checkers and vectorised wrappers happy); at a place step
+only the first three entries are read and the rest is ignored. ``info["next_operator"]``
+and :meth:`KitchenClearingEnv.action_bounds` (6-D at a pick, 3-D at a place) tell which.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D
+from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
+from voot.envs.robot import (
+    ARM_REACH,
+    ROBOT_RADIUS,
+    ROBOT_DISC,
+    CarryDisc,
+    base_footprint,
+    carry_disc,
+    compose2d,
+    inverse2d,
+)
+from voot.envs.scene import object_footprint, rect_inside, rect_overlaps
+from voot.envs.swept_volume import obstacles_on_path
+from voot.envs.task_env import (
+    ManipulationEnv,
+    StepTiming,
+    add_marker_box,
+    add_marker_segment,
+    check_bounds,
+    check_pose,
+    check_positive,
+    check_range,
+    denormalize,
+)
+from voot.optim.base import Bounds
+
+FloatArray = NDArray[np.float64]
+
+#: Operators, in the order actions alternate.
+OPERATORS = ("pick", "place")
+
+
+@dataclass(frozen=True)
+class KitchenConfig:
+    """Settings of :class:`KitchenClearingEnv` (defaults: the paper's / original's values).
+
+    Attributes:
+        start: Initial base pose (the original's (-1.5, -1.5, pi/2)).
+        goal: Base pose at the sink, end of the fixed path ((0, 2.5, pi/2)).
+        house: The house interior ``(xmin, xmax, ymin, ymax)``: the base planner's
+            workspace, the region the robot must stay in and the place action's x, y box.
+        forbidden: The two large rooms behind the door; placements there are infeasible.
+        grasp_angle: Range of the grasp angle (radians; [45, 180] degrees).
+        height_fraction: Range of the grasp height as a fraction of the object's height.
+        depth_fraction: Range of the grasp position across the face.
+        base_distance: Range of the base distance as a fraction of the arm reach.
+        base_angle: Range of the base angle around the object (object frame, radians).
+        facing_offset: Range of the heading offset from facing the object (radians).
+        place_theta: Range of the placed object's heading (radians).
+        robot_radius: Disc radius of the robot for base motion and the swept volume.
+        grasp_standoff: Distance of the tool point outside the grasped face (metres).
+        pick_reward: Reward of a pick after a place that cleared an obstacle.
+        infeasible_reward: Reward of an infeasible action.
+        max_place_reward: Cap of ``1/L`` for a clearing place.
+        max_place_penalty: Cap of ``L`` for a non-clearing place.
+        goal_bonus: Bonus reported when the path is clear.
+        horizon: Steps after which an episode is truncated.
+        render_overlays: Draw the fixed path's swept corridor and the forbidden rooms in
+            rendered images.
+        ik: IK settings.
+        planner: Base planner settings.
+    """
+
+    start: tuple[float, float, float] = (-1.5, -1.5, math.pi / 2)
+    goal: tuple[float, float, float] = (0.0, 2.5, math.pi / 2)
+    house: tuple[float, float, float, float] = (-2.0, 6.0, -4.0, 4.0)
+    forbidden: tuple[float, float, float, float] = (2.8, 6.0, -4.0, 4.0)
+    grasp_angle: tuple[float, float] = (math.radians(45.0), math.pi)
+    height_fraction: tuple[float, float] = (0.5, 1.0)
+    depth_fraction: tuple[float, float] = (0.1, 0.9)
+    base_distance: tuple[float, float] = (0.4, 0.9)
+    base_angle: tuple[float, float] = (0.0, 2.0 * math.pi)
+    facing_offset: tuple[float, float] = (math.radians(-30.0), math.radians(30.0))
+    place_theta: tuple[float, float] = (0.0, 2.0 * math.pi)
+    robot_radius: float = ROBOT_RADIUS
+    grasp_standoff: float = 0.0
+    pick_reward: float = 1.0
+    infeasible_reward: float = -2.0
+    max_place_reward: float = 2.0
+    max_place_penalty: float = 2.0
+    goal_bonus: float = 2.0
+    horizon: int = 50
+    render_overlays: bool = True
+    ik: IKConfig = field(default_factory=IKConfig)
+    planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "start", check_pose("KitchenConfig.start", self.start))
+        object.__setattr__(self, "goal", check_pose("KitchenConfig.goal", self.goal))
+        for name in ("house", "forbidden"):
+            object.__setattr__(self, name, check_bounds(f"KitchenConfig.{name}", getattr(self, name)))
+        for name in (
+            "grasp_angle",
+            "height_fraction",
+            "depth_fraction",
+            "base_distance",
+            "base_angle",
+            "facing_offset",
+            "place_theta",
+        ):
+            object.__setattr__(self, name, check_range(f"KitchenConfig.{name}", getattr(self, name)))
+        for name in ("robot_radius", "max_place_reward", "max_place_penalty"):
+            object.__setattr__(self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name)))
+        for name in ("grasp_standoff", "pick_reward", "goal_bonus"):
+            object.__setattr__(
+                self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True)
+            )
+        r = float(self.infeasible_reward)
+        if not (math.isfinite(r) and r < 0):
+            raise ValueError(f"KitchenConfig.infeasible_reward must be a finite number < 0, got {r}")
+        object.__setattr__(self, "infeasible_reward", r)
+        if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
+            raise ValueError(f"KitchenConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        if not isinstance(self.ik, IKConfig):
+            raise ValueError(f"KitchenConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
+        if not isinstance(self.planner, BasePlannerConfig):
+            raise ValueError(
+                f"KitchenConfig.planner must be a BasePlannerConfig, got {type(self.planner).__name__}"
+            )
+
+    @property
+    def pick_ranges(self) -> tuple[tuple[float, float], ...]:
+        """The pick parameters' ranges, in action order."""
+        return (
+            self.grasp_angle,
+            self.height_fraction,
+            self.depth_fraction,
+            self.base_distance,
+            self.base_angle,
+            self.facing_offset,
+        )
+
+    @property
+    def place_ranges(self) -> tuple[tuple[float, float], ...]:
+        """The place parameters' ranges (x, y, theta), in action order."""
+        return ((self.house[0], self.house[1]), (self.house[2], self.house[3]), self.place_theta)
+
+
+@dataclass(frozen=True)
+class KitchenTask:
+    """The task's progress (immutable; part of every snapshot).
+
+    Attributes:
+        steps: Steps taken in this episode (feasible or not).
+        operator: The next operator, ``"pick"`` or ``"place"``.
+        held: Index of the object in the gripper, or -1.
+        held_rel: The held object's body pose ``(x, y, yaw)`` in the base frame.
+        grasp_q: The arm's joint values holding it.
+        on_path: Objects on the path, in handling order (the next pick is the first).
+        last_place_cleared: Whether the last place reduced the number of obstacles.
+        done: The path is clear (terminated).
+    """
+
+    steps: int
+    operator: str
+    held: int
+    held_rel: tuple[float, float, float]
+    grasp_q: tuple[float, ...]
+    on_path: tuple[int, ...]
+    last_place_cleared: bool
+    done: bool
+
+
+class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
+    """The object-clearing domain as a gymnasium environment (see the module docstring).
+
+    Args:
+        config: Settings; defaults to :class:`KitchenConfig` (the paper's values).
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
+    """
+
+    def __init__(
+        self,
+        config: KitchenConfig | None = None,
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+    ) -> None:
+        self.config = config if config is not None else KitchenConfig()
+        if not isinstance(self.config, KitchenConfig):
+            raise ValueError(f"config must be a KitchenConfig, got {type(self.config).__name__}")
+        cfg = self.config
+        # the fixed path and handling order are needed by _initial_task (called by super)
+        self._path: BasePath | None = None
+        self._order: tuple[int, ...] = ()
+        super().__init__(
+            "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
+        )
+        self._reset_physics()
+        path = self.planner.plan(cfg.start, cfg.goal, cfg.robot_radius, ())
+        if path is None:
+            raise ValueError(
+                f"no base path from start {cfg.start} to goal {cfg.goal} for radius {cfg.robot_radius}"
+            )
+        self._path = path
+        self._order = self._handling_order()
+        self.task = self._initial_task()
+        if not self.task.on_path:
+            raise ValueError("no object is on the path at the start: nothing to clear")
+        self.initial_obstacles = len(self.task.on_path)
+        n = len(self.objects)
+        self.action_space = gym.spaces.Box(-1.0, 1.0, shape=(6,), dtype=np.float64)
+        self.observation_space = gym.spaces.Box(
+            -50.0, 50.0, shape=(4 + 6 * n + 3,), dtype=np.float64
+        )
+
+    # ----- the fixed path ------------------------------------------------------------------
+    @property
+    def path(self) -> BasePath:
+        """The fixed base path from ``start`` to ``goal`` (static obstacles only)."""
+        assert self._path is not None
+        return self._path
+
+    def _path_position(self, box: Box2D) -> float:
+        """Arc length along the fixed path of the point nearest the box centre."""
+        w = self.path.waypoints[:, :2]
+        best, best_s, s0 = math.inf, 0.0, 0.0
+        p = np.array([box.cx, box.cy])
+        for a, b in zip(w[:-1], w[1:], strict=True):
+            d = b - a
+            seg = float(np.hypot(*d))
+            t = 0.0 if seg == 0 else float(np.clip((p - a) @ d / seg**2, 0.0, 1.0))
+            dist = float(np.hypot(*(a + t * d - p)))
+            if dist < best:
+                best, best_s = dist, s0 + t * seg
+            s0 += seg
+        return best_s
+
+    def _handling_order(self) -> tuple[int, ...]:
+        """Initial obstacles by position along the path, then the other objects."""
+        boxes = self.object_boxes()
+        on = self._on_path_names(boxes)
+        first = sorted(
+            (i for i, o in enumerate(self.objects) if o.name in on),
+            key=lambda i: (self._path_position(boxes[i]), i),
+        )
+        rest = [i for i in range(len(self.objects)) if i not in first]
+        return tuple(first + rest)
+
+    def _on_path_names(self, boxes: list[Box2D]) -> set[str]:
+        if self._path is None:
+            return set()
+        return set(obstacles_on_path(self._path.waypoints, self.config.robot_radius, boxes))
+
+    def _on_path(self) -> tuple[int, ...]:
+        """Objects (not held) on the path now, in handling order."""
+        names = self._on_path_names(self.object_boxes())
+        return tuple(i for i in self._order if self.objects[i].name in names)
+
+    # ----- ManipulationEnv hooks -------------------------------------------------------------
+    def _reset_physics(self) -> None:
+        mujoco.mj_resetData(self.model, self.data)
+        self._set_robot(self.config.start)
+
+    def _initial_task(self) -> KitchenTask:
+        return KitchenTask(
+            steps=0,
+            operator="pick",
+            held=-1,
+            held_rel=(0.0, 0.0, 0.0),
+            grasp_q=(),
+            on_path=self._on_path() if self._order else (),
+            last_place_cleared=False,
+            done=False,
+        )
+
+    def _observation(self) -> FloatArray:
+        t = self.task
+        base = self.robot.base_pose(self.data)
+        parts = [base[0], base[1], math.cos(base[2]), math.sin(base[2])]
+        on = set(t.on_path)
+        for i in range(len(self.objects)):
+            x, y, _, yaw = self.object_pose(i)
+            parts += [x, y, math.cos(yaw), math.sin(yaw), float(i in on), float(i == t.held)]
+        parts += [
+            float(t.operator == "place"),
+            len(t.on_path) / self.initial_obstacles,
+            t.steps / self.config.horizon,
+        ]
+        return np.array(parts, dtype=np.float64)
+
+    def _info_reset(self) -> dict[str, Any]:
+        return {
+            "next_operator": self.task.operator,
+            "objects_left": len(self.task.on_path),
+            "next_object": self.next_object_name,
+        }
+
+    @property
+    def next_object_name(self) -> str:
+        """Name of the object the next action handles ('' when done)."""
+        t = self.task
+        if t.operator == "place":
+            return self.objects[t.held].name
+        return self.objects[t.on_path[0]].name if t.on_path else ""
+
+    def action_bounds(self) -> Bounds:
+        """The current operator's action box in normalised units (6-D pick, 3-D place)."""
+        dim = 6 if self.task.operator == "pick" else 3
+        return Bounds.cube(-1.0, 1.0, dim)
+
+    # ----- stepping ------------------------------------------------------------------------
+    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+        a, clipped = self._validate_action(action)
+        t = self.task
+        if t.done or t.steps >= self.config.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        start = time.perf_counter()
+        if t.operator == "pick":
+            params = denormalize(a, self.config.pick_ranges)
+            reward, info = self._pick(params)
+        else:
+            params = denormalize(a[:3], self.config.place_ranges)
+            reward, info = self._place(params)
+        timing = self.last_timing
+        self.last_timing = replace(timing, total=time.perf_counter() - start)
+        t = self.task
+        terminated = t.done
+        truncated = (not terminated) and t.steps >= self.config.horizon
+        info.update(
+            parameters=params,
+            action_clipped=clipped,
+            next_operator=t.operator,
+            next_object=self.next_object_name,
+            objects_left=len(t.on_path),
+            goal_bonus=self.config.goal_bonus if terminated else 0.0,
+        )
+        return self._observation(), float(reward), terminated, truncated, info
+
+    def _infeasible(self, operator: str, obj: int, reason: str) -> tuple[float, dict[str, Any]]:
+        self.task = replace(self.task, steps=self.task.steps + 1)
+        return self.config.infeasible_reward, {
+            "operator": operator,
+            "object": self.objects[obj].name,
+            "feasible": False,
+            "reason": reason,
+            "base_path_length": 0.0,
+            "base_path": None,
+        }
+
+    def pick_base_pose(self, obj: int, params: ArrayLike) -> FloatArray:
+        """The base pose ``(x, y, theta)`` of pick parameters for object ``obj``."""
+        p = np.asarray(params, dtype=np.float64)
+        box = self.object_box(obj)
+        dist = p[3] * ARM_REACH
+        ang = box.yaw + p[4]
+        bx, by = box.cx + dist * math.cos(ang), box.cy + dist * math.sin(ang)
+        heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
+        return np.array([bx, by, heading])
+
+    def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
+        cfg, t = self.config, self.task
+        obj = t.on_path[0]
+        ik_time = col_time = 0.0
+        base = self.pick_base_pose(obj, params)
+        if not rect_inside(base_footprint(base), cfg.house):
+            self.last_timing = StepTiming()
+            return self._infeasible("pick", obj, "outside region: the robot leaves the house")
+        pose = self.object_pose(obj)
+        grasp = side_grasp(
+            self.objects[obj], pose, float(base[2]), params[0], params[1], params[2], cfg.grasp_standoff
+        )
+        rb = rot_z(float(base[2]))
+        target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
+        target_r = rb.T @ grasp.rotation
+        t0 = time.perf_counter()
+        ik = self.ik.solve(target_p, target_r)
+        ik_time = time.perf_counter() - t0
+        if not ik.success or ik.q is None:
+            self.last_timing = StepTiming(ik=ik_time)
+            return self._infeasible("pick", obj, f"IK failed: {ik.reason}")
+        t0 = time.perf_counter()
+        report = self.collision.check(self.data.qpos, base, ik.q, held=obj)
+        col_time = time.perf_counter() - t0
+        self.last_timing = StepTiming(ik=ik_time, collision=col_time)
+        if not report.free:
+            return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits))
+        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
+        self._set_robot(base, ik.q)
+        reward = cfg.pick_reward if t.last_place_cleared else 0.0
+        self.task = replace(
+            t,
+            steps=t.steps + 1,
+            operator="place",
+            held=obj,
+            held_rel=(float(rel[0]), float(rel[1]), float(rel[2])),
+            grasp_q=tuple(float(v) for v in ik.q),
+        )
+        return reward, {
+            "operator": "pick",
+            "object": self.objects[obj].name,
+            "feasible": True,
+            "reason": "",
+            "base_path_length": 0.0,
+            "base_path": None,
+        }
+
+    def held_disc(self) -> CarryDisc:
+        """The base-motion disc of the robot carrying the held object (robot disc if none)."""
+        t = self.task
+        if t.held < 0:
+            return replace(ROBOT_DISC, radius=self.config.robot_radius)
+        box = object_footprint(self.objects[t.held], *t.held_rel)
+        disc = carry_disc(box.corners())
+        return replace(disc, radius=max(disc.radius, self.config.robot_radius))
+
+    def _place(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
+        cfg, t = self.config, self.task
+        obj = t.held
+        x, y, theta = (float(v) for v in params)
+        z = float(self.object_pose(obj)[2])
+        new_box = object_footprint(self.objects[obj], x, y, theta)
+        if not rect_inside(new_box, cfg.house):
+            self.last_timing = StepTiming()
+            return self._infeasible("place", obj, "outside region: the object leaves the house")
+        if rect_overlaps(new_box, cfg.forbidden):
+            self.last_timing = StepTiming()
+            return self._infeasible("place", obj, "forbidden room: the object is in the rooms behind the door")
+        base = compose2d((x, y, theta), inverse2d(t.held_rel))
+        if not rect_inside(base_footprint(base), cfg.house):
+            self.last_timing = StepTiming()
+            return self._infeasible("place", obj, "outside region: the robot leaves the house")
+        t0 = time.perf_counter()
+        report = self.collision.check(
+            self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
+        )
+        col_time = time.perf_counter() - t0
+        if not report.free:
+            self.last_timing = StepTiming(collision=col_time)
+            return self._infeasible("place", obj, "collision: " + ", ".join(report.hits))
+        t0 = time.perf_counter()
+        disc = self.held_disc()
+        path = self.planner.plan(
+            disc.center(self.robot.base_pose(self.data)),
+            disc.center(base),
+            disc.radius,
+            self.object_boxes(exclude=(obj,)),
+        )
+        plan_time = time.perf_counter() - t0
+        self.last_timing = StepTiming(collision=col_time, planning=plan_time)
+        if path is None:
+            return self._infeasible("place", obj, "no base path")
+        base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        set_object_pose(self.data, self.objects[obj], (x, y, z, theta))
+        self._set_robot(base)
+        on_path = self._on_path()
+        cleared = len(on_path) < len(t.on_path)
+        length = float(base_path.length)
+        if cleared:
+            reward = cfg.max_place_reward if length <= 0 else min(1.0 / length, cfg.max_place_reward)
+        else:
+            reward = max(-length, -cfg.max_place_penalty)
+        self.task = replace(
+            t,
+            steps=t.steps + 1,
+            operator="pick",
+            held=-1,
+            held_rel=(0.0, 0.0, 0.0),
+            grasp_q=(),
+            on_path=on_path,
+            last_place_cleared=cleared,
+            done=not on_path,
+        )
+        return reward, {
+            "operator": "place",
+            "object": self.objects[obj].name,
+            "feasible": True,
+            "reason": "",
+            "base_path_length": length,
+            "base_path": base_path.waypoints,
+        }
+
+    # ----- rendering -----------------------------------------------------------------------
+    def _decorate(self, scene: mujoco.MjvScene) -> None:
+        if not self.config.render_overlays or self._path is None:
+            return
+        w = self.path.waypoints
+        r = self.config.robot_radius
+        for a, b in zip(w[:-1], w[1:], strict=True):
+            add_marker_segment(scene, (a[0], a[1], 0.004), (b[0], b[1], 0.004), 2 * r, (0.2, 0.55, 1.0, 0.25))
+        xmin, xmax, ymin, ymax = self.config.forbidden
+        add_marker_box(
+            scene,
+            (0.5 * (xmin + xmax), 0.5 * (ymin + ymax), 0.004),
+            (0.5 * (xmax - xmin), 0.5 * (ymax - ymin), 0.002),
+            0.0,
+            (1.0, 0.1, 0.1, 0.12),
+        )

@@ -1,0 +1,368 @@
+"""What the two benchmark environments share: scene, robot, checks, actions, snapshots.
+
+:class:`ManipulationEnv` is a :class:`gymnasium.Env` over one MuJoCo scene with the
+mobile manipulator. It is a *kinematic task planner*: actions teleport the robot and
+the objects to feasible configurations (an object being carried moves rigidly with the
+gripper); MuJoCo is used for its kinematics, collision detection and rendering, never to
+integrate dynamics (no ``mj_step``).
+
+Actions are vectors in normalised units ``[-1, 1]^d`` mapped affinely to the paper's
+parameter ranges (:func:`denormalize`). Out-of-range entries are clipped to ``[-1, 1]``
+(``info["action_clipped"]`` says so); a NaN or infinite entry, or a wrong shape, raises
+:class:`ValueError`.
+
+Snapshots (:meth:`ManipulationEnv.get_state` / :meth:`~ManipulationEnv.set_state`) are
+immutable :class:`EnvState` values holding the physics (``mujoco.mj_getState`` with the
+``mjSTATE_INTEGRATION`` signature, recorded in the snapshot), the task's progress (an
+immutable dataclass of the subclass, including the held object and its grasp) and the
+state of the env's random generator. Restoring a snapshot and applying the same action
+gives bit-identical observation, reward and info, also in another process: every check
+(IK, collision, base planning) is a deterministic function of the state and the action.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, ClassVar, Generic, TypeVar
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
+from voot.envs.feasibility import ArmIK, CollisionChecker, IKConfig, object_pose
+from voot.envs.robot import TUCK, Robot
+from voot.envs.scene import load_model, movable_objects, object_footprint, static_footprints
+
+FloatArray = NDArray[np.float64]
+
+#: Cameras every scene defines, for ``render_camera``.
+CAMERAS = ("perspective", "top_down")
+#: Render modes.
+RENDER_MODES = ("rgb_array",)
+
+
+def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
+    """Map ``a`` in ``[-1, 1]^d`` to the box ``ranges`` (``d`` pairs ``(low, high)``)."""
+    lo = np.array([r[0] for r in ranges], dtype=np.float64)
+    hi = np.array([r[1] for r in ranges], dtype=np.float64)
+    out: FloatArray = lo + 0.5 * (a + 1.0) * (hi - lo)
+    return out
+
+
+def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
+    """Inverse of :func:`denormalize`: parameters in the paper's units to ``[-1, 1]^d``."""
+    lo = np.array([r[0] for r in ranges], dtype=np.float64)
+    hi = np.array([r[1] for r in ranges], dtype=np.float64)
+    out: FloatArray = 2.0 * (np.asarray(x, dtype=np.float64) - lo) / (hi - lo) - 1.0
+    return out
+
+
+def check_range(name: str, value: Any) -> tuple[float, float]:
+    """Validate a ``(low, high)`` pair of finite floats with ``low < high``."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"{name} must be finite with low < high, got ({lo}, {hi})")
+    return lo, hi
+
+
+def check_bounds(name: str, value: Any) -> tuple[float, float, float, float]:
+    """Validate an axis-aligned region ``(xmin, xmax, ymin, ymax)``."""
+    try:
+        vals = tuple(float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
+    if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be 4 finite numbers (xmin, xmax, ymin, ymax), got {value!r}")
+    if not (vals[0] < vals[1] and vals[2] < vals[3]):
+        raise ValueError(f"{name} needs xmin < xmax and ymin < ymax, got {vals}")
+    return vals[0], vals[1], vals[2], vals[3]
+
+
+def check_pose(name: str, value: Any) -> tuple[float, float, float]:
+    """Validate an ``(x, y, theta)`` pose."""
+    try:
+        vals = tuple(float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be 3 finite numbers (x, y, theta), got {value!r}")
+    return vals[0], vals[1], vals[2]
+
+
+def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
+    """Validate a finite number > 0 (or >= 0)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
+        raise ValueError(f"{name} must be a finite number {'>=' if allow_zero else '>'} 0, got {v}")
+    return v
+
+
+TaskT = TypeVar("TaskT")
+
+
+@dataclass(frozen=True, eq=False)
+class EnvState(Generic[TaskT]):
+    """An immutable snapshot of a :class:`ManipulationEnv`.
+
+    Attributes:
+        physics: The ``mj_getState`` vector (read-only float64 array).
+        signature: Its ``mjtState`` signature (``mjSTATE_INTEGRATION``).
+        task: The task's progress (an immutable dataclass of the environment).
+        rng_state: The env's ``np_random`` bit-generator state.
+    """
+
+    physics: FloatArray
+    signature: int
+    task: TaskT
+    rng_state: Mapping[str, Any]
+
+    def __eq__(self, other: object) -> bool:
+        return (
+            isinstance(other, EnvState)
+            and self.signature == other.signature
+            and np.array_equal(self.physics, other.physics)
+            and self.task == other.task
+            and self.rng_state == other.rng_state
+        )
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True)
+class StepTiming:
+    """Wall-clock seconds spent in the last step's checks (for :mod:`voot.envs.speed`)."""
+
+    ik: float = 0.0
+    collision: float = 0.0
+    planning: float = 0.0
+    total: float = 0.0
+
+
+class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
+    """Base of the benchmark environments (see the module docstring).
+
+    Subclasses set :attr:`scene`, build their task in ``__init__`` after calling
+    ``super().__init__``, and implement :meth:`_initial_task`, :meth:`_step_task`,
+    :meth:`_observation` and :meth:`_info_reset`.
+
+    Args:
+        scene: Scene name in ``voot.models``.
+        workspace: The region the robot's base disc must stay in (planner workspace).
+        ik: IK settings.
+        planner: Base planner settings.
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 2}
+    #: Signature of the physics part of snapshots.
+    STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
+
+    def __init__(
+        self,
+        scene: str,
+        workspace: tuple[float, float, float, float],
+        ik: IKConfig,
+        planner: BasePlannerConfig,
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+    ) -> None:
+        if render_mode is not None and render_mode not in RENDER_MODES:
+            raise ValueError(
+                f"render_mode must be None or one of {', '.join(RENDER_MODES)}; got {render_mode!r}"
+            )
+        if render_camera not in CAMERAS:
+            raise ValueError(f"render_camera must be one of {', '.join(CAMERAS)}; got {render_camera!r}")
+        w, h = (int(v) for v in render_size)
+        if not (16 <= w <= 1280 and 16 <= h <= 960):
+            raise ValueError(f"render_size must be (width, height) within 16..1280 x 16..960, got {render_size}")
+        self.render_mode = render_mode
+        self.render_camera = render_camera
+        self.render_size = (w, h)
+        self.model = load_model(scene)
+        self.data = mujoco.MjData(self.model)
+        self.robot = Robot(self.model)
+        self.objects = movable_objects(self.model)
+        self.object_index = {o.name: i for i, o in enumerate(self.objects)}
+        self.collision = CollisionChecker(self.model, self.robot, self.objects)
+        self.ik = ArmIK(ik)
+        self.static_boxes = static_footprints(self.model)
+        self.workspace = workspace
+        self.planner = BasePlanner(workspace, self.static_boxes, planner)
+        self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
+        self._renderer: mujoco.Renderer | None = None
+        self.last_timing = StepTiming()
+        self.task: TaskT = self._initial_task()
+
+    # ----- to implement --------------------------------------------------------------------
+    def _initial_task(self) -> TaskT:
+        raise NotImplementedError
+
+    def _reset_physics(self) -> None:
+        raise NotImplementedError
+
+    def _observation(self) -> FloatArray:
+        raise NotImplementedError
+
+    def _info_reset(self) -> dict[str, Any]:
+        raise NotImplementedError
+
+    # ----- actions -------------------------------------------------------------------------
+    def _validate_action(self, action: ArrayLike) -> tuple[FloatArray, bool]:
+        """The action as float64 clipped to the space, and whether clipping happened."""
+        space = self.action_space
+        assert isinstance(space, gym.spaces.Box)
+        try:
+            a = np.asarray(action, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"action must be a numeric array of shape {space.shape}, got {action!r}"
+            ) from None
+        if a.shape != space.shape:
+            raise ValueError(
+                f"action must have shape {space.shape} (normalised units in [-1, 1]), got shape {a.shape}"
+            )
+        if not np.all(np.isfinite(a)):
+            bad = np.flatnonzero(~np.isfinite(a)).tolist()
+            raise ValueError(f"action has NaN or infinite entries at indices {bad}: {a.tolist()}")
+        clipped = np.clip(a, -1.0, 1.0)
+        return clipped, bool(np.any(clipped != a))
+
+    # ----- objects -------------------------------------------------------------------------
+    def object_pose(self, i: int) -> FloatArray:
+        """``(x, y, z, yaw)`` of object ``i`` in the current state."""
+        return object_pose(self.data, self.objects[i])
+
+    def object_box(self, i: int) -> Box2D:
+        """Footprint of object ``i`` in the current state."""
+        x, y, _, yaw = self.object_pose(i)
+        return object_footprint(self.objects[i], float(x), float(y), float(yaw))
+
+    def object_boxes(self, exclude: Sequence[int] = ()) -> list[Box2D]:
+        """Footprints of all objects but ``exclude``, in object order."""
+        return [self.object_box(i) for i in range(len(self.objects)) if i not in exclude]
+
+    # ----- snapshots -----------------------------------------------------------------------
+    def get_state(self) -> EnvState[TaskT]:
+        """An immutable snapshot: physics, task progress, RNG (see the module docstring)."""
+        physics = np.empty(self._state_size)
+        mujoco.mj_getState(self.model, self.data, physics, self.STATE_SIGNATURE)
+        physics.setflags(write=False)
+        return EnvState(
+            physics, self.STATE_SIGNATURE, self.task, copy.deepcopy(self.np_random.bit_generator.state)
+        )
+
+    def set_state(self, state: EnvState[TaskT]) -> None:
+        """Return to the snapshot ``state`` exactly."""
+        if not isinstance(state, EnvState):
+            raise ValueError(f"state must be an EnvState from get_state(), got {type(state).__name__}")
+        if state.signature != self.STATE_SIGNATURE or state.physics.shape != (self._state_size,):
+            raise ValueError(
+                f"state does not fit this environment: signature {state.signature} and "
+                f"{state.physics.size} numbers, expected signature {self.STATE_SIGNATURE} and "
+                f"{self._state_size} numbers"
+            )
+        mujoco.mj_setState(self.model, self.data, state.physics, self.STATE_SIGNATURE)
+        self.task = state.task
+        self.np_random.bit_generator.state = copy.deepcopy(dict(state.rng_state))
+
+    # ----- gymnasium API -------------------------------------------------------------------
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[FloatArray, dict[str, Any]]:
+        """Back to the scene's initial configuration (deterministic; ``seed`` seeds np_random)."""
+        super().reset(seed=seed)
+        if options:
+            raise ValueError(f"reset takes no options, got {sorted(options)}")
+        self._reset_physics()
+        self.task = self._initial_task()
+        return self._observation(), self._info_reset()
+
+    def _set_robot(self, base: ArrayLike, arm: ArrayLike | None = None) -> None:
+        self.robot.set_base(self.data, base)
+        self.robot.set_arm(self.data, TUCK if arm is None else arm)
+
+    def render(self) -> NDArray[np.uint8] | None:  # type: ignore[override]
+        """An RGB image ``(height, width, 3)`` from :attr:`render_camera` (rgb_array mode)."""
+        if self.render_mode is None:
+            gym.logger.warn("render() called without render_mode; pass render_mode='rgb_array'")
+            return None
+        return self.render_image(self.render_camera)
+
+    def render_image(self, camera: str, size: tuple[int, int] | None = None) -> NDArray[np.uint8]:
+        """Render the current state from ``camera`` (``perspective`` or ``top_down``)."""
+        if camera not in CAMERAS:
+            raise ValueError(f"camera must be one of {', '.join(CAMERAS)}; got {camera!r}")
+        w, h = size if size is not None else self.render_size
+        if self._renderer is None or (self._renderer.width, self._renderer.height) != (w, h):
+            if self._renderer is not None:
+                self._renderer.close()
+            self._renderer = mujoco.Renderer(self.model, height=h, width=w)
+        mujoco.mj_kinematics(self.model, self.data)
+        mujoco.mj_camlight(self.model, self.data)  # cameras follow the kinematics
+        self._renderer.update_scene(self.data, camera=camera)
+        self._decorate(self._renderer.scene)
+        img: NDArray[np.uint8] = self._renderer.render().copy()
+        return img
+
+    def _decorate(self, scene: mujoco.MjvScene) -> None:
+        """Hook: add visual-only markers (paths, regions) to a render."""
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+
+def add_marker_box(
+    scene: mujoco.MjvScene,
+    center: ArrayLike,
+    half: ArrayLike,
+    yaw: float,
+    rgba: ArrayLike,
+) -> None:
+    """Append a flat, visual-only box to a render scene (if it has room)."""
+    if scene.ngeom >= scene.maxgeom:
+        return
+    c, s = math.cos(yaw), math.sin(yaw)
+    mat = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).reshape(-1)
+    mujoco.mjv_initGeom(
+        scene.geoms[scene.ngeom],
+        int(mujoco.mjtGeom.mjGEOM_BOX),
+        np.asarray(half, dtype=np.float64),
+        np.asarray(center, dtype=np.float64),
+        mat,
+        np.asarray(rgba, dtype=np.float32),
+    )
+    scene.ngeom += 1
+
+
+def add_marker_segment(
+    scene: mujoco.MjvScene, a: ArrayLike, b: ArrayLike, width: float, rgba: ArrayLike
+) -> None:
+    """Append a flat strip from ``a`` to ``b`` (``(x, y, z)`` points) to a render scene."""
+    pa, pb = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    d = pb - pa
+    length = float(np.hypot(d[0], d[1]))
+    if length < 1e-9:
+        return
+    add_marker_box(
+        scene,
+        0.5 * (pa + pb),
+        (0.5 * length, 0.5 * width, 0.002),
+        math.atan2(d[1], d[0]),
+        rgba,
+    )

@@ -1,0 +1,535 @@
+"""Tests of voot.envs.base_planner: validity, optimality, doors, determinism, inputs."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from scipy import ndimage
+
+import voot.envs.base_planner as bp
+from voot.envs.base_planner import (
+    BasePath,
+    BasePlanner,
+    BasePlannerConfig,
+    Box2D,
+    Pose2D,
+    path_length,
+    se2_distance,
+    wrap_angle,
+)
+
+WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
+
+
+def wall(x0: float, x1: float, y0: float, y1: float, name: str) -> Box2D:
+    return Box2D.from_bounds(x0, x1, y0, y1, name)
+
+
+def house_static() -> list[Box2D]:
+    """A kitchen-sized floor plan: outer walls, a kitchen with a 1.0 m door, furniture."""
+    return [
+        wall(-2.0, -1.9, -4.0, 4.0, "wall_w"),
+        wall(5.9, 6.0, -4.0, 4.0, "wall_e"),
+        wall(-2.0, 6.0, 3.9, 4.0, "wall_n"),
+        wall(-0.5, 6.0, -4.0, -3.9, "wall_s"),
+        wall(2.75, 2.85, -1.0, 1.5, "kitchen_e_low"),  # door y in [1.5, 2.5]
+        wall(2.75, 2.85, 2.5, 3.65, "kitchen_e_high"),
+        wall(-2.0, 2.85, 3.55, 3.65, "kitchen_n"),
+        wall(0.6, 2.85, -1.05, -0.95, "kitchen_s"),
+        wall(2.85, 6.0, 0.45, 0.55, "rooms_divider"),
+        wall(-1.5, 1.5, 2.97, 3.55, "counter_sink"),
+        wall(2.2, 2.75, -0.5, 1.4, "counter_e"),
+        wall(-1.9, -1.35, 2.4, 3.55, "fridge"),
+        Box2D(1.3, 0.3, 0.5, 0.35, 0.0, "table"),
+        wall(3.5, 5.0, 2.3, 3.9, "bed"),
+        wall(4.8, 5.9, -2.2, -0.8, "sofa"),
+        wall(3.0, 3.6, -3.9, -3.3, "shelf"),
+        wall(1.0, 2.2, -3.9, -3.4, "cabinet"),
+        Box2D(4.6, 1.5, 0.4, 0.4, 0.6, "armchair"),
+        wall(-1.9, -1.4, -3.9, -3.5, "coat_rack"),
+    ]
+
+
+def house_movable() -> list[Box2D]:
+    return [
+        Box2D(-1.2, -0.5, 0.22, 0.22, 0.1, "chair_a"),
+        Box2D(-0.7, 0.4, 0.15, 0.15, 0.0, "box_a"),
+        Box2D(-0.1, 1.3, 0.22, 0.22, 0.4, "chair_b"),
+        Box2D(0.6, 2.0, 0.15, 0.15, 0.0, "box_b"),
+        Box2D(-0.8, 2.0, 0.12, 0.12, 0.3, "box_c"),
+        Box2D(0.9, 1.1, 0.22, 0.22, 0.0, "chair_c"),
+        Box2D(1.8, -0.3, 0.22, 0.22, 0.2, "chair_d"),
+        Box2D(0.2, -2.0, 0.15, 0.15, 0.0, "box_d"),
+        Box2D(1.5, 1.9, 0.12, 0.12, 0.0, "box_e"),
+        Box2D(-0.9, -2.6, 0.15, 0.15, 0.5, "box_f"),
+    ]
+
+
+def random_free_poses(
+    planner: BasePlanner, radius: float, movable: list[Box2D], n: int, seed: int
+) -> list[Pose2D]:
+    rng = np.random.default_rng(seed)
+    out: list[Pose2D] = []
+    while len(out) < n:
+        p = Pose2D(rng.uniform(-2, 6), rng.uniform(-4, 4), rng.uniform(-math.pi, math.pi))
+        if planner.is_free(p, radius, movable):
+            out.append(p)
+    return out
+
+
+def assert_path_clear(
+    path: BasePath, radius: float, obstacles: list[Box2D], workspace=WORKSPACE
+) -> None:
+    """Independent check with shapely: every obstacle at least ``radius`` from the path."""
+    xy = path.waypoints[:, :2]
+    line = shapely.LineString(xy) if len(np.unique(xy, axis=0)) > 1 else shapely.Point(xy[0])
+    for box in obstacles:
+        d = line.distance(shapely.Polygon(box.corners()))
+        assert d >= radius - 1e-7, f"path passes {d:.6f} from {box.name}, radius {radius}"
+    xmin, xmax, ymin, ymax = workspace
+    assert np.all(xy[:, 0] >= xmin + radius - 1e-9) and np.all(xy[:, 0] <= xmax - radius + 1e-9)
+    assert np.all(xy[:, 1] >= ymin + radius - 1e-9) and np.all(xy[:, 1] <= ymax - radius + 1e-9)
+    # dense samples against the inflated boxes too
+    dense = path.interpolate(0.01)[:, :2]
+    for box in obstacles:
+        poly = shapely.Polygon(box.corners())
+        dists = shapely.distance(shapely.points(dense), poly)
+        assert np.all(dists >= radius - 1e-7), box.name
+
+
+# ----------------------------------------------------------------------------------------
+# value types
+# ----------------------------------------------------------------------------------------
+def test_pose_and_box_validation() -> None:
+    with pytest.raises(ValueError, match=r"Pose2D\.x"):
+        Pose2D(float("nan"), 0.0, 0.0)
+    with pytest.raises(ValueError, match="half_x and half_y must be > 0"):
+        Box2D(0.0, 0.0, 0.0, 1.0)
+    with pytest.raises(ValueError, match=r"Box2D\.yaw"):
+        Box2D(0.0, 0.0, 1.0, 1.0, float("inf"))
+    with pytest.raises(ValueError, match="xmin < xmax"):
+        Box2D.from_bounds(1.0, 0.0, 0.0, 1.0)
+    with pytest.raises(ValueError, match="Pose2D or"):
+        Pose2D.coerce([1.0, 2.0])
+    assert Pose2D.coerce(np.array([1.0, 2.0, 3.0])) == Pose2D(1.0, 2.0, 3.0)
+
+
+def test_box_corners_rotated() -> None:
+    b = Box2D(1.0, 2.0, 0.5, 0.25, math.pi / 2, "b")
+    c = b.corners()
+    # a quarter turn maps the local (+x, +y) corner (0.5, 0.25) to (-0.25, 0.5)
+    np.testing.assert_allclose(c[0], [1.0 - 0.25, 2.0 + 0.5], atol=1e-12)
+    assert shapely.Polygon(c).area == pytest.approx(0.5)
+
+
+def test_box_hash_and_equality() -> None:
+    a = Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "a")
+    b = Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "a")
+    assert a == b and hash(a) == hash(b)
+    assert a != Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "c")
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"rotation_weight": -1.0}, "rotation_weight"),
+        ({"clearance": -0.1}, "clearance"),
+        ({"corner_segments": 0}, "corner_segments"),
+        ({"corner_segments": 2.0}, "corner_segments"),
+        ({"vertex_margin": 0.0}, "vertex_margin"),
+        ({"contact_tolerance": 1e-5}, "contact_tolerance"),
+        ({"radius_step": 0.1}, "radius_step"),
+        ({"static_cache_size": 0}, "static_cache_size"),
+        ({"graph_cache_size": -1}, "graph_cache_size"),
+    ],
+)
+def test_config_validation(kwargs: dict, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        BasePlannerConfig(**kwargs)
+
+
+def test_planner_input_validation() -> None:
+    with pytest.raises(ValueError, match="xmin < xmax"):
+        BasePlanner((1.0, 0.0, 0.0, 1.0), [])
+    with pytest.raises(ValueError, match="4 finite numbers"):
+        BasePlanner((0.0, 1.0, 0.0), [])  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="must be a Box2D"):
+        BasePlanner(WORKSPACE, ["wall"])  # type: ignore[list-item]
+    planner = BasePlanner(WORKSPACE, house_static())
+    s, g = Pose2D(-1.0, -2.0, 0.0), Pose2D(0.0, -2.5, 0.0)
+    with pytest.raises(ValueError, match="robot_radius must be > 0"):
+        planner.plan(s, g, 0.0)
+    with pytest.raises(ValueError, match="robot_radius"):
+        planner.plan(s, g, float("nan"))
+    with pytest.raises(ValueError, match=r"movable\[0\] must be a Box2D"):
+        planner.plan(s, g, 0.3, movable=[(0, 0, 1, 1)])  # type: ignore[list-item]
+    with pytest.raises(ValueError, match=r"Pose2D\.theta"):
+        planner.plan(s, (0.0, 0.0, float("nan")), 0.3)
+
+
+# ----------------------------------------------------------------------------------------
+# length
+# ----------------------------------------------------------------------------------------
+def test_wrap_and_se2_distance() -> None:
+    assert float(wrap_angle(3 * math.pi / 2)) == pytest.approx(-math.pi / 2)
+    assert se2_distance((0, 0, 0.1), (3, 4, 2 * math.pi - 0.1), 1.0) == pytest.approx(5.2)
+    assert se2_distance((0, 0, 0.0), (0, 0, math.pi), 0.5) == pytest.approx(math.pi / 2)
+
+
+def test_path_length_formula() -> None:
+    planner = BasePlanner(WORKSPACE, house_static(), BasePlannerConfig(rotation_weight=0.7))
+    s = Pose2D(-0.5, -2.5, 3.0)
+    g = Pose2D(3.4, 1.2, -2.9)  # behind the kitchen door: a multi-segment path
+    path = planner.plan(s, g, 0.4)
+    assert path is not None and len(path.waypoints) > 2
+    w = path.waypoints
+    trans = sum(math.hypot(*(w[i + 1, :2] - w[i, :2])) for i in range(len(w) - 1))
+    rot = sum(
+        abs((w[i + 1, 2] - w[i, 2] + math.pi) % (2 * math.pi) - math.pi) for i in range(len(w) - 1)
+    )
+    assert path.length == pytest.approx(trans + 0.7 * rot, rel=1e-12)
+    # headings turn the short way (0.383 rad), not the long way round
+    assert rot == pytest.approx(2 * math.pi - 5.9, abs=1e-9)
+    assert path.translation_length == pytest.approx(trans)
+    assert path.length == pytest.approx(path_length(w, 0.7))
+    np.testing.assert_array_equal(w[0], s.as_array())
+    np.testing.assert_array_equal(w[-1], g.as_array())
+
+
+def test_turn_in_place_length() -> None:
+    planner = BasePlanner(WORKSPACE, [])
+    path = planner.plan(Pose2D(0, 0, 0.5), Pose2D(0, 0, -0.5), 0.3)
+    assert path is not None
+    assert path.length == pytest.approx(1.0)
+    assert path.translation_length == 0.0
+
+
+def test_base_path_value_type() -> None:
+    path = BasePath.from_waypoints([[0, 0, 0], [1, 0, 0], [1, 1, math.pi / 2]], 1.0)
+    assert path.length == pytest.approx(2 + math.pi / 2)
+    with pytest.raises(ValueError):
+        path.waypoints[0, 0] = 5.0  # read-only
+    with pytest.raises(ValueError, match="shape"):
+        BasePath(np.zeros((3, 2)), 1.0)
+    dense = path.interpolate(0.1)
+    np.testing.assert_array_equal(dense[0], path.waypoints[0])
+    np.testing.assert_array_equal(dense[-1], path.waypoints[-1])
+    steps = np.hypot(*np.diff(dense[:, :2], axis=0).T)
+    assert steps.max() <= 0.1 + 1e-12
+    assert path == BasePath.from_waypoints(path.waypoints, 1.0)
+
+
+# ----------------------------------------------------------------------------------------
+# validity and optimality
+# ----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("radius", [0.3, 0.45])
+def test_paths_avoid_obstacles(radius: float) -> None:
+    static, movable = house_static(), house_movable()
+    planner = BasePlanner(WORKSPACE, static)
+    starts = random_free_poses(planner, radius, movable, 25, seed=1)
+    goals = random_free_poses(planner, radius, movable, 25, seed=2)
+    found = 0
+    for s, g in zip(starts, goals, strict=True):
+        path = planner.plan(s, g, radius, movable)
+        if path is None:
+            continue
+        found += 1
+        assert_path_clear(path, radius, static + movable)
+        assert planner.path_is_free(path.waypoints, radius, movable)
+        assert path.translation_length >= math.hypot(g.x - s.x, g.y - s.y) - 1e-12
+    assert found >= 8  # the scene is cluttered, but many queries have paths
+
+
+def test_bitangent_pruning_keeps_shortest_paths(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The reduced visibility graph gives the same lengths as the full one."""
+    static, movable = house_static(), house_movable()
+    queries = []
+    for radius in (0.3, 0.45):
+        planner = BasePlanner(WORKSPACE, static)
+        starts = random_free_poses(planner, radius, movable, 15, seed=3)
+        goals = random_free_poses(planner, radius, movable, 15, seed=4)
+        queries += [(s, g, radius) for s, g in zip(starts, goals, strict=True)]
+    reduced = BasePlanner(WORKSPACE, static)
+    lengths = [reduced.plan(s, g, r, movable) for s, g, r in queries]
+    monkeypatch.setattr(
+        bp,
+        "_tangent_grid",
+        lambda nodes, ux, uy, axis: np.ones(np.broadcast(ux, uy).shape, dtype=bool),
+    )
+    full = BasePlanner(WORKSPACE, static)
+    multi = 0
+    for (s, g, r), a in zip(queries, lengths, strict=True):
+        b = full.plan(s, g, r, movable)
+        assert (a is None) == (b is None)
+        if a is not None and b is not None:
+            assert a.length == pytest.approx(b.length, abs=1e-9)
+            multi += len(a.waypoints) > 2
+    assert multi >= 3
+
+
+def test_detour_around_wall_is_near_optimal() -> None:
+    """Around one thin wall the exact shortest disc path is known in closed form."""
+    r = 0.5
+    wall_box = wall(-0.05, 0.05, -1.0, 1.0, "wall")
+    planner = BasePlanner((-5.0, 5.0, -5.0, 5.0), [wall_box])
+    s, g = Pose2D(-2.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
+    path = planner.plan(s, g, r)
+    assert path is not None
+    assert_path_clear(path, r, [wall_box], (-5.0, 5.0, -5.0, 5.0))
+    # exact: tangents from the ends to the two corner discs (radius r at (+-0.05, 1)) and
+    # the arc between them, plus the straight bit over the wall's top
+    c = np.array([-0.05, 1.0])
+    d = math.hypot(*(c - [-2.0, 0.0]))
+    tangent = math.sqrt(d * d - r * r)
+    to_start = math.atan2(0.0 - 1.0, -2.0 + 0.05)
+    touch = float(wrap_angle(to_start - math.acos(r / d)))  # tangent point, seen from c
+    arc = touch - math.pi / 2  # from the tangent point round to the top of the disc
+    assert 0.0 < arc < math.pi / 2
+    exact = 2 * tangent + 2 * r * arc + 0.1
+    assert exact <= path.length <= exact / math.cos(math.pi / 8)
+    finer = BasePlanner((-5.0, 5.0, -5.0, 5.0), [wall_box], BasePlannerConfig(corner_segments=6))
+    fine_path = finer.plan(s, g, r)
+    assert fine_path is not None
+    assert exact <= fine_path.length <= path.length
+    assert fine_path.length <= exact * 1.01
+
+
+def test_path_existence_matches_grid_connectivity() -> None:
+    """Where a fine occupancy grid says start and goal are connected, a path exists."""
+    static, movable = house_static(), house_movable()
+    planner = BasePlanner(WORKSPACE, static)
+    res = 0.02
+    xs = np.arange(WORKSPACE[0], WORKSPACE[1] + 1e-9, res)
+    ys = np.arange(WORKSPACE[2], WORKSPACE[3] + 1e-9, res)
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    boxes = bp.BoxArrays.from_boxes(static + movable)
+    checked = 0
+    for radius in (0.35, 0.5):
+        free = np.concatenate(
+            [
+                ~bp.points_hit_boxes(chunk, boxes, radius).any(axis=1)
+                for chunk in np.array_split(pts, 16)
+            ]
+        )
+        free &= planner._inside(pts, radius)
+        labels, _ = ndimage.label(free.reshape(gx.shape))
+        # poses with a margin, so that grid rounding cannot matter
+        starts = random_free_poses(planner, radius + 0.05, movable, 20, seed=5)
+        goals = random_free_poses(planner, radius + 0.05, movable, 20, seed=6)
+        for s, g in zip(starts, goals, strict=True):
+            ls = labels[round((s.x - xs[0]) / res), round((s.y - ys[0]) / res)]
+            lg = labels[round((g.x - xs[0]) / res), round((g.y - ys[0]) / res)]
+            assert ls > 0 and lg > 0
+            path = planner.plan(s, g, radius, movable)
+            assert (path is not None) == (ls == lg), (s, g, radius)
+            checked += 1
+    assert checked == 40
+
+
+# ----------------------------------------------------------------------------------------
+# doors
+# ----------------------------------------------------------------------------------------
+def door_scene(width: float) -> list[Box2D]:
+    """A wall along x = 0 across the workspace with a door of ``width`` centred at y = 0."""
+    return [
+        wall(-0.1, 0.1, -5.0, -width / 2, "wall_low"),
+        wall(-0.1, 0.1, width / 2, 5.0, "wall_high"),
+    ]
+
+
+@pytest.mark.parametrize(
+    ("width", "radius", "passes"),
+    [
+        (0.99, 0.5, False),
+        (1.01, 0.5, True),
+        (1.0, 0.45, True),  # the robot alone
+        (1.0, 0.55, False),  # the robot carrying a big box
+        (1.0 - 2e-6, 0.5, False),
+    ],
+)
+def test_door_passes_iff_wider_than_diameter(width: float, radius: float, passes: bool) -> None:
+    planner = BasePlanner((-5.0, 5.0, -5.0, 5.0), door_scene(width))
+    s, g = Pose2D(-2.0, 3.0, 0.0), Pose2D(2.0, -3.0, math.pi)
+    path = planner.plan(s, g, radius)
+    assert (path is not None) == passes
+    if path is not None:
+        assert_path_clear(path, radius, door_scene(width), (-5.0, 5.0, -5.0, 5.0))
+        # it crosses x = 0 inside the door
+        w = path.waypoints
+        k = int(np.flatnonzero(np.diff(np.sign(w[:, 0])) != 0)[0])
+        a, b = w[k, :2], w[k + 1, :2]
+        y0 = a[1] + (b[1] - a[1]) * (0 - a[0]) / (b[0] - a[0])
+        assert abs(y0) <= width / 2 - radius + 1e-6
+
+
+def test_clearance_narrows_doors() -> None:
+    planner = BasePlanner(
+        (-5.0, 5.0, -5.0, 5.0), door_scene(1.1), BasePlannerConfig(clearance=0.06)
+    )
+    s, g = Pose2D(-2.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
+    assert planner.plan(s, g, 0.5) is None
+    assert planner.plan(s, g, 0.48) is not None
+
+
+def test_radius_step_rounds_up_and_shares_caches() -> None:
+    planner = BasePlanner(
+        (-5.0, 5.0, -5.0, 5.0), door_scene(0.995), BasePlannerConfig(radius_step=0.01)
+    )
+    exact = BasePlanner((-5.0, 5.0, -5.0, 5.0), door_scene(0.995))
+    s, g = Pose2D(-2.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
+    assert planner.plan(s, g, 0.48) is not None  # 0.48 is a multiple: kept
+    assert exact.plan(s, g, 0.4951) is not None
+    assert planner.plan(s, g, 0.4951) is None  # rounded up to 0.50: the door blocks
+    s2, g2 = Pose2D(-2.0, 2.0, 0.0), Pose2D(2.0, -2.0, 0.0)  # a detour: uses the graph
+    reference = planner.plan(s2, g2, 0.48)
+    assert reference is not None and len(reference.waypoints) > 2
+    for r in (0.471, 0.475, 0.4799):
+        assert planner.plan(s2, g2, r) == reference
+    assert list(planner._static_cache) == [0.5, 0.48]
+
+
+def test_movable_box_can_close_a_door() -> None:
+    planner = BasePlanner((-5.0, 5.0, -5.0, 5.0), door_scene(1.5))
+    s, g = Pose2D(-2.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
+    assert planner.plan(s, g, 0.4) is not None
+    blocker = Box2D(0.0, 0.0, 0.2, 0.2, 0.0, "blocker")
+    assert planner.plan(s, g, 0.4, [blocker]) is None
+    assert planner.plan(s, g, 0.2, [blocker]) is not None
+
+
+# ----------------------------------------------------------------------------------------
+# start / goal handling
+# ----------------------------------------------------------------------------------------
+def test_start_or_goal_in_collision_gives_none() -> None:
+    static, movable = house_static(), house_movable()
+    planner = BasePlanner(WORKSPACE, static)
+    free = Pose2D(-0.5, -2.0, 0.0)
+    assert planner.is_free(free, 0.3, movable)
+    in_table = Pose2D(1.3, 0.3, 0.0)
+    near_chair = Pose2D(-1.2, -0.1, 0.0)  # 0.18 m from chair_a's face
+    outside = Pose2D(5.9, 0.0, 0.0)  # the disc leaves the workspace
+    for bad in (in_table, near_chair, outside):
+        assert not planner.is_free(bad, 0.3, movable)
+        assert planner.plan(free, bad, 0.3, movable) is None
+        assert planner.plan(bad, free, 0.3, movable) is None
+    assert planner.colliding(in_table, 0.3, movable) == ["table"]
+    assert planner.colliding(near_chair, 0.3, movable) == ["chair_a"]
+    assert planner.colliding(outside, 0.3, movable) == ["workspace", "wall_e"]
+    assert planner.colliding(free, 0.3, movable) == []
+
+
+def test_enclosed_goal_gives_none() -> None:
+    pen = [
+        wall(-1.0, 1.0, -1.0, -0.9, "s"),
+        wall(-1.0, 1.0, 0.9, 1.0, "n"),
+        wall(-1.0, -0.9, -1.0, 1.0, "w"),
+        wall(0.9, 1.0, -1.0, 1.0, "e"),
+    ]
+    planner = BasePlanner((-5.0, 5.0, -5.0, 5.0), pen)
+    assert planner.is_free((0.0, 0.0, 0.0), 0.5, [])
+    assert planner.plan((3.0, 3.0, 0.0), (0.0, 0.0, 0.0), 0.5) is None
+
+
+def test_straight_line_when_clear() -> None:
+    planner = BasePlanner(WORKSPACE, house_static())
+    s, g = Pose2D(-1.0, -2.0, 0.3), Pose2D(2.0, -2.5, 1.0)
+    path = planner.plan(s, g, 0.4)
+    assert path is not None and path.waypoints.shape == (2, 3)
+    assert path.length == pytest.approx(math.hypot(3.0, 0.5) + 0.7)
+
+
+# ----------------------------------------------------------------------------------------
+# determinism and caches
+# ----------------------------------------------------------------------------------------
+def _query() -> tuple[Pose2D, Pose2D, float]:
+    return Pose2D(-0.6, -1.6, 0.3), Pose2D(3.4, 1.2, -2.0), 0.45
+
+
+def test_same_inputs_same_path_regardless_of_history() -> None:
+    static, movable = house_static(), house_movable()[-4:]
+    s, g, r = _query()
+    fresh = BasePlanner(WORKSPACE, static).plan(s, g, r, movable)
+    assert fresh is not None and len(fresh.waypoints) > 2
+    busy = BasePlanner(WORKSPACE, static, BasePlannerConfig(graph_cache_size=2))
+    for p in random_free_poses(busy, r, movable, 10, seed=7):
+        busy.plan(p, g, r, movable)
+        busy.plan(s, p, r, movable[:2])
+    again = busy.plan(s, g, r, movable)
+    uncached = BasePlanner(WORKSPACE, static, BasePlannerConfig(graph_cache_size=0))
+    for other in (again, uncached.plan(s, g, r, movable), uncached.plan(s, g, r, movable)):
+        assert other is not None
+        assert np.array_equal(other.waypoints, fresh.waypoints)
+        assert other.length == fresh.length
+    busy.clear_caches()
+    assert busy.plan(s, g, r, movable) == fresh
+
+
+def test_same_path_in_another_process() -> None:
+    tests_dir = Path(__file__).resolve().parent
+    code = (
+        f"import sys; sys.path.insert(0, {str(tests_dir)!r});"
+        "from test_base_planner import BasePlanner, WORKSPACE, house_static, house_movable, _query;"
+        "s, g, r = _query();"
+        "p = BasePlanner(WORKSPACE, house_static()).plan(s, g, r, house_movable()[-4:]);"
+        "print(p.waypoints.tobytes().hex(), repr(p.length))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.split()
+    s, g, r = _query()
+    p = BasePlanner(WORKSPACE, house_static()).plan(s, g, r, house_movable()[-4:])
+    assert p is not None
+    assert out == [p.waypoints.tobytes().hex(), repr(p.length)]
+
+
+# ----------------------------------------------------------------------------------------
+# speed (a benchmark, excluded by default: pytest -m slow -s tests/test_base_planner.py)
+# ----------------------------------------------------------------------------------------
+@pytest.mark.slow
+def test_plan_speed_report() -> None:
+    """Median plan time in the kitchen-sized house, first and repeated queries per state."""
+    planner = BasePlanner(WORKSPACE, house_static())
+    rng = np.random.default_rng(0)
+    first: list[float] = []
+    repeat: list[float] = []
+    by_outcome: dict[str, list[float]] = {"direct": [], "detour": [], "none": []}
+    for state in range(60):
+        movable = [
+            Box2D(
+                b.cx + rng.normal(0, 0.05),
+                b.cy + rng.normal(0, 0.05),
+                b.half_x,
+                b.half_y,
+                b.yaw + rng.normal(0, 0.1),
+                b.name,
+            )
+            for b in house_movable()
+        ]
+        radius = (0.4, 0.5)[state % 2]
+        start = random_free_poses(planner, radius, movable, 1, seed=1000 + state)[0]
+        for k, goal in enumerate(random_free_poses(planner, radius, movable, 20, seed=state)):
+            t0 = time.process_time()
+            path = planner.plan(start, goal, radius, movable)
+            dt = time.process_time() - t0
+            (first if k == 0 else repeat).append(dt)
+            if path is None:
+                by_outcome["none"].append(dt)
+            else:
+                by_outcome["direct" if len(path.waypoints) == 2 else "detour"].append(dt)
+    f, r = np.array(first) * 1e3, np.array(repeat) * 1e3
+    print(
+        f"\nfirst query per state: median {np.median(f):.2f} ms, p90 {np.percentile(f, 90):.2f}"
+        f"\nrepeated queries:      median {np.median(r):.2f} ms, p90 {np.percentile(r, 90):.2f}"
+        f"\nall {len(f) + len(r)} queries:       median {np.median(np.r_[f, r]):.2f} ms"
+    )
+    for name, ts in by_outcome.items():
+        print(f"{name:>7}: {len(ts):4d} queries, median {np.median(ts) * 1e3:.2f} ms")
+    assert np.median(r) < 5.0

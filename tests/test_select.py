@@ -1,0 +1,96 @@
+"""Tests of voot.bench.select: best-mean hyperparameter selection."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from voot.bench.select import (
+    function_order,
+    largest_budget,
+    method_order,
+    select_hyperparameters,
+    selected_rows,
+    selection_table,
+)
+from voot.bench.store import Row, make_row
+
+
+def fake_row(
+    final: float,
+    *,
+    method: str = "voo",
+    params: dict[str, Any] | None = None,
+    seed: int = 0,
+    function: str = "shekel",
+    dim: int = 3,
+    budget: int = 4,
+    status: str = "ok",
+) -> Row:
+    config = {
+        "function": function,
+        "dim": dim,
+        "method": method,
+        "params": params or {},
+        "budget": budget,
+        "seed": seed,
+        "protocol": 1,
+    }
+    curve = [final - 3.0, final - 2.0, final - 1.0, final][-budget:] if status == "ok" else []
+    return make_row("bbfo", config, status=status, wall_time=0.1, best_so_far=curve)
+
+
+def test_selects_best_mean_not_best_single_run() -> None:
+    rows = [
+        # omega=0.1: one lucky seed, mean 4.0
+        fake_row(10.0, params={"omega": 0.1}, seed=0),
+        fake_row(-2.0, params={"omega": 0.1}, seed=1),
+        # omega=0.3: steady, mean 5.0 -> selected
+        fake_row(5.0, params={"omega": 0.3}, seed=0),
+        fake_row(5.0, params={"omega": 0.3}, seed=1),
+        # a failed run of a third setting does not count
+        fake_row(0.0, params={"omega": 0.5}, seed=0, status="failed"),
+    ]
+    (sel,) = select_hyperparameters(rows)
+    assert sel.key == ("shekel", 3, 4, "voo")
+    assert sel.params == {"omega": 0.3}
+    assert sel.best.mean == 5.0 and sel.best.n == 2
+    assert [c.label for c in sel.candidates] == ["omega=0.3", "omega=0.1"]
+    chosen = selected_rows(rows, [sel])
+    assert [r["config"]["params"] for r in chosen] == [{"omega": 0.3}] * 2
+
+
+def test_ties_go_to_the_first_label_and_cells_are_separate() -> None:
+    rows = [
+        fake_row(1.0, params={"omega": 0.5}),
+        fake_row(1.0, params={"omega": 0.01}),
+        fake_row(3.0, params={"omega": 0.5}, dim=10),
+        fake_row(2.0, params={"omega": 0.01}, dim=10),
+        fake_row(7.0, method="random", dim=10),
+    ]
+    sels = select_hyperparameters(rows)
+    assert [(s.dim, s.method, s.best.label) for s in sels] == [
+        (3, "voo", "omega=0.01"),
+        (10, "voo", "omega=0.5"),
+        (10, "random", "default"),
+    ]
+
+
+def test_largest_budget_per_cell() -> None:
+    rows = [
+        fake_row(1.0, budget=2),
+        fake_row(1.0, budget=4),
+        fake_row(1.0, budget=2, dim=10),
+    ]
+    kept = largest_budget(rows)
+    assert [(r["config"]["dim"], r["config"]["budget"]) for r in kept] == [(3, 4), (10, 2)]
+
+
+def test_orders_and_table() -> None:
+    assert function_order(["zeta", "shekel", "griewank"]) == ["griewank", "shekel", "zeta"]
+    assert method_order(["random", "my_method", "voo", "cmaes"])[:3] == ["voo", "cmaes", "random"]
+    rows = [fake_row(2.0, params={"omega": 0.1}), fake_row(1.0, params={"omega": 0.3})]
+    sels = select_hyperparameters(rows)
+    table = selection_table(sels)
+    assert "| shekel | 3 | 4 | voo | omega=0.1 | 2 | 1 | 2 |" in table
+    full = selection_table(sels, all_candidates=True)
+    assert "omega=0.1*" in full and "omega=0.3 |" in full

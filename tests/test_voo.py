@@ -1,0 +1,327 @@
+"""Tests of VOO (voot.optim.voo): best-cell samplers, exactness, determinism, convergence."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from voot.optim import Bounds, make_optimizer, maximize
+from voot.optim.voo import NEIGHBOURS, VOO, BestCellSampler, VOOConfig
+
+SAMPLERS = [s.value for s in BestCellSampler]
+
+
+def brute_in_cell(xs: np.ndarray, b: int, p: np.ndarray, rtol: float = 0.0) -> bool:
+    """Is p at least as close to xs[b] as to every row of xs (distances from differences)?"""
+    d = np.sqrt(np.sum((xs - p) ** 2, axis=1))
+    return bool(d[b] <= d.min() * (1.0 + rtol))
+
+
+def told(
+    points: np.ndarray, values: np.ndarray, box: Bounds, seed: int = 0, **options: object
+) -> VOO:
+    opt = VOO(box, VOOConfig(**options), seed=seed)  # type: ignore[arg-type]
+    for x, v in zip(points, values, strict=True):
+        opt.tell(x, float(v))
+    return opt
+
+
+def random_state(n: int, d: int, seed: int = 0, **options: object) -> VOO:
+    rng = np.random.default_rng(seed)
+    box = Bounds.cube(-1.0, 1.0, d)
+    xs = box.sample(rng, n)
+    return told(xs, -np.sum((xs - 0.2) ** 2, axis=1), box, seed=seed, **options)
+
+
+def clustered_state(n: int, d: int, scale: float, seed: int = 0) -> VOO:
+    """n points within `scale` of 0.3 (far below the box's scale), best in the middle."""
+    rng = np.random.default_rng(seed)
+    box = Bounds.cube(-1.0, 1.0, d)
+    xs = 0.3 + scale * rng.standard_normal((n, d))
+    values = -np.sum((xs - 0.3) ** 2, axis=1)
+    return told(xs, values, box, seed=seed)
+
+
+# ----- the returned points lie in the best cell ------------------------------------------
+
+
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_samples_lie_in_best_cell(sampler: str) -> None:
+    n = 30 if sampler == "uniform" else 300  # the uniform sampler must succeed in 1000 tries
+    opt = random_state(n, 4, seed=1, sampler=sampler)
+    xs, b = opt.xs.copy(), opt.best_index
+    for _ in range(200):
+        p = opt.sample_best_cell()
+        assert opt.bounds.contains(p)
+        assert brute_in_cell(xs, b, p, rtol=1e-12)
+    assert opt.n_fallbacks == 0
+    assert opt.sampler.value == sampler
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1e-8, 1e-13])
+def test_samples_lie_in_best_cell_of_tight_clusters(scale: float) -> None:
+    opt = clustered_state(500, 6, scale, seed=2)
+    xs, b = opt.xs.copy(), opt.best_index
+    for _ in range(100):
+        p = opt.sample_best_cell()
+        assert brute_in_cell(xs, b, p, rtol=1e-9)
+    assert opt.n_fallbacks == 0
+
+
+def _proposals_at_all_scales(opt: VOO, rng: np.random.Generator, m: int) -> np.ndarray:
+    best = opt.xs[opt.best_index]
+    spread = np.max(np.abs(opt.xs - best))
+    r = spread * 10.0 ** rng.uniform(-4, 0.5, size=(m, 1))
+    u = rng.standard_normal((m, best.size))
+    return r * u / np.linalg.norm(u, axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: random_state(20, 3, seed=3),  # fewer points than the neighbour cache
+        lambda: random_state(1000, 5, seed=4),  # many more
+        lambda: clustered_state(400, 8, 1e-9, seed=5),
+    ],
+)
+def test_fast_test_matches_brute_force(make) -> None:  # type: ignore[no-untyped-def]
+    opt = make()
+    rng = np.random.default_rng(0)
+    for step in range(3):
+        cell = opt._best_cell()
+        xs, b = opt.xs.copy(), opt.best_index
+        q = _proposals_at_all_scales(opt, rng, 400)
+        fast = np.array([opt._first_inside(cell, q[i : i + 1]) == 0 for i in range(len(q))])
+        brute = np.array([brute_in_cell(xs, b, xs[b] + qi) for qi in q])
+        exact = opt.in_best_cell(xs[b] + q)
+        assert 0 < fast.sum() < len(q)  # both outcomes are exercised
+        # decisions agree except at floating-point ties (none expected here)
+        np.testing.assert_array_equal(fast, brute)
+        np.testing.assert_array_equal(exact, brute)
+        # tell more points (and sometimes a new best) and test the updated cache again
+        for x in xs[b] + q[:5] * 0.3:
+            opt.tell(x, float(opt.values.min()) - 1.0)
+        if step == 1:
+            opt.tell(xs[b] + q[0] * 1e-3, opt.best_value + 1.0)
+
+
+def test_neighbour_cache_invariants() -> None:
+    opt = random_state(3 * NEIGHBOURS, 3, seed=6)
+    rng = np.random.default_rng(1)
+    for i in range(150):
+        x = opt.ask()
+        opt.tell(x, float(rng.normal()) if i % 10 else opt.best_value + 1.0)
+        if i % 7 == 0:
+            opt.revalue(int(rng.integers(opt.n_told)), float(rng.normal()))
+        cell = opt._best_cell()
+        v = opt.xs - opt.xs[opt.best_index]
+        d2 = np.sum(v**2, axis=1)
+        d2[d2 == 0.0] = np.inf
+        order = np.sort(d2)
+        assert cell.count == NEIGHBOURS
+        np.testing.assert_allclose(np.sort(cell.k2[: cell.count]), order[:NEIGHBOURS])
+        assert cell.out2 == pytest.approx(order[NEIGHBOURS])
+
+
+def test_copies_of_the_best_are_harmless() -> None:
+    box = Bounds.cube(-1.0, 1.0, 3)
+    rng = np.random.default_rng(0)
+    others = box.sample(rng, 10)
+    best = np.array([0.1, 0.2, 0.3])
+    pts = np.vstack([best, np.repeat(best[None], 3 * NEIGHBOURS, axis=0), others])
+    vals = np.r_[1.0, np.zeros(3 * NEIGHBOURS), -np.ones(10)]
+    opt = told(pts, vals, box)
+    cell = opt._best_cell()
+    assert cell.count == 10  # only the real neighbours are cached
+    for _ in range(50):
+        assert brute_in_cell(opt.xs, opt.best_index, opt.sample_best_cell())
+
+
+# ----- determinism and exploration -------------------------------------------------------
+
+
+def quadratic(x: np.ndarray) -> float:
+    return -float(np.sum((x - 0.3) ** 2))
+
+
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_same_seed_same_points(sampler: str) -> None:
+    box = Bounds.cube(-1.0, 1.0, 3)
+    a = maximize(quadratic, box, "voo", budget=150, seed=9, sampler=sampler, omega=0.1)
+    b = maximize(quadratic, box, "voo", budget=150, seed=9, sampler=sampler, omega=0.1)
+    c = maximize(quadratic, box, "voo", budget=150, seed=10, sampler=sampler, omega=0.1)
+    np.testing.assert_array_equal(a.xs, b.xs)
+    assert not np.array_equal(a.xs, c.xs)
+
+
+def test_omega_one_is_uniform_search() -> None:
+    box = Bounds([0.0, -5.0], [1.0, 5.0])
+    a = maximize(quadratic, box, "voo", budget=1500, seed=0, omega=1.0)
+    b = maximize(lambda x: float(x[0]), box, "voo", budget=1500, seed=0, omega=1.0)
+    np.testing.assert_array_equal(a.xs, b.xs)  # the values told do not matter
+    u = (a.xs - box.lower) / box.width
+    for j in range(2):
+        assert stats.kstest(u[:, j], "uniform").pvalue > 1e-3
+
+
+def test_omega_zero_always_exploits() -> None:
+    opt = random_state(50, 3, seed=0, omega=0.0)
+    for _ in range(100):
+        xs, b = opt.xs.copy(), opt.best_index
+        x = opt.ask()
+        assert brute_in_cell(xs, b, x, rtol=1e-12)
+        opt.tell(x, quadratic(x))
+
+
+def test_first_two_asks_are_uniform() -> None:
+    opt = VOO(Bounds.cube(0.0, 1.0, 2), VOOConfig(omega=0.0), seed=0)
+    x0 = opt.ask()
+    opt.tell(x0, 0.0)
+    x1 = opt.ask()
+    rng = np.random.default_rng(0)
+    np.testing.assert_array_equal(x0, rng.random(2))
+    np.testing.assert_array_equal(x1, rng.random(2))
+
+
+def test_sample_best_cell_needs_a_point() -> None:
+    with pytest.raises(ValueError, match="at least one told point"):
+        VOO(Bounds.cube(0.0, 1.0, 2)).sample_best_cell()
+
+
+# ----- caps, fallback and the uniform -> gaussian switch ---------------------------------
+
+
+def test_uniform_fallback_switches_to_gaussian() -> None:
+    opt = random_state(2000, 6, seed=0, sampler="uniform", uniform_max_tries=3)
+    before = opt.n_rejected
+    p = opt.sample_best_cell()
+    assert opt.n_fallbacks == 1 and opt.n_rejected - before == 3
+    assert opt.sampler is BestCellSampler.GAUSSIAN
+    assert opt.bounds.contains(p)
+    keep = random_state(
+        2000, 6, seed=0, sampler="uniform", uniform_max_tries=3, uniform_switch_to_gaussian=False
+    )
+    keep.sample_best_cell()
+    assert keep.n_fallbacks == 1 and keep.sampler is BestCellSampler.UNIFORM
+
+
+@pytest.mark.parametrize("sampler", ["centered_uniform", "gaussian"])
+def test_try_cap_returns_closest_proposal(sampler: str) -> None:
+    # max_tries=1: the single proposal is returned whether inside the cell or not
+    opt = random_state(500, 5, seed=2, sampler=sampler, max_tries=1)
+    outside = 0
+    for _ in range(60):
+        p = opt.sample_best_cell()
+        assert opt.bounds.contains(p)
+        outside += not brute_in_cell(opt.xs, opt.best_index, p)
+    assert opt.n_fallbacks == outside > 0
+    assert opt.sampler.value == sampler
+
+
+# ----- custom metric and revalue ---------------------------------------------------------
+
+
+def test_custom_metric() -> None:
+    def l1(points: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return np.sum(np.abs(points - y), axis=1)
+
+    opt = random_state(200, 3, seed=3, metric=l1)
+    xs, b = opt.xs.copy(), opt.best_index
+    for _ in range(50):
+        p = opt.sample_best_cell()
+        d = l1(xs, p)
+        assert d[b] <= d.min()
+    # the metric is used: some L1 cells differ from Euclidean ones
+    rng = np.random.default_rng(0)
+    q = xs[b] + 0.3 * rng.standard_normal((2000, 3))
+    euclid = VOO(opt.bounds, seed=0)
+    for x, v in zip(xs, opt.values, strict=True):
+        euclid.tell(x, float(v))
+    assert np.any(opt.in_best_cell(q) != euclid.in_best_cell(q))
+
+
+def test_semi_metric_ignoring_a_coordinate() -> None:
+    def first_only(points: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return np.abs(points[:, 0] - y[0])
+
+    opt = random_state(100, 2, seed=4, metric=first_only)
+    xs, b = opt.xs.copy(), opt.best_index
+    ps = np.array([opt.sample_best_cell() for _ in range(300)])
+    assert all(first_only(xs, p)[b] <= first_only(xs, p).min() for p in ps)
+    assert np.ptp(ps[:, 1]) > 0.5  # the ignored coordinate roams over the box
+
+
+def test_revalue_moves_the_best_cell() -> None:
+    opt = random_state(200, 3, seed=5)
+    old = opt.best_index
+    opt.sample_best_cell()  # builds the cache for the old best
+    new = int(np.argmin(opt.values))
+    opt.revalue(new, opt.best_value + 10.0)
+    assert opt.best_index == new != old
+    for _ in range(50):
+        assert brute_in_cell(opt.xs, new, opt.sample_best_cell(), rtol=1e-12)
+    opt.revalue(new, opt.values.min() - 1.0)  # and back
+    assert opt.best_index == old
+    assert brute_in_cell(opt.xs, old, opt.sample_best_cell(), rtol=1e-12)
+
+
+# ----- convergence -----------------------------------------------------------------------
+
+
+def shekel_like(x: np.ndarray) -> float:
+    """Four peaks in [0, 10]^3; the highest (about 1/0.1 = 10) at (4, 4, 4)."""
+    a = np.array([[4.0, 4.0, 4.0], [1.0, 1.0, 1.0], [8.0, 8.0, 8.0], [6.0, 7.0, 6.0]])
+    c = np.array([0.1, 0.2, 0.2, 0.4])
+    return float(np.sum(1.0 / (c + np.sum((x - a) ** 2, axis=1))))
+
+
+def test_converges_on_a_quadratic() -> None:
+    box = Bounds.cube(-1.0, 1.0, 5)
+    res = maximize(quadratic, box, "voo", budget=600, seed=0)
+    rand = maximize(quadratic, box, "random", budget=600, seed=0)
+    assert res.best_value > -1e-3
+    assert res.best_value > rand.best_value + 0.05
+
+
+def test_converges_on_a_shekel_like_function() -> None:
+    box = Bounds.cube(0.0, 10.0, 3)
+    runs = [maximize(shekel_like, box, "voo", budget=1000, seed=s, omega=0.1) for s in range(6)]
+    found = [r for r in runs if r.best_value > 10.0]  # the global peak (about 10.115)
+    assert len(found) >= 3  # VOO is greedy: some runs settle on another peak
+    for r in found:
+        np.testing.assert_allclose(r.best_x, 4.0, atol=0.01)
+    rand = [maximize(shekel_like, box, "random", budget=1000, seed=s).best_value for s in range(6)]
+    assert np.median([r.best_value for r in runs]) > np.median(rand)
+
+
+# ----- configuration ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("options", "match"),
+    [
+        ({"omega": -0.1}, "omega must be a probability"),
+        ({"omega": 1.5}, "omega must be a probability"),
+        ({"omega": "0.1"}, "omega must be a probability"),
+        ({"sampler": "gauss"}, "valid samplers are: centered_uniform, gaussian, uniform"),
+        ({"max_tries": 0}, "max_tries must be an integer >= 1"),
+        ({"max_tries": True}, "max_tries"),
+        ({"uniform_max_tries": 2.0}, "uniform_max_tries"),
+        ({"batch_size": 0}, "batch_size"),
+        ({"metric": "euclidean"}, "metric must be callable"),
+    ],
+)
+def test_bad_config(options: dict, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        VOOConfig(**options)
+
+
+def test_config_defaults_and_grid() -> None:
+    cfg = VOOConfig(sampler="gaussian")
+    assert cfg.sampler is BestCellSampler.GAUSSIAN
+    assert VOOConfig().omega == 0.001 and VOOConfig().sampler is BestCellSampler.CENTERED_UNIFORM
+    assert VOOConfig.paper_grid() == {"omega": [0.001, 0.01, 0.05, 0.1, 0.3, 0.5]}
+    opt = make_optimizer("voo", Bounds.cube(0.0, 1.0, 2), sampler="uniform")
+    assert isinstance(opt, VOO) and opt.sampler is BestCellSampler.UNIFORM
+    assert VOO.supports_revalue

@@ -1,0 +1,347 @@
+"""Log a MuJoCo scene to rerun: geometry once (static), body poses per time step.
+
+Every body with drawn geoms becomes one entity ``<root>/bodies/<body name>``; its geoms
+are logged once, static, *in the body's frame*, batched by kind (``boxes`` for boxes and
+planes, ``ellipsoids`` for spheres and ellipsoids, ``cylinders``, ``capsules``, and
+``mesh`` for all its meshes merged, with per-vertex colours). A body's pose is then one
+:class:`rerun.Transform3D` per time step (MuJoCo's ``xpos``/``xquat``, world frame), so
+the robot and the objects move along a plan. Bodies welded to the world (no joint
+between them and the world, not mocap) never move: their pose is logged once, static.
+
+Poses are computed on a private ``MjData``: :meth:`MujocoScene.log_poses` copies
+``qpos`` and the mocap poses of the given data and runs ``mj_kinematics``, so the
+caller's data (an environment's) is never touched. Height fields and SDF geoms are
+skipped (counted in :attr:`MujocoScene.skipped`). MuJoCo is imported lazily.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: MuJoCo's default geom colour: a geom with a material and this rgba takes the material's.
+_DEFAULT_RGBA = (0.5, 0.5, 0.5, 1.0)
+
+#: Half-size (m) drawn for an infinite plane (MuJoCo plane size 0).
+INFINITE_PLANE_HALF_SIZE = 10.0
+
+#: Thickness (m) of the slab drawn for a plane (its top face is the plane).
+PLANE_THICKNESS = 0.002
+
+
+def find_mujoco(obj: Any, max_depth: int = 6) -> tuple[Any, Any] | None:
+    """The ``(MjModel, MjData)`` behind ``obj``, or None.
+
+    Looks at ``obj`` itself and follows ``unwrapped``, ``env`` and ``problem``
+    attributes (a planning-problem adapter, a gymnasium wrapper chain, a MuJoCo env)
+    for a pair of attributes ``model`` / ``data`` of MuJoCo's types (checked by type
+    name, so MuJoCo is not imported). A ``(model, data)`` tuple is returned as it is.
+    """
+    if isinstance(obj, tuple) and len(obj) == 2 and _is_mj(obj[0], "MjModel"):
+        return obj[0], obj[1]
+    seen: set[int] = set()
+    todo = [(obj, 0)]
+    while todo:
+        o, depth = todo.pop(0)
+        if o is None or id(o) in seen or depth > max_depth:
+            continue
+        seen.add(id(o))
+        model = getattr(o, "model", None)
+        data = getattr(o, "data", None)
+        if _is_mj(model, "MjModel") and _is_mj(data, "MjData"):
+            return model, data
+        for name in ("unwrapped", "env", "problem"):
+            try:
+                nxt = getattr(o, name, None)
+            except Exception:  # properties of half-built objects may raise
+                nxt = None
+            if nxt is not None and nxt is not o:
+                todo.append((nxt, depth + 1))
+    return None
+
+
+def _is_mj(obj: Any, name: str) -> bool:
+    return obj is not None and type(obj).__name__ == name and "mujoco" in type(obj).__module__
+
+
+def _wxyz_to_xyzw(q: NDArray[np.float64]) -> NDArray[np.float64]:
+    return np.asarray(q, dtype=np.float64)[..., [1, 2, 3, 0]]
+
+
+def _quat_rotate(q_wxyz: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotate vectors ``v`` (n, 3) by unit quaternions ``q`` (n, 4, wxyz)."""
+    w = q_wxyz[..., :1]
+    u = q_wxyz[..., 1:]
+    t = 2.0 * np.cross(u, v)
+    return np.asarray(v + w * t + np.cross(u, t), dtype=np.float64)
+
+
+def _entity_part(name: str) -> str:
+    import rerun as rr
+
+    return str(rr.escape_entity_path_part(name))
+
+
+class MujocoScene:
+    """Draws one ``MjModel`` in rerun.
+
+    Args:
+        model: the MuJoCo model.
+        root: entity path under which everything is logged.
+        geom_groups: geom groups to draw (None: all). Geoms with alpha 0 are skipped.
+
+    Attributes:
+        body_entities: entity path of every drawn body, by body id.
+        moving: ids of drawn bodies that can move (their pose is logged per step).
+        n_geoms: geoms drawn; ``skipped``: geoms of kinds that are not drawn.
+    """
+
+    def __init__(
+        self, model: Any, root: str = "scene", geom_groups: Sequence[int] | None = (0, 1, 2)
+    ) -> None:
+        import mujoco
+
+        if not _is_mj(model, "MjModel"):
+            raise ValueError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+        self._mj = mujoco
+        self.model = model
+        self.root = root.rstrip("/")
+        self._data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, self._data)
+        groups = None if geom_groups is None else {int(g) for g in geom_groups}
+        rgba = np.array(model.geom_rgba, dtype=np.float64)
+        matid = np.asarray(model.geom_matid)
+        for g in range(model.ngeom):
+            if matid[g] >= 0 and tuple(rgba[g]) == _DEFAULT_RGBA:
+                rgba[g] = model.mat_rgba[matid[g]]
+        drawn = rgba[:, 3] > 0
+        if groups is not None:
+            drawn &= np.isin(np.asarray(model.geom_group), sorted(groups))
+        self._geoms = np.flatnonzero(drawn)
+        self._rgba = rgba
+        self.n_geoms = 0
+        self.skipped = 0
+        bodies = sorted({int(model.geom_bodyid[g]) for g in self._geoms})
+        names = [model.body(b).name or f"body{b}" for b in range(model.nbody)]
+        used: dict[str, int] = {}
+        self.body_entities: dict[int, str] = {}
+        for b in bodies:
+            part = names[b]
+            if part in used:  # MuJoCo allows unnamed bodies; keep paths unique
+                part = f"{part}_{b}"
+            used[part] = b
+            self.body_entities[b] = f"{self.root}/bodies/{_entity_part(part)}"
+        weld = np.asarray(model.body_weldid)
+        self.moving: list[int] = [b for b in bodies if b != 0 and weld[b] != 0]
+
+    # ----- geometry --------------------------------------------------------------------------
+    def log_geometry(self, rec: Any) -> int:
+        """Log every drawn geom (static) and the poses of the bodies that never move.
+
+        Returns the number of geoms drawn.
+        """
+        import rerun as rr
+
+        mj = self._mj
+        m = self.model
+        G = mj.mjtGeom
+        kinds = {
+            int(G.mjGEOM_PLANE): "plane",
+            int(G.mjGEOM_BOX): "box",
+            int(G.mjGEOM_SPHERE): "sphere",
+            int(G.mjGEOM_ELLIPSOID): "ellipsoid",
+            int(G.mjGEOM_CYLINDER): "cylinder",
+            int(G.mjGEOM_CAPSULE): "capsule",
+            int(G.mjGEOM_MESH): "mesh",
+        }
+        per_body: dict[int, dict[str, list[int]]] = {}
+        for g in self._geoms:
+            kind = kinds.get(int(m.geom_type[g]))
+            if kind is None:
+                self.skipped += 1
+                continue
+            per_body.setdefault(int(m.geom_bodyid[g]), {}).setdefault(kind, []).append(int(g))
+        solid = rr.components.FillMode.Solid
+        n = 0
+        for b, groups in per_body.items():
+            ent = self.body_entities[b]
+            boxes = groups.get("box", []) + groups.get("plane", [])
+            if boxes:
+                half, centers = [], []
+                for g in boxes:
+                    s = np.array(m.geom_size[g], dtype=np.float64)
+                    p = np.array(m.geom_pos[g], dtype=np.float64)
+                    if int(m.geom_type[g]) == int(G.mjGEOM_PLANE):
+                        hx = s[0] if s[0] > 0 else INFINITE_PLANE_HALF_SIZE
+                        hy = s[1] if s[1] > 0 else INFINITE_PLANE_HALF_SIZE
+                        half.append([hx, hy, PLANE_THICKNESS / 2])
+                        down = _quat_rotate(
+                            np.array(m.geom_quat[g])[None], np.array([[0, 0, -PLANE_THICKNESS / 2]])
+                        )[0]
+                        centers.append(p + down)
+                    else:
+                        half.append(s)
+                        centers.append(p)
+                rec.log(
+                    f"{ent}/boxes",
+                    rr.Boxes3D(
+                        half_sizes=np.array(half),
+                        centers=np.array(centers),
+                        quaternions=self._quats(boxes),
+                        colors=self._colors(boxes),
+                        fill_mode=solid,
+                    ),
+                    static=True,
+                )
+            ell = groups.get("sphere", []) + groups.get("ellipsoid", [])
+            if ell:
+                half = [
+                    np.repeat(m.geom_size[g][0], 3)
+                    if int(m.geom_type[g]) == int(G.mjGEOM_SPHERE)
+                    else np.array(m.geom_size[g])
+                    for g in ell
+                ]
+                rec.log(
+                    f"{ent}/ellipsoids",
+                    rr.Ellipsoids3D(
+                        half_sizes=np.array(half),
+                        centers=np.array(m.geom_pos[ell]),
+                        quaternions=self._quats(ell),
+                        colors=self._colors(ell),
+                        fill_mode=solid,
+                    ),
+                    static=True,
+                )
+            cyl = groups.get("cylinder", [])
+            if cyl:
+                rec.log(
+                    f"{ent}/cylinders",
+                    rr.Cylinders3D(
+                        lengths=2.0 * np.array(m.geom_size[cyl, 1]),
+                        radii=np.array(m.geom_size[cyl, 0]),
+                        centers=np.array(m.geom_pos[cyl]),
+                        quaternions=self._quats(cyl),
+                        colors=self._colors(cyl),
+                        fill_mode=solid,
+                    ),
+                    static=True,
+                )
+            cap = groups.get("capsule", [])
+            if cap:
+                half_len = np.array(m.geom_size[cap, 1])
+                axis = np.zeros((len(cap), 3))
+                axis[:, 2] = half_len
+                # rerun's capsule runs from its origin along +z; MuJoCo's is centred.
+                start = np.array(m.geom_pos[cap]) - _quat_rotate(np.array(m.geom_quat[cap]), axis)
+                rec.log(
+                    f"{ent}/capsules",
+                    rr.Capsules3D(
+                        lengths=2.0 * half_len,
+                        radii=np.array(m.geom_size[cap, 0]),
+                        translations=start,
+                        quaternions=self._quats(cap),
+                        colors=self._colors(cap),
+                        fill_mode=solid,
+                    ),
+                    static=True,
+                )
+            meshes = groups.get("mesh", [])
+            if meshes:
+                self._log_meshes(rec, f"{ent}/mesh", meshes)
+            n += sum(len(v) for v in groups.values())
+        for b in self.body_entities:
+            if b != 0 and b not in self.moving:
+                rec.log(self.body_entities[b], self._transform(b), static=True)
+        self.n_geoms = n
+        return n
+
+    def _quats(self, geoms: list[int]) -> Any:
+        import rerun as rr
+
+        xyzw = _wxyz_to_xyzw(np.array(self.model.geom_quat[geoms]))
+        return [rr.Quaternion(xyzw=q) for q in xyzw]
+
+    def _colors(self, geoms: list[int]) -> NDArray[np.uint8]:
+        return np.rint(np.clip(self._rgba[geoms], 0.0, 1.0) * 255).astype(np.uint8)
+
+    def _log_meshes(self, rec: Any, entity: str, geoms: list[int]) -> None:
+        import rerun as rr
+
+        m = self.model
+        verts, faces, colors = [], [], []
+        offset = 0
+        for g in geoms:
+            mesh = int(m.geom_dataid[g])
+            va, vn = int(m.mesh_vertadr[mesh]), int(m.mesh_vertnum[mesh])
+            fa, fn = int(m.mesh_faceadr[mesh]), int(m.mesh_facenum[mesh])
+            v = np.array(m.mesh_vert[va : va + vn], dtype=np.float64)
+            q = np.broadcast_to(np.array(m.geom_quat[g], dtype=np.float64), (vn, 4))
+            verts.append(_quat_rotate(q, v) + np.array(m.geom_pos[g]))
+            faces.append(np.array(m.mesh_face[fa : fa + fn], dtype=np.uint32) + offset)
+            colors.append(np.repeat(self._colors([g]), vn, axis=0))
+            offset += vn
+        rec.log(
+            entity,
+            rr.Mesh3D(
+                vertex_positions=np.concatenate(verts),
+                triangle_indices=np.concatenate(faces),
+                vertex_colors=np.concatenate(colors),
+            ),
+            static=True,
+        )
+
+    # ----- poses -----------------------------------------------------------------------------
+    def _transform(self, b: int) -> Any:
+        import rerun as rr
+
+        d = self._data
+        return rr.Transform3D(
+            translation=np.array(d.xpos[b]),
+            quaternion=rr.Quaternion(xyzw=_wxyz_to_xyzw(np.array(d.xquat[b]))),
+        )
+
+    def set_state(self, data: Any) -> None:
+        """Copy ``qpos`` and mocap poses of ``data`` (an ``MjData`` of the same model) and
+        compute the body poses on the private data."""
+        d = self._data
+        if data is not None:
+            d.qpos[:] = data.qpos
+            if self.model.nmocap:
+                d.mocap_pos[:] = data.mocap_pos
+                d.mocap_quat[:] = data.mocap_quat
+        self._mj.mj_kinematics(self.model, d)
+
+    def body_poses(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Positions ``(n, 3)`` and quaternions ``(n, 4, wxyz)`` of the moving bodies now."""
+        d = self._data
+        return np.array(d.xpos[self.moving]), np.array(d.xquat[self.moving])
+
+    def log_poses(self, rec: Any, data: Any = None) -> None:
+        """Log the pose of every moving body in state ``data`` at the recording's current time.
+
+        ``data`` is an ``MjData`` of the same model (None: the state last set).
+        """
+        self.set_state(data)
+        for b in self.moving:
+            rec.log(self.body_entities[b], self._transform(b))
+
+
+def log_mujoco_model(
+    rec: Any,
+    model: Any,
+    data: Any = None,
+    root: str = "scene",
+    geom_groups: Sequence[int] | None = (0, 1, 2),
+) -> MujocoScene:
+    """Log ``model``'s geometry (static) and, if given, the poses in ``data`` now.
+
+    Returns the :class:`MujocoScene`, whose :meth:`~MujocoScene.log_poses` logs later states.
+    """
+    scene = MujocoScene(model, root, geom_groups)
+    scene.log_geometry(rec)
+    if data is not None:
+        scene.log_poses(rec, data)
+    return scene
