@@ -383,22 +383,23 @@ class ProcessBackend:
 
     def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
         ctx = multiprocessing.get_context(self.start_method)
+        # Workers start on demand at submit(), so the environment stays set throughout.
         with _single_threaded_children():
             pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
-        try:
-            todo = iter(items)
-            pending: set[Future[Row]] = set()
-            for item in itertools.islice(todo, self.max_pending):
-                pending.add(pool.submit(fn, item))
-            while pending:
-                done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in done:
-                    nxt = next(todo, None)
-                    if nxt is not None:
-                        pending.add(pool.submit(fn, nxt))
-                    yield fut.result()
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
+            try:
+                todo = iter(items)
+                pending: set[Future[Row]] = set()
+                for item in itertools.islice(todo, self.max_pending):
+                    pending.add(pool.submit(fn, item))
+                while pending:
+                    done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                    for fut in done:
+                        nxt = next(todo, None)
+                        if nxt is not None:
+                            pending.add(pool.submit(fn, nxt))
+                        yield fut.result()
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
 
 
 BACKENDS: tuple[str, ...] = ("process", "serial")

@@ -188,6 +188,11 @@ class Box2D:
     def __hash__(self) -> int:
         return self._hash  # type: ignore[attr-defined,no-any-return]
 
+    def __reduce__(self) -> tuple[type[Box2D], tuple[float, float, float, float, float, str]]:
+        # rebuild through __init__ so that the cached hash is recomputed (string hashes
+        # differ between processes)
+        return (type(self), (self.cx, self.cy, self.half_x, self.half_y, self.yaw, self.name))
+
     @classmethod
     def from_bounds(
         cls, xmin: float, xmax: float, ymin: float, ymax: float, name: str = ""

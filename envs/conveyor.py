@@ -2,7 +2,7 @@
 
 The paper's conveyor-belt domain (Figure 1 left; reference page "Conveyor-belt
 packing"). Boxes arrive on a belt east of the robot's start pose (0, 1.05, 0). West of
-the start, a wide entrance opens into a small first room; its 1.48 m door leads to the
+the start, a wide entrance opens into a small first room; its 1.62 m door leads to the
 larger rooms. The first two boxes are big: carrying one, the robot's base-motion disc is
 too wide for that door, so they must go into the first room, leaving space for the rest.
 
@@ -99,7 +99,7 @@ class ConveyorConfig:
     grasp_angle: float = math.pi / 2
     height_fraction: float = 0.75
     depth_fraction: float = 0.5
-    present_gap: float = 0.15
+    present_gap: float = 0.2
     length_scale: float = 0.1
     infeasible_reward: float = -2.0
     horizon: int = 20

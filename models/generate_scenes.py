@@ -24,7 +24,7 @@ Geometry (metres), after the original problems (see the reference page):
   (0, 2.5), as in the original problem; two more chairs stand by the east wall.
 * Storage rooms: the robot starts at (0, 1.05) facing the belt (x >= 1.5, y in
   [0.55, 1.55]) that carries 20 boxes. West of the start, a 2.6 m wide entrance at
-  x = -0.7 opens into the small first room (x in [-4, -0.7], y in [-1, 3]); a 1.48 m
+  x = -0.7 opens into the small first room (x in [-4, -0.7], y in [-1, 3]); a 1.62 m
   door in its south wall leads to the larger rooms (x in [-4, -0.7], y in [-7.5, -1]
   and x in [-7.4, -4], y in [-7.5, 3], joined by a 3.5 m opening). Box sizes follow the
   original's generator: the first two are big (x size U[0.6, 0.7], y size 0.7), the
@@ -377,9 +377,9 @@ def conveyor_xml() -> str:
         # east wall of the rooms with the 2.6 m entrance y in [0, 2.6] into the first room
         ("wall_east_s", -0.7, -0.7 + t, -7.5, 0.0),
         ("wall_east_n", -0.7, -0.7 + t, 2.6, 3.0),
-        # first room's south wall, door x in [-2.92, -1.44] (1.48 m)
-        ("wall_room1_s_w", -4.0, -2.92, -1.05, -0.95),
-        ("wall_room1_s_e", -1.44, -0.7, -1.05, -0.95),
+        # first room's south wall, door x in [-2.98, -1.36] (1.62 m)
+        ("wall_room1_s_w", -4.0, -2.98, -1.05, -0.95),
+        ("wall_room1_s_e", -1.36, -0.7, -1.05, -0.95),
         # first room's west wall (no door) and the wall between the larger rooms with a
         # 3.5 m opening y in [-4.5, -1.05]
         ("wall_room1_w", -4.05, -3.95, -1.05, 3.0),

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import copy
 import math
+import pickle
 import subprocess
 import sys
 import time
@@ -134,6 +136,9 @@ def test_box_hash_and_equality() -> None:
     b = Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "a")
     assert a == b and hash(a) == hash(b)
     assert a != Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "c")
+    c = pickle.loads(pickle.dumps(a))
+    assert c == a and hash(c) == hash(a) and c.__dict__ == a.__dict__
+    assert copy.deepcopy(a) == a
 
 
 @pytest.mark.parametrize(

@@ -141,7 +141,7 @@ def test_speed_table(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixt
     assert calls[0] == ("voo", 1000, 20, 2, 0) and ("voo", 5000, 20, 2, 0) in calls
     assert {c[0] for c in calls} == {"voo", "cmaes", "gp_ucb"}
     assert "| voo | 1000 | 2.000 |" in out
-    assert "| gp_ucb | 500 | error: RuntimeError: too slow today |" in out
+    assert "| gp_ucb | 100 | error: RuntimeError: too slow today |" in out
     assert main(["speed", "--cases", "voo:10", "--dim", "3"]) == 0
     assert calls[-1] == ("voo", 10, 3, 5, 0)
 

@@ -158,6 +158,10 @@ class Surrogate:
         #: Number of hyperparameter fits so far (a cost diagnostic).
         self.n_fits = 0
 
+    def is_synced(self, n: int) -> bool:
+        """Whether the GP already reflects ``n`` data points (no :meth:`sync` needed)."""
+        return n == self._n_synced and not self._dirty
+
     def invalidate(self) -> None:
         """Values changed in place (revalue): refactor at the next :meth:`sync`."""
         self._dirty = True
@@ -198,7 +202,7 @@ class Surrogate:
         n = y.size
         if n == 0:
             return self.gp
-        if n == self._n_synced and not self._dirty:
+        if self.is_synced(n):
             return self.gp
         idx = self._subset(y)
         Xs, ys = (X, y) if idx is None else (X[idx], y[idx])

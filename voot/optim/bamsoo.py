@@ -155,6 +155,8 @@ class BaMSOO(GeneratorOptimizer):
         return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
 
     def _model(self) -> GaussianProcess:
+        if self.surrogate.is_synced(self._n):
+            return self.surrogate.gp
         xs = (self.xs - self.bounds.lower) / self.bounds.width
         return self.surrogate.sync(xs, self.values)
 
