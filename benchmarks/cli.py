@@ -16,10 +16,12 @@ Progress bars go to stderr, results and tables to stdout.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
+import signal
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from voot.bench.store import Row, StoreError
@@ -87,6 +89,25 @@ def parse_range(text: str, what: str) -> list[int]:
     return list(range(start, stop))
 
 
+@contextlib.contextmanager
+def _sigterm_as_interrupt() -> Iterator[None]:
+    """Treat SIGTERM (a job scheduler, ``kill``) like Ctrl-C, so a sweep stops its workers
+    and exits cleanly; finished rows are already on disk."""
+
+    def handler(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except ValueError:  # not the main thread: leave signals alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 # ----- bbfo ----------------------------------------------------------------------------
 def _add_filters(p: argparse.ArgumentParser, defaults: bool) -> None:
     from voot.bench.sweep import PAPER_DIMS, PAPER_FUNCTIONS, PAPER_METHODS
@@ -136,9 +157,10 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
     store = ResultStore(args.out)
     backend = make_backend(args.backend, args.workers)
     print(f"results: {store.path}", file=sys.stderr)
-    summary = run_sweep(
-        specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
-    )
+    with _sigterm_as_interrupt():
+        summary = run_sweep(
+            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
+        )
     print(summary)
     return 1 if summary.failed else 0
 

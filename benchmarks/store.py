@@ -41,8 +41,10 @@ Guarantees:
   parse, raises :class:`StoreError` naming the file, before anything is written.
   Nothing in this module ever deletes or rewrites a file it did not just create.
 
-Loading reads every row file (``json.loads`` on bytes; about 1 s per 100 MB of rows);
-:func:`curves` turns rows into a NumPy array for plotting.
+Loading reads every row file (``json.loads`` on bytes; about 1 s per 100 MB of rows)
+once, then keeps an index (a cache of parsed rows; the per-step lists named in
+:data:`CURVE_KEYS` are held there as NumPy arrays); :func:`curves` turns rows into a
+NumPy array for plotting.
 """
 
 from __future__ import annotations
@@ -53,6 +55,7 @@ import hashlib
 import importlib.metadata
 import io
 import json
+import math
 import os
 import platform
 import tempfile
@@ -70,7 +73,7 @@ SCHEMA_VERSION = 1
 #: Header file name inside the store directory.
 HEADER_NAME = "voot-results.json"
 #: Cache of parsed rows (derived data, rebuilt when missing or unreadable).
-INDEX_NAME = ".index-v1.npz"
+INDEX_NAME = ".index-v2.npz"
 #: Folder with one ``<run_id>.json`` per finished run.
 RUNS_DIR = "runs"
 #: Keys every row must have.
@@ -86,8 +89,23 @@ REQUIRED_KEYS = (
 )
 #: Allowed values of a row's ``status``.
 STATUSES = ("ok", "failed")
+#: Row keys holding one number per step (per evaluation or simulation). The index keeps
+#: them as float64 arrays; ``best_so_far`` is required, the others optional (``elapsed``:
+#: seconds after every simulation; ``objects_left``: objects still to handle at the best
+#: leaf, ``null`` where unknown, which becomes NaN in arrays).
+CURVE_KEYS = ("best_so_far", "elapsed", "objects_left")
 
 Row = dict[str, Any]
+
+_EMPTY: NDArray[np.float64] = np.empty(0, dtype=np.float64)
+
+
+def _to_list(key: str, curve: NDArray[np.float64]) -> list[float | None]:
+    """A curve back as the list its row file holds (NaN -> None except in best_so_far)."""
+    values: list[float | None] = curve.tolist()
+    if key != "best_so_far" and np.isnan(curve).any():
+        values = [None if v is not None and math.isnan(v) else v for v in values]
+    return values
 
 
 class StoreError(ValueError):
@@ -329,7 +347,8 @@ class ResultStore:
     ) -> list[Row]:
         """All rows of ``kind`` (any if None) with ``status`` (any if None), in file order.
 
-        With ``arrays`` each ``best_so_far`` is a read-only float64 array (no list copy).
+        With ``arrays`` each curve (:data:`CURVE_KEYS`: ``best_so_far`` and, when present,
+        ``elapsed`` and ``objects_left``) is a read-only float64 array (no list copy).
         Rows are read through the index (see :meth:`_load_indexed`), so only row files
         written or changed since the last load are parsed.
         """
@@ -353,52 +372,57 @@ class ResultStore:
         out.sort()
         return out
 
-    def _read_index(self) -> dict[str, tuple[list[int], Row, NDArray[np.float64]]]:
-        """The index as ``name -> (stat, row without best_so_far, curve)``; empty if it is
-        missing or unreadable (it is derived data and is then rebuilt)."""
+    def _read_index(self) -> dict[str, tuple[list[int], Row, dict[str, NDArray[np.float64]]]]:
+        """The index as ``name -> (stat, row without curves, {curve key: array})``; empty if
+        it is missing or unreadable (it is derived data and is then rebuilt)."""
         path = self.path / INDEX_NAME
         try:
             with np.load(path, allow_pickle=False) as data:
                 meta = json.loads(data["meta"].tobytes())
-                offsets = data["offsets"]
-                values = data["values"]
-            if len(meta) + 1 != offsets.size or offsets[-1] != values.size:
-                return {}
-            values.setflags(write=False)
-            return {
-                m["file"]: (m["stat"], m["row"], values[offsets[i] : offsets[i + 1]])
-                for i, m in enumerate(meta)
-            }
+                columns = {k: (data[f"offsets_{k}"], data[f"values_{k}"]) for k in CURVE_KEYS}
+            for offsets, values in columns.values():
+                if len(meta) + 1 != offsets.size or offsets[-1] != values.size:
+                    return {}
+                values.setflags(write=False)
+            out = {}
+            for i, m in enumerate(meta):
+                arrays = {}
+                for k in m["curves"]:
+                    offsets, values = columns[k]
+                    arrays[k] = values[offsets[i] : offsets[i + 1]]
+                out[m["file"]] = (m["stat"], m["row"], arrays)
+            return out
         except (OSError, ValueError, KeyError, TypeError):
             return {}
 
-    def _write_index(self, entries: list[tuple[str, list[int], Row, NDArray[np.float64]]]) -> None:
-        meta = [{"file": name, "stat": stat, "row": row} for name, stat, row, _ in entries]
-        lengths = [c.size for *_, c in entries]
-        offsets = np.zeros(len(entries) + 1, dtype=np.int64)
-        np.cumsum(lengths, out=offsets[1:])
-        values = (
-            np.concatenate([c for *_, c in entries]) if entries else np.empty(0, dtype=np.float64)
-        )
+    def _write_index(
+        self, entries: list[tuple[str, list[int], Row, dict[str, NDArray[np.float64]]]]
+    ) -> None:
+        meta = [
+            {"file": name, "stat": stat, "row": row, "curves": sorted(arrays)}
+            for name, stat, row, arrays in entries
+        ]
+        columns: dict[str, NDArray[Any]] = {}
+        for k in CURVE_KEYS:
+            parts = [arrays.get(k, _EMPTY) for *_, arrays in entries]
+            offsets = np.zeros(len(entries) + 1, dtype=np.int64)
+            np.cumsum([p.size for p in parts], out=offsets[1:])
+            columns[f"offsets_{k}"] = offsets
+            columns[f"values_{k}"] = np.concatenate(parts) if parts else _EMPTY
         buf = io.BytesIO()
-        np.savez(
-            buf,
-            meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
-            offsets=offsets,
-            values=values,
-        )
+        np.savez(buf, meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **columns)
         try:
             _write_atomic(self.path / INDEX_NAME, buf.getvalue())
         except OSError:  # e.g. a read-only copy of a store: loading still works
             pass
 
     def _load_indexed(self, arrays: bool) -> list[Row]:
-        """Rows via the index ``.index-v1.npz``: a cache of every parsed row keyed by its
+        """Rows via the index (:data:`INDEX_NAME`): a cache of every parsed row keyed by its
         file's (size, mtime, inode). Unchanged files come from the cache; new or changed
         ones are parsed and validated, and the index is rewritten atomically. Row files
         stay the source of truth: deleting the index only costs one slow load."""
         index = self._read_index()
-        entries: list[tuple[str, list[int], Row, NDArray[np.float64]]] = []
+        entries: list[tuple[str, list[int], Row, dict[str, NDArray[np.float64]]]] = []
         changed = False
         for name, stat in self._scan():
             cached = index.get(name)
@@ -406,16 +430,21 @@ class ResultStore:
                 entries.append((name, list(stat), cached[1], cached[2]))
                 continue
             row = self._read_row(self.runs_path / name)
-            curve = np.asarray(row.pop("best_so_far"), dtype=np.float64)
-            curve.setflags(write=False)
-            entries.append((name, list(stat), row, curve))
+            found = {}
+            for k in CURVE_KEYS:
+                if isinstance(row.get(k), list):
+                    curve = np.array(row.pop(k), dtype=np.float64)  # None -> NaN
+                    curve.setflags(write=False)
+                    found[k] = curve
+            entries.append((name, list(stat), row, found))
             changed = True
         if changed or len(entries) != len(index):
             self._write_index(entries)
         out = []
-        for _, _, row, curve in entries:
+        for _, _, row, found in entries:
             full = dict(row)
-            full["best_so_far"] = curve if arrays else curve.tolist()
+            for k, curve in found.items():
+                full[k] = curve if arrays else _to_list(k, curve)
             out.append(full)
         return out
 

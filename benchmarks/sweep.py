@@ -353,6 +353,18 @@ def _single_threaded_children() -> Iterator[None]:
             os.environ.pop(n, None)
 
 
+def _terminate_workers(pool: ProcessPoolExecutor) -> None:
+    """Kill the pool's worker processes (their runs are lost; nothing was written)."""
+    terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
+    if callable(terminate):
+        terminate()
+        return
+    processes = getattr(pool, "_processes", None) or {}
+    for process in list(processes.values()):
+        with contextlib.suppress(Exception):
+            process.terminate()
+
+
 class ProcessBackend:
     """A local :class:`~concurrent.futures.ProcessPoolExecutor` with ``workers`` processes.
 
@@ -386,6 +398,7 @@ class ProcessBackend:
         # Workers start on demand at submit(), so the environment stays set throughout.
         with _single_threaded_children():
             pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
+            completed = False
             try:
                 todo = iter(items)
                 pending: set[Future[Row]] = set()
@@ -398,7 +411,10 @@ class ProcessBackend:
                         if nxt is not None:
                             pending.add(pool.submit(fn, nxt))
                         yield fut.result()
+                completed = True
             finally:
+                if not completed:  # interrupted: stop the runs in flight, keep no orphans
+                    _terminate_workers(pool)
                 pool.shutdown(wait=True, cancel_futures=True)
 
 

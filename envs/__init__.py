@@ -8,5 +8,9 @@ this only takes effect if MuJoCo has not been imported yet.
 import os
 import sys
 
-if sys.platform.startswith("linux") and "MUJOCO_GL" not in os.environ and not os.environ.get("DISPLAY"):
+if (
+    sys.platform.startswith("linux")
+    and "MUJOCO_GL" not in os.environ
+    and not os.environ.get("DISPLAY")
+):
     os.environ["MUJOCO_GL"] = "egl"

@@ -110,16 +110,22 @@ class ConveyorConfig:
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", check_pose("ConveyorConfig.start", self.start))
         for name in ("loading_region", "workspace"):
-            object.__setattr__(self, name, check_bounds(f"ConveyorConfig.{name}", getattr(self, name)))
+            object.__setattr__(
+                self, name, check_bounds(f"ConveyorConfig.{name}", getattr(self, name))
+            )
         object.__setattr__(
             self, "place_theta", check_range("ConveyorConfig.place_theta", self.place_theta)
         )
         if isinstance(self.n_objects, bool) or not isinstance(self.n_objects, int):
-            raise ValueError(f"ConveyorConfig.n_objects must be an int in [1, 20], got {self.n_objects!r}")
+            raise ValueError(
+                f"ConveyorConfig.n_objects must be an int in [1, 20], got {self.n_objects!r}"
+            )
         if not 1 <= self.n_objects <= 20:
             raise ValueError(f"ConveyorConfig.n_objects must be in [1, 20], got {self.n_objects}")
         for name in ("grasp_angle", "present_gap", "length_scale"):
-            object.__setattr__(self, name, check_positive(f"ConveyorConfig.{name}", getattr(self, name)))
+            object.__setattr__(
+                self, name, check_positive(f"ConveyorConfig.{name}", getattr(self, name))
+            )
         for name in ("height_fraction", "depth_fraction"):
             v = float(getattr(self, name))
             if not 0.0 <= v <= 1.0:
@@ -127,7 +133,9 @@ class ConveyorConfig:
             object.__setattr__(self, name, v)
         r = float(self.infeasible_reward)
         if not (math.isfinite(r) and r < 0):
-            raise ValueError(f"ConveyorConfig.infeasible_reward must be a finite number < 0, got {r}")
+            raise ValueError(
+                f"ConveyorConfig.infeasible_reward must be a finite number < 0, got {r}"
+            )
         object.__setattr__(self, "infeasible_reward", r)
         if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
             raise ValueError(f"ConveyorConfig.horizon must be an int >= 1, got {self.horizon!r}")
@@ -197,7 +205,9 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             "conveyor", cfg.workspace, cfg.ik, cfg.planner, render_mode, render_camera, render_size
         )
         if len(self.objects) < cfg.n_objects:  # pragma: no cover - scene drift
-            raise ValueError(f"the scene has {len(self.objects)} boxes, fewer than n_objects={cfg.n_objects}")
+            raise ValueError(
+                f"the scene has {len(self.objects)} boxes, fewer than n_objects={cfg.n_objects}"
+            )
         self.n = cfg.n_objects
         self._reset_physics()
         self.picks = tuple(self._fixed_pick(i) for i in range(self.n))
@@ -214,7 +224,11 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         cfg = self.config
         obj = self.objects[i]
         depth = float(obj.half[0])
-        rel = (BASE_HALF + cfg.present_gap + depth - float(obj.center[0]), -float(obj.center[1]), 0.0)
+        rel = (
+            BASE_HALF + cfg.present_gap + depth - float(obj.center[0]),
+            -float(obj.center[1]),
+            0.0,
+        )
         pose = compose2d(cfg.start, rel)
         grasp = side_grasp(
             obj,
@@ -226,12 +240,19 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         )
         rb = rot_z(cfg.start[2])
         ik = self.ik.solve(
-            rb.T @ (grasp.position - np.array([cfg.start[0], cfg.start[1], 0.0])), rb.T @ grasp.rotation
+            rb.T @ (grasp.position - np.array([cfg.start[0], cfg.start[1], 0.0])),
+            rb.T @ grasp.rotation,
         )
         if not ik.success or ik.q is None:
-            raise RuntimeError(f"the fixed grasp of {obj.name} is out of the arm's reach ({ik.reason})")
+            raise RuntimeError(
+                f"the fixed grasp of {obj.name} is out of the arm's reach ({ik.reason})"
+            )
         report = self.collision.check(
-            self.data.qpos, cfg.start, ik.q, held=i, object_poses={i: (pose[0], pose[1], 0.0, pose[2])}
+            self.data.qpos,
+            cfg.start,
+            ik.q,
+            held=i,
+            object_poses={i: (pose[0], pose[1], 0.0, pose[2])},
         )
         if not report.free:
             raise RuntimeError(f"the fixed grasp of {obj.name} collides: {', '.join(report.hits)}")
@@ -264,7 +285,11 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         return np.array(parts, dtype=np.float64)
 
     def _info_reset(self) -> dict[str, Any]:
-        return {"next_operator": "place", "objects_left": self.n, "next_objects": self._next_names()}
+        return {
+            "next_operator": "place",
+            "objects_left": self.n,
+            "next_objects": self._next_names(),
+        }
 
     def _next_names(self) -> list[str]:
         p = self.task.placed

@@ -21,6 +21,7 @@ Three building blocks, each deterministic (same inputs, same answer, in any proc
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import mink
@@ -38,7 +39,7 @@ from voot.envs.robot import (
     UPPER_ARM,
     Robot,
 )
-from voot.envs.scene import ROBOT_BIT, ObjectInfo, model_path
+from voot.envs.scene import ObjectInfo, model_path
 
 FloatArray = NDArray[np.float64]
 
@@ -193,9 +194,13 @@ class IKConfig:
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
                 raise ValueError(f"IKConfig.{name} must be a finite number > 0, got {v!r}")
         if not (isinstance(self.orientation_cost, int | float) and self.orientation_cost > 0):
-            raise ValueError(f"IKConfig.orientation_cost must be > 0, got {self.orientation_cost!r}")
+            raise ValueError(
+                f"IKConfig.orientation_cost must be > 0, got {self.orientation_cost!r}"
+            )
         if isinstance(self.max_iterations, bool) or not isinstance(self.max_iterations, int):
-            raise ValueError(f"IKConfig.max_iterations must be an int >= 0, got {self.max_iterations!r}")
+            raise ValueError(
+                f"IKConfig.max_iterations must be an int >= 0, got {self.max_iterations!r}"
+            )
         if self.max_iterations < 0:
             raise ValueError(f"IKConfig.max_iterations must be >= 0, got {self.max_iterations}")
         if self.solver not in IK_SOLVERS:
@@ -306,9 +311,7 @@ class ArmIK:
         viol = [self._violation(q) for q in seeds]
         order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
         best = np.clip(seeds[order[0]], self.lower, self.upper)
-        self.task.set_target(
-            mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(r), p)
-        )
+        self.task.set_target(mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(r), p))
         if viol[order[0]] == 0.0:
             pe, oe = self._errors(best)
             if pe <= cfg.position_tolerance and oe <= cfg.orientation_tolerance:
@@ -392,7 +395,9 @@ class CollisionChecker:
             if owner >= 0:
                 self._names.append(objects[owner].name)
             else:
-                self._names.append(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}")
+                self._names.append(
+                    mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+                )
 
     def check(
         self,
@@ -400,7 +405,7 @@ class CollisionChecker:
         base_pose: ArrayLike,
         arm_q: ArrayLike,
         held: int | None = None,
-        object_poses: dict[int, ArrayLike] | None = None,
+        object_poses: Mapping[int, ArrayLike] | None = None,
     ) -> CollisionReport:
         """Collisions of the robot (and ``held``) in a hypothetical configuration.
 

@@ -36,6 +36,7 @@ and :meth:`KitchenClearingEnv.action_bounds` (6-D at a pick, 3-D at a place) tel
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -50,8 +51,8 @@ from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
     ARM_REACH,
-    ROBOT_RADIUS,
     ROBOT_DISC,
+    ROBOT_RADIUS,
     CarryDisc,
     base_footprint,
     carry_disc,
@@ -137,7 +138,9 @@ class KitchenConfig:
         object.__setattr__(self, "start", check_pose("KitchenConfig.start", self.start))
         object.__setattr__(self, "goal", check_pose("KitchenConfig.goal", self.goal))
         for name in ("house", "forbidden"):
-            object.__setattr__(self, name, check_bounds(f"KitchenConfig.{name}", getattr(self, name)))
+            object.__setattr__(
+                self, name, check_bounds(f"KitchenConfig.{name}", getattr(self, name))
+            )
         for name in (
             "grasp_angle",
             "height_fraction",
@@ -147,16 +150,24 @@ class KitchenConfig:
             "facing_offset",
             "place_theta",
         ):
-            object.__setattr__(self, name, check_range(f"KitchenConfig.{name}", getattr(self, name)))
+            object.__setattr__(
+                self, name, check_range(f"KitchenConfig.{name}", getattr(self, name))
+            )
         for name in ("robot_radius", "max_place_reward", "max_place_penalty"):
-            object.__setattr__(self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name)))
+            object.__setattr__(
+                self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name))
+            )
         for name in ("grasp_standoff", "pick_reward", "goal_bonus"):
             object.__setattr__(
-                self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True)
+                self,
+                name,
+                check_positive(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True),
             )
         r = float(self.infeasible_reward)
         if not (math.isfinite(r) and r < 0):
-            raise ValueError(f"KitchenConfig.infeasible_reward must be a finite number < 0, got {r}")
+            raise ValueError(
+                f"KitchenConfig.infeasible_reward must be a finite number < 0, got {r}"
+            )
         object.__setattr__(self, "infeasible_reward", r)
         if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
             raise ValueError(f"KitchenConfig.horizon must be an int >= 1, got {self.horizon!r}")
@@ -267,7 +278,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         w = self.path.waypoints[:, :2]
         best, best_s, s0 = math.inf, 0.0, 0.0
         p = np.array([box.cx, box.cy])
-        for a, b in zip(w[:-1], w[1:], strict=True):
+        for a, b in itertools.pairwise(w):
             d = b - a
             seg = float(np.hypot(*d))
             t = 0.0 if seg == 0 else float(np.clip((p - a) @ d / seg**2, 0.0, 1.0))
@@ -409,7 +420,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             return self._infeasible("pick", obj, "outside region: the robot leaves the house")
         pose = self.object_pose(obj)
         grasp = side_grasp(
-            self.objects[obj], pose, float(base[2]), params[0], params[1], params[2], cfg.grasp_standoff
+            self.objects[obj],
+            pose,
+            float(base[2]),
+            params[0],
+            params[1],
+            params[2],
+            cfg.grasp_standoff,
         )
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
@@ -466,7 +483,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             return self._infeasible("place", obj, "outside region: the object leaves the house")
         if rect_overlaps(new_box, cfg.forbidden):
             self.last_timing = StepTiming()
-            return self._infeasible("place", obj, "forbidden room: the object is in the rooms behind the door")
+            return self._infeasible(
+                "place", obj, "forbidden room: the object is in the rooms behind the door"
+            )
         base = compose2d((x, y, theta), inverse2d(t.held_rel))
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
@@ -498,7 +517,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         cleared = len(on_path) < len(t.on_path)
         length = float(base_path.length)
         if cleared:
-            reward = cfg.max_place_reward if length <= 0 else min(1.0 / length, cfg.max_place_reward)
+            reward = (
+                cfg.max_place_reward if length <= 0 else min(1.0 / length, cfg.max_place_reward)
+            )
         else:
             reward = max(-length, -cfg.max_place_penalty)
         self.task = replace(
@@ -527,12 +548,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             return
         w = self.path.waypoints
         r = self.config.robot_radius
-        for a, b in zip(w[:-1], w[1:], strict=True):
-            add_marker_segment(scene, (a[0], a[1], 0.004), (b[0], b[1], 0.004), 2 * r, (0.2, 0.55, 1.0, 0.25))
+        for a, b in itertools.pairwise(w):
+            add_marker_segment(
+                scene, (a[0], a[1], 0.01), (b[0], b[1], 0.01), 2 * r, (0.2, 0.55, 1.0, 0.3)
+            )
         xmin, xmax, ymin, ymax = self.config.forbidden
         add_marker_box(
             scene,
-            (0.5 * (xmin + xmax), 0.5 * (ymin + ymax), 0.004),
+            (0.5 * (xmin + xmax), 0.5 * (ymin + ymax), 0.01),
             (0.5 * (xmax - xmin), 0.5 * (ymax - ymin), 0.002),
             0.0,
             (1.0, 0.1, 0.1, 0.12),

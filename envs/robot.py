@@ -20,7 +20,6 @@ one of the two big ones (see :mod:`voot.envs.conveyor`).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mujoco
@@ -104,9 +103,7 @@ class Robot:
         self.bodies = tuple(bodies)
         self.geoms = tuple(int(g) for g in np.flatnonzero(np.isin(model.geom_bodyid, bodies)))
         grip = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) for n in GRIPPER_BODIES]
-        self.gripper_geoms = tuple(
-            int(g) for g in np.flatnonzero(np.isin(model.geom_bodyid, grip))
-        )
+        self.gripper_geoms = tuple(int(g) for g in np.flatnonzero(np.isin(model.geom_bodyid, grip)))
         self.grasp_site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "grasp")
         self.arm_range = np.array(
             [
@@ -186,20 +183,25 @@ def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
             base frame.
     """
     square = BASE_HALF * np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
-    pts = np.concatenate([square, np.asarray(held_corners_in_base, dtype=np.float64).reshape(-1, 2)])
+    pts = np.concatenate(
+        [square, np.asarray(held_corners_in_base, dtype=np.float64).reshape(-1, 2)]
+    )
     centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
     far = float(np.max(np.hypot(pts[:, 0] - centre[0], pts[:, 1] - centre[1])))
     margin = ROBOT_RADIUS - math.sqrt(2.0) * BASE_HALF
     return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
-def compose2d(a: Sequence[float], b: Sequence[float]) -> FloatArray:
+def compose2d(a: ArrayLike, b: ArrayLike) -> FloatArray:
     """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses."""
+    a = np.asarray(a, dtype=np.float64)
+    b = np.asarray(b, dtype=np.float64)
     c, s = math.cos(a[2]), math.sin(a[2])
     return np.array([a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2]])
 
 
-def inverse2d(a: Sequence[float]) -> FloatArray:
+def inverse2d(a: ArrayLike) -> FloatArray:
     """SE(2) inverse of ``(x, y, theta)``."""
+    a = np.asarray(a, dtype=np.float64)
     c, s = math.cos(a[2]), math.sin(a[2])
     return np.array([-c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]])

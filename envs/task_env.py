@@ -37,6 +37,7 @@ from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.feasibility import ArmIK, CollisionChecker, IKConfig, object_pose
 from voot.envs.robot import TUCK, Robot
 from voot.envs.scene import load_model, movable_objects, object_footprint, static_footprints
+from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
@@ -166,7 +167,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         render_size: ``(width, height)`` of rendered images.
     """
 
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": list(RENDER_MODES), "render_fps": 2}
+    metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 2}  # noqa: RUF012
     #: Signature of the physics part of snapshots.
     STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
 
@@ -185,10 +186,14 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
                 f"render_mode must be None or one of {', '.join(RENDER_MODES)}; got {render_mode!r}"
             )
         if render_camera not in CAMERAS:
-            raise ValueError(f"render_camera must be one of {', '.join(CAMERAS)}; got {render_camera!r}")
+            raise ValueError(
+                f"render_camera must be one of {', '.join(CAMERAS)}; got {render_camera!r}"
+            )
         w, h = (int(v) for v in render_size)
         if not (16 <= w <= 1280 and 16 <= h <= 960):
-            raise ValueError(f"render_size must be (width, height) within 16..1280 x 16..960, got {render_size}")
+            raise ValueError(
+                f"render_size must be (width, height) within 16..1280 x 16..960, got {render_size}"
+            )
         self.render_mode = render_mode
         self.render_camera = render_camera
         self.render_size = (w, h)
@@ -220,7 +225,18 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     def _info_reset(self) -> dict[str, Any]:
         raise NotImplementedError
 
+    def action_bounds(self) -> Bounds:
+        """The current operator's action box in normalised units (planner's view)."""
+        raise NotImplementedError
+
     # ----- actions -------------------------------------------------------------------------
+    @property
+    def action_dim(self) -> int:
+        """Length of the action vector."""
+        shape = self.action_space.shape
+        assert shape is not None
+        return int(shape[0])
+
     def _validate_action(self, action: ArrayLike) -> tuple[FloatArray, bool]:
         """The action as float64 clipped to the space, and whether clipping happened."""
         space = self.action_space
@@ -262,13 +278,18 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         mujoco.mj_getState(self.model, self.data, physics, self.STATE_SIGNATURE)
         physics.setflags(write=False)
         return EnvState(
-            physics, self.STATE_SIGNATURE, self.task, copy.deepcopy(self.np_random.bit_generator.state)
+            physics,
+            self.STATE_SIGNATURE,
+            self.task,
+            copy.deepcopy(self.np_random.bit_generator.state),
         )
 
     def set_state(self, state: EnvState[TaskT]) -> None:
         """Return to the snapshot ``state`` exactly."""
         if not isinstance(state, EnvState):
-            raise ValueError(f"state must be an EnvState from get_state(), got {type(state).__name__}")
+            raise ValueError(
+                f"state must be an EnvState from get_state(), got {type(state).__name__}"
+            )
         if state.signature != self.STATE_SIGNATURE or state.physics.shape != (self._state_size,):
             raise ValueError(
                 f"state does not fit this environment: signature {state.signature} and "

@@ -242,17 +242,23 @@ def kitchen_xml() -> str:
     t = 0.1  # wall thickness (outside the interior bounds)
     out = [_header("voot_kitchen", 12.0, (2.0, 0.0, 0.5))]
     out.append("  <worldbody>\n")
-    out.append('    <light name="sun" pos="2 0 9" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n')
-    out.append('    <geom name="floor" class="decor" type="plane" size="4.6 4.6 0.1" pos="2 0 0" material="floor"/>\n')
-    out.append('    <geom name="kitchen_floor" class="decor" type="box" size="2.4 2.0 0.001" pos="0.4 1 0.001" material="tile"/>\n')
+    out.append(
+        '    <light name="sun" pos="2 0 9" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n'
+    )
+    out.append(
+        '    <geom name="floor" class="decor" type="plane" size="4.6 4.6 0.1" pos="2 0 0" material="floor"/>\n'
+    )
+    out.append(
+        '    <geom name="kitchen_floor" class="decor" type="box" size="2.4 2.0 0.001" pos="0.4 1 0.001" material="tile"/>\n'
+    )
     out.append(
         _cameras(
             top_center=(2.0, 0.0),
             top_height=12.0,
             top_extent=8.6,
-            persp_pos=(-5.0, -8.6, 7.4),
-            persp_target=(1.5, 0.2, 0.0),
-            persp_fovy=50.0,
+            persp_pos=(-3.9, -7.0, 6.2),
+            persp_target=(1.6, 0.3, 0.0),
+            persp_fovy=47.0,
         )
     )
     # outer walls: interior x in [-2, 6], y in [-4, 4]
@@ -273,29 +279,55 @@ def kitchen_xml() -> str:
     for name, x0, x1, y0, y1 in walls:
         out.append("    " + _wall(name, x0, x1, y0, y1, wall_h) + "\n")
     # kitchen furniture
-    out.append("    " + Rect(-2, 2.0, 3.35, 4.0, 0.86).geom("counter_north", "scene", "counter") + "\n")
-    out.append("    " + Rect(-2, -1.35, 1.0, 3.35, 0.86).geom("counter_west", "scene", "counter") + "\n")
+    out.append(
+        "    " + Rect(-2, 2.0, 3.35, 4.0, 0.86).geom("counter_north", "scene", "counter") + "\n"
+    )
+    out.append(
+        "    " + Rect(-2, -1.35, 1.0, 3.35, 0.86).geom("counter_west", "scene", "counter") + "\n"
+    )
     out.append("    " + Rect(2.0, 2.8, 3.3, 4.0, 1.8).geom("fridge", "scene", "steel") + "\n")
-    out.append('    <geom name="counter_north_top" class="decor" type="box" size="2.0 0.34 0.02" pos="0 3.67 0.88" material="counter_top"/>\n')
-    out.append('    <geom name="counter_west_top" class="decor" type="box" size="0.34 1.19 0.02" pos="-1.67 2.16 0.88" material="counter_top"/>\n')
-    out.append('    <geom name="sink_basin" class="decor" type="box" size="0.32 0.22 0.005" pos="0 3.66 0.902" material="steel"/>\n')
-    out.append('    <geom name="sink_faucet" class="decor" type="cylinder" size="0.02 0.12" pos="0 3.92 1.02" material="steel"/>\n')
-    out.append('    <geom name="sink_spout" class="decor" type="capsule" fromto="0 3.92 1.14 0 3.78 1.14" size="0.018" material="steel"/>\n')
-    out.append('    <geom name="stove" class="decor" type="box" size="0.28 0.3 0.005" pos="-1.67 2.6 0.902" material="belt"/>\n')
-    out.append('    <geom name="fridge_handle" class="decor" type="box" size="0.01 0.01 0.3" pos="2.1 3.28 1.1" material="rail"/>\n')
+    out.append(
+        '    <geom name="counter_north_top" class="decor" type="box" size="2.0 0.34 0.02" pos="0 3.67 0.88" material="counter_top"/>\n'
+    )
+    out.append(
+        '    <geom name="counter_west_top" class="decor" type="box" size="0.34 1.19 0.02" pos="-1.67 2.16 0.88" material="counter_top"/>\n'
+    )
+    out.append(
+        '    <geom name="sink_basin" class="decor" type="box" size="0.32 0.22 0.005" pos="0 3.66 0.902" material="steel"/>\n'
+    )
+    out.append(
+        '    <geom name="sink_faucet" class="decor" type="cylinder" size="0.02 0.12" pos="0 3.92 1.02" material="steel"/>\n'
+    )
+    out.append(
+        '    <geom name="sink_spout" class="decor" type="capsule" fromto="0 3.92 1.14 0 3.78 1.14" size="0.018" material="steel"/>\n'
+    )
+    out.append(
+        '    <geom name="stove" class="decor" type="box" size="0.28 0.3 0.005" pos="-1.67 2.6 0.902" material="belt"/>\n'
+    )
+    out.append(
+        '    <geom name="fridge_handle" class="decor" type="box" size="0.01 0.01 0.3" pos="2.1 3.28 1.1" material="rail"/>\n'
+    )
     out.append(_table("side_table", Rect(2.15, 2.8, 1.2, 2.4, 0.75)))
     # hall and rooms furniture
     out.append("    " + Rect(1.3, 2.8, -4.0, -3.25, 0.75).geom("sofa", "scene", "fabric") + "\n")
     out.append("    " + Rect(4.2, 6.0, 2.2, 4.0, 0.5).geom("bed", "scene", "bed") + "\n")
-    out.append("    " + Rect(2.95, 3.35, 2.8, 3.9, 1.6).geom("shelf_n", "scene", "dark_wood") + "\n")
+    out.append(
+        "    " + Rect(2.95, 3.35, 2.8, 3.9, 1.6).geom("shelf_n", "scene", "dark_wood") + "\n"
+    )
     out.append(_table("desk", Rect(4.8, 6.0, -4.0, -3.2, 0.75)))
-    out.append("    " + Rect(2.95, 3.35, -3.8, -1.5, 1.8).geom("bookcase", "scene", "dark_wood") + "\n")
+    out.append(
+        "    " + Rect(2.95, 3.35, -3.8, -1.5, 1.8).geom("bookcase", "scene", "dark_wood") + "\n"
+    )
     out.append("    " + Rect(5.3, 5.9, -1.0, -0.1, 0.45).geom("armchair", "scene", "fabric") + "\n")
     # start and goal markers (decoration)
     sx, sy, _ = KITCHEN_START
     gx, gy, _ = KITCHEN_GOAL
-    out.append(f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n')
-    out.append(f'    <geom name="goal_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(gx, gy, 0.003)}" rgba="1 0.8 0.1 1"/>\n')
+    out.append(
+        f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n'
+    )
+    out.append(
+        f'    <geom name="goal_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(gx, gy, 0.003)}" rgba="1 0.8 0.1 1"/>\n'
+    )
     # obstacles on the path (s along the path from the start, d to its left)
     on_path = [
         ("obj_box1", "box", 0.70, -0.40, 0.3, (0.40, 0.40, 0.60)),
@@ -357,16 +389,20 @@ def conveyor_xml() -> str:
     t = 0.1
     out = [_header("voot_conveyor", 16.0, (-1.5, -2.2, 0.5))]
     out.append("  <worldbody>\n")
-    out.append('    <light name="sun" pos="-2 -2 10" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n')
-    out.append('    <geom name="floor" class="decor" type="plane" size="16.5 5.6 0.1" pos="8.5 -2.2 0" material="floor"/>\n')
+    out.append(
+        '    <light name="sun" pos="-2 -2 10" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n'
+    )
+    out.append(
+        '    <geom name="floor" class="decor" type="plane" size="16.5 5.6 0.1" pos="8.5 -2.2 0" material="floor"/>\n'
+    )
     out.append(
         _cameras(
             top_center=(-2.0, -2.25),
             top_height=15.0,
             top_extent=11.0,
-            persp_pos=(8.0, -12.5, 10.0),
-            persp_target=(-1.6, -1.8, 0.0),
-            persp_fovy=50.0,
+            persp_pos=(5.5, -11.5, 10.5),
+            persp_target=(-2.2, -1.9, 0.0),
+            persp_fovy=46.0,
         )
     )
     walls = [
@@ -392,15 +428,27 @@ def conveyor_xml() -> str:
     # the belt: a raised frame (static) with a dark belt surface and rails (decoration)
     belt_x0, belt_x1 = 1.5, 25.0
     bx, bhx = 0.5 * (belt_x0 + belt_x1), 0.5 * (belt_x1 - belt_x0)
-    out.append(f'    <geom name="belt_frame" class="scene" type="box" material="rail" size="{_v(bhx, 0.5, (BELT_TOP - 0.01) / 2)}" pos="{_v(bx, 1.05, (BELT_TOP - 0.01) / 2)}"/>\n')
-    out.append(f'    <geom name="belt_surface" class="decor" type="box" material="belt" size="{_v(bhx, 0.45, 0.005)}" pos="{_v(bx, 1.05, BELT_TOP - 0.005)}"/>\n')
+    out.append(
+        f'    <geom name="belt_frame" class="scene" type="box" material="rail" size="{_v(bhx, 0.5, (BELT_TOP - 0.01) / 2)}" pos="{_v(bx, 1.05, (BELT_TOP - 0.01) / 2)}"/>\n'
+    )
+    out.append(
+        f'    <geom name="belt_surface" class="decor" type="box" material="belt" size="{_v(bhx, 0.45, 0.005)}" pos="{_v(bx, 1.05, BELT_TOP - 0.005)}"/>\n'
+    )
     for side, y in (("s", 0.53), ("n", 1.57)):
-        out.append(f'    <geom name="belt_rail_{side}" class="decor" type="box" material="rail" size="{_v(bhx, 0.02, 0.04)}" pos="{_v(bx, y, BELT_TOP + 0.02)}"/>\n')
+        out.append(
+            f'    <geom name="belt_rail_{side}" class="decor" type="box" material="rail" size="{_v(bhx, 0.02, 0.04)}" pos="{_v(bx, y, BELT_TOP + 0.02)}"/>\n'
+        )
     # a few static shelves along the walls of the larger rooms
-    out.append("    " + Rect(-7.4, -6.9, -7.5, -5.0, 1.8).geom("shelf_sw", "scene", "dark_wood") + "\n")
-    out.append("    " + Rect(-2.5, -0.7, -7.5, -7.0, 1.8).geom("shelf_s", "scene", "dark_wood") + "\n")
+    out.append(
+        "    " + Rect(-7.4, -6.9, -7.5, -5.0, 1.8).geom("shelf_sw", "scene", "dark_wood") + "\n"
+    )
+    out.append(
+        "    " + Rect(-2.5, -0.7, -7.5, -7.0, 1.8).geom("shelf_s", "scene", "dark_wood") + "\n"
+    )
     sx, sy, _ = CONVEYOR_START
-    out.append(f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n')
+    out.append(
+        f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n'
+    )
     for i, size in enumerate(conveyor_box_sizes()):
         material = "big_box" if i < 2 else "cardboard"
         x = BELT_FIRST_X + BELT_SPACING * i

@@ -208,10 +208,6 @@ def test_revalue_semantics() -> None:
         opt.revalue(0, math.nan)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="base.revalue keeps the old best on a tie with an earlier point (not first argmax)",
-)
 def test_revalue_tie_gives_first_argmax() -> None:
     opt = _Counter(Bounds.cube(0.0, 1.0, 1))
     for v in (1.0, 3.0):

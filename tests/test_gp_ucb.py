@@ -30,7 +30,7 @@ def test_registered_with_paper_grid() -> None:
     cfg = make_config("gp_ucb", zeta=5.0)
     assert isinstance(cfg, GPUCBConfig)
     assert GPUCBConfig.paper_grid() == {"zeta": [0.01, 0.1, 1.0, 5.0, 10.0, 30.0]}
-    assert cfg.n_candidates == 10_000 and cfg.max_points is None
+    assert cfg.n_candidates == 10_000 and cfg.max_points == 1000
 
 
 def test_deterministic_for_a_seed() -> None:

@@ -53,3 +53,9 @@ def test_asks_do_not_tell(monkeypatch: pytest.MonkeyPatch) -> None:
 def test_bad_arguments(args: tuple, match: str) -> None:
     with pytest.raises(ValueError, match=match):
         measure_ask_cost(*args)
+
+
+def test_custom_timer() -> None:
+    ticks = iter(range(100))
+    seconds = measure_ask_cost("random", 3, 2, 4, 0, timer=lambda: float(next(ticks)))
+    assert seconds == 0.25  # one tick between start and end, over 4 asks

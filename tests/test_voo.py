@@ -88,6 +88,7 @@ def _proposals_at_all_scales(opt: VOO, rng: np.random.Generator, m: int) -> np.n
 def test_fast_test_matches_brute_force(make) -> None:  # type: ignore[no-untyped-def]
     opt = make()
     rng = np.random.default_rng(0)
+    sorted_used = []
     for step in range(3):
         cell = opt._best_cell()
         xs, b = opt.xs.copy(), opt.best_index
@@ -99,11 +100,39 @@ def test_fast_test_matches_brute_force(make) -> None:  # type: ignore[no-untyped
         # decisions agree except at floating-point ties (none expected here)
         np.testing.assert_array_equal(fast, brute)
         np.testing.assert_array_equal(exact, brute)
+        # batches ordered like tries (shrinking radius): the first inside is found
+        for _ in range(40):
+            batch = _proposals_at_all_scales(opt, rng, 30)
+            batch = batch[np.argsort(-np.linalg.norm(batch, axis=1))]
+            inside = [brute_in_cell(xs, b, xs[b] + qi) for qi in batch]
+            expected = inside.index(True) if any(inside) else -1
+            assert opt._first_inside(cell, batch) == expected
+        sorted_used.append(cell.sorted_n > 0)
         # tell more points (and sometimes a new best) and test the updated cache again
         for x in xs[b] + q[:5] * 0.3:
             opt.tell(x, float(opt.values.min()) - 1.0)
         if step == 1:
             opt.tell(xs[b] + q[0] * 1e-3, opt.best_value + 1.0)
+    if opt.n_told > 2 * NEIGHBOURS:  # the exact check used the sorted structure
+        assert any(sorted_used)
+
+
+def test_rejection_by_a_point_beyond_the_neighbour_tiers() -> None:
+    # x* = 0 with 400 close points on its +e1 side and one far point at -e1: a proposal
+    # towards -e1 passes every cached-neighbour filter and only the far point rejects it
+    d = 3
+    box = Bounds.cube(-2.0, 2.0, d)
+    rng = np.random.default_rng(0)
+    close = 1e-3 * np.abs(rng.standard_normal((400, d)))
+    close[:, 0] += 1e-3
+    far = -np.eye(d)[0]
+    pts = np.vstack([np.zeros(d), close, far])
+    opt = told(pts, np.r_[1.0, np.zeros(401)], box)
+    cell = opt._best_cell()
+    q = np.array([[-0.6, 0.0, 0.0], [-0.4, 0.0, 0.0]])
+    assert [brute_in_cell(opt.xs, 0, x) for x in q] == [False, True]
+    assert opt._first_inside(cell, q[:1]) == -1
+    assert opt._first_inside(cell, q) == 1
 
 
 def test_neighbour_cache_invariants() -> None:

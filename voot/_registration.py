@@ -11,6 +11,9 @@ ENV_IDS: dict[str, str] = {
     "voot/ShekelChain-v0": "voot.tree.chain_env:ShekelChainEnv",
     "voot/GriewankChain-v0": "voot.tree.chain_env:GriewankChainEnv",
     "voot/RastriginChain-v0": "voot.tree.chain_env:RastriginChainEnv",
+    # MuJoCo benchmark domains (voot.envs; need the [envs] extra); keyword: config=...
+    "voot/KitchenClearing-v0": "voot.envs.kitchen:KitchenClearingEnv",
+    "voot/ConveyorPacking-v0": "voot.envs.conveyor:ConveyorPackingEnv",
 }
 
 

@@ -74,16 +74,17 @@ class Bounds:
 
     @classmethod
     def coerce(cls, bounds: Bounds | Sequence[Sequence[float]] | ArrayLike) -> Bounds:
-        """Accept a ``Bounds``, a ``(lower, upper)`` pair, or a ``(d, 2)`` array."""
+        """Accept a ``Bounds``, a ``(d, 2)`` array of ``[low, high]`` rows, or a
+        ``(lower, upper)`` pair of vectors (d != 2; a (2, 2) array is read as rows)."""
         if isinstance(bounds, Bounds):
             return bounds
         arr = np.asarray(bounds, dtype=np.float64)
         if arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2:
             return cls(arr[0], arr[1])
         if arr.ndim == 2 and arr.shape[1] == 2:
+            # (d, 2) rows of [low, high], scipy's convention; this also decides the
+            # ambiguous 2-D case (2, 2): pass Bounds(lower, upper) for a 2-D pair.
             return cls(arr[:, 0], arr[:, 1])
-        if arr.ndim == 2 and arr.shape == (2, 2):
-            return cls(arr[0], arr[1])
         raise ValueError(
             "bounds must be a Bounds, a (lower, upper) pair of equal-length vectors, or a"
             f" (d, 2) array of [low, high] rows; got an array of shape {arr.shape}"
@@ -248,7 +249,7 @@ class Optimizer(ABC):
         v = check_value(value)
         self._values[index] = v
         self._revalue(index, v)
-        if index == self._best_index or v > self._values[self._best_index]:
+        if index == self._best_index or v >= self._values[self._best_index]:
             self._best_index = int(np.argmax(self._values[: self._n]))
 
     @property

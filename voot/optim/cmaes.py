@@ -285,11 +285,12 @@ class CMAES(Optimizer):
         maxiter: float | None,
     ) -> None:
         cfg = self.config
-        handler = cma.BoundTransform if cfg.bound_handling is BoundHandling.TRANSFORM else None
+        transform = cfg.bound_handling is BoundHandling.TRANSFORM
+        handler = cma.BoundTransform if transform else cma.BoundPenalty
         opts: dict[str, Any] = dict(cfg.pycma_options or {})
         opts.update(
             bounds=[0.0, 1.0],
-            BoundaryHandler=handler or cma.BoundPenalty,
+            BoundaryHandler=handler,
             randn=_Randn(self.rng.spawn(1)[0]),
             seed=math.nan,
             verbose=-9,

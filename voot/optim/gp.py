@@ -295,6 +295,9 @@ class GaussianProcess:
     ) -> GPHyperparameters:
         """Maximise the log marginal likelihood over the hyperparameters, then refactor.
 
+        Each start runs L-BFGS-B for at most ``maxiter`` iterations and ``2 * maxiter``
+        likelihood evaluations.
+
         Starts: the current hyperparameters (``warm_start``; before the first fit they are
         the defaults with the length scale set to the median pairwise distance), plus
         ``restarts`` points drawn log-uniformly in the bounds from ``rng``. The best
@@ -333,7 +336,7 @@ class GaussianProcess:
                     jac=True,
                     method="L-BFGS-B",
                     bounds=bounds,
-                    options={"maxiter": int(maxiter)},
+                    options={"maxiter": int(maxiter), "maxfun": 2 * int(maxiter)},
                 )
             except (ValueError, np.linalg.LinAlgError):  # pragma: no cover - defensive
                 continue
@@ -348,11 +351,15 @@ class GaussianProcess:
     def predict(
         self, Xq: ArrayLike, *, return_std: bool = True, chunk: int = 4096
     ) -> tuple[FloatArray, FloatArray]:
-        """Posterior mean and standard deviation of the latent function at ``Xq (m, d)``.
+        r"""Posterior mean and standard deviation of the latent function at ``Xq (m, d)``.
 
         With no data it returns the prior (mean ``m`` = 0, std ``sqrt(sf2)``). Work is
         chunked over queries to bound memory at ``chunk * n`` floats. ``return_std=False``
         skips the ``O(m n^2)`` variance (std is then returned as zeros).
+
+        Cross-correlations below :math:`e^{-40} \approx 4\cdot10^{-18}` are treated as 0, so
+        a query far from all data (common in high dimensions with short length scales)
+        costs no ``exp`` and no triangular solve: it gets the prior exactly.
         """
         Q = np.asarray(Xq, dtype=np.float64).reshape(-1, self.dim)
         m = Q.shape[0]

@@ -28,6 +28,7 @@ best cell shrinks geometrically with the evaluations spent in it.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -121,6 +122,14 @@ NEIGHBOURS = 64
 #: Number of x*'s nearest points (from a sorted copy, built on demand) that proposals
 #: surviving the first test are filtered with, before the exact test (speed only).
 SECOND_TIER = 256
+
+
+@functools.lru_cache(maxsize=8)
+def _shrink_table(cap: int) -> FloatArray:
+    """Read-only column of :math:`e^{-k}`, k = 1..cap: the shrink factor of try k."""
+    table = np.exp(-np.arange(1.0, cap + 1.0))[:, None]
+    table.setflags(write=False)
+    return table
 
 
 class _BestCell:
@@ -311,9 +320,7 @@ class VOO(Optimizer):
         # proposals of the first batch of an ask: grows to cover the try that was
         # accepted last time, so that one matrix product usually settles an ask
         self._first_batch = self.config.batch_size
-        cap = max(self.config.max_tries, self.config.uniform_max_tries)
-        #: e^{-k} for tries k = 1..cap, as a column to scale a batch of proposals
-        self._shrink = np.exp(-np.arange(1.0, cap + 1.0))[:, None]
+        self._shrink = _shrink_table(max(self.config.max_tries, self.config.uniform_max_tries))
 
     # ----- hooks --------------------------------------------------------------------
     def _ask(self) -> FloatArray:
@@ -379,10 +386,11 @@ class VOO(Optimizer):
         """Draw one point from the best Voronoi cell (with the configured sampler).
 
         Tries are drawn in batches; a batch is tested against x*'s cached nearest
-        neighbours with one matrix product, and the first survivor is checked exactly
-        against every point that could reject it. Accept/reject decisions are those of
-        the brute-force test (up to floating-point ties), so the batching changes the
-        random stream but not the distribution of the returned point.
+        neighbours with one matrix product, survivors against a larger set of near
+        points, and the first remaining one exactly against every point that could
+        reject it. Accept/reject decisions are those of the brute-force test (up to
+        floating-point ties), so the batching changes the random stream but not the
+        distribution of the returned point.
         """
         if self._n == 0:
             raise ValueError("sample_best_cell needs at least one told point")

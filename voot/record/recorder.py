@@ -28,9 +28,9 @@ index of the best plan):
 * ``scene/plan/{base_pose,placement}``: the executed action's pose at each plan step;
 * a default blueprint (:func:`voot.record.blueprint.default_blueprint`).
 
-Cost: scalars are buffered and sent as columns; sample drawings grow with the node's
-action count and are logged every ``samples_every`` simulations; the tree graph is
-logged once. See :mod:`voot.record.overhead` for measured figures.
+Cost: scalars and sample drawings are buffered and sent as columns every
+``flush_every`` simulations (a drawing grows with the node's action count; one is made
+every ``samples_every`` simulations); the tree graph is logged once. See :mod:`voot.record.overhead` for measured figures.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ from voot.record.blueprint import (
 )
 from voot.record.config import ROOT, RecorderConfig
 from voot.record.mujoco_scene import MujocoScene, find_mujoco
-from voot.record.samples import BASE_POSE_KEY, PLACEMENT_KEY, NodeSamples, log_node_samples, pose_of
+from voot.record.samples import BASE_POSE_KEY, PLACEMENT_KEY, NodeSamples, SampleLog, pose_of
 from voot.record.tree_graph import build_tree_graph, log_tree
 from voot.tree.mcts import MCTS, PlanResult
 from voot.tree.node import Node
@@ -161,6 +161,16 @@ class SearchRecorder:
         self._best: list[float] = []
         self._nodes: list[int] = []
         self._samples: dict[str, NodeSamples] = {}
+        self._sample_log = SampleLog(
+            scene_root=SCENE,
+            plot_root=SAMPLES_2D,
+            timeline=SEARCH_TIMELINE,
+            height=cfg.floor_height,
+            arrow_length=cfg.arrow_length,
+            point_radius=cfg.point_radius,
+            labels=cfg.sample_labels,
+            infeasible_color=cfg.infeasible_color,
+        )
         self._drawn: dict[str, str] = {}
         self._scan_from = 0
         self._last_i = -1
@@ -182,10 +192,10 @@ class SearchRecorder:
         curve = mcts.best_return_curve
         self._best.append(curve[-1] if curve else mcts.best_return)
         self._nodes.append(len(mcts.nodes))
-        if len(self._sims) >= cfg.flush_every:
-            self._flush_scalars()
         if (i + 1) % cfg.samples_every == 0:
             self._log_samples(i)
+        if len(self._sims) >= cfg.flush_every:
+            self._flush()
         if cfg.tree_every is not None and (i + 1) % cfg.tree_every == 0:
             self._log_tree(i)
         return False
@@ -253,28 +263,11 @@ class SearchRecorder:
 
     def _log_samples(self, i: int) -> None:
         self._last_samples_i = i
-        cfg = self.config
-        rec = self.rec
         for name, node in self.watched().items():
             cache = self._samples.get(name)
             if cache is None or cache.node is not node:
                 cache = self._samples[name] = NodeSamples(node)
-            if cache.node.n_actions == 0:
-                continue
-            rec.reset_time()
-            rec.set_time(SEARCH_TIMELINE, sequence=i)
-            kind = log_node_samples(
-                rec,
-                cache,
-                name,
-                scene_root=SCENE,
-                plot_root=SAMPLES_2D,
-                height=cfg.floor_height,
-                arrow_length=cfg.arrow_length,
-                point_radius=cfg.point_radius,
-                labels=cfg.sample_labels,
-                infeasible_color=cfg.infeasible_color,
-            )
+            kind = self._sample_log.add(i, cache, name)
             if kind != "none":
                 self._drawn[name] = kind
 
@@ -292,7 +285,9 @@ class SearchRecorder:
         self.rec.set_time(SEARCH_TIMELINE, sequence=i)
         log_tree(self.rec, TREE, graph)
 
-    def _flush_scalars(self) -> None:
+    def _flush(self) -> None:
+        """Send the buffered scalars and sample drawings."""
+        self._sample_log.flush(self.rec)
         if not self._sims:
             return
         import rerun as rr
@@ -321,12 +316,12 @@ class SearchRecorder:
             return self.path
         if self.mcts is None and result is not None and result.mcts is not None:
             self._bind(result.mcts)
+        i = max(self._last_i, 0)
         try:
-            self._flush_scalars()
+            if self.mcts is not None and self._last_samples_i != self._last_i:
+                self._log_samples(i)
+            self._flush()
             if self.mcts is not None:
-                i = max(self._last_i, 0)
-                if self._last_samples_i != self._last_i:
-                    self._log_samples(i)
                 if self._last_tree_i != self._last_i:
                     self._log_tree(i)
                 if self.config.record_plan:

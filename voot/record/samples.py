@@ -16,7 +16,8 @@ coordinates, or :math:`(a, \hat Q)` for a 1-D action. Colours: viridis over the 
 feasible :math:`\hat Q` (see :mod:`voot.record.colors`), infeasible actions apart.
 
 The node's edges only grow, so actions and poses are cached and extended; only
-:math:`\hat Q` and the feasibility flags are re-read at each drawing.
+:math:`\hat Q` and the feasibility flags are re-read at each drawing. Drawings are
+buffered and sent in columns (:class:`SampleLog`).
 """
 
 from __future__ import annotations
@@ -112,7 +113,10 @@ class NodeSamples:
 
 
 def _labels(q: NDArray[np.float64], feasible: NDArray[np.bool_]) -> list[str]:
-    return [f"Q={v:.4g}" if ok else f"Q={v:.4g} (infeasible)" for v, ok in zip(q.tolist(), feasible.tolist(), strict=True)]
+    return [
+        f"Q={v:.4g}" if ok else f"Q={v:.4g} (infeasible)"
+        for v, ok in zip(q.tolist(), feasible.tolist(), strict=True)
+    ]
 
 
 def _heading_arrows(
@@ -125,73 +129,162 @@ def _heading_arrows(
     return origins, vectors
 
 
-def log_node_samples(
-    rec: Any,
-    samples: NodeSamples,
-    name: str,
-    *,
-    scene_root: str = "scene",
-    plot_root: str = "samples",
-    height: float = 0.02,
-    arrow_length: float = 0.15,
-    point_radius: float = 0.03,
-    labels: bool = True,
-    infeasible_color: tuple[int, int, int] = (170, 170, 170),
-) -> str:
-    """Log the node's sampled actions at the recording's current time.
+class _Series:
+    """The buffered drawings of one entity: rows (a time and a batch of instances)."""
 
-    Returns which drawing was used: ``"scene"`` (base poses and/or placements),
-    ``"plot"`` (the 2-D fallback) or ``"none"`` (no action yet).
+    def __init__(self, kind: str) -> None:
+        self.kind = kind  # "arrows", "placements" or "points2d"
+        self.times: list[int] = []
+        self.lengths: list[int] = []
+        self.arrays: dict[str, list[Any]] = {}
+
+    def add(self, i: int, **arrays: Any) -> None:
+        self.times.append(i)
+        self.lengths.append(len(arrays["colors"]))
+        for k, v in arrays.items():
+            self.arrays.setdefault(k, []).append(v)
+
+    def clear(self) -> None:
+        self.times.clear()
+        self.lengths.clear()
+        self.arrays.clear()
+
+
+class SampleLog:
+    r"""Drawings of the watched nodes' sampled actions, buffered and sent as columns.
+
+    :meth:`add` computes a node's drawing (positions, colours by :math:`\hat Q`) at
+    simulation ``i`` and keeps it; :meth:`flush` sends everything kept with one
+    ``send_columns`` per entity and archetype, which costs far less than one ``log``
+    per drawing. Every drawn instance also carries its :math:`\hat Q` as the component
+    ``q_hat`` (shown in the viewer's selection panel).
+
+    Args:
+        scene_root, plot_root: entity roots of the 3-D drawings and of the 2-D fallback.
+        timeline: the timeline of the rows (simulation index).
+        height, arrow_length, point_radius: drawing sizes (m).
+        labels: also attach ``Q=...`` text labels (hidden; costly for big nodes).
+        infeasible_color: RGB of infeasible actions.
     """
-    import rerun as rr
 
-    samples.update()
-    if samples.n == 0:
-        return "none"
-    q, feasible = samples.values()
-    colors = value_colors(q, feasible, infeasible_color)
-    text = _labels(q, feasible) if labels else None
-    base, place = samples.base_poses, samples.placements
-    has_base = ~np.isnan(base[:, 0])
-    has_place = ~np.isnan(place[:, 0])
-    if has_base.any() or has_place.any():
-        if has_base.any():
-            o, v = _heading_arrows(base[has_base], height, arrow_length)
-            rec.log(
-                f"{scene_root}/samples/{name}/base_poses",
-                rr.Arrows3D(
+    def __init__(
+        self,
+        *,
+        scene_root: str = "scene",
+        plot_root: str = "samples",
+        timeline: str = "search",
+        height: float = 0.02,
+        arrow_length: float = 0.15,
+        point_radius: float = 0.03,
+        labels: bool = False,
+        infeasible_color: tuple[int, int, int] = (170, 170, 170),
+    ) -> None:
+        self.scene_root = scene_root
+        self.plot_root = plot_root
+        self.timeline = timeline
+        self.height = height
+        self.arrow_length = arrow_length
+        self.point_radius = point_radius
+        self.labels = labels
+        self.infeasible_color = infeasible_color
+        self._series: dict[str, _Series] = {}
+        #: Entity paths drawn so far (flushed or not).
+        self.entities: set[str] = set()
+
+    def _get(self, entity: str, kind: str) -> _Series:
+        series = self._series.get(entity)
+        if series is None:
+            series = self._series[entity] = _Series(kind)
+            self.entities.add(entity)
+        return series
+
+    def add(self, i: int, samples: NodeSamples, name: str) -> str:
+        """Keep the drawing of ``samples`` (as ``name``) at simulation ``i``.
+
+        Returns ``"scene"`` (base poses and/or placements), ``"plot"`` (the 2-D
+        fallback) or ``"none"`` (the node has no action yet).
+        """
+        samples.update()
+        if samples.n == 0:
+            return "none"
+        q, feasible = samples.values()
+        colors = value_colors(q, feasible, self.infeasible_color)
+        text = _labels(q, feasible) if self.labels else None
+        base, place = samples.base_poses, samples.placements
+        has_base = ~np.isnan(base[:, 0])
+        has_place = ~np.isnan(place[:, 0])
+        if has_base.any() or has_place.any():
+            for key, mask, poses, length in (
+                ("base_poses", has_base, base, self.arrow_length),
+                ("placements", has_place, place, 0.5 * self.arrow_length),
+            ):
+                if not mask.any():
+                    continue
+                o, v = _heading_arrows(poses[mask], self.height, length)
+                kind = "arrows" if key == "base_poses" else "placements"
+                self._get(f"{self.scene_root}/samples/{name}/{key}", kind).add(
+                    i,
                     origins=o,
                     vectors=v,
-                    colors=colors[has_base],
-                    labels=None if text is None else [t for t, h in zip(text, has_base, strict=True) if h],
-                    show_labels=False,
-                ),
+                    colors=colors[mask],
+                    q_hat=q[mask],
+                    labels=None if text is None else [t for t, m in zip(text, mask, strict=True) if m],
+                )
+            return "scene"
+        a = samples.actions
+        xy = np.column_stack([a[:, 0], q]) if a.shape[1] == 1 else a[:, :2]
+        self._get(f"{self.plot_root}/{name}", "points2d").add(
+            i, positions=xy, colors=colors, q_hat=q, labels=text
+        )
+        return "plot"
+
+    def flush(self, rec: Any) -> None:
+        """Send every kept drawing to the recording ``rec`` and forget them."""
+        import rerun as rr
+
+        for entity, s in self._series.items():
+            if not s.times:
+                continue
+            lengths = np.array(s.lengths, dtype=np.int64)
+            n = int(lengths.sum())
+
+            def cat(key: str, series: _Series = s) -> Any:
+                return np.concatenate(series.arrays[key])
+
+            text = None
+            if s.arrays.get("labels") and s.arrays["labels"][0] is not None:
+                text = [t for batch in s.arrays["labels"] for t in batch]
+            columns: list[Any] = []
+            if s.kind == "points2d":
+                columns += rr.Points2D.columns(
+                    positions=cat("positions"),
+                    colors=cat("colors"),
+                    radii=np.full(n, -4.0, dtype=np.float32),  # 4 UI points
+                    labels=text,
+                ).partition(lengths)
+                if text is not None:
+                    columns += rr.Points2D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+            else:
+                origins = cat("origins")
+                if s.kind == "placements":
+                    columns += rr.Points3D.columns(
+                        positions=origins,
+                        colors=cat("colors"),
+                        radii=np.full(n, self.point_radius, dtype=np.float32),
+                        labels=text,
+                    ).partition(lengths)
+                    if text is not None:
+                        columns += rr.Points3D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+                    text = None
+                columns += rr.Arrows3D.columns(
+                    origins=origins, vectors=cat("vectors"), colors=cat("colors"), labels=text
+                ).partition(lengths)
+                if text is not None:
+                    columns += rr.Arrows3D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+            columns += rr.AnyValues.columns(q_hat=cat("q_hat")).partition(lengths)
+            rec.send_columns(
+                entity,
+                indexes=[rr.TimeColumn(self.timeline, sequence=np.array(s.times, dtype=np.int64))],
+                columns=columns,
             )
-        if has_place.any():
-            o, v = _heading_arrows(place[has_place], height, 0.5 * arrow_length)
-            sub = colors[has_place]
-            rec.log(
-                f"{scene_root}/samples/{name}/placements",
-                rr.Points3D(
-                    o,
-                    colors=sub,
-                    radii=point_radius,
-                    labels=None if text is None else [t for t, h in zip(text, has_place, strict=True) if h],
-                    show_labels=False,
-                ),
-                rr.Arrows3D(origins=o, vectors=v, colors=sub),
-            )
-        return "scene"
-    a = samples.actions
-    xy = np.column_stack([a[:, 0], q]) if a.shape[1] == 1 else a[:, :2]
-    rec.log(
-        f"{plot_root}/{name}",
-        rr.Points2D(
-            xy,
-            colors=colors,
-            radii=rr.Radius.ui_points(4.0),
-            labels=text,
-            show_labels=False,
-        ),
-    )
-    return "plot"
+            s.clear()

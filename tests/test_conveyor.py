@@ -1,0 +1,165 @@
+"""voot/ConveyorPacking-v0: doors and box sizes, scripted packing, rewards, snapshots, checks."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env, data_equivalence
+from gymnasium.utils.env_match import check_environments_match
+
+import voot  # noqa: F401  (registers the ids)
+from voot.envs.conveyor import ConveyorConfig, ConveyorPackingEnv
+from voot.envs.scripted import CONVEYOR_SOLUTION, conveyor_actions
+from voot.envs.task_env import normalize
+
+DOOR = 1.62  # the first room's door (models/generate_scenes.py)
+
+
+@pytest.fixture(scope="module")
+def env() -> ConveyorPackingEnv:
+    return ConveyorPackingEnv()
+
+
+def _action(env: ConveyorPackingEnv, poses: list[tuple[float, float, float]]) -> np.ndarray:
+    a = np.zeros(9)
+    for k, (x, y, th) in enumerate(poses):
+        a[3 * k : 3 * k + 3] = normalize([x, y, math.radians(th)], env.config.place_ranges)
+    return a
+
+
+def test_fixed_picks_and_door_rule(env: ConveyorPackingEnv) -> None:
+    radii = [p.disc.radius for p in env.picks]
+    # the two big boxes make the disc too wide for the door, the small ones do not
+    assert min(radii[:2]) > DOOR / 2
+    assert max(radii[2:]) < DOOR / 2
+    for p in env.picks:
+        assert len(p.arm_q) == 7 and p.rel[2] == 0.0
+
+
+def test_scripted_solution_packs_every_box(env: ConveyorPackingEnv) -> None:
+    env.reset(seed=0)
+    total = 0.0
+    for a in conveyor_actions(env):
+        _, r, terminated, truncated, info = env.step(a)
+        assert info["feasible"], info["reason"]
+        assert r == pytest.approx(
+            sum(math.exp(-0.1 * length) for length in info["base_path_lengths"])
+        )
+        assert len(info["base_paths"]) == len(info["objects"])
+        total += r
+        assert not truncated
+    assert terminated and info["objects_placed"] == 20 and info["objects_left"] == 0
+    assert info["goal_bonus"] == 0.0
+    assert total > 5.0
+    # every box is where the solution put it
+    for i, (x, y, th) in enumerate(CONVEYOR_SOLUTION):
+        px, py, pz, yaw = env.object_pose(i)
+        assert (px, py, pz) == pytest.approx((x, y, 0.0))
+        assert math.cos(yaw - math.radians(th)) == pytest.approx(1.0)
+
+
+def test_big_box_cannot_pass_the_door(env: ConveyorPackingEnv) -> None:
+    env.reset(seed=0)
+    s = env.get_state()
+    obs0 = env._observation()
+    # obj_00 (big) into the west room, behind the door: no base path
+    _, r, _, _, info = env.step(
+        _action(env, [(-6.55, 2.55, 90), (-3.5, -0.05, 180), (-5.45, 2.55, 90)])
+    )
+    assert not info["feasible"] and r == -2.0
+    assert info["reason"] == "box 1/3 (obj_00): no base path"
+    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])  # nothing moved
+    # the two big boxes in the first room, then a small box through the same door
+    env.set_state(s)
+    _, _, _, _, info = env.step(
+        _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    )
+    assert info["feasible"], info["reason"]
+
+
+def test_one_bad_placement_voids_the_action(env: ConveyorPackingEnv) -> None:
+    env.reset(seed=0)
+    obs0 = env._observation()
+    # the third box on top of the first: a collision with the box placed just before
+    _, r, _, _, info = env.step(
+        _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-3.5, 2.1, 180)])
+    )
+    assert r == -2.0 and info["reason"].startswith("box 3/3 (obj_02): collision")
+    assert "obj_00" in info["reason"]
+    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])
+    _, r, _, _, info = env.step(
+        _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    )
+    assert info["reason"].startswith("box 1/3 (obj_00): outside region")
+
+
+def test_fewer_boxes_and_trailing_entries_ignored() -> None:
+    env = ConveyorPackingEnv(ConveyorConfig(n_objects=4))
+    env.reset(seed=0)
+    acts = conveyor_actions(env)
+    assert len(acts) == 2
+    env.step(acts[0])
+    last = acts[1].copy()
+    last[3:] = 0.123  # only one box is left: ignored
+    _, _, terminated, _, info = env.step(last)
+    assert terminated and info["objects"] == ["obj_03"] and len(info["base_path_lengths"]) == 1
+
+
+def test_bad_actions_and_clipping(env: ConveyorPackingEnv) -> None:
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="shape"):
+        env.step(np.zeros(6))
+    with pytest.raises(ValueError, match="infinite"):
+        env.step(np.full(9, np.inf))
+    s = env.get_state()
+    a = conveyor_actions(env)[0]
+    wild = a.copy()
+    wild[2] = 5.0  # theta beyond the range -> clipped to 2 pi (== 0)
+    out1 = env.step(wild)
+    env.set_state(s)
+    wild[2] = 1.0
+    out2 = env.step(wild)
+    assert out1[4]["action_clipped"] and not out2[4]["action_clipped"]
+    assert data_equivalence(out1[:4], out2[:4], exact=True)
+
+
+def test_snapshot_restore_is_bit_identical(env: ConveyorPackingEnv) -> None:
+    env.reset(seed=0)
+    acts = conveyor_actions(env)
+    env.step(acts[0])
+    s = env.get_state()
+    first = env.step(acts[1])
+    env.step(acts[2])
+    env.set_state(s)
+    second = env.step(acts[1])
+    assert data_equivalence(first, second, exact=True)
+
+
+def test_config_validation() -> None:
+    with pytest.raises(ValueError, match="n_objects"):
+        ConveyorConfig(n_objects=21)
+    with pytest.raises(ValueError, match="height_fraction"):
+        ConveyorConfig(height_fraction=1.5)
+    with pytest.raises(ValueError, match="loading_region"):
+        ConveyorConfig(loading_region=(1.0, 0.0, 0.0, 1.0))
+
+
+def test_gymnasium_checks() -> None:
+    env = gym.make("voot/ConveyorPacking-v0")
+    check_env(env.unwrapped, skip_render_check=True)
+    a = gym.make("voot:voot/ConveyorPacking-v0")
+    b = gym.make("voot:voot/ConveyorPacking-v0")
+    check_environments_match(a, b, num_steps=8, seed=2)
+
+
+def test_render_rgb_array() -> None:
+    env = ConveyorPackingEnv(
+        render_mode="rgb_array", render_camera="top_down", render_size=(160, 120)
+    )
+    env.reset(seed=0)
+    img = env.render()
+    assert img is not None and img.shape == (120, 160, 3) and img.std() > 5
+    env.close()

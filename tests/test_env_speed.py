@@ -1,0 +1,19 @@
+"""The environments' speed benchmark command (voot.envs.speed) runs; no timing assertions."""
+
+from __future__ import annotations
+
+import pytest
+
+from voot.envs import speed
+
+
+def test_run_and_report(capsys: pytest.CaptureFixture[str]) -> None:
+    speed.main(["--n", "4"])
+    out = capsys.readouterr().out
+    assert "kitchen pick (6-D)" in out and "conveyor place x3 (9-D)" in out
+    assert "snapshot restore" in out
+
+
+def test_bad_arguments() -> None:
+    with pytest.raises(SystemExit):
+        speed.main(["--n", "0"])

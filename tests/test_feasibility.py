@@ -1,0 +1,173 @@
+"""Grasp poses, the arm's IK (mink + closed-form seeds) and MuJoCo collision checks."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from voot.envs.feasibility import (
+    ArmIK,
+    CollisionChecker,
+    IKConfig,
+    object_pose,
+    rot_x,
+    rot_y,
+    set_object_pose,
+    side_grasp,
+    xyx_euler,
+)
+from voot.envs.robot import TUCK, Robot
+from voot.envs.scene import load_model, movable_objects
+
+
+@pytest.fixture(scope="module")
+def ik() -> ArmIK:
+    return ArmIK()
+
+
+def test_xyx_euler_round_trip() -> None:
+    rng = np.random.default_rng(0)
+    for _ in range(200):
+        a, b, c = rng.uniform(-3.0, 3.0, 3)
+        r = rot_x(a) @ rot_y(b) @ rot_x(c)
+        sols = xyx_euler(r)
+        assert 1 <= len(sols) <= 2
+        for s in sols:
+            np.testing.assert_allclose(rot_x(s[0]) @ rot_y(s[1]) @ rot_x(s[2]), r, atol=1e-9)
+    # singular: b = 0
+    (s,) = xyx_euler(rot_x(0.3) @ rot_x(0.4))
+    np.testing.assert_allclose(rot_x(s[0]) @ rot_y(s[1]) @ rot_x(s[2]), rot_x(0.7), atol=1e-9)
+
+
+def test_seeds_are_exact_closed_form_solutions(ik: ArmIK) -> None:
+    rng = np.random.default_rng(1)
+    for _ in range(30):
+        q = rng.uniform(ik.lower, ik.upper)
+        p, r = ik.forward(q)
+        seeds = ik.seeds(p, r)
+        assert seeds
+        for s in seeds:
+            p2, r2 = ik.forward(s)
+            np.testing.assert_allclose(p2, p, atol=1e-9)
+            np.testing.assert_allclose(r2, r, atol=1e-9)
+
+
+def test_solve_reaches_reachable_targets(ik: ArmIK) -> None:
+    rng = np.random.default_rng(2)
+    n_ok = 0
+    for _ in range(40):
+        q = rng.uniform(ik.lower, ik.upper)
+        p, r = ik.forward(q)
+        res = ik.solve(p, r)
+        if res.success:
+            n_ok += 1
+            assert res.q is not None
+            assert np.all(res.q >= ik.lower - 1e-12) and np.all(res.q <= ik.upper + 1e-12)
+            p2, r2 = ik.forward(res.q)
+            assert np.linalg.norm(p2 - p) <= ik.config.position_tolerance * 1.01
+            assert np.linalg.norm(r2 - r) < 3 * ik.config.orientation_tolerance
+    assert n_ok >= 36  # every target is reachable; a few may need more iterations
+
+
+def test_solve_reports_out_of_reach(ik: ArmIK) -> None:
+    res = ik.solve([1.5, 0.0, 0.8], np.eye(3))
+    assert not res.success and res.reason == "out of reach" and res.q is None
+
+
+def test_solve_is_deterministic(ik: ArmIK) -> None:
+    r = rot_x(1.2)
+    target = np.array([0.55, 0.1, 0.45])
+    a, b = ik.solve(target, r), ik.solve(target, r)
+    assert a.success and np.array_equal(a.q, b.q) and a.iterations == b.iterations
+
+
+def test_refinement_uses_mink_when_the_seed_violates_limits(ik: ArmIK) -> None:
+    # a close, low target: every closed-form seed breaks a limit, mink finds a solution
+    ang = math.pi
+    r = np.column_stack(
+        [[1, 0, 0], [0, math.cos(ang), math.sin(ang)], [0, -math.sin(ang), math.cos(ang)]]
+    )
+    res = ik.solve([0.47, 0.0, 0.64], r)
+    assert res.success and res.iterations >= 1
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"solver": "cvxopt-ish"}, "daqp"),
+        ({"max_iterations": -1}, "max_iterations"),
+        ({"position_tolerance": 0.0}, "position_tolerance"),
+        ({"orientation_cost": -1.0}, "orientation_cost"),
+    ],
+)
+def test_ik_config_validation(kwargs: dict[str, object], match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        IKConfig(**kwargs)  # type: ignore[arg-type]
+
+
+def test_side_grasp_faces_the_robot() -> None:
+    model = load_model("kitchen")
+    box = next(o for o in movable_objects(model) if o.name == "obj_box2")
+    pose = (1.0, 2.0, 0.0, 0.0)
+    # robot west of the box, heading east: grasps the -x face
+    g = side_grasp(box, pose, 0.0, math.pi / 2, 0.75, 0.5)
+    assert g.face == "-x"
+    assert g.position[0] == pytest.approx(1.0 - box.half[0])
+    assert g.position[1] == pytest.approx(2.0)
+    assert g.position[2] == pytest.approx(0.75 * box.height)
+    np.testing.assert_allclose(g.rotation[:, 0], [1.0, 0.0, 0.0], atol=1e-12)  # approach
+    np.testing.assert_allclose(g.rotation.T @ g.rotation, np.eye(3), atol=1e-12)
+    assert np.linalg.det(g.rotation) == pytest.approx(1.0)
+    # depth fraction moves the point across the face; heading north picks the -y face
+    g2 = side_grasp(box, pose, math.pi / 2, math.pi / 2, 0.5, 0.9)
+    assert g2.face == "-y" and g2.position[1] == pytest.approx(2.0 - box.half[1])
+    assert g2.position[0] == pytest.approx(1.0 + 0.8 * box.half[0])
+
+
+@pytest.fixture(scope="module")
+def kitchen_checker() -> tuple[CollisionChecker, mujoco.MjModel]:
+    model = load_model("kitchen")
+    robot = Robot(model)
+    objects = movable_objects(model)
+    return CollisionChecker(model, robot, objects), model
+
+
+def test_collision_free_and_hits(kitchen_checker: tuple[CollisionChecker, mujoco.MjModel]) -> None:
+    checker, model = kitchen_checker
+    qpos = model.qpos0.copy()
+    assert checker.check(qpos, (-1.5, -1.5, math.pi / 2), TUCK).free
+    hits = checker.check(qpos, (-1.9, -1.5, 0.0), TUCK).hits
+    assert hits == ["robot-wall_west"]
+    # the robot standing on a box: the box is reported by its body name
+    i = next(k for k, o in enumerate(checker.objects) if o.name == "obj_box1")
+    data = mujoco.MjData(model)
+    x, y, _, _ = object_pose(data, checker.objects[i])
+    assert "robot-obj_box1" in checker.check(qpos, (x, y, 0.0), TUCK).hits
+
+
+def test_held_object_and_overrides(
+    kitchen_checker: tuple[CollisionChecker, mujoco.MjModel],
+) -> None:
+    checker, model = kitchen_checker
+    qpos = model.qpos0.copy()
+    i = next(k for k, o in enumerate(checker.objects) if o.name == "obj_box1")
+    # the held object moved into the counter collides; moved into free space it does not
+    base = (0.8, -2.5, 0.0)
+    assert (
+        "object-counter_north"
+        in checker.check(qpos, base, TUCK, held=i, object_poses={i: (0.0, 3.6, 0.0, 0.0)}).hits
+    )
+    assert checker.check(qpos, base, TUCK, held=i, object_poses={i: (1.8, -2.5, 0.0, 0.0)}).free
+    # the input qpos is not modified
+    np.testing.assert_array_equal(qpos, model.qpos0)
+
+
+def test_set_and_read_object_pose() -> None:
+    model = load_model("kitchen")
+    data = mujoco.MjData(model)
+    obj = movable_objects(model)[0]
+    set_object_pose(data, obj, (1.0, -2.0, 0.0, 2.5))
+    np.testing.assert_allclose(object_pose(data, obj), [1.0, -2.0, 0.0, 2.5], atol=1e-12)

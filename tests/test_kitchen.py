@@ -1,0 +1,257 @@
+"""voot/KitchenClearing-v0: task structure, scripted solution, rewards, snapshots, API checks."""
+
+from __future__ import annotations
+
+import math
+import pickle
+import subprocess
+import sys
+import textwrap
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env, data_equivalence
+from gymnasium.utils.env_match import check_environments_match
+
+import voot  # noqa: F401  (registers the ids)
+from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig
+from voot.envs.robot import inverse2d
+from voot.envs.scripted import kitchen_actions
+from voot.envs.task_env import normalize
+
+
+@pytest.fixture(scope="module")
+def env() -> KitchenClearingEnv:
+    return KitchenClearingEnv()
+
+
+def _place_action(env: KitchenClearingEnv, x: float, y: float, theta: float) -> np.ndarray:
+    a = np.zeros(6)
+    a[:3] = normalize([x, y, theta], env.config.place_ranges)
+    return a
+
+
+def test_initial_task(env: KitchenClearingEnv) -> None:
+    obs, info = env.reset(seed=0)
+    assert env.observation_space.contains(obs)
+    assert info == {"next_operator": "pick", "objects_left": 7, "next_object": "obj_box1"}
+    names = [env.objects[i].name for i in env.task.on_path]
+    assert names == [
+        "obj_box1",
+        "obj_chair1",
+        "obj_box2",
+        "obj_chair2",
+        "obj_box3",
+        "obj_box4",
+        "obj_chair3",
+    ]
+    # the fixed path is the straight segment from the start to the sink pose
+    np.testing.assert_allclose(env.path.waypoints[[0, -1], :2], [[-1.5, -1.5], [0.0, 2.5]])
+    assert env.action_bounds().dim == 6
+
+
+def test_scripted_solution_clears_every_obstacle(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    rewards, infos = [], []
+    for a in kitchen_actions(env):
+        _, r, terminated, truncated, info = env.step(a)
+        assert info["feasible"], info["reason"]
+        rewards.append(r)
+        infos.append(info)
+        assert not truncated
+    assert terminated and info["objects_left"] == 0 and info["goal_bonus"] == 2.0
+    assert all(i["goal_bonus"] == 0.0 for i in infos[:-1])
+    # picks: 0 first, then +1 after every clearing place; places: min(1/L, 2)
+    assert rewards[0::2] == [0.0] + [1.0] * 6
+    for r, i in zip(rewards[1::2], infos[1::2], strict=True):
+        assert r == pytest.approx(min(1.0 / i["base_path_length"], 2.0))
+        assert i["base_path"][0].shape == (3,)
+    assert [i["objects_left"] for i in infos[1::2]] == [6, 5, 4, 3, 2, 1, 0]
+    with pytest.raises(ValueError, match="ended"):
+        env.step(np.zeros(6))
+
+
+def test_non_clearing_place_is_penalised(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    acts = kitchen_actions(env)
+    env.step(acts[0])
+    # put box1 back where it stands (rotated slightly): still on the path
+    x, y, _, yaw = env.object_pose(env.task.held)
+    _, r, _, _, info = env.step(_place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
+    assert info["feasible"] and info["objects_left"] == 7
+    assert r == pytest.approx(max(-info["base_path_length"], -2.0))
+    _, r, _, _, info = env.step(acts[0])  # the next pick: no clearing before it
+    assert info["operator"] == "pick" and r == 0.0
+
+
+def test_placements_in_the_large_rooms_are_infeasible(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    env.step(kitchen_actions(env)[0])
+    before = env.get_state()
+    obs0 = env._observation()
+    for x, y in ((4.0, 2.0), (4.5, -2.0), (3.2, 1.0)):
+        _, r, _, _, info = env.step(_place_action(env, x, y, 0.0))
+        assert not info["feasible"] and r == -2.0
+        assert info["reason"].startswith("forbidden room")
+        env.set_state(before)
+    # the robot cannot pass the 0.9 m door at all
+    assert env.planner.plan(env.config.start, (4.4, 2.0, 0.0), env.config.robot_radius) is None
+    # infeasible actions change nothing but the step counter
+    _, _, _, _, info = env.step(_place_action(env, 4.0, 2.0, 0.0))
+    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])
+
+
+def test_infeasible_pick_reasons(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    reasons = set()
+    rng = np.random.default_rng(0)
+    for _ in range(60):
+        s = env.get_state()
+        _, r, _, _, info = env.step(rng.uniform(-1, 1, 6))
+        if not info["feasible"]:
+            assert r == -2.0
+            reasons.add(info["reason"].split(":")[0])
+        env.set_state(s)
+    assert {"collision", "IK failed", "outside region"} <= reasons
+
+
+def test_bad_actions(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="NaN"):
+        env.step(np.array([0.0, np.nan, 0, 0, 0, 0]))
+    with pytest.raises(ValueError, match="shape"):
+        env.step(np.zeros(3))
+    with pytest.raises(ValueError, match="numeric"):
+        env.step("pick")  # type: ignore[arg-type]
+
+
+def test_out_of_range_actions_are_clipped(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    s = env.get_state()
+    a = kitchen_actions(env)[0]
+    wild = a * 1.0
+    wild[5] = -7.0  # facing offset far below the range -> clipped to -1
+    clipped = np.clip(wild, -1.0, 1.0)
+    out_wild = env.step(wild)
+    env.set_state(s)
+    out_clip = env.step(clipped)
+    assert out_wild[4]["action_clipped"] and not out_clip[4]["action_clipped"]
+    assert data_equivalence(out_wild[:4], out_clip[:4])
+
+
+def test_truncation_at_the_horizon() -> None:
+    env = KitchenClearingEnv(KitchenConfig(horizon=2))
+    env.reset(seed=0)
+    bad = _place_action(env, 4.0, 2.0, 0.0)  # a pick here: infeasible (IK/collision/region)
+    bad[:] = 1.0
+    _, _, term, trunc, _ = env.step(bad)
+    assert not term and not trunc
+    _, _, term, trunc, _ = env.step(bad)
+    assert not term and trunc
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"horizon": 0}, "horizon"),
+        ({"robot_radius": -1.0}, "robot_radius"),
+        ({"grasp_angle": (2.0, 1.0)}, "grasp_angle"),
+        ({"house": (0, 1, 2)}, "house"),
+        ({"infeasible_reward": 1.0}, "infeasible_reward"),
+    ],
+)
+def test_config_validation(kwargs: dict[str, object], match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        KitchenConfig(**kwargs)  # type: ignore[arg-type]
+
+
+def test_snapshot_restore_is_bit_identical(env: KitchenClearingEnv) -> None:
+    env.reset(seed=3)
+    acts = kitchen_actions(env)
+    for a in acts[:3]:
+        env.step(a)
+    s = env.get_state()
+    first = env.step(acts[3])
+    env.step(acts[4])  # move on, then come back
+    env.set_state(s)
+    assert env.get_state() == s
+    second = env.step(acts[3])
+    assert data_equivalence(first, second, exact=True)
+    assert pickle.loads(pickle.dumps(s)) == s
+
+
+def test_snapshot_determinism_across_processes(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    acts = kitchen_actions(env)
+    for a in acts[:5]:
+        env.step(a)
+    state = env.get_state()
+    rng = np.random.default_rng(7)
+    probes = [acts[5]] + [np.clip(rng.normal(0, 0.6, 6), -1, 1) for _ in range(3)]
+    local = []
+    for a in probes:
+        env.set_state(state)
+        local.append(env.step(a))
+    script = textwrap.dedent(
+        """
+        import pickle, sys
+        from voot.envs.kitchen import KitchenClearingEnv
+        state, probes = pickle.load(sys.stdin.buffer)
+        env = KitchenClearingEnv()
+        env.reset(seed=0)
+        out = []
+        for a in probes:
+            env.set_state(state)
+            out.append(env.step(a))
+        sys.stdout.buffer.write(pickle.dumps(out))
+        """
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script],
+        input=pickle.dumps((state, probes)),
+        capture_output=True,
+        check=True,
+        timeout=120,
+    )
+    remote = pickle.loads(proc.stdout)
+    assert data_equivalence(local, remote, exact=True)
+    assert any(r[4]["feasible"] for r in local)
+
+
+def test_gymnasium_checks() -> None:
+    env = gym.make("voot/KitchenClearing-v0")
+    check_env(env.unwrapped, skip_render_check=True)
+    a = gym.make("voot:voot/KitchenClearing-v0")
+    b = gym.make("voot:voot/KitchenClearing-v0")
+    check_environments_match(a, b, num_steps=12, seed=1)
+
+
+def test_render_rgb_array() -> None:
+    env = KitchenClearingEnv(render_mode="rgb_array", render_size=(160, 120))
+    env.reset(seed=0)
+    for cam in ("perspective", "top_down"):
+        env.render_camera = cam
+        img = env.render()
+        assert img is not None and img.shape == (120, 160, 3) and img.dtype == np.uint8
+        assert img.std() > 5  # not a blank image
+    env.close()
+    with pytest.raises(ValueError, match="render_mode"):
+        KitchenClearingEnv(render_mode="human")
+
+
+def test_place_base_pose_follows_the_grasp(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    env.step(kitchen_actions(env)[0])
+    rel = env.task.held_rel
+    env.step(kitchen_actions(env)[1])
+    x, y, _, yaw = env.object_pose(env.object_index["obj_box1"])
+    base = env.robot.base_pose(env.data)
+    np.testing.assert_allclose(inverse2d(rel)[:2], _relative(base, (x, y, yaw)), atol=1e-9)
+
+
+def _relative(base: np.ndarray, obj: tuple[float, float, float]) -> np.ndarray:
+    """The base's position in the object's frame."""
+    c, s = math.cos(obj[2]), math.sin(obj[2])
+    d = np.array([base[0] - obj[0], base[1] - obj[1]])
+    return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])

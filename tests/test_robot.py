@@ -1,0 +1,62 @@
+"""The robot wrapper, SE(2) helpers and the base-motion disc (voot.envs.robot)."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from voot.envs.robot import (
+    BASE_HALF,
+    ROBOT_DISC,
+    ROBOT_RADIUS,
+    TUCK,
+    Robot,
+    base_footprint,
+    carry_disc,
+    compose2d,
+    inverse2d,
+)
+from voot.envs.scene import load_model
+
+
+def test_named_access() -> None:
+    model = load_model("kitchen")
+    data = mujoco.MjData(model)
+    robot = Robot(model)
+    robot.set_base(data, (1.0, 2.0, 0.5))
+    robot.set_arm(data, TUCK)
+    np.testing.assert_array_equal(robot.base_pose(data), [1.0, 2.0, 0.5])
+    np.testing.assert_array_equal(robot.arm(data), TUCK)
+    mujoco.mj_kinematics(model, data)
+    np.testing.assert_allclose(data.site("base_center").xpos[:2], [1.0, 2.0])
+    assert set(robot.gripper_geoms) < set(robot.geoms)
+
+
+def test_robot_disc_holds_the_base() -> None:
+    assert ROBOT_RADIUS > math.sqrt(2) * BASE_HALF
+    corners = base_footprint((0.0, 0.0, 0.3)).corners()
+    assert np.all(np.hypot(corners[:, 0], corners[:, 1]) <= ROBOT_DISC.radius)
+
+
+def test_carry_disc_holds_robot_and_object_for_any_heading() -> None:
+    obj = np.array([[0.4, 0.3], [1.0, 0.3], [1.0, -0.3], [0.4, -0.3]])
+    disc = carry_disc(obj)
+    assert disc.offset == pytest.approx((0.34, 0.0))
+    square = BASE_HALF * np.array([[1, 1], [-1, 1], [-1, -1], [1, -1]])
+    pts = np.concatenate([square, obj])
+    assert np.max(np.hypot(pts[:, 0] - 0.34, pts[:, 1])) < disc.radius
+    # the path of the centre maps back to base poses
+    base = np.array([2.0, -1.0, 1.2])
+    centre = disc.center(base)
+    np.testing.assert_allclose(disc.base(centre[None, :])[0], base, atol=1e-12)
+
+
+def test_se2_compose_inverse() -> None:
+    a = (1.0, 2.0, 0.7)
+    b = (-0.3, 0.5, -2.0)
+    ab = compose2d(a, b)
+    np.testing.assert_allclose(compose2d(inverse2d(a), ab), b, atol=1e-12)
+    np.testing.assert_allclose(compose2d(a, inverse2d(a))[:2], [0.0, 0.0], atol=1e-12)

@@ -1,0 +1,65 @@
+"""Reading the floor plan back from the compiled scenes (voot.envs.scene)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from voot.envs.base_planner import Box2D
+from voot.envs.scene import (
+    load_model,
+    movable_objects,
+    object_footprint,
+    quat_of_yaw,
+    rect_inside,
+    rect_overlaps,
+    static_footprints,
+    yaw_of_quat,
+)
+
+
+def _by_name(boxes: list[Box2D]) -> dict[str, Box2D]:
+    return {b.name: b for b in boxes}
+
+
+def test_kitchen_static_footprints() -> None:
+    boxes = _by_name(static_footprints(load_model("kitchen")))
+    assert "floor" not in boxes and "sink_basin" not in boxes  # no collision / decoration
+    counter = boxes["counter_north"]
+    assert (counter.cx, counter.cy) == pytest.approx((0.0, 3.675))
+    assert (counter.half_x, counter.half_y) == pytest.approx((2.0, 0.325))
+    # the door to the large rooms: 0.9 m between the two wall pieces at x = 2.8
+    s, n = boxes["wall_rooms_s"], boxes["wall_rooms_n"]
+    assert (n.cy - n.half_y) - (s.cy + s.half_y) == pytest.approx(0.9)
+
+
+def test_conveyor_door_width() -> None:
+    boxes = _by_name(static_footprints(load_model("conveyor")))
+    w, e = boxes["wall_room1_s_w"], boxes["wall_room1_s_e"]
+    assert (e.cx - e.half_x) - (w.cx + w.half_x) == pytest.approx(1.62)
+
+
+def test_objects_and_footprints() -> None:
+    objs = {o.name: o for o in movable_objects(load_model("kitchen"))}
+    chair = objs["obj_chair1"]
+    assert tuple(chair.half) == pytest.approx((0.23, 0.23))
+    assert chair.height == pytest.approx(0.89)
+    box = object_footprint(objs["obj_box1"], 1.0, 2.0, 0.5)
+    assert (box.cx, box.cy, box.yaw) == pytest.approx((1.0, 2.0, 0.5))
+    assert (box.half_x, box.half_y) == pytest.approx((0.2, 0.2))
+
+
+def test_yaw_quaternion_round_trip() -> None:
+    for yaw in (-3.0, -1.0, 0.0, 0.7, 3.1):
+        assert yaw_of_quat(quat_of_yaw(yaw)) == pytest.approx(yaw)
+
+
+def test_rectangle_region_tests() -> None:
+    region = (0.0, 4.0, 0.0, 2.0)
+    assert rect_inside(Box2D(1.0, 1.0, 0.5, 0.5), region)
+    assert not rect_inside(Box2D(1.0, 1.0, 0.5, 0.5, math.pi / 4), (0.0, 4.0, 0.0, 1.6))
+    assert rect_overlaps(Box2D(4.2, 1.0, 0.5, 0.5), region)
+    assert not rect_overlaps(Box2D(5.0, 1.0, 0.5, 0.5), region)
+    # a rotated box whose bounding box overlaps but which itself does not
+    assert not rect_overlaps(Box2D(4.6, 2.6, 0.5, 0.1, -math.pi / 4), region)
