@@ -4,6 +4,7 @@ Subcommands::
 
     voot-bench demo                       VOO on Shekel-20D with the paper's budget (5000)
     voot-bench bbfo --out results/bbfo    the Figure-3 sweep (resumable, parallel)
+    voot-bench plan --out results/plan    planners x problems x seeds (Figure 4; Ray too)
     voot-bench select results/bbfo        the selected hyperparameters per method
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import json
 import os
 import signal
 import sys
@@ -165,22 +167,164 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
     return 1 if summary.failed else 0
 
 
+# ----- plan ----------------------------------------------------------------------------
+def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, object]:
+    """``["omega=0.3", "depth_limit=5,gamma=0.99"]`` -> a dict; values are JSON
+    (``0.3``, ``true``, ``null``, ``"text"``) or else plain strings."""
+    out: dict[str, object] = {}
+    for item in split_list(values):
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise CLIError(f"{what}: {item!r} is not NAME=VALUE (e.g. omega=0.3)")
+        text = text.strip()
+        if text in ("None", "none"):
+            value: object = None
+        else:
+            try:
+                value = json.loads(text)
+            except ValueError:
+                value = text
+        out[name] = value
+    return out
+
+
+def cmd_plan(args: argparse.Namespace) -> int:
+    from voot.bench.plan_sweep import build_plan_specs, summarize_plan_specs
+    from voot.bench.problems import DEFAULT_PROBLEMS
+    from voot.bench.store import ResultStore
+    from voot.bench.sweep import make_backend, run_sweep
+
+    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
+        raise CLIError("--address and --max-tries go with --backend ray")
+    if args.record is not None:
+        if args.backend == "ray":
+            raise CLIError(
+                "--record writes .rrd files where the search runs; use --backend process"
+                " (or serial) for recorded runs"
+            )
+        try:
+            from voot.record import SearchRecorder  # noqa: F401 - the recorder's entry point
+        except ImportError as exc:
+            raise CLIError(
+                f"--record needs the recorder of voot.record ({exc}); install the [record]"
+                " extra (pip install 'voot[record]')"
+            ) from None
+    seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
+    specs = build_plan_specs(
+        split_list(args.problems) or DEFAULT_PROBLEMS,
+        parse_int_list(args.dims, "--dims") or None,
+        split_list(args.planners) or None,
+        seeds,
+        simulations=args.simulations,
+        grid=args.grid,
+        env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
+        fixed=parse_assignments(args.set, "--set"),
+        record=args.record,
+    )
+    simulations = sum(s.simulations for s in specs)
+    print(f"{len(specs)} runs, {simulations} simulations", file=sys.stderr)
+    if args.dry_run:
+        print(summarize_plan_specs(specs))
+        return 0
+    store = ResultStore(args.out)
+    backend = make_backend(
+        args.backend, args.workers, address=args.address, max_tries=args.max_tries
+    )
+    print(f"results: {store.path} (backend: {backend.name})", file=sys.stderr)
+    with _sigterm_as_interrupt():
+        summary = run_sweep(
+            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
+        )
+    print(summary)
+    if args.record is not None and summary.skipped:
+        print(
+            f"note: {summary.skipped} runs were already in the store and were not recorded"
+            " again (use a new --out to record them)",
+            file=sys.stderr,
+        )
+    return 1 if summary.failed else 0
+
+
 # ----- select / plot -------------------------------------------------------------------
-def _load_bbfo(path: str) -> list[Row]:
+KINDS = ("bbfo", "plan")
+
+
+def _load_rows(path: str, kind: str | None) -> tuple[str, list[Row]]:
+    """Finished rows of ``kind`` (default: the one kind the store holds)."""
     from voot.bench.store import ResultStore
 
     store = ResultStore(path, create=False)
-    rows = store.load(kind="bbfo", status="ok", arrays=True)
-    if not rows:
-        raise CLIError(f"{store.path}: no finished bbfo runs in this store")
-    return rows
+    rows = store.load(status="ok", arrays=True)
+    kinds = sorted({r["kind"] for r in rows})
+    if kind is None:
+        if len(kinds) > 1:
+            raise CLIError(
+                f"{store.path} holds runs of kinds {', '.join(kinds)}; choose one with --kind"
+            )
+        kind = kinds[0] if kinds else "bbfo"
+    chosen = [r for r in rows if r["kind"] == kind]
+    if not chosen:
+        raise CLIError(f"{store.path}: no finished {kind} runs in this store")
+    return kind, chosen
+
+
+def _load_bbfo(path: str) -> list[Row]:
+    return _load_rows(path, "bbfo")[1]
 
 
 def cmd_select(args: argparse.Namespace) -> int:
     from voot.bench.select import largest_budget, select_hyperparameters, selection_table
 
-    rows = largest_budget(_load_bbfo(args.results))
-    print(selection_table(select_hyperparameters(rows), all_candidates=args.all))
+    kind, rows = _load_rows(args.results, args.kind)
+    selections = select_hyperparameters(largest_budget(rows))
+    print(selection_table(selections, all_candidates=args.all, kind=kind))
+    return 0
+
+
+def _plan_filter(names: Sequence[str] | None) -> list[str] | None:
+    from voot.bench.problems import normalize_problem, problem_label
+
+    if not names:
+        return None
+    out = []
+    for name in names:
+        try:
+            out.append(problem_label(normalize_problem(name)))
+        except ValueError:
+            out.append(name)  # e.g. a label with env keywords, as printed in the tables
+    return out
+
+
+def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
+    from voot.bench.plan_plot import plan_data, plan_report, plot_plan_figure
+    from voot.tree.config import normalize_planner
+
+    if args.regret or args.log or args.functions or args.dims or args.methods:
+        raise CLIError(
+            "--regret, --log, --functions, --dims and --methods apply to bbfo runs;"
+            " for plan runs filter with --problems and --planners"
+        )
+    planners = [normalize_planner(p) for p in split_list(args.planners)] or None
+    data = plan_data(rows, problems=_plan_filter(split_list(args.problems)), planners=planners)
+    if not data:
+        raise CLIError("no finished plan runs match --problems/--planners")
+    at = parse_int_list(args.at, "--at") or None
+    if at is not None and min(at) < 1:
+        raise CLIError("--at: simulation counts must be >= 1")
+    report = plan_report(data, at)
+    print(report)
+    if args.png:
+        path = plot_plan_figure(data, args.png, x="simulations")
+        print(f"figure: {path}", file=sys.stderr)
+    if args.png_seconds:
+        path = plot_plan_figure(data, args.png_seconds, x="seconds")
+        print(f"figure: {path}", file=sys.stderr)
+    if args.markdown:
+        md = Path(args.markdown)
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(report)
+        print(f"markdown: {md}", file=sys.stderr)
     return 0
 
 
@@ -190,7 +334,14 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
     if args.log and not args.regret:
         raise CLIError("--log needs --regret (best values can be negative)")
-    rows = _load_bbfo(args.results)
+    kind, rows = _load_rows(args.results, args.kind)
+    if kind == "plan":
+        return cmd_plot_plan(args, rows)
+    if args.png_seconds or args.problems or args.planners or args.at:
+        raise CLIError(
+            "--png-seconds, --problems, --planners and --at apply to plan runs;"
+            " for bbfo runs filter with --functions, --dims and --methods"
+        )
     functions = [f.lower() for f in split_list(args.functions)] or None
     dims = parse_int_list(args.dims, "--dims") or None
     methods = [normalize_method(m) for m in split_list(args.methods)] or None
@@ -303,7 +454,9 @@ def build_parser() -> argparse.ArgumentParser:
     from voot.bench.sweep import BACKENDS, GRIDS
 
     parser = argparse.ArgumentParser(
-        prog="voot-bench", description="Benchmarks of voot: VOO and baselines (paper Figure 3)."
+        prog="voot-bench",
+        description="Benchmarks of voot: VOO and baselines (paper Figure 3), VOOT and its"
+        " baselines (paper Figure 4).",
     )
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -339,18 +492,99 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_bbfo)
 
+    p = sub.add_parser(
+        "plan",
+        help="run planners x problems x seeds (paper Figure 4; resumable, local or Ray)",
+        description="Tree-search sweep: every planner (with its hyperparameter grid) on every"
+        " problem and seed, one row per run with the best return after every simulation."
+        " Defaults are the paper's per problem: the Shekel chain in 10-D and 20-D (10,000"
+        " simulations, 20 seeds, six planners); kitchen 2,000 simulations and 20 seeds;"
+        " conveyor 3,000 simulations and 50 seeds (five planners).",
+    )
+    p.add_argument(
+        "--out", default="results/plan", help="result store directory (default: %(default)s)"
+    )
+    p.add_argument(
+        "--problems",
+        nargs="+",
+        metavar="NAME",
+        help="shekel_chain griewank_chain rastrigin_chain, kitchen conveyor, or any"
+        " gymnasium id with get_state/set_state (default: shekel_chain)",
+    )
+    p.add_argument("--dims", nargs="+", metavar="D", help="chain dimensions (default: 10 20)")
+    p.add_argument(
+        "--planners",
+        nargs="+",
+        metavar="NAME",
+        help="voot doot rand_doot pw_uct voronoi_pw hoot uniform_t (default: the paper's)",
+    )
+    p.add_argument(
+        "--seeds", default=None, help="N (seeds 0..N-1) or START:STOP (default: the paper's)"
+    )
+    p.add_argument(
+        "--simulations", type=int, default=None, help="simulations per run (default: the paper's)"
+    )
+    p.add_argument(
+        "--grid", choices=GRIDS, default="paper", help="hyperparameter grid (default: %(default)s)"
+    )
+    p.add_argument(
+        "--set",
+        nargs="+",
+        metavar="NAME=VALUE",
+        help="a planner parameter for every run (e.g. depth_limit=5 omega=0.3)",
+    )
+    p.add_argument(
+        "--env-kwargs",
+        nargs="+",
+        metavar="NAME=VALUE",
+        help="keywords of gymnasium.make for the environments (e.g. dim=3)",
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="processes or Ray actors (default: every CPU)",
+    )
+    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
+    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
+    p.add_argument(
+        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
+    )
+    p.add_argument("--record", metavar="RUN.rrd", help="record each run's search with rerun")
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_plan)
+
     p = sub.add_parser("select", help="selected hyperparameters per method (best mean final value)")
     p.add_argument("results", help="result store directory")
     p.add_argument("--all", action="store_true", help="list every setting tried")
+    p.add_argument("--kind", choices=KINDS, help="bbfo or plan runs (default: what the store has)")
     p.set_defaults(func=cmd_select)
 
-    p = sub.add_parser("plot", help="Figure 3 and the table of final values")
+    p = sub.add_parser("plot", help="Figure 3 (bbfo runs) or Figure 4 (plan runs), and tables")
     p.add_argument("results", help="result store directory")
+    p.add_argument("--kind", choices=KINDS, help="bbfo or plan runs (default: what the store has)")
     p.add_argument("--png", help="write the figure here")
+    p.add_argument("--png-seconds", help="plan runs: the figure against wall-clock seconds")
     p.add_argument("--markdown", help="write the tables here as markdown")
     p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
     p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
     _add_filters(p, defaults=False)
+    p.add_argument(
+        "--problems", nargs="+", metavar="NAME", help="plan runs: problems (default: all)"
+    )
+    p.add_argument(
+        "--planners", nargs="+", metavar="NAME", help="plan runs: planners (default: all)"
+    )
+    p.add_argument(
+        "--at",
+        nargs="+",
+        metavar="N",
+        help="plan runs: simulation counts of the tables (default: 1000 3000 10000 and the budget)",
+    )
     p.set_defaults(func=cmd_plot)
 
     p = sub.add_parser("speed", help="cost per ask of VOO, CMA-ES and GP-UCB")

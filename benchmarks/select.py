@@ -9,6 +9,10 @@ its selected setting.
 Ties (equal means) go to the setting whose label sorts first, so the choice is
 deterministic. Only rows with status ``"ok"`` count; runs of different budgets are kept
 apart (the budget is part of the cell).
+
+The same rule selects the planners' settings of the planning sweep (rows of kind
+``"plan"``): there a cell is (problem, dim, simulations, planner) and the final value is
+the best return after the last simulation (:func:`cell_of` maps both kinds of row).
 """
 
 from __future__ import annotations
@@ -19,11 +23,26 @@ from typing import Any
 
 import numpy as np
 
+from voot.bench.plan_sweep import PLAN_PLANNERS
+from voot.bench.problems import ALIASES, CHAINS, problem_label
 from voot.bench.store import Row
 from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, params_key
 
-#: (function, dim, budget, method)
+#: (function, dim, budget, method); for plan rows (problem, dim or 0, simulations, planner)
 CellKey = tuple[str, int, int, str]
+
+#: Problems of the planning sweep in plotting order (the robot domains, then the chains).
+PLAN_PROBLEMS: tuple[str, ...] = (*ALIASES, *CHAINS)
+
+
+def cell_of(row: Row) -> CellKey:
+    """The cell of a row: ``(function, dim, budget, method)`` of a bbfo row, or
+    ``(problem label, dim or 0, simulations, planner)`` of a plan row."""
+    cfg = row["config"]
+    if row.get("kind") == "plan":
+        label = problem_label(str(cfg["problem"]), cfg.get("env_kwargs"))
+        return (label, int(cfg.get("dim") or 0), int(cfg["simulations"]), str(cfg["planner"]))
+    return (str(cfg["function"]), int(cfg["dim"]), int(cfg["budget"]), str(cfg["method"]))
 
 
 @dataclass(frozen=True)
@@ -76,13 +95,15 @@ def _order(names: Iterable[str], preferred: Sequence[str]) -> list[str]:
 
 
 def function_order(names: Iterable[str]) -> list[str]:
-    """The paper's functions first (Griewank, Rastrigin, Shekel), then the rest by name."""
-    return _order(names, PAPER_FUNCTIONS)
+    """The paper's functions first (Griewank, Rastrigin, Shekel), then the planning
+    problems (kitchen, conveyor, chains), then the rest by name."""
+    return _order(names, (*PAPER_FUNCTIONS, *PLAN_PROBLEMS))
 
 
 def method_order(names: Iterable[str]) -> list[str]:
-    """Methods in the paper's order (VOO first), then the rest by name."""
-    return _order(names, PAPER_METHODS)
+    """Methods in the paper's order (VOO first), then the planners (VOOT first), then
+    the rest by name."""
+    return _order(names, (*PAPER_METHODS, *PLAN_PLANNERS))
 
 
 def final_value(row: Row) -> float:
@@ -102,9 +123,8 @@ def select_hyperparameters(rows: Iterable[Row]) -> list[Selection]:
     for row in rows:
         if row.get("status") != "ok":
             continue
-        cfg = row["config"]
-        key: CellKey = (cfg["function"], int(cfg["dim"]), int(cfg["budget"]), cfg["method"])
-        params = dict(cfg.get("params") or {})
+        key = cell_of(row)
+        params = dict(row["config"].get("params") or {})
         label = params_key(params)
         entry = groups.setdefault(key, {}).setdefault(label, (params, []))
         entry[1].append(final_value(row))
@@ -127,15 +147,10 @@ def largest_budget(rows: Iterable[Row]) -> list[Row]:
     """
     rows = list(rows)
     top: dict[tuple[str, int], int] = {}
-    for r in rows:
-        cfg = r["config"]
-        k = (cfg["function"], int(cfg["dim"]))
-        top[k] = max(top.get(k, 0), int(cfg["budget"]))
-    return [
-        r
-        for r in rows
-        if int(r["config"]["budget"]) == top[(r["config"]["function"], int(r["config"]["dim"]))]
-    ]
+    cells = [cell_of(r) for r in rows]
+    for function, dim, budget, _ in cells:
+        top[(function, dim)] = max(top.get((function, dim), 0), budget)
+    return [r for r, c in zip(rows, cells, strict=True) if c[2] == top[(c[0], c[1])]]
 
 
 def selected_rows(rows: Iterable[Row], selections: Iterable[Selection]) -> list[Row]:
@@ -145,28 +160,35 @@ def selected_rows(rows: Iterable[Row], selections: Iterable[Selection]) -> list[
     for r in rows:
         if r.get("status") != "ok":
             continue
-        cfg = r["config"]
-        key = (cfg["function"], int(cfg["dim"]), int(cfg["budget"]), cfg["method"])
-        if chosen.get(key) == params_key(cfg.get("params") or {}):
+        if chosen.get(cell_of(r)) == params_key(r["config"].get("params") or {}):
             out.append(r)
     return out
 
 
-def selection_table(selections: Sequence[Selection], *, all_candidates: bool = False) -> str:
+def selection_table(
+    selections: Sequence[Selection], *, all_candidates: bool = False, kind: str = "bbfo"
+) -> str:
     """A markdown table of the selected settings (mean final value, seeds, runner-up).
 
     With ``all_candidates`` every setting gets a row (selected ones marked ``*``).
+    ``kind="plan"`` names the columns for planners (problem, simulations, planner, mean
+    final return); a dim of 0 (an environment) is left blank.
     """
+    if kind == "plan":
+        head = "| problem | dim | simulations | planner | selected | mean final return |"
+    else:
+        head = "| function | dim | budget | method | selected | mean final |"
     lines = [
-        "| function | dim | budget | method | selected | mean final | seeds | settings tried |",
+        f"{head} seeds | settings tried |",
         "| --- | ---: | ---: | --- | --- | ---: | ---: | ---: |",
     ]
     for s in selections:
         cands = s.candidates if all_candidates else s.candidates[:1]
+        dim = "" if kind == "plan" and s.dim == 0 else str(s.dim)
         for i, c in enumerate(cands):
             mark = "*" if all_candidates and i == 0 else ""
             lines.append(
-                f"| {s.function} | {s.dim} | {s.budget} | {s.method} | {c.label}{mark} |"
+                f"| {s.function} | {dim} | {s.budget} | {s.method} | {c.label}{mark} |"
                 f" {c.mean:.6g} | {c.n} | {len(s.candidates)} |"
             )
     return "\n".join(lines)

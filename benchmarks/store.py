@@ -402,7 +402,7 @@ class ResultStore:
             {"file": name, "stat": stat, "row": row, "curves": sorted(arrays)}
             for name, stat, row, arrays in entries
         ]
-        columns: dict[str, NDArray[Any]] = {}
+        columns: dict[str, Any] = {}
         for k in CURVE_KEYS:
             parts = [arrays.get(k, _EMPTY) for *_, arrays in entries]
             offsets = np.zeros(len(entries) + 1, dtype=np.int64)

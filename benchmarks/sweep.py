@@ -4,8 +4,9 @@ A sweep is a grid of functions x dimensions x optimisers (each with its hyperpar
 grid) x seeds. :func:`build_specs` turns the grid into :class:`RunSpec` values,
 :func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store`), and
 :func:`run_sweep` runs every spec not yet in a :class:`~voot.bench.store.ResultStore` on a
-:class:`Backend` (in-process, or a local process pool; a Ray backend plugs in the same
-way), writing each row as soon as its run finishes.
+:class:`Backend` (in-process, a local process pool, or Ray:
+:mod:`voot.bench.ray_backend`), writing each row as soon as its run finishes. The
+planning sweep (:mod:`voot.bench.plan_sweep`) runs through the same :func:`run_sweep`.
 
 The protocol of one run (``PROTOCOL = 1``):
 
@@ -311,6 +312,48 @@ def run_spec(spec: RunSpec) -> Row:
         )
 
 
+def run_any(spec: Any) -> Row:
+    """Run a spec of any kind: :func:`run_spec` for :class:`RunSpec`,
+    :func:`voot.bench.plan_sweep.run_plan_spec` for a plan spec."""
+    if isinstance(spec, RunSpec):
+        return run_spec(spec)
+    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+
+    if isinstance(spec, PlanSpec):
+        return run_plan_spec(spec)
+    raise TypeError(f"cannot run a {type(spec).__name__}; expected a RunSpec or a PlanSpec")
+
+
+def failed_row(spec: Any, error: str, *, wall_time: float = 0.0, **extra: Any) -> Row:
+    """The row of a run that produced none (e.g. its worker died): status ``"failed"``."""
+    return make_row(
+        spec.kind,
+        spec.config(),
+        status="failed",
+        wall_time=wall_time,
+        best_so_far=[],
+        error=error,
+        **extra,
+    )
+
+
+def describe_config(config: Mapping[str, Any]) -> str:
+    """A one-line description of a run from its row's ``config`` (any kind)."""
+    params = config.get("params") or {}
+    text = ", ".join(f"{k}={params[k]}" for k in sorted(params)) or "default"
+    if "planner" in config:
+        from voot.bench.problems import problem_label
+
+        label = problem_label(str(config.get("problem")), config.get("env_kwargs"))
+        if config.get("dim") is not None:
+            label += f"-{config['dim']}D"
+        return f"{config.get('planner')} [{text}] on {label} seed {config.get('seed')}"
+    return (
+        f"{config.get('method')} [{text}] on {config.get('function')}-{config.get('dim')}D"
+        f" seed {config.get('seed')}"
+    )
+
+
 # ----- backends ------------------------------------------------------------------------
 T = TypeVar("T")
 
@@ -418,21 +461,57 @@ class ProcessBackend:
                 pool.shutdown(wait=True, cancel_futures=True)
 
 
-BACKENDS: tuple[str, ...] = ("process", "serial")
+BACKENDS: tuple[str, ...] = ("process", "serial", "ray")
 
 
-def make_backend(name: str = "process", workers: int | None = None) -> Backend:
-    """A backend by name (``process`` or ``serial``)."""
+def make_backend(
+    name: str = "process",
+    workers: int | None = None,
+    *,
+    address: str | None = None,
+    max_tries: int | None = None,
+) -> Backend:
+    """A backend by name: ``process`` (a local pool; one worker runs in this process),
+    ``serial`` or ``ray`` (:class:`voot.bench.ray_backend.RayBackend`; ``address`` of an
+    existing cluster, e.g. ``"auto"``, and ``max_tries`` per run)."""
+    if name != "ray" and (address is not None or max_tries is not None):
+        raise ValueError("address and max_tries apply to the ray backend only (--backend ray)")
     if name == "process":
         if workers == 1:
             return SerialBackend()
         return ProcessBackend(workers)
     if name == "serial":
         return SerialBackend()
+    if name == "ray":
+        from voot.bench.ray_backend import DEFAULT_MAX_TRIES, RayBackend
+
+        return RayBackend(
+            workers,
+            address=address,
+            max_tries=DEFAULT_MAX_TRIES if max_tries is None else max_tries,
+        )
     raise ValueError(f"unknown backend {name!r}; valid backends are: {', '.join(BACKENDS)}")
 
 
 # ----- the sweep -----------------------------------------------------------------------
+class Spec(Protocol):
+    """What the sweep needs of a run's spec (:class:`RunSpec`, a plan spec)."""
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def seed(self) -> int: ...
+
+    @property
+    def run_id(self) -> str: ...
+
+    def config(self) -> dict[str, Any]: ...
+
+
+S = TypeVar("S", bound=Spec)
+
+
 @dataclass
 class SweepSummary:
     """What :func:`run_sweep` did."""
@@ -453,7 +532,7 @@ class SweepSummary:
         return text
 
 
-def execution_order(specs: Sequence[RunSpec]) -> list[RunSpec]:
+def execution_order(specs: Sequence[S]) -> list[S]:
     """Seed-major order, shuffled (deterministically) within each seed.
 
     Every block of one seed holds the same mix of cheap and costly runs, so the progress
@@ -461,19 +540,17 @@ def execution_order(specs: Sequence[RunSpec]) -> list[RunSpec]:
     seeds rather than complete methods.
     """
     rng = np.random.default_rng(0)
-    by_seed: dict[int, list[RunSpec]] = {}
+    by_seed: dict[int, list[S]] = {}
     for s in specs:
         by_seed.setdefault(s.seed, []).append(s)
-    out: list[RunSpec] = []
+    out: list[S] = []
     for seed in sorted(by_seed):
         block = by_seed[seed]
         out.extend(block[i] for i in rng.permutation(len(block)))
     return out
 
 
-def pending_specs(
-    specs: Sequence[RunSpec], store: ResultStore, *, retry_failed: bool = True
-) -> list[RunSpec]:
+def pending_specs(specs: Sequence[S], store: ResultStore, *, retry_failed: bool = True) -> list[S]:
     """The specs whose run is not finished in ``store`` (duplicates removed).
 
     A run with an ``"ok"`` row is finished. With ``retry_failed=False`` a run with a
@@ -481,7 +558,7 @@ def pending_specs(
     """
     rows = store.load(status=None, arrays=True)
     done = {r["run_id"] for r in rows if r["status"] == "ok" or not retry_failed}
-    unique: dict[str, RunSpec] = {}
+    unique: dict[str, S] = {}
     for s in specs:
         unique.setdefault(s.run_id, s)
     return [s for rid, s in unique.items() if rid not in done]
@@ -500,13 +577,13 @@ def _progress_bar(total: int, enabled: bool, desc: str) -> Any:
 
 
 def run_sweep(
-    specs: Sequence[RunSpec],
+    specs: Sequence[S],
     store: ResultStore,
     backend: Backend | None = None,
     *,
     progress: bool = True,
     retry_failed: bool = True,
-    run: Callable[[RunSpec], Row] = run_spec,
+    run: Callable[[Any], Row] = run_any,
 ) -> SweepSummary:
     """Run every spec not finished in ``store``, writing each row as its run finishes.
 
@@ -527,10 +604,8 @@ def run_sweep(
             summary.ran += 1
             if row["status"] != "ok":
                 summary.failed += 1
-                cfg = row["config"]
                 summary.failed_errors.append(
-                    f"{cfg.get('method')} {cfg.get('params')} on {cfg.get('function')}-"
-                    f"{cfg.get('dim')}D seed {cfg.get('seed')}: {row.get('error')}"
+                    f"{describe_config(row['config'])}: {row.get('error')}"
                 )
             if bar is not None:
                 bar.update(1)

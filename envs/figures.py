@@ -24,6 +24,7 @@ import numpy as np
 from voot.envs.conveyor import ConveyorPackingEnv
 from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.scripted import conveyor_actions, kitchen_actions
+from voot.envs.task_env import ensure_headless_gl
 
 SIZE = (1280, 960)
 
@@ -42,6 +43,7 @@ def render_all(out_dir: Path) -> None:
         _save(out_dir / f"kitchen_{cam}.png", kitchen.render_image(cam))
     actions = kitchen_actions(kitchen)
     kitchen.step(actions[0])  # the first pick: a close-up of the grasp
+    ensure_headless_gl()
     renderer = mujoco.Renderer(kitchen.model, height=720, width=960)
     cam = mujoco.MjvCamera()
     base = kitchen.robot.base_pose(kitchen.data)

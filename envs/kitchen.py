@@ -19,7 +19,8 @@ alternating pick and place actions:
   Feasible iff the object is inside the house and not in the forbidden rooms
   (x >= 2.8), the robot's base footprint is inside the house, robot and object collide
   with nothing, and a base path exists from the pick pose to the new base pose for the
-  robot carrying the object (a disc, :mod:`voot.envs.robot`).
+  robot carrying the object (a disc enclosing robot and load, :mod:`voot.envs.robot`;
+  ``L`` below is the length of the base's path).
 
 Rewards (reference page): pick +1 if the previous place reduced the number of
 obstacles on the path, else 0; place ``min(1/L, 2)`` if it reduced that number, else
@@ -53,6 +54,7 @@ from voot.envs.robot import (
     ARM_REACH,
     ROBOT_DISC,
     ROBOT_RADIUS,
+    TUCK,
     CarryDisc,
     base_footprint,
     carry_disc,
@@ -245,6 +247,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         # the fixed path and handling order are needed by _initial_task (called by super)
         self._path: BasePath | None = None
         self._order: tuple[int, ...] = ()
+        self._disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc] = {}
         super().__init__(
             "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
         )
@@ -428,6 +431,12 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             params[2],
             cfg.grasp_standoff,
         )
+        t0 = time.perf_counter()
+        base_report = self.collision.check(self.data.qpos, base, TUCK)  # cheap early exit
+        col_time = time.perf_counter() - t0
+        if not base_report.free:
+            self.last_timing = StepTiming(collision=col_time)
+            return self._infeasible("pick", obj, "collision: " + ", ".join(base_report.hits))
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
         target_r = rb.T @ grasp.rotation
@@ -435,11 +444,11 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         ik = self.ik.solve(target_p, target_r)
         ik_time = time.perf_counter() - t0
         if not ik.success or ik.q is None:
-            self.last_timing = StepTiming(ik=ik_time)
+            self.last_timing = StepTiming(ik=ik_time, collision=col_time)
             return self._infeasible("pick", obj, f"IK failed: {ik.reason}")
         t0 = time.perf_counter()
         report = self.collision.check(self.data.qpos, base, ik.q, held=obj)
-        col_time = time.perf_counter() - t0
+        col_time += time.perf_counter() - t0
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
             return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits))
@@ -468,9 +477,16 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         t = self.task
         if t.held < 0:
             return replace(ROBOT_DISC, radius=self.config.robot_radius)
-        box = object_footprint(self.objects[t.held], *t.held_rel)
-        disc = carry_disc(box.corners())
-        return replace(disc, radius=max(disc.radius, self.config.robot_radius))
+        key = (t.held, t.held_rel)
+        disc = self._disc_cache.get(key)
+        if disc is None:
+            box = object_footprint(self.objects[t.held], *t.held_rel)
+            disc = carry_disc(box.corners())
+            disc = replace(disc, radius=max(disc.radius, self.config.robot_radius))
+            if len(self._disc_cache) > 4096:
+                self._disc_cache.clear()
+            self._disc_cache[key] = disc
+        return disc
 
     def _place(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task

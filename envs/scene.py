@@ -199,11 +199,6 @@ def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
     return Box2D(cx, cy, float(obj.half[0]), float(obj.half[1]), yaw, obj.name)
 
 
-def box_corners(box: Box2D) -> FloatArray:
-    """Corners of a :class:`Box2D`, ``(4, 2)``."""
-    return box.corners()
-
-
 def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
     """Is the rectangle ``box`` inside the axis-aligned ``(xmin, xmax, ymin, ymax)``?"""
     c = box.corners()

@@ -45,6 +45,7 @@ class OperatorStats:
     infeasible: list[dict[str, float]] = field(default_factory=list)
     n_first_node: int = 0
     n_first_node_feasible: int = 0
+    n_first_node_first_box: int = -1  # conveyor: actions whose first placement passed
 
     def add(self, timing: dict[str, float], feasible: bool) -> None:
         (self.feasible if feasible else self.infeasible).append(timing)
@@ -91,14 +92,16 @@ def _time_actions(
 
 def _count_feasible(
     env: ManipulationEnv[Any], state: EnvState[Any], n: int, rng: np.random.Generator
-) -> int:
+) -> tuple[int, int]:
+    """Feasible actions among ``n`` uniform ones, and those whose first box passed."""
     dim = env.action_dim
-    count = 0
+    count = first = 0
     for _ in range(n):
         env.set_state(state)
         _, _, _, _, info = env.step(rng.uniform(-1.0, 1.0, dim))
         count += bool(info["feasible"])
-    return count
+        first += bool(info["feasible"]) or not str(info["reason"]).startswith("box 1/")
+    return count, first
 
 
 def _median_time(fn: Callable[[], Any], repeats: int) -> float:
@@ -126,14 +129,9 @@ def run(n: int = 1000, seed: int = 0) -> dict[str, Any]:
     place = OperatorStats("kitchen place (3-D)")
     _time_actions(kitchen, pick_states, n, rng, pick)
     _time_actions(kitchen, place_states, n, rng, place)
-    pick.n_first_node, pick.n_first_node_feasible = (
-        n,
-        _count_feasible(kitchen, pick_states[0], n, rng),
-    )
-    place.n_first_node, place.n_first_node_feasible = (
-        n,
-        _count_feasible(kitchen, place_states[0], n, rng),
-    )
+    pick.n_first_node = place.n_first_node = n
+    pick.n_first_node_feasible = _count_feasible(kitchen, pick_states[0], n, rng)[0]
+    place.n_first_node_feasible = _count_feasible(kitchen, place_states[0], n, rng)[0]
     restore = _median_time(lambda: kitchen.set_state(pick_states[3]), 2000)
     snapshot = _median_time(kitchen.get_state, 2000)
 
@@ -145,9 +143,9 @@ def run(n: int = 1000, seed: int = 0) -> dict[str, Any]:
         conveyor.step(a)
     conv = OperatorStats("conveyor place x3 (9-D)")
     _time_actions(conveyor, conv_states, n, rng, conv)
-    conv.n_first_node, conv.n_first_node_feasible = (
-        n,
-        _count_feasible(conveyor, conv_states[0], n, rng),
+    conv.n_first_node = n
+    conv.n_first_node_feasible, conv.n_first_node_first_box = _count_feasible(
+        conveyor, conv_states[0], n, rng
     )
     conv_restore = _median_time(lambda: conveyor.set_state(conv_states[3]), 2000)
     return {
@@ -172,6 +170,7 @@ def report(results: dict[str, Any]) -> str:
             + f" | n={len(s.infeasible):<5}"
             + " ".join(f"{v:5.2f}" for v in i)
             + f" | {s.steps_per_second():7.0f} | {s.n_first_node_feasible}/{s.n_first_node}"
+            + (f" (first box: {s.n_first_node_first_box})" if s.n_first_node_first_box >= 0 else "")
         )
     lines.append(
         f"snapshot restore (set_state): kitchen {results['kitchen_restore'] * 1e6:.1f} us, "

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import copy
 import math
+import os
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar, Generic, TypeVar
@@ -45,6 +47,25 @@ FloatArray = NDArray[np.float64]
 CAMERAS = ("perspective", "top_down")
 #: Render modes.
 RENDER_MODES = ("rgb_array",)
+
+
+def ensure_headless_gl() -> None:
+    """Use EGL for off-screen rendering on a Linux machine without a display.
+
+    MuJoCo picks its OpenGL backend from ``MUJOCO_GL`` when it is first imported
+    (``voot.envs`` sets ``MUJOCO_GL=egl`` if it is imported first). If MuJoCo was imported
+    earlier with the default GLFW backend and there is no display, GLFW cannot create a
+    context; this switches the renderer's context class to EGL instead.
+    """
+    if not sys.platform.startswith("linux") or os.environ.get("DISPLAY"):
+        return
+    from mujoco.rendering.classic import gl_context
+
+    if getattr(gl_context, "_MUJOCO_GL", "") in ("egl", "osmesa"):
+        return
+    from mujoco.egl import GLContext
+
+    gl_context.GLContext = GLContext  # type: ignore[attr-defined]
 
 
 def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
@@ -209,6 +230,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self.planner = BasePlanner(workspace, self.static_boxes, planner)
         self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
         self._renderer: mujoco.Renderer | None = None
+        self._box_cache: dict[int, tuple[bytes, Box2D]] = {}
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
 
@@ -263,9 +285,21 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         return object_pose(self.data, self.objects[i])
 
     def object_box(self, i: int) -> Box2D:
-        """Footprint of object ``i`` in the current state."""
+        """Footprint of object ``i`` in the current state.
+
+        Cached per object and keyed by its 7 free-joint numbers, so the (immutable)
+        footprint of an object that has not moved is reused: it is a pure function of
+        them, and reusing it keeps the base planner's graph cache warm.
+        """
+        obj = self.objects[i]
+        key = self.data.qpos[obj.qpos_adr : obj.qpos_adr + 7].tobytes()
+        hit = self._box_cache.get(i)
+        if hit is not None and hit[0] == key:
+            return hit[1]
         x, y, _, yaw = self.object_pose(i)
-        return object_footprint(self.objects[i], float(x), float(y), float(yaw))
+        box = object_footprint(obj, float(x), float(y), float(yaw))
+        self._box_cache[i] = (key, box)
+        return box
 
     def object_boxes(self, exclude: Sequence[int] = ()) -> list[Box2D]:
         """Footprints of all objects but ``exclude``, in object order."""
@@ -331,6 +365,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if self._renderer is None or (self._renderer.width, self._renderer.height) != (w, h):
             if self._renderer is not None:
                 self._renderer.close()
+            ensure_headless_gl()
             self._renderer = mujoco.Renderer(self.model, height=h, width=w)
         mujoco.mj_kinematics(self.model, self.data)
         mujoco.mj_camlight(self.model, self.data)  # cameras follow the kinematics

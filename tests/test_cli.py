@@ -146,6 +146,119 @@ def test_speed_table(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixt
     assert calls[-1] == ("voo", 10, 3, 5, 0)
 
 
+PLAN_TINY = [
+    "--problems",
+    "shekel_chain",
+    "--dims",
+    "3",
+    "--planners",
+    "voot",
+    "pw_uct",
+    "--seeds",
+    "2",
+    "--simulations",
+    "12",
+    "--grid",
+    "default",
+    "--workers",
+    "1",
+    "--no-progress",
+]
+
+
+def test_plan_plot_select_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "plan"
+    assert main(["plan", "--out", str(out), *PLAN_TINY]) == 0
+    assert "4 runs: 0 already in the store, 4 ran (0 failed)" in capsys.readouterr().out
+    assert main(["plan", "--out", str(out), *PLAN_TINY]) == 0  # resume: nothing to do
+    assert "4 already in the store, 0 ran" in capsys.readouterr().out
+    rows = ResultStore(out).load(kind="plan")
+    assert len(rows) == 4 and all(len(r["best_so_far"]) == 12 for r in rows)
+
+    png, secs, md = tmp_path / "f4.png", tmp_path / "f4s.png", tmp_path / "docs" / "plan.md"
+    argv = ["plot", str(out), "--png", str(png), "--png-seconds", str(secs), "--markdown", str(md)]
+    assert main([*argv, "--at", "5", "12"]) == 0
+    printed = capsys.readouterr().out
+    assert png.read_bytes()[:4] == b"\x89PNG" and secs.read_bytes()[:4] == b"\x89PNG"
+    assert "| problem | simulations | voot | pw_uct |" in printed
+    assert "| shekel_chain 3-D | 5 |" in printed and "| shekel_chain 3-D | 12 |" in printed
+    assert md.read_text().startswith("### Best return")
+    assert main(["plot", str(out), "--planners", "voot", "--problems", "shekel-chain"]) == 0
+    assert "| problem | simulations | voot |\n" in capsys.readouterr().out
+
+    assert main(["select", str(out)]) == 0
+    assert "| shekel_chain | 3 | 12 | voot | default |" in capsys.readouterr().out
+
+    # a store with both kinds needs --kind
+    small = ["--functions", "rastrigin", "--dims", "3", "--methods", "random", "--seeds", "1"]
+    assert main(["bbfo", "--out", str(out), *small, "--budget", "5", "--workers", "1"]) == 0
+    capsys.readouterr()
+    assert main(["plot", str(out)]) == 2
+    assert "choose one with --kind" in capsys.readouterr().err
+    assert main(["plot", str(out), "--kind", "plan"]) == 0
+    assert main(["select", str(out), "--kind", "bbfo"]) == 0
+    assert "| rastrigin | 3 | 5 | random |" in capsys.readouterr().out
+
+
+def test_plan_records_a_run(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    rrd = tmp_path / "run.rrd"
+    argv = ["plan", "--out", str(tmp_path / "r"), *PLAN_TINY, "--record", str(rrd)]
+    argv[argv.index("pw_uct")] = "voot"  # one planner ...
+    argv[argv.index("--seeds") + 1] = "1"  # ... one seed: one run, recorded to run.rrd itself
+    assert main(argv) == 0
+    assert rrd.stat().st_size > 0
+    assert ResultStore(tmp_path / "r").load()[0]["recorded"] == str(rrd)
+    assert main(argv) == 0  # already done: not run (nor recorded) again
+    assert "were not recorded again" in capsys.readouterr().err
+
+
+def test_plan_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
+    assert (
+        main(["plan", "--dry-run", "--problems", "kitchen", "conveyor", "--grid", "default"]) == 0
+    )
+    cap = capsys.readouterr()
+    assert "kitchen 2000 simulations, 20 seeds: voot 20, rand_doot 20" in cap.out
+    assert "conveyor 3000 simulations, 50 seeds" in cap.out
+    assert "350 runs" in cap.err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["plan", "--problems", "nope"], "unknown problem 'nope'"),
+        (["plan", "--planners", "vooot"], "unknown planner 'vooot'; valid planners are:"),
+        (["plan", "--set", "omega"], "--set: 'omega' is not NAME=VALUE"),
+        (["plan", "--set", "depth_limit=0"], "depth_limit must be an integer >= 1"),
+        (["plan", "--address", "auto"], "--address and --max-tries go with --backend ray"),
+        (["plan", "--record", "r.rrd", "--backend", "ray"], "--record writes .rrd files"),
+        (["plan", "--simulations", "0"], "simulations must be integers >= 1"),
+        (["plan", "--seeds", "3:1"], "inverted or empty range"),
+    ],
+)
+def test_plan_clear_errors(
+    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main([*argv, "--dry-run"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("voot-bench: error: ") and message in err
+
+
+def test_plot_options_of_the_other_kind(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "plan"
+    argv = ["plan", "--out", str(out), *PLAN_TINY]
+    argv[argv.index("--seeds") + 1] = "1"
+    assert main(argv) == 0
+    assert main(["plot", str(out), "--regret"]) == 2
+    assert "apply to bbfo runs" in capsys.readouterr().err
+    assert main(["plot", str(out), "--kind", "bbfo"]) == 2
+    assert "no finished bbfo runs" in capsys.readouterr().err
+    bbfo = tmp_path / "bbfo"
+    small = ["--functions", "rastrigin", "--dims", "3", "--methods", "random", "--seeds", "1"]
+    assert main(["bbfo", "--out", str(bbfo), *small, "--budget", "5", "--workers", "1"]) == 0
+    assert main(["plot", str(bbfo), "--png-seconds", "x.png"]) == 2
+    assert "apply to plan runs" in capsys.readouterr().err
+
+
 def test_parse_range() -> None:
     assert parse_range("3", "s") == [0, 1, 2]
     assert parse_range("5:8", "s") == [5, 6, 7]
@@ -159,5 +272,5 @@ def test_console_script_help() -> None:
     assert SCRIPT is not None
     done = subprocess.run([SCRIPT, "--help"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0
-    for command in ("demo", "bbfo", "plot", "speed", "select"):
+    for command in ("demo", "bbfo", "plan", "plot", "speed", "select"):
         assert command in done.stdout

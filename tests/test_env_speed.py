@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from voot.envs import speed
@@ -12,6 +14,8 @@ def test_run_and_report(capsys: pytest.CaptureFixture[str]) -> None:
     out = capsys.readouterr().out
     assert "kitchen pick (6-D)" in out and "conveyor place x3 (9-D)" in out
     assert "snapshot restore" in out
+    assert len(re.findall(r"\| \d+/4", out)) == 3  # feasible counts of 4 actions per operator
+    assert re.search(r"first box: \d+\)", out)
 
 
 def test_bad_arguments() -> None:

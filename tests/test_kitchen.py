@@ -106,7 +106,7 @@ def test_infeasible_pick_reasons(env: KitchenClearingEnv) -> None:
     env.reset(seed=0)
     reasons = set()
     rng = np.random.default_rng(0)
-    for _ in range(60):
+    for _ in range(300):
         s = env.get_state()
         _, r, _, _, info = env.step(rng.uniform(-1, 1, 6))
         if not info["feasible"]:

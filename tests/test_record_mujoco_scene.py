@@ -139,7 +139,7 @@ def test_poses_per_step_and_fixed_bodies_once(model: object, tmp_path: Path) -> 
 def test_group_filter_and_errors(model: object) -> None:
     everything = MujocoScene(model, geom_groups=None)
     assert everything._geoms.size == 9  # all but the alpha-0 box
-    with pytest.raises(ValueError, match="mujoco.MjModel"):
+    with pytest.raises(ValueError, match=r"mujoco\.MjModel"):
         MujocoScene(object())
 
 

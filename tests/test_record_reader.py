@@ -9,9 +9,9 @@ import pytest
 
 pytest.importorskip("rerun")
 
-import rerun as rr  # noqa: E402
+import rerun as rr
 
-from voot.record.reader import read_recording  # noqa: E402
+from voot.record.reader import read_recording
 
 
 @pytest.fixture(scope="module")

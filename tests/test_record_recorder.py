@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -11,7 +12,7 @@ import pytest
 pytest.importorskip("rerun")
 pytest.importorskip("mujoco")
 
-import rerun as rr  # noqa: E402
+import rerun as rr
 
 from voot.record import (
     RecorderConfig,
@@ -19,11 +20,11 @@ from voot.record import (
     combine_callbacks,
     read_recording,
     record_plan,
-)  # noqa: E402
-from voot.record.demo import DemoPickPlace  # noqa: E402
-from voot.record.recorder import watch_name  # noqa: E402
-from voot.tree import MCTS, MCTSConfig, make_chain, plan  # noqa: E402
-from voot.tree.overhead import NullProblem  # noqa: E402
+)
+from voot.record.demo import DemoPickPlace
+from voot.record.recorder import watch_name
+from voot.tree import MCTS, MCTSConfig, make_chain, plan
+from voot.tree.overhead import NullProblem
 
 
 @pytest.fixture(autouse=True)
@@ -56,7 +57,7 @@ def test_scalars_samples_tree_and_plan_of_a_problem_without_scene(tmp_path: Path
     assert np.allclose([v[0] for _, v in best], mcts.best_return_curve)
     sizes = rec.column("search/n_nodes", "Scalars:scalars", "search")
     assert sizes[-1][1] == [len(mcts.nodes)]
-    assert all(a[1][0] <= b[1][0] for a, b in zip(sizes, sizes[1:], strict=False))
+    assert all(a[1][0] <= b[1][0] for a, b in itertools.pairwise(sizes))
     # No base poses nor placements: the root's samples in the 2-D fallback, every 10 sims.
     samples = rec.entity("samples/root")
     assert samples.rows == {"search": 6}
@@ -154,6 +155,7 @@ def test_watch_entries_and_names(tmp_path: Path) -> None:
     assert watch_name(3) == "node_3"
     assert watch_name("place") == "first_place"
     assert watch_name("a b/c") == "first_a_b_c"
+    assert watch_name("best:place") == "best_place"
     path = tmp_path / "watch.rrd"
     mcts, _ = _null_search(path, 20, watch=(2, "nothing"), samples_every=5)
     rec = read_recording(path)
@@ -163,6 +165,21 @@ def test_watch_entries_and_names(tmp_path: Path) -> None:
     assert (
         len(rec.latest("samples/node_2", "Points2D:positions", "search")) == mcts.nodes[2].n_actions
     )
+
+
+def test_best_path_watch_follows_the_best_plan(tmp_path: Path) -> None:
+    problem = DemoPickPlace()
+    mcts = MCTS(problem, "voot", seed=0)
+    with SearchRecorder(
+        tmp_path / "best.rrd", problem, watch=("best:place",), samples_every=20
+    ) as r:
+        mcts.search(100, callback=r)
+        node = r.watched()["best_place"]
+        assert node.info["next_operator"] == "place"
+        assert node in [n for n, _ in mcts.best_plan()]
+    rec = read_recording(tmp_path / "best.rrd")
+    pts = rec.latest("scene/samples/best_place/placements", "Points3D:positions", "search")
+    assert len(pts) == node.n_actions
 
 
 def test_periodic_tree_and_node_cap(tmp_path: Path) -> None:
@@ -227,3 +244,20 @@ def test_scene_can_be_switched_off(tmp_path: Path) -> None:
     assert not any(e.startswith("/scene/bodies") for e in rec.entities)
     # Sampled poses are still drawn on the floor.
     assert "/scene/samples/root/base_poses" in rec.entities
+
+
+def test_reroot_keeps_the_timeline_growing(tmp_path: Path) -> None:
+    problem = NullProblem(2)
+    mcts = MCTS(problem, MCTSConfig(depth_limit=3, root_commitment=None), seed=0)
+    with SearchRecorder(tmp_path / "reroot.rrd", problem, samples_every=5) as recorder:
+        mcts.search(10, callback=recorder)
+        old_root = mcts.root
+        mcts.reroot(mcts.root.best_edge())
+        mcts.search(10, callback=recorder)
+        assert recorder.watched()["root"] is mcts.root is not old_root
+    rec = read_recording(tmp_path / "reroot.rrd")
+    best = rec.column("search/best_return", "Scalars:scalars", "search")
+    assert [t for t, _ in best] == list(range(20))
+    roots = rec.column("samples/root", "Points2D:positions", "search")
+    assert [t for t, _ in roots] == [4, 9, 14, 19]
+    assert len(roots[-1][1]) == mcts.root.n_actions

@@ -6,12 +6,12 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")  # before mujoco is imported, if it is not yet
 
-import importlib.util  # noqa: E402
-from pathlib import Path  # noqa: E402
-from types import SimpleNamespace  # noqa: E402
+import importlib.util
+from pathlib import Path
+from types import SimpleNamespace
 
-import numpy as np  # noqa: E402
-import pytest  # noqa: E402
+import numpy as np
+import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -59,7 +59,9 @@ def test_gif_of_a_plan_with_interpolated_frames(tmp_path: Path) -> None:
 
     problem = DemoPickPlace()
     start = problem.snapshot()
-    frames = plan_frames(problem, PLAN, width=96, height=64, interpolate=2, view={"distance": 8.0, "elevation": -60})
+    frames = plan_frames(
+        problem, PLAN, width=96, height=64, interpolate=2, view={"distance": 8.0, "elevation": -60}
+    )
     assert len(frames) == 1 + 2 * 3
     assert all(f.shape == (64, 96, 3) and f.dtype == np.uint8 for f in frames)
     assert frames[0].std() > 0  # not a blank image

@@ -94,3 +94,39 @@ def test_orders_and_table() -> None:
     assert "| shekel | 3 | 4 | voo | omega=0.1 | 2 | 1 | 2 |" in table
     full = selection_table(sels, all_candidates=True)
     assert "omega=0.1*" in full and "omega=0.3 |" in full
+
+
+def test_plan_rows_select_per_problem_and_planner() -> None:
+    from voot.bench.select import cell_of
+
+    def plan_row(final: float, planner: str, params: dict[str, Any], seed: int, dim: Any) -> Row:
+        config = {
+            "problem": "voot/KitchenClearing-v0" if dim is None else "shekel_chain",
+            "dim": dim,
+            "env_kwargs": {},
+            "planner": planner,
+            "params": params,
+            "simulations": 2,
+            "seed": seed,
+            "protocol": 1,
+        }
+        return make_row("plan", config, status="ok", wall_time=0.1, best_so_far=[0.0, final])
+
+    rows = [
+        plan_row(1.0, "voot", {"omega": 0.1}, 0, None),
+        plan_row(3.0, "voot", {"omega": 0.1}, 1, None),
+        plan_row(2.5, "voot", {"omega": 0.3}, 0, None),
+        plan_row(2.5, "voot", {"omega": 0.3}, 1, None),
+        plan_row(0.5, "pw_uct", {}, 0, 10),
+    ]
+    assert cell_of(rows[0]) == ("kitchen", 0, 2, "voot")
+    assert cell_of(rows[-1]) == ("shekel_chain", 10, 2, "pw_uct")
+    sels = select_hyperparameters(rows)
+    assert [(s.function, s.method, s.best.label) for s in sels] == [
+        ("kitchen", "voot", "omega=0.3"),
+        ("shekel_chain", "pw_uct", "default"),
+    ]
+    table = selection_table(sels, kind="plan")
+    assert "| problem | dim | simulations | planner |" in table
+    assert "| kitchen |  | 2 | voot | omega=0.3 | 2.5 | 2 | 2 |" in table
+    assert method_order(["hoot", "voo", "voot", "pw_uct"]) == ["voo", "voot", "pw_uct", "hoot"]

@@ -234,3 +234,28 @@ def test_curves_pads_with_nan() -> None:
     assert np.array_equal(c[0], [1.0, 2.0, 3.0])
     assert c[1, 0] == 5.0 and np.isnan(c[1, 1:]).all()
     assert curves([]).shape == (0, 0)
+
+
+def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    r = make_row(
+        "plan",
+        {"problem": "kitchen", "seed": 0},
+        status="ok",
+        wall_time=1.0,
+        best_so_far=[0.0, 1.0, 1.5],
+        elapsed=[0.1, 0.25, 0.5],
+        objects_left=[None, 6, 4],
+        objects_initial=7,
+    )
+    s.write(r)
+    s.write(row(1))  # a row without the optional curves
+    for _ in range(2):  # parsed, then from the index
+        plan, bbfo = sorted(s.load(arrays=True), key=lambda x: x["kind"] != "plan")
+        assert np.array_equal(plan["elapsed"], [0.1, 0.25, 0.5])
+        assert np.isnan(plan["objects_left"][0]) and plan["objects_left"][1:].tolist() == [6, 4]
+        assert plan["objects_initial"] == 7 and "elapsed" not in bbfo
+        as_lists = next(x for x in s.load() if x["kind"] == "plan")
+        assert as_lists["objects_left"] == [None, 6.0, 4.0]  # as in the row file
+        assert as_lists == s.get(r["run_id"])
+    assert store_mod.CURVE_KEYS[0] == "best_so_far"

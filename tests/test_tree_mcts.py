@@ -94,7 +94,7 @@ ONE_STEP = [
     ("uniform_t", 200, 0.05),
     ("pw_uct", 1000, 0.05),
     ("voronoi_pw", 300, 0.05),
-    ("hoot", 300, 0.1),
+    ("hoot", 300, 0.01),
 ]
 
 
@@ -282,6 +282,23 @@ def test_best_return_curve_and_plan_agree() -> None:
     assert leaves.best_return <= res.best_return
 
 
+def test_best_return_over_complete_paths() -> None:
+    class Cost(Counter):
+        def step(self, action: np.ndarray) -> StepResult:
+            r = super().step(action)
+            return StepResult(r.reward - 1.0, r.feasible, r.terminal, r.bonus, r.info)
+
+    res = plan(
+        Cost(), "voot", 60, seed=0, depth_limit=3, best_return_over="complete", root_commitment=None
+    )
+    assert len(res.actions) == 3  # not the empty plan, whose return 0 beats any cost
+    assert np.all(np.diff(res.best_return_curve) >= 0)
+    first = MCTS(Cost(), planner_config("voot", depth_limit=3, best_return_over="complete"))
+    assert first.best_return == -math.inf
+    nodes = plan(Cost(), "voot", 60, seed=0, depth_limit=3, best_return_over="nodes")
+    assert len(nodes.actions) == 0 and nodes.best_return == 0.0  # over nodes: the empty plan
+
+
 def test_callback_record_info_and_early_stop() -> None:
     calls: list[int] = []
 
@@ -297,7 +314,7 @@ def test_callback_record_info_and_early_stop() -> None:
 
 
 def test_search_continues_the_same_tree() -> None:
-    mcts = MCTS(Counter(), "voot", seed=0)
+    mcts = MCTS(Counter(goal_depth=5), "voot", seed=0)
     mcts.search(10)
     res = mcts.search(15)
     assert res.n_simulations == 25 and res.best_return_curve.size == 25
@@ -329,9 +346,20 @@ def test_nodes_are_inspectable() -> None:
 
 
 # ----- determinism -----------------------------------------------------------------------
-def _fingerprint(planner: str) -> str:
+FINGERPRINT = """
+from voot.tree import plan
+from voot.tree.overhead import NullProblem
+
+def fingerprint(planner):
     res = plan(NullProblem(4), planner, 300, seed=123, depth_limit=4, root_commitment=5)
     return (res.best_return_curve.tobytes() + b"".join(a.tobytes() for a in res.actions)).hex()
+"""
+
+
+def _fingerprint(planner: str) -> str:
+    scope: dict[str, object] = {}
+    exec(FINGERPRINT, scope)
+    return scope["fingerprint"](planner)  # type: ignore[operator,no-any-return]
 
 
 @pytest.mark.parametrize("planner", ["voot", "rand_doot", "pw_uct", "hoot"])
@@ -341,20 +369,11 @@ def test_same_seed_same_result_in_process(planner: str) -> None:
 
 def test_same_seed_bit_identical_across_processes() -> None:
     planners = ["voot", "doot", "rand_doot", "voronoi_pw", "hoot"]
-    code = (
-        "from tests.test_tree_mcts import _fingerprint\n"
-        f"for p in {planners!r}: print(_fingerprint(p))\n"
-    )
+    code = FINGERPRINT + f"for p in {planners!r}: print(fingerprint(p))\n"
     out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=_repo_root()
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
     ).stdout.split()
     assert out == [_fingerprint(p) for p in planners]
-
-
-def _repo_root() -> str:
-    import pathlib
-
-    return str(pathlib.Path(__file__).resolve().parent.parent)
 
 
 def test_different_seeds_differ() -> None:
@@ -397,7 +416,7 @@ def test_action_box_as_pairs_is_accepted() -> None:
 
 
 def test_not_a_problem_is_a_type_error() -> None:
-    with pytest.raises(TypeError, match="no step"):
+    with pytest.raises(TypeError, match="is not a PlanningProblem"):
         MCTS(object())  # type: ignore[arg-type]
 
 
@@ -408,6 +427,14 @@ def test_step_must_return_a_step_result() -> None:
 
     with pytest.raises(TypeError, match="must return a StepResult"):
         plan(Bad(2), "voot", 1)
+
+
+def test_endless_rollout_without_depth_limit_is_an_error(monkeypatch: pytest.MonkeyPatch) -> None:
+    import voot.tree.mcts as mcts_module
+
+    monkeypatch.setattr(mcts_module, "MAX_UNLIMITED_DEPTH", 50)
+    with pytest.raises(RuntimeError, match="set depth_limit"):
+        plan(Counter(), "voot", 1)
 
 
 def test_config_object_and_overrides() -> None:

@@ -9,7 +9,7 @@ Three pieces:
   when a cheap rank-1 update suffices.
 * :func:`maximize_ucb`: maximise :math:`\mu(x) + \zeta\sigma(x)` over the unit cube the
   way the paper's baseline did: the best of many uniform random candidates (10^4), then
-  L-BFGS-B with the analytic gradient from the best few.
+  L-BFGS-B with the analytic gradient from the best one (or best few).
 
 Cost (n conditioned points, m candidates, d dimensions): a hyperparameter fit costs
 ``O(n^3)`` per likelihood evaluation (tens of evaluations per start); a rank-1 update
@@ -193,12 +193,7 @@ class Surrogate:
         keep = np.zeros(n, dtype=bool)
         keep[order[: cap // 2]] = True
         need = cap - int(keep.sum())
-        for i in range(n - 1, -1, -1):  # most recent not already kept
-            if need == 0:
-                break
-            if not keep[i]:
-                keep[i] = True
-                need -= 1
+        keep[np.flatnonzero(~keep)[-need:]] = True  # the most recent of the others
         return np.flatnonzero(keep)
 
     def sync(self, X: FloatArray, y: FloatArray) -> GaussianProcess:

@@ -34,7 +34,17 @@ _EXPORTS = {
     "write_video": "voot.record.video",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = [
+    "RecorderConfig",
+    "Recording",
+    "SearchRecorder",
+    "combine_callbacks",
+    "plan_frames",
+    "read_recording",
+    "record_plan",
+    "write_plan_video",
+    "write_video",
+]
 
 
 def __getattr__(name: str) -> Any:

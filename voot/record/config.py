@@ -18,6 +18,10 @@ from voot.record.colors import INFEASIBLE_COLOR, check_color
 #: Watch entry meaning the tree's root.
 ROOT = "root"
 
+#: Prefix of a watch entry meaning "the first node of the current best path whose
+#: operator is ...", e.g. ``"best:place"``.
+BEST_PREFIX = "best:"
+
 
 def _int(value: object, name: str, low: int, optional: bool = False) -> int | None:
     if optional and value is None:
@@ -48,9 +52,11 @@ class RecorderConfig:
     Attributes:
         application_id: rerun application id (the viewer groups recordings by it).
         watch: the nodes whose sampled actions are drawn: ``"root"`` (the tree's root),
-            a node id (int), or an operator name such as ``"place"``: the first node, in
-            creation order, whose operator is that name (see ``operator_key``). Default:
-            the root and the first place node, the paper's Figure 5.
+            a node id (int), an operator name such as ``"place"``: the first node, in
+            creation order, whose operator is that name (see ``operator_key``), or
+            ``"best:<operator>"``: the first node with that operator on the best path
+            *at the time of each drawing* (it may change as the search improves).
+            Default: the root and the first place node, the paper's Figure 5.
         operator_key: step-info key naming the operator of the actions taken *from* the
             state an action leads to (the environments' "next operator").
         samples_every: log the watched nodes' sampled actions every this many
@@ -96,7 +102,9 @@ class RecorderConfig:
 
     def __post_init__(self) -> None:
         if not isinstance(self.application_id, str) or not self.application_id.strip():
-            raise ValueError(f"application_id must be a non-empty string, got {self.application_id!r}")
+            raise ValueError(
+                f"application_id must be a non-empty string, got {self.application_id!r}"
+            )
         watch = (self.watch,) if isinstance(self.watch, str | int) else self.watch
         try:
             watch = tuple(watch)
@@ -105,7 +113,7 @@ class RecorderConfig:
                 f"watch must be a tuple of 'root', node ids (int >= 0) or operator names, got {self.watch!r}"
             ) from None
         for w in watch:
-            ok = (isinstance(w, str) and w.strip() != "") or (
+            ok = (isinstance(w, str) and w.strip() not in ("", BEST_PREFIX)) or (
                 isinstance(w, int) and not isinstance(w, bool) and w >= 0
             )
             if not ok:
@@ -127,11 +135,8 @@ class RecorderConfig:
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
         if self.geom_groups is not None:
             groups = self.geom_groups
-            if (
-                isinstance(groups, str | int)
-                or not all(
-                    isinstance(g, int) and not isinstance(g, bool) and 0 <= g <= 5 for g in groups
-                )
+            if isinstance(groups, str | int) or not all(
+                isinstance(g, int) and not isinstance(g, bool) and 0 <= g <= 5 for g in groups
             ):
                 raise ValueError(
                     f"geom_groups must be None or a tuple of MuJoCo groups 0-5, got {groups!r}"

@@ -158,19 +158,20 @@ class MujocoScene:
             int(G.mjGEOM_MESH): "mesh",
         }
         per_body: dict[int, dict[str, list[int]]] = {}
-        for g in self._geoms:
-            kind = kinds.get(int(m.geom_type[g]))
+        for geom in self._geoms.tolist():
+            kind = kinds.get(int(m.geom_type[geom]))
             if kind is None:
                 self.skipped += 1
                 continue
-            per_body.setdefault(int(m.geom_bodyid[g]), {}).setdefault(kind, []).append(int(g))
+            per_body.setdefault(int(m.geom_bodyid[geom]), {}).setdefault(kind, []).append(geom)
         solid = rr.components.FillMode.Solid
         n = 0
         for b, groups in per_body.items():
             ent = self.body_entities[b]
             boxes = groups.get("box", []) + groups.get("plane", [])
             if boxes:
-                half, centers = [], []
+                half: list[Any] = []
+                centers: list[Any] = []
                 for g in boxes:
                     s = np.array(m.geom_size[g], dtype=np.float64)
                     p = np.array(m.geom_pos[g], dtype=np.float64)
@@ -198,7 +199,7 @@ class MujocoScene:
                 )
             ell = groups.get("sphere", []) + groups.get("ellipsoid", [])
             if ell:
-                half = [
+                radii = [
                     np.repeat(m.geom_size[g][0], 3)
                     if int(m.geom_type[g]) == int(G.mjGEOM_SPHERE)
                     else np.array(m.geom_size[g])
@@ -207,7 +208,7 @@ class MujocoScene:
                 rec.log(
                     f"{ent}/ellipsoids",
                     rr.Ellipsoids3D(
-                        half_sizes=np.array(half),
+                        half_sizes=np.array(radii),
                         centers=np.array(m.geom_pos[ell]),
                         quaternions=self._quats(ell),
                         colors=self._colors(ell),

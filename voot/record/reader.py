@@ -82,7 +82,9 @@ class Recording:
             raise KeyError(f"no entity {key!r} in {self.path}; entities: {sorted(self.entities)}")
         return self.entities[key]
 
-    def column(self, path: str, component: str, timeline: str | None = None) -> list[tuple[int | None, list[Any]]]:
+    def column(
+        self, path: str, component: str, timeline: str | None = None
+    ) -> list[tuple[int | None, list[Any]]]:
         """The rows of one component: ``(time, values)`` pairs, sorted by time.
 
         ``timeline`` None gives the static rows (time None); otherwise the rows on that
@@ -90,7 +92,9 @@ class Recording:
         """
         info = self.entity(path)
         if component not in info.components:
-            raise KeyError(f"{info.path} has no component {component!r}; it has {list(info.components)}")
+            raise KeyError(
+                f"{info.path} has no component {component!r}; it has {list(info.components)}"
+            )
         out: list[tuple[int | None, list[Any]]] = []
         for static, batch in self._batches[info.path]:
             names = batch.schema.names
@@ -107,7 +111,7 @@ class Recording:
             values = batch.column(component).to_pylist()
             out.extend((t, v) for t, v in zip(times, values, strict=True) if v is not None)
         if timeline is not None:
-            out.sort(key=lambda tv: tv[0])
+            out.sort(key=lambda tv: tv[0] if tv[0] is not None else -1)
         return out
 
     def latest(self, path: str, component: str, timeline: str | None = None) -> list[Any]:
@@ -185,7 +189,9 @@ def read_recording(path: str | os.PathLike[str], *, strict: bool = True) -> Reco
                 batch = chunk.to_record_batch()
                 timelines = list(chunk.timeline_names)
                 comps = {
-                    n for n in batch.schema.names if not n.startswith(_CONTROL_PREFIX) and n not in timelines
+                    n
+                    for n in batch.schema.names
+                    if not n.startswith(_CONTROL_PREFIX) and n not in timelines
                 }
                 components.setdefault(ent, set()).update(comps)
                 batches.setdefault(ent, []).append((chunk.is_static, batch))
@@ -209,7 +215,8 @@ def read_recording(path: str | os.PathLike[str], *, strict: bool = True) -> Reco
         for e in sorted(components)
     }
     timelines_info = {
-        tl: TimelineInfo(tl, tl_rows[tl], tl_min.get(tl, 0), tl_max.get(tl, 0)) for tl in sorted(tl_rows)
+        tl: TimelineInfo(tl, tl_rows[tl], tl_min.get(tl, 0), tl_max.get(tl, 0))
+        for tl in sorted(tl_rows)
     }
     return Recording(
         p,

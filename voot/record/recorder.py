@@ -57,7 +57,7 @@ from voot.record.blueprint import (
     TREE,
     default_blueprint,
 )
-from voot.record.config import ROOT, RecorderConfig
+from voot.record.config import BEST_PREFIX, ROOT, RecorderConfig
 from voot.record.mujoco_scene import MujocoScene, find_mujoco
 from voot.record.samples import BASE_POSE_KEY, PLACEMENT_KEY, NodeSamples, SampleLog, pose_of
 from voot.record.tree_graph import build_tree_graph, log_tree
@@ -84,16 +84,22 @@ def combine_callbacks(*callbacks: Callback | None) -> Callback:
 
 
 def watch_name(entry: str | int) -> str:
-    """Entity-path name of a watch entry: ``root``, ``node_<id>``, ``first_<operator>``."""
+    """Entity-path name of a watch entry: ``root``, ``node_<id>``, ``first_<operator>``,
+    ``best_<operator>``."""
     if isinstance(entry, int):
         return f"node_{entry}"
     if entry == ROOT:
         return ROOT
+    prefix = "first_"
+    if entry.startswith(BEST_PREFIX):
+        prefix, entry = "best_", entry[len(BEST_PREFIX) :]
     safe = "".join(c if c.isalnum() or c in "_-" else "_" for c in entry)
-    return f"first_{safe}"
+    return f"{prefix}{safe}"
 
 
-def _info_text(step: int, action: Any, reward: float, bonus: float, feasible: bool, info: Mapping[str, Any]) -> str:
+def _info_text(
+    step: int, action: Any, reward: float, bonus: float, feasible: bool, info: Mapping[str, Any]
+) -> str:
     lines = [
         f"step {step}: reward {reward:.6g}" + (f" + bonus {bonus:.6g}" if bonus else ""),
         "feasible" if feasible else "INFEASIBLE",
@@ -121,7 +127,10 @@ class SearchRecorder:
 
     The recorder is the callback: pass it as ``callback=recorder`` to
     :meth:`voot.tree.MCTS.search` or :func:`voot.tree.plan`, then call :meth:`finish`
-    (or use it as a context manager). It never stops the search.
+    (or use it as a context manager). It never stops the search. The ``search``
+    timeline counts the callbacks it received (the simulation index of one search; it
+    keeps counting across several searches of one tree and across re-rooting, where the
+    watched nodes are looked up again in the new tree).
     """
 
     def __init__(
@@ -153,6 +162,8 @@ class SearchRecorder:
         self.rec.save(self.path)
         self.problem = problem
         self.mcts: MCTS | None = None
+        self._root: Node | None = None
+        self._count = 0
         self._scene_arg = scene
         self.scene: MujocoScene | None = None
         self._mj_data: Any = None
@@ -183,10 +194,16 @@ class SearchRecorder:
     # ----- callback ---------------------------------------------------------------------------
     def __call__(self, mcts: MCTS, i: int) -> bool:
         if self.finished:
-            raise RuntimeError("this SearchRecorder has finished; create a new one for another search")
-        if mcts is not self.mcts:
+            raise RuntimeError(
+                "this SearchRecorder has finished; create a new one for another search"
+            )
+        if mcts is not self.mcts or mcts.root is not self._root:
             self._bind(mcts)
         cfg = self.config
+        # The recorder's own count, not ``i``: it keeps growing across re-rooting
+        # (``MCTS.reroot`` restarts the tree's count), so the timeline never repeats.
+        i = self._count
+        self._count += 1
         self._last_i = i
         self._sims.append(i)
         curve = mcts.best_return_curve
@@ -201,8 +218,9 @@ class SearchRecorder:
         return False
 
     def _bind(self, mcts: MCTS) -> None:
-        """Start following a (new) tree."""
+        """Start following a (new or re-rooted) tree."""
         self.mcts = mcts
+        self._root = mcts.root
         self._samples.clear()
         self._scan_from = 0
         if self.problem is None:
@@ -236,10 +254,20 @@ class SearchRecorder:
             return out
         nodes = mcts.nodes
         ops: dict[str, str] = {}
+        best_path: list[Node] | None = None
         for entry in self.config.watch:
             name = watch_name(entry)
             if entry == ROOT:
                 out[name] = mcts.root
+            elif isinstance(entry, str) and entry.startswith(BEST_PREFIX):
+                if best_path is None:
+                    best_path = [node for node, _ in mcts.best_plan()]
+                op = entry[len(BEST_PREFIX) :]
+                key = self.config.operator_key
+                for node in best_path:
+                    if node.info.get(key) == op:
+                        out[name] = node
+                        break
             elif isinstance(entry, int):
                 if entry < len(nodes):
                     out[name] = nodes[entry]
@@ -251,10 +279,10 @@ class SearchRecorder:
             key = self.config.operator_key
             stop = len(nodes)
             for k in range(self._scan_from, stop):
-                op = nodes[k].info.get(key)
-                if op in ops and ops[op] not in out:
-                    out[ops[op]] = nodes[k]
-                    del ops[op]
+                found = nodes[k].info.get(key)
+                if isinstance(found, str) and found in ops:
+                    out[ops[found]] = nodes[k]
+                    del ops[found]
                     if not ops:
                         break
             if ops:  # keep looking from here next time

@@ -228,7 +228,9 @@ class SampleLog:
                     vectors=v,
                     colors=colors[mask],
                     q_hat=q[mask],
-                    labels=None if text is None else [t for t, m in zip(text, mask, strict=True) if m],
+                    labels=None
+                    if text is None
+                    else [t for t, m in zip(text, mask, strict=True) if m],
                 )
             return "scene"
         a = samples.actions
@@ -263,7 +265,7 @@ class SampleLog:
                     labels=text,
                 ).partition(lengths)
                 if text is not None:
-                    columns += rr.Points2D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+                    columns += rr.Points2D.columns(show_labels=[False] * len(lengths))
             else:
                 origins = cat("origins")
                 if s.kind == "placements":
@@ -274,13 +276,13 @@ class SampleLog:
                         labels=text,
                     ).partition(lengths)
                     if text is not None:
-                        columns += rr.Points3D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+                        columns += rr.Points3D.columns(show_labels=[False] * len(lengths))
                     text = None
                 columns += rr.Arrows3D.columns(
                     origins=origins, vectors=cat("vectors"), colors=cat("colors"), labels=text
                 ).partition(lengths)
                 if text is not None:
-                    columns += rr.Arrows3D.columns(show_labels=np.zeros(len(lengths), dtype=bool))
+                    columns += rr.Arrows3D.columns(show_labels=[False] * len(lengths))
             columns += rr.AnyValues.columns(q_hat=cat("q_hat")).partition(lengths)
             rec.send_columns(
                 entity,

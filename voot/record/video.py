@@ -17,6 +17,7 @@ imageio's ffmpeg plugin (``pip install imageio-ffmpeg``), a ValueError says so.
 
 from __future__ import annotations
 
+import itertools
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -42,7 +43,9 @@ def _check_positive_int(value: object, name: str, low: int = 1) -> int:
     return value
 
 
-def _state_of(model: Any, data: Any) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+def _state_of(
+    model: Any, data: Any
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     return (
         np.array(data.qpos, dtype=np.float64),
         np.array(data.mocap_pos, dtype=np.float64).reshape(model.nmocap, 3),
@@ -135,7 +138,9 @@ class _Frames:
             mujoco.mjv_defaultFreeCamera(model, cam)
             for key, value in (view or {}).items():
                 if key not in FREE_CAMERA_KEYS:
-                    raise ValueError(f"unknown view key {key!r}; valid keys are: {', '.join(FREE_CAMERA_KEYS)}")
+                    raise ValueError(
+                        f"unknown view key {key!r}; valid keys are: {', '.join(FREE_CAMERA_KEYS)}"
+                    )
                 if key == "lookat":
                     cam.lookat[:] = np.asarray(value, dtype=np.float64).reshape(3)
                 else:
@@ -144,14 +149,19 @@ class _Frames:
         else:
             if view:
                 raise ValueError("view= sets the free camera; it cannot be combined with camera=")
-            if isinstance(camera, str) and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera) < 0:
+            if (
+                isinstance(camera, str)
+                and mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera) < 0
+            ):
                 names = [model.camera(i).name for i in range(model.ncam)]
                 raise ValueError(f"no camera {camera!r} in the model; cameras: {names}")
             if isinstance(camera, int) and not -1 <= camera < model.ncam:
                 raise ValueError(f"camera id {camera} out of range (-1 free, 0..{model.ncam - 1})")
             self.camera = camera
 
-    def render(self, qpos: NDArray[np.float64], mpos: NDArray[np.float64], mquat: NDArray[np.float64]) -> Frame:
+    def render(
+        self, qpos: NDArray[np.float64], mpos: NDArray[np.float64], mquat: NDArray[np.float64]
+    ) -> Frame:
         d = self.data
         d.qpos[:] = qpos
         if self.model.nmocap:
@@ -198,8 +208,11 @@ def plan_frames(
     Args:
         env: a gymnasium env, a planning problem over one, or anything holding a MuJoCo
             ``model``/``data``; without MuJoCo, ``env.render()`` gives the frames.
-        actions, snapshots: the plan, one of the two.
-        width, height: frame size (within the model's off-screen buffer).
+        actions: the plan as actions, stepped from the current state (or None).
+        snapshots: the plan as snapshots, restored one by one (or None; give exactly
+            one of ``actions`` and ``snapshots``).
+        width: frame width in pixels (within the model's off-screen buffer).
+        height: frame height in pixels.
         camera: a camera name or id of the model; None: a free camera.
         view: the free camera's ``lookat`` (3 numbers), ``distance`` (m), ``azimuth``
             and ``elevation`` (degrees); unset ones keep MuJoCo's defaults (which look at
@@ -216,7 +229,7 @@ def plan_frames(
     r = _Frames(model, width, height, camera, view)
     try:
         frames = [r.render(*states[0])]
-        for a, b in zip(states[:-1], states[1:], strict=True):
+        for a, b in itertools.pairwise(states):
             for k in range(1, interpolate + 1):
                 frames.append(r.render(*r.interpolate(a, b, k / (interpolate + 1))))
             frames.append(r.render(*b))
@@ -225,7 +238,9 @@ def plan_frames(
     return frames
 
 
-def _env_frames(env: Any, actions: Sequence[Any] | None, snapshots: Sequence[Any] | None) -> list[Frame]:
+def _env_frames(
+    env: Any, actions: Sequence[Any] | None, snapshots: Sequence[Any] | None
+) -> list[Frame]:
     """Frames from ``env.render()`` (an env without a MuJoCo model)."""
     if (actions is None) == (snapshots is None):
         raise ValueError("give exactly one of actions= (stepped from now) or snapshots= (restored)")
@@ -252,7 +267,9 @@ def _env_frames(env: Any, actions: Sequence[Any] | None, snapshots: Sequence[Any
     return frames
 
 
-def write_video(path: str | os.PathLike[str], frames: Sequence[Frame], fps: float = 4.0, hold_last: int = 0) -> Path:
+def write_video(
+    path: str | os.PathLike[str], frames: Sequence[Frame], fps: float = 4.0, hold_last: int = 0
+) -> Path:
     """Write ``frames`` to ``path`` (``.gif`` via Pillow, ``.mp4`` via imageio-ffmpeg).
 
     ``hold_last`` repeats the last frame that many more times (a pause before a GIF loops).
@@ -260,7 +277,9 @@ def write_video(path: str | os.PathLike[str], frames: Sequence[Frame], fps: floa
     p = Path(path)
     suffix = p.suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"unknown video format {p.suffix!r}; valid suffixes are: {', '.join(FORMATS)}")
+        raise ValueError(
+            f"unknown video format {p.suffix!r}; valid suffixes are: {', '.join(FORMATS)}"
+        )
     if not frames:
         raise ValueError("no frames to write")
     if isinstance(fps, bool) or not isinstance(fps, int | float) or not 0 < fps <= 120:
@@ -269,14 +288,20 @@ def write_video(path: str | os.PathLike[str], frames: Sequence[Frame], fps: floa
     shape = np.asarray(frames[0]).shape
     for k, f in enumerate(frames):
         if np.asarray(f).shape != shape or len(shape) != 3 or shape[2] not in (3, 4):
-            raise ValueError(f"frame {k} has shape {np.asarray(f).shape}; all must be (H, W, 3) like frame 0 {shape}")
-    seq = [np.asarray(f, dtype=np.uint8) for f in frames] + [np.asarray(frames[-1], dtype=np.uint8)] * hold_last
+            raise ValueError(
+                f"frame {k} has shape {np.asarray(f).shape}; all must be (H, W, 3) like frame 0 {shape}"
+            )
+    seq = [np.asarray(f, dtype=np.uint8) for f in frames] + [
+        np.asarray(frames[-1], dtype=np.uint8)
+    ] * hold_last
     p.parent.mkdir(parents=True, exist_ok=True)
     import imageio.v3 as iio
 
     if suffix == ".gif":
         # Pillow's GIF writer: duration per frame in milliseconds, loop forever.
-        iio.imwrite(p, np.stack(seq), extension=".gif", plugin="pillow", duration=1000.0 / fps, loop=0)
+        iio.imwrite(
+            p, np.stack(seq), extension=".gif", plugin="pillow", duration=1000.0 / fps, loop=0
+        )
         return p
     try:
         import imageio_ffmpeg  # noqa: F401
@@ -284,7 +309,9 @@ def write_video(path: str | os.PathLike[str], frames: Sequence[Frame], fps: floa
         raise ValueError(
             "writing .mp4 needs imageio's ffmpeg plugin: pip install imageio-ffmpeg (or write a .gif)"
         ) from None
-    even = [f[: f.shape[0] // 2 * 2, : f.shape[1] // 2 * 2, :3] for f in seq]  # H.264 wants even sizes
+    even = [
+        f[: f.shape[0] // 2 * 2, : f.shape[1] // 2 * 2, :3] for f in seq
+    ]  # H.264 wants even sizes
     iio.imwrite(p, np.stack(even), extension=".mp4", plugin="FFMPEG", fps=fps)
     return p
 

@@ -138,7 +138,12 @@ class SyntheticChain:
 
 
 def make_chain(
-    name: str, dim: int, *, threshold: float | None = None, bonus: float | None = None, **kwargs: Any
+    name: str,
+    dim: int,
+    *,
+    threshold: float | None = None,
+    bonus: float | None = None,
+    **kwargs: Any,
 ) -> SyntheticChain:
     """The authors' chain over ``voot.functions.get_function(name, dim)``.
 
@@ -147,7 +152,9 @@ def make_chain(
     """
     key = str(name).strip().lower()
     if key not in CHAIN_SPECS:
-        raise ValueError(f"unknown chain {name!r}; valid chains are: {', '.join(sorted(CHAIN_SPECS))}")
+        raise ValueError(
+            f"unknown chain {name!r}; valid chains are: {', '.join(sorted(CHAIN_SPECS))}"
+        )
     spec = CHAIN_SPECS[key]
     if threshold is None:
         if dim not in spec.thresholds:
@@ -173,7 +180,9 @@ def chain_planner_options(name: str, dim: int) -> dict[str, Any]:
     """
     key = str(name).strip().lower()
     if key not in CHAIN_SPECS:
-        raise ValueError(f"unknown chain {name!r}; valid chains are: {', '.join(sorted(CHAIN_SPECS))}")
+        raise ValueError(
+            f"unknown chain {name!r}; valid chains are: {', '.join(sorted(CHAIN_SPECS))}"
+        )
     return {
         "reevaluations": 100,
         "kappa_r": 1.0,

@@ -80,14 +80,23 @@ class BestReturnOver(StrEnum):
     """Which paths the reported best return (the paper's curve) is a maximum over.
 
     ``leaves``
-        Paths from the root to a leaf of the tree (the authors' code): the curve may dip
-        when a leaf is expanded by an infeasible child.
+        Paths from the root to a leaf of the tree (the authors' code). A simulation
+        always ends at a terminal state, an infeasible action or the depth limit, so the
+        leaves are finished paths; but after a root commitment the horizon recedes, a
+        leaf at the old depth limit can be expanded, and the curve can then dip.
     ``nodes``
         Paths from the root to any node (monotone in the number of simulations).
+    ``complete``
+        Paths that end at a terminal state, an infeasible action, or the depth limit
+        (counted from the original root); monotone, and :math:`-\\infty` until one
+        exists. Unlike ``nodes`` it never prefers an unfinished path (which matters when
+        rewards are negative, e.g. a distance cost); unlike ``leaves`` it keeps a path
+        counted once it is finished.
     """
 
     LEAVES = "leaves"
     NODES = "nodes"
+    COMPLETE = "complete"
 
 
 #: Samplers that are not voot.optim optimisers.
@@ -103,7 +112,7 @@ def available_samplers() -> list[str]:
 
 def _choice(enum: type[StrEnum], value: object, name: str) -> Any:
     try:
-        return enum(value)
+        return enum(value)  # type: ignore[arg-type]
     except ValueError:
         valid = ", ".join(e.value for e in enum)
         raise ValueError(f"unknown {name} {value!r}; valid choices are: {valid}") from None
@@ -257,9 +266,7 @@ class MCTSConfig:
         options = dict(self.sampler_options)
         if self.sampler == "uniform":
             if options:
-                raise ValueError(
-                    f"sampler 'uniform' takes no options, got {sorted(options)}"
-                )
+                raise ValueError(f"sampler 'uniform' takes no options, got {sorted(options)}")
             return None
         if self.sampler == "hoo":
             from voot.tree.hoo import HOOConfig

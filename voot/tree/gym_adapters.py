@@ -126,9 +126,18 @@ class GymProblem:
             w._elapsed_steps = n
 
     def action_bounds(self) -> Bounds:
-        if self._state_bounds is not None:
-            return Bounds.coerce(self._state_bounds())
-        return self._bounds
+        """The env's ``action_bounds()`` if it has one, else its action space's box.
+
+        ``action_bounds()`` may return a :class:`Bounds` or a ``(lower, upper)`` tuple.
+        """
+        if self._state_bounds is None:
+            return self._bounds
+        raw = self._state_bounds()
+        if isinstance(raw, Bounds):
+            return raw
+        if isinstance(raw, tuple) and len(raw) == 2:
+            return Bounds(raw[0], raw[1])
+        return Bounds.coerce(raw)
 
     def step(self, action: FloatArray) -> StepResult:
         obs, reward, terminated, truncated, info = self.env.step(action)

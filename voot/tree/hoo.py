@@ -19,9 +19,10 @@ Choices of this implementation (HOOT in a deterministic tree search, Mansley et 
   can be played again; the tree is truncated at ``max_depth`` (truncated HOO), and a
   path that reaches a cell at that depth plays that cell's point again. In a tree search
   the same point means the same tree edge, so its subtree keeps growing;
-* :math:`U` and :math:`B` are refreshed along the played path only (the classic
-  :math:`O(\text{depth})` implementation); cells off the path keep the :math:`\ln n` of
-  their last update.
+* :math:`B` is stored, refreshed along the played path after each round (the classic
+  :math:`O(\text{depth})` implementation); during the descent the two children compared
+  get a fresh :math:`U` (with the current :math:`\ln n`), their subtrees' stored
+  :math:`B`. A cell off the path is therefore never starved by a stale confidence term.
 """
 
 from __future__ import annotations
@@ -66,9 +67,17 @@ class HOOConfig:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int | float) or not v >= 0 or v == math.inf:
                 raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
-        if isinstance(self.rho, bool) or not isinstance(self.rho, int | float) or not 0 < self.rho < 1:
+        if (
+            isinstance(self.rho, bool)
+            or not isinstance(self.rho, int | float)
+            or not 0 < self.rho < 1
+        ):
             raise ValueError(f"rho must be in (0, 1), got {self.rho!r}")
-        if isinstance(self.max_depth, bool) or not isinstance(self.max_depth, int) or self.max_depth < 1:
+        if (
+            isinstance(self.max_depth, bool)
+            or not isinstance(self.max_depth, int)
+            or self.max_depth < 1
+        ):
             raise ValueError(f"max_depth must be an integer >= 1, got {self.max_depth!r}")
         try:
             object.__setattr__(self, "point", HOOPoint(self.point))
@@ -138,9 +147,13 @@ class HOO:
         ``max_depth`` is played again.
         """
         c = 0
-        max_depth = self.config.max_depth
+        cfg = self.config
+        max_depth = cfg.max_depth
         rng = self.rng
-        left, right, b, played, depth = self._left, self._right, self._b, self._played, self._depth
+        left, right, _b, played, depth = self._left, self._right, self._b, self._played, self._depth
+        count, mean = self._count, self._mean
+        c2 = cfg.exploration * math.sqrt(2.0 * math.log(max(self.n, 1)))
+        v1, rho = cfg.v1, cfg.rho
         while True:
             if c and depth[c] >= max_depth:
                 return c, False
@@ -157,13 +170,26 @@ class HOO:
                     kid = rc if lp else lc
                 self._draw(kid)
                 return kid, True
-            bl, br = b[lc], b[rc]
+            # B of the two children with a fresh confidence term (the current n).
+            smooth = v1 * rho ** depth[lc]
+            bl = min(mean[lc] + c2 / math.sqrt(count[lc]) + smooth, self._below(lc))
+            br = min(mean[rc] + c2 / math.sqrt(count[rc]) + smooth, self._below(rc))
             if bl > br:
                 c = lc
             elif br > bl:
                 c = rc
             else:
                 c = lc if rng.random() < 0.5 else rc
+
+    def _below(self, c: int) -> float:
+        """max(B of the children) if both were played, else +inf."""
+        lc = self._left[c]
+        if lc < 0:
+            return math.inf
+        rc = self._right[c]
+        if not (self._played[lc] and self._played[rc]):
+            return math.inf
+        return max(self._b[lc], self._b[rc])
 
     def redraw(self, cell: int) -> FloatArray:
         """Draw a new point for a cell that was selected but not played yet.

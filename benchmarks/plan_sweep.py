@@ -1,0 +1,500 @@
+r"""The planning sweep of ``voot-bench plan``: planners x problems x seeds (paper Figure 4).
+
+A sweep is a grid of problems (:mod:`voot.bench.problems`) x planners (each with its
+hyperparameter grid, :func:`planner_grid`) x seeds, every run with a budget of
+simulations. :func:`build_plan_specs` turns the grid into :class:`PlanSpec` values and
+:func:`run_plan_spec` runs one with :class:`voot.tree.MCTS`, returning a result row of
+kind ``"plan"`` for the same store, backends and resume logic as the black-box sweep
+(:func:`voot.bench.sweep.run_sweep`).
+
+The protocol of one run (``PLAN_PROTOCOL = 1``):
+
+* **Problem**: a chain is built fresh; an environment is made once per process
+  (:func:`voot.bench.problems.cached_env`) and reset with the run's ``seed``, so every
+  planner plans from the same initial state for a given seed.
+* **Planner**: the named planner (:func:`voot.tree.planner_config`) with the problem's
+  settings (:func:`voot.bench.problems.domain_options`) and the grid's ``params``.
+  A parameter that is an :class:`~voot.tree.MCTSConfig` field (``reevaluations``,
+  ``pw_k``, ``ucb_c`` ...) sets that field; any other one (``omega``, ``epsilon``,
+  ``v1`` ...) is an option of the per-node sampler.
+* **Search seed**: ``SeedSequence([seed, key(problem), dim, key(env keywords),
+  key(planner)])``; the hyperparameters are deliberately not in it (common random
+  numbers across a planner's grid, as in :mod:`voot.bench.sweep`).
+* **Record** after every simulation: the best discounted return from the root, goal
+  bonus excluded (``best_so_far``), the seconds since the search started (``elapsed``)
+  and, when the problem reports it in its step info, the objects still to handle at the
+  best leaf (``objects_left``); at the end the simulator calls, tree size, best plan
+  and the resolved planner configuration.
+
+Same spec -> bit-identical ``best_so_far`` and ``objects_left``, in any process, on any
+backend (only the timings differ).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import json
+import time
+import traceback
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
+
+from voot.bench import problems as P
+from voot.bench.store import Row, make_row, make_run_id
+from voot.bench.sweep import GRIDS, name_key
+
+#: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.
+PLAN_PROTOCOL = 1
+#: Planners in plotting order (the paper's first).
+PLAN_PLANNERS: tuple[str, ...] = (
+    "voot",
+    "doot",
+    "rand_doot",
+    "pw_uct",
+    "voronoi_pw",
+    "hoot",
+    "uniform_t",
+)
+#: Re-evaluation counts ``w`` (the paper's :math:`N_r = 1 + w`) searched per family; the
+#: authors used 100 on the chains and 5 on the robot domains.
+REEVALUATIONS: Mapping[str, tuple[float, ...]] = {"chain": (10, 100), "robot": (2, 5)}
+#: VOO's exploration probabilities searched (the original's grid, thinned; 0.001 is the
+#: authors' value on the chains, 0.3 on the conveyor).
+OMEGAS: tuple[float, ...] = (0.001, 0.1, 0.3)
+#: DOO's exploration weights searched (a spread of the authors' DOO grid).
+EPSILONS: tuple[float, ...] = (0.001, 0.1, 1.0)
+#: Progressive-widening coefficients :math:`k` searched (:math:`\alpha = 0.5` fixed).
+PW_KS: tuple[float, ...] = (1.0, 3.0)
+#: UCB constants :math:`c` searched for PW-UCT.
+UCB_CS: tuple[float, ...] = (0.1, 1.0, 10.0)
+#: HOO smoothness scales :math:`\nu_1` searched for HOOT.
+HOO_V1S: tuple[float, ...] = (0.1, 1.0, 10.0)
+#: Most runs one sweep may record (one ``.rrd`` file each).
+MAX_RECORDINGS = 50
+#: Row keys that hold timings (they differ between two runs of the same spec).
+TIMING_KEYS = ("wall_time", "elapsed", "search_time", "finished_at")
+
+
+def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[str, Any]]:
+    """Hyperparameter settings of ``planner`` on a problem ``family`` (``chain``/``robot``).
+
+    ``grid="default"`` is one empty setting (the planner's and problem's defaults);
+    ``grid="paper"`` every combination of the axes below, the paper's selection rule then
+    keeps the best mean final return (:mod:`voot.bench.select`). The paper's appendix
+    grids are not public; these span the values the reference page reports.
+
+    ==========  ==================================================
+    planner     axes
+    ==========  ==================================================
+    voot        omega x reevaluations
+    doot        epsilon x reevaluations
+    rand_doot   epsilon x reevaluations
+    uniform_t   reevaluations
+    pw_uct      pw_k x ucb_c
+    voronoi_pw  omega x pw_k
+    hoot        v1
+    ==========  ==================================================
+    """
+    from voot.tree.config import normalize_planner
+
+    key = normalize_planner(planner)
+    if grid not in GRIDS:
+        raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
+    if family not in REEVALUATIONS:
+        raise ValueError(f"unknown family {family!r}; valid: {', '.join(REEVALUATIONS)}")
+    if grid == "default":
+        return [{}]
+    w = REEVALUATIONS[family]
+    axes: dict[str, Sequence[Any]] = {
+        "voot": {"omega": OMEGAS, "reevaluations": w},
+        "doot": {"epsilon": EPSILONS, "reevaluations": w},
+        "rand_doot": {"epsilon": EPSILONS, "reevaluations": w},
+        "uniform_t": {"reevaluations": w},
+        "pw_uct": {"pw_k": PW_KS, "ucb_c": UCB_CS},
+        "voronoi_pw": {"omega": OMEGAS, "pw_k": PW_KS},
+        "hoot": {"v1": HOO_V1S},
+    }.get(key, {})  # type: ignore[assignment]
+    names = sorted(axes)
+    return [
+        dict(zip(names, values, strict=True))
+        for values in itertools.product(*(axes[n] for n in names))  # type: ignore[index]
+    ]
+
+
+def _config_fields() -> set[str]:
+    from voot.tree.config import MCTSConfig
+
+    return {f.name for f in fields(MCTSConfig)}
+
+
+def mcts_config(
+    problem: str,
+    dim: int | None,
+    planner: str,
+    params: Mapping[str, Any],
+    env_kwargs: Mapping[str, Any] | None = None,
+) -> Any:
+    """The :class:`~voot.tree.MCTSConfig` of a run: planner, problem settings, ``params``."""
+    from voot.tree.config import planner_config
+
+    options = P.domain_options(problem, dim, planner, env_kwargs)
+    sampler_options = dict(options.pop("sampler_options", {}))
+    config_fields = _config_fields()
+    for name, value in params.items():
+        if name == "sampler_options":
+            raise ValueError("set sampler options by name (e.g. omega=0.3), not sampler_options=")
+        if name in config_fields:
+            options[name] = value
+        else:
+            sampler_options[name] = value
+    if sampler_options:
+        options["sampler_options"] = sampler_options
+    base = planner_config(planner)
+    if base.sampler == "uniform" and "sampler_options" in options:
+        unknown = sorted(options.pop("sampler_options"))
+        valid = sorted(config_fields - {"sampler_options"})
+        raise ValueError(
+            f"planner {planner!r} samples uniformly and takes no sampler option {unknown};"
+            f" valid parameters are: {', '.join(valid)}"
+        )
+    try:
+        return planner_config(planner, **options)
+    except ValueError as exc:
+        if "unknown option" not in str(exc):
+            raise
+        valid = ", ".join(sorted(config_fields - {"sampler_options"}))
+        raise ValueError(
+            f"{exc}; or a planner parameter (an MCTSConfig field): {valid}"
+        ) from None
+
+
+@dataclass(frozen=True)
+class PlanSpec:
+    """One planning run: ``planner`` with ``params`` on ``problem`` (``dim`` for a chain,
+    ``env_kwargs`` for an env), ``simulations`` simulations, ``seed``.
+
+    ``record`` (a ``.rrd`` path, or None) asks for a rerun recording of the search; it is
+    not part of the run's identity.
+    """
+
+    problem: str
+    dim: int | None
+    env_kwargs: tuple[tuple[str, Any], ...]
+    planner: str
+    params: tuple[tuple[str, Any], ...]
+    simulations: int
+    seed: int
+    record: str | None = field(default=None, compare=False)
+
+    kind: ClassVar[str] = "plan"
+
+    @property
+    def params_dict(self) -> dict[str, Any]:
+        return dict(self.params)
+
+    @property
+    def env_kwargs_dict(self) -> dict[str, Any]:
+        return dict(self.env_kwargs)
+
+    @property
+    def budget(self) -> int:
+        return self.simulations
+
+    @property
+    def label(self) -> str:
+        """The problem's display name (with the chain's dimension)."""
+        base = P.problem_label(self.problem, self.env_kwargs_dict)
+        return f"{base}-{self.dim}D" if self.dim is not None else base
+
+    def config(self) -> dict[str, Any]:
+        """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
+        return {
+            "problem": self.problem,
+            "dim": self.dim,
+            "env_kwargs": self.env_kwargs_dict,
+            "planner": self.planner,
+            "params": self.params_dict,
+            "simulations": self.simulations,
+            "seed": self.seed,
+            "protocol": PLAN_PROTOCOL,
+        }
+
+    @property
+    def run_id(self) -> str:
+        return make_run_id(self.kind, self.config())
+
+    def mcts_config(self) -> Any:
+        return mcts_config(
+            self.problem, self.dim, self.planner, self.params_dict, self.env_kwargs_dict
+        )
+
+    def describe(self) -> str:
+        params = ", ".join(f"{k}={v}" for k, v in self.params) or "default"
+        return f"{self.planner} [{params}] on {self.label} seed {self.seed}"
+
+
+def search_seed(spec: PlanSpec) -> np.random.SeedSequence:
+    """Seed of the search of a run (the same for every hyperparameter of the planner)."""
+    kwargs = json.dumps(spec.env_kwargs_dict, sort_keys=True)
+    return np.random.SeedSequence(
+        [
+            int(spec.seed),
+            name_key(spec.problem),
+            int(spec.dim or 0),
+            name_key(kwargs),
+            name_key(spec.planner),
+        ]
+    )
+
+
+def _int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
+    out: list[int] = []
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < minimum:
+            raise ValueError(f"{what} must be integers >= {minimum}, got {v!r}")
+        out.append(int(v))
+    if not out:
+        raise ValueError(f"no {what} given")
+    return list(dict.fromkeys(out))
+
+
+def build_plan_specs(
+    problems: Sequence[str] = P.DEFAULT_PROBLEMS,
+    dims: Sequence[int] | None = None,
+    planners: Sequence[str] | None = None,
+    seeds: Iterable[int] | None = None,
+    *,
+    simulations: int | None = None,
+    grid: str = "paper",
+    env_kwargs: Mapping[str, Any] | None = None,
+    fixed: Mapping[str, Any] | None = None,
+    record: str | None = None,
+) -> list[PlanSpec]:
+    """Every run of a planning sweep, in grid order (problem, dim, planner, params, seed).
+
+    Args:
+        problems: problem names (see :mod:`voot.bench.problems`; default: the Shekel chain).
+        dims: dimensions of the chains (default: 10 and 20); ignored by environments.
+        planners: planner names (default: the paper's planners of each problem).
+        seeds: seeds (default: the paper's number of seeds of each problem, from 0).
+        simulations: simulations per run (default: the paper's budget of each problem).
+        grid: ``"paper"`` (:func:`planner_grid`) or ``"default"`` (defaults only).
+        env_kwargs: keywords of ``gymnasium.make`` for the environments.
+        fixed: parameters set in every run (e.g. ``{"depth_limit": 5}``); they join
+            every setting's ``params`` (and so its label and run id).
+        record: a ``.rrd`` path: record every run's search (see :func:`record_path`).
+
+    Raises:
+        ValueError: unknown problem, planner, parameter or grid; bad numbers; a chain
+            dimension without a reference threshold. Messages list the valid choices.
+    """
+    from voot.tree.config import normalize_planner
+
+    names = [P.normalize_problem(p) for p in problems]
+    if not names:
+        raise ValueError("no problems given")
+    dim_list = _int_list(dims, "dims", 1) if dims is not None else list(P.DEFAULT_CHAIN_DIMS)
+    seed_list = _int_list(seeds, "seeds", 0) if seeds is not None else None
+    planner_list = [normalize_planner(p) for p in planners] if planners is not None else None
+    if planner_list is not None and not planner_list:
+        raise ValueError("no planners given")
+    if simulations is not None:
+        _int_list([simulations], "simulations", 1)
+    if grid not in GRIDS:
+        raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
+    kwargs = P.check_env_kwargs(env_kwargs)
+    extra = dict(fixed or {})
+    if "sampler_options" in extra:
+        raise ValueError("set sampler options by name (e.g. omega=0.3), not sampler_options=")
+    if record is not None and not str(record).endswith(".rrd"):
+        raise ValueError(f"a recording file must end in .rrd, got {record!r}")
+    from voot.tree.chains import make_chain
+
+    specs: list[PlanSpec] = []
+    checked: set[tuple[Any, ...]] = set()
+    for problem in dict.fromkeys(names):
+        setup = P.paper_setup(problem)
+        fam = P.family(problem)
+        chain = P.is_chain(problem)
+        problem_dims: list[int | None] = list(dim_list) if chain else [None]
+        env = () if chain else tuple(sorted(kwargs.items()))
+        n_sims = simulations if simulations is not None else setup.simulations
+        seeds_here = seed_list if seed_list is not None else list(range(setup.seeds))
+        for dim in problem_dims:
+            if dim is not None:  # a chain: does it have a reference threshold?
+                make_chain(P.CHAINS[problem], int(dim))
+            for planner in dict.fromkeys(planner_list or setup.planners):
+                for setting in planner_grid(planner, fam, grid):
+                    params = {**setting, **extra}
+                    key = (problem, dim, planner, json.dumps(params, sort_keys=True))
+                    if key not in checked:
+                        mcts_config(problem, dim, planner, params, kwargs)  # fail early
+                        checked.add(key)
+                    items = tuple(sorted(params.items()))
+                    for seed in seeds_here:
+                        specs.append(PlanSpec(problem, dim, env, planner, items, int(n_sims), seed))
+    if record is not None:
+        if len(specs) > MAX_RECORDINGS:
+            raise ValueError(
+                f"recording would write {len(specs)} files (one per run, at most"
+                f" {MAX_RECORDINGS}); narrow the sweep (e.g. one planner, --seeds 1)"
+            )
+        specs = [
+            replace(s, record=path)
+            for s, path in zip(specs, record_paths(specs, record), strict=True)
+        ]
+    return specs
+
+
+def record_paths(specs: Sequence[PlanSpec], template: str) -> list[str]:
+    """Where each run's recording goes: ``template`` itself for a single run, else
+    ``<stem>-<problem>-<planner>[-<params>]-seed<N>.rrd`` beside it."""
+    if len(specs) == 1:
+        return [str(template)]
+    base = Path(template)
+    out = []
+    for s in specs:
+        parts = [base.stem, s.label, s.planner]
+        parts += [f"{k}{v}" for k, v in s.params]
+        parts.append(f"seed{s.seed}")
+        name = "-".join(parts)
+        safe = "".join(c if c.isalnum() or c in "-_.=" else "_" for c in name)
+        out.append(str(base.with_name(safe + base.suffix)))
+    return out
+
+
+@contextlib.contextmanager
+def _count_env_steps(env: Any) -> Iterator[list[int]]:
+    """Count calls of the unwrapped env's ``step`` (the simulator) during the block."""
+    counter = [0]
+    if env is None:
+        yield counter
+        return
+    u = env.unwrapped
+    own = vars(u).get("step")
+    original = u.step
+
+    def step(action: Any) -> Any:
+        counter[0] += 1
+        return original(action)
+
+    u.step = step
+    try:
+        yield counter
+    finally:
+        if own is None:
+            del u.step
+        else:
+            u.step = own
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, str | int | float | bool) or value is None:
+        return value
+    if isinstance(value, Mapping):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    return repr(value)
+
+
+def run_plan_spec(spec: PlanSpec) -> Row:
+    """Run one planning spec and return its row (status ``"failed"`` on an exception)."""
+    start = time.perf_counter()
+    best: list[float] = []
+    try:
+        from voot.tree.mcts import MCTS
+
+        config = spec.mcts_config()
+        inst = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed)
+        mcts = MCTS(inst.problem, config, seed=search_seed(spec))
+        recorder: Any = None
+        if spec.record is not None:
+            from voot.record import SearchRecorder
+
+            recorder = SearchRecorder(spec.record, inst.problem)
+        elapsed: list[float] = []
+        clock = time.perf_counter
+        t0 = clock()
+
+        def callback(m: Any, i: int) -> bool:
+            elapsed.append(clock() - t0)
+            if recorder is not None:
+                recorder(m, i)
+            return False
+
+        with _count_env_steps(inst.env) as env_steps:
+            try:
+                res = mcts.search(spec.simulations, callback=callback, record_info=P.OBJECTS_KEY)
+            finally:
+                if recorder is not None:
+                    recorder.finish()
+        best = res.best_return_curve.tolist()
+        left = list(res.info_curve or ())
+        has_objects = any(v is not None for v in left)
+        sim_calls = env_steps[0] if inst.env is not None else res.n_steps + res.n_feasibility_checks
+        extra: dict[str, Any] = {
+            "elapsed": [round(t, 6) for t in elapsed],
+            "search_time": res.wall_time,
+            "best_return": res.best_return,
+            "simulator_calls": int(sim_calls),
+            "n_steps": res.n_steps,
+            "n_feasibility_checks": res.n_feasibility_checks,
+            "n_nodes": res.n_nodes,
+            "n_node_visits": res.n_node_visits,
+            "plan_length": len(res.actions),
+            "best_actions": [a.tolist() for a in res.actions],
+            "best_rewards": res.rewards.tolist(),
+            "problem_label": spec.label,
+            "planner_config": _jsonable(config.to_dict()),
+        }
+        if has_objects:
+            extra["objects_left"] = [None if v is None else float(v) for v in left]
+            extra["objects_initial"] = inst.objects_initial
+        if spec.record is not None:
+            extra["recorded"] = spec.record
+        return make_row(
+            spec.kind,
+            spec.config(),
+            status="ok",
+            wall_time=time.perf_counter() - start,
+            best_so_far=best,
+            **extra,
+        )
+    except Exception as exc:
+        return make_row(
+            spec.kind,
+            spec.config(),
+            status="failed",
+            wall_time=time.perf_counter() - start,
+            best_so_far=best,
+            error=f"{type(exc).__name__}: {exc}",
+            traceback=traceback.format_exc(limit=20),
+            problem_label=spec.label,
+        )
+
+
+def summarize_plan_specs(specs: Sequence[PlanSpec]) -> str:
+    """One line per (problem, simulations): runs per planner and the seeds."""
+    cells: dict[tuple[str, int], dict[str, int]] = {}
+    seeds: dict[tuple[str, int], set[int]] = {}
+    for s in specs:
+        key = (s.label, s.simulations)
+        counts = cells.setdefault(key, {})
+        counts[s.planner] = counts.get(s.planner, 0) + 1
+        seeds.setdefault(key, set()).add(s.seed)
+    lines = []
+    for (label, sims), counts in cells.items():
+        per = ", ".join(f"{m} {n}" for m, n in counts.items())
+        lines.append(f"{label} {sims} simulations, {len(seeds[(label, sims)])} seeds: {per}")
+    return "\n".join(lines)
+
+
+def strip_timings(row: Row) -> Row:
+    """``row`` without the keys that differ between two runs of one spec (timings)."""
+    return {k: v for k, v in row.items() if k not in TIMING_KEYS}

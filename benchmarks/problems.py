@@ -1,0 +1,288 @@
+"""The planning problems of ``voot-bench plan``: names, paper settings, construction.
+
+A problem is named either
+
+* a **synthetic chain** (:mod:`voot.tree.chains`): ``shekel_chain``, ``griewank_chain``,
+  ``rastrigin_chain``, with a dimension (3, 10, 20 have reference thresholds); or
+* a **gymnasium id** of any registered environment whose unwrapped env can be
+  snapshotted: ``voot/KitchenClearing-v0`` and ``voot/ConveyorPacking-v0`` (aliases
+  ``kitchen`` and ``conveyor``), the chains' own ids (``voot/ShekelChain-v0`` with
+  ``dim=...`` as an env keyword), or any env with ``get_state``/``set_state``; gymnasium's
+  MuJoCo envs (``Reacher-v5`` ...) work through
+  :class:`~voot.tree.gym_adapters.MujocoGymProblem`.
+
+Environments are made with ``gymnasium.make(id, disable_env_checker=True, **kwargs)`` and
+adapted by the adapter their package offers (:class:`voot.envs.planning.EnvProblem` for
+the voot robot domains, :class:`~voot.tree.gym_adapters.GymProblem` otherwise). Each
+process keeps the environments it made (:func:`cached_env`, a small LRU): a run resets
+its env with the run's seed, so a kept env behaves exactly as a fresh one, while the
+MuJoCo model is loaded once per process (or Ray actor) instead of once per run.
+
+Per-problem planner settings (:func:`domain_options`) are the authors' where the
+reference page gives them: on the chains ``w = 100`` re-evaluations, no decay, root
+commitment 5 / 5 / 3, :math:`\\gamma = 0.9`; on the kitchen :math:`\\gamma = 0.9`, on the
+conveyor :math:`\\gamma = 0.99` with :math:`\\omega = 0.3` and 200 feasibility retries for
+progressive widening; VOO samples its best cell in ``centered_uniform`` mode on the
+chains and ``uniform`` mode on the robot domains.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections import OrderedDict
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+#: The synthetic chains, by problem name -> function name.
+CHAINS: Mapping[str, str] = {
+    "shekel_chain": "shekel",
+    "griewank_chain": "griewank",
+    "rastrigin_chain": "rastrigin",
+}
+#: Short names of gymnasium ids.
+ALIASES: Mapping[str, str] = {
+    "kitchen": "voot/KitchenClearing-v0",
+    "conveyor": "voot/ConveyorPacking-v0",
+}
+#: The chains' gymnasium ids -> function name (their ``dim`` keyword picks the settings).
+CHAIN_ENV_IDS: Mapping[str, str] = {
+    "voot/ShekelChain-v0": "shekel",
+    "voot/GriewankChain-v0": "griewank",
+    "voot/RastriginChain-v0": "rastrigin",
+}
+#: Planners whose per-node sampler is VOO (they get the domain's VOO settings).
+VOO_PLANNERS = frozenset({"voot", "voronoi_pw"})
+#: Planners choosing among tried actions by UCB after progressive widening.
+PW_PLANNERS = frozenset({"pw_uct", "voronoi_pw"})
+#: Step-info key of the objects still to handle (recorded at the best leaf).
+OBJECTS_KEY = "objects_left"
+#: Environments each process keeps made (least recently used ones are closed).
+ENV_CACHE_SIZE = 4
+
+
+@dataclass(frozen=True)
+class PaperSetup:
+    """The paper's budget for a problem: simulations per run, seeds, planners compared."""
+
+    simulations: int
+    seeds: int
+    planners: tuple[str, ...]
+
+
+#: Planners of the paper's chain experiments (issue 3: the six samplers).
+CHAIN_PLANNERS: tuple[str, ...] = ("voot", "doot", "rand_doot", "pw_uct", "voronoi_pw", "hoot")
+#: Planners of the paper's Figure 4.
+ROBOT_PLANNERS: tuple[str, ...] = ("voot", "rand_doot", "pw_uct", "voronoi_pw", "doot")
+#: The paper's setups (chains: the authors' code; robots: Figure 4).
+PAPER_SETUPS: Mapping[str, PaperSetup] = {
+    "chain": PaperSetup(10_000, 20, CHAIN_PLANNERS),
+    "voot/KitchenClearing-v0": PaperSetup(2_000, 20, ROBOT_PLANNERS),
+    "voot/ConveyorPacking-v0": PaperSetup(3_000, 50, ROBOT_PLANNERS),
+}
+#: Budget of any other environment.
+DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)
+#: The default problems of ``voot-bench plan`` (issue 3): the Shekel chain in 10-D and 20-D.
+DEFAULT_PROBLEMS: tuple[str, ...] = ("shekel_chain",)
+DEFAULT_CHAIN_DIMS: tuple[int, ...] = (10, 20)
+
+
+def is_chain(problem: str) -> bool:
+    return problem in CHAINS
+
+
+def normalize_problem(name: str) -> str:
+    """The canonical problem name: a chain name or a registered gymnasium id.
+
+    ``"Shekel-Chain"`` -> ``"shekel_chain"``, ``"kitchen"`` -> ``"voot/KitchenClearing-v0"``.
+
+    Raises:
+        ValueError: neither a chain, an alias nor a registered id; lists the choices.
+    """
+    text = str(name).strip()
+    key = text.lower().replace("-", "_")
+    if key in CHAINS:
+        return key
+    if key in ALIASES:
+        return ALIASES[key]
+    import gymnasium
+
+    import voot  # noqa: F401 - registers the voot/... ids
+
+    if text in gymnasium.registry:
+        return text
+    raise ValueError(
+        f"unknown problem {name!r}; valid problems are the chains {', '.join(CHAINS)}, the"
+        f" aliases {', '.join(f'{a} ({i})' for a, i in ALIASES.items())}, or any registered"
+        " gymnasium id whose env has get_state()/set_state() (e.g. voot/ShekelChain-v0)"
+    )
+
+
+def problem_label(problem: str, env_kwargs: Mapping[str, Any] | None = None) -> str:
+    """A short display name: the alias of an id if it has one, env keywords appended."""
+    short = {v: k for k, v in ALIASES.items()}.get(problem, problem)
+    if env_kwargs:
+        inner = ", ".join(f"{k}={env_kwargs[k]}" for k in sorted(env_kwargs))
+        return f"{short}({inner})"
+    return short
+
+
+def paper_setup(problem: str) -> PaperSetup:
+    """Budget, seeds and planners of ``problem`` in the paper (or :data:`DEFAULT_SETUP`)."""
+    if is_chain(problem) or problem in CHAIN_ENV_IDS:
+        return PAPER_SETUPS["chain"]
+    return PAPER_SETUPS.get(problem, DEFAULT_SETUP)
+
+
+def family(problem: str) -> str:
+    """``"chain"`` for the synthetic chains (also through gymnasium), else ``"robot"``."""
+    return "chain" if is_chain(problem) or problem in CHAIN_ENV_IDS else "robot"
+
+
+def check_env_kwargs(env_kwargs: Mapping[str, Any] | None) -> dict[str, Any]:
+    """Env keywords must be JSON values (they are part of the run id)."""
+    out = dict(env_kwargs or {})
+    try:
+        json.dumps(out, sort_keys=True, allow_nan=False)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"env keywords must be plain JSON values, got {out!r} ({exc})") from None
+    return out
+
+
+def domain_options(
+    problem: str, dim: int | None, planner: str, env_kwargs: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
+    """:class:`~voot.tree.MCTSConfig` overrides the authors used on ``problem`` for ``planner``.
+
+    See the module docstring; ``sampler_options`` is included for the VOO planners.
+    """
+    from voot.tree.chains import chain_planner_options
+
+    kwargs = dict(env_kwargs or {})
+    if is_chain(problem) or problem in CHAIN_ENV_IDS:
+        function = CHAINS.get(problem) or CHAIN_ENV_IDS[problem]
+        d = dim if dim is not None else int(kwargs.get("dim", 10))
+        options = chain_planner_options(function, d)
+        if planner in VOO_PLANNERS:
+            options["sampler_options"] = {"sampler": "centered_uniform"}
+        return options
+    options = {}
+    if problem == ALIASES["kitchen"]:
+        options["gamma"] = 0.9
+    elif problem == ALIASES["conveyor"]:
+        options["gamma"] = 0.99
+        if planner in PW_PLANNERS:
+            options["feasibility_retries"] = 200
+    if problem in ALIASES.values() and planner in VOO_PLANNERS:
+        voo: dict[str, Any] = {"sampler": "uniform"}
+        if problem == ALIASES["conveyor"]:
+            voo["omega"] = 0.3
+        options["sampler_options"] = voo
+    return options
+
+
+# ----- construction ----------------------------------------------------------------------
+_ENV_CACHE: OrderedDict[str, Any] = OrderedDict()
+
+
+def cached_env(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> Any:
+    """``gymnasium.make(env_id, **env_kwargs)``, kept for later runs in this process."""
+    import gymnasium
+
+    import voot  # noqa: F401 - registers the voot/... ids
+
+    key = json.dumps([env_id, dict(env_kwargs or {})], sort_keys=True)
+    env = _ENV_CACHE.get(key)
+    if env is not None:
+        _ENV_CACHE.move_to_end(key)
+        return env
+    env = gymnasium.make(env_id, disable_env_checker=True, **dict(env_kwargs or {}))
+    _ENV_CACHE[key] = env
+    while len(_ENV_CACHE) > ENV_CACHE_SIZE:
+        _, old = _ENV_CACHE.popitem(last=False)
+        try:
+            old.close()
+        except Exception:  # pragma: no cover - closing is best effort
+            pass
+    return env
+
+
+def clear_env_cache() -> None:
+    """Close and forget every kept environment of this process."""
+    while _ENV_CACHE:
+        _, env = _ENV_CACHE.popitem()
+        try:
+            env.close()
+        except Exception:  # pragma: no cover
+            pass
+
+
+def adapt_env(env: Any) -> Any:
+    """The planning problem of a made (and reset) env, through the adapter that fits it.
+
+    Raises:
+        ValueError: the env cannot be snapshotted (says what is missing).
+    """
+    u = env.unwrapped
+    if type(u).__module__.startswith("voot.envs."):
+        from voot.envs.planning import EnvProblem
+
+        return EnvProblem(env)
+    if callable(getattr(u, "get_state", None)) and callable(getattr(u, "set_state", None)):
+        from voot.tree.gym_adapters import GymProblem
+
+        return GymProblem(env)
+    if hasattr(u, "model") and hasattr(u, "data"):
+        from voot.tree.gym_adapters import MujocoGymProblem
+
+        return MujocoGymProblem(env)
+    raise ValueError(
+        f"{type(u).__name__} cannot be planned in: its unwrapped env has neither"
+        " get_state()/set_state() nor a MuJoCo model/data to snapshot"
+    )
+
+
+@dataclass
+class Instance:
+    """A problem ready for one run: the planning problem and what the run records.
+
+    Attributes:
+        problem: the :class:`~voot.tree.PlanningProblem`, at its initial state.
+        objects_initial: objects to handle at the start (``info["objects_left"]`` after
+            reset), None if the problem does not report it.
+        env: the gymnasium env (None for a direct chain), e.g. to count its steps.
+    """
+
+    problem: Any
+    objects_initial: float | None
+    env: Any = None
+
+
+def make_instance(
+    problem: str,
+    dim: int | None,
+    env_kwargs: Mapping[str, Any] | None,
+    seed: int,
+    *,
+    cache: bool = True,
+) -> Instance:
+    """Build ``problem`` for a run with ``seed`` (envs are reset with ``seed``)."""
+    if is_chain(problem):
+        from voot.tree.chains import make_chain
+
+        if dim is None:
+            raise ValueError(f"the {problem} needs a dimension (3, 10 or 20 have references)")
+        return Instance(make_chain(CHAINS[problem], int(dim)), None)
+    if cache:
+        env = cached_env(problem, env_kwargs)
+    else:
+        import gymnasium
+
+        import voot  # noqa: F401
+
+        env = gymnasium.make(problem, disable_env_checker=True, **dict(env_kwargs or {}))
+    _, info = env.reset(seed=int(seed))
+    left = info.get(OBJECTS_KEY) if isinstance(info, Mapping) else None
+    objects = float(left) if isinstance(left, int | float) and math.isfinite(left) else None
+    return Instance(adapt_env(env), objects, env)

@@ -1,0 +1,197 @@
+"""Run a sweep on Ray: a local Ray instance or an existing cluster (``--backend ray``).
+
+:class:`RayBackend` is a :class:`~voot.bench.sweep.Backend`: the same runs, the same
+rows, the same store as the local backends; only where the runs execute changes.
+
+* **Workers keep their models.** The backend starts one long-lived actor per CPU (or
+  ``workers``); each runs one run at a time in its own process, so what a run loads
+  once per process stays loaded for the next run on that actor: the environments made
+  by :func:`voot.bench.problems.cached_env` (MuJoCo models, scenes), imported modules.
+* **Dead workers are retried.** If an actor's process dies during a run (a crash, the
+  out-of-memory killer, a lost node), the actor is replaced and the run resubmitted, up
+  to ``max_tries`` tries in all; then the run gets a ``"failed"`` row naming the error
+  and the number of tries, and the sweep goes on. An exception *inside* a run is not a
+  death: the run function turns it into a failed row itself (as on every backend).
+* **Nothing finished is lost.** Rows come back to the driver, which writes them to the
+  store as they arrive (atomically, :mod:`voot.bench.store`); interrupting the driver
+  kills the actors, and rerunning the same command resumes.
+
+Connecting: ``address=None`` starts a private local instance with ``workers`` CPUs and
+shuts it down afterwards; ``address="auto"`` (or ``"ray://host:10001"``, or
+``"host:6379"``) joins a running cluster started with ``ray start --head``, whose nodes
+must have the same voot installed. If Ray is already initialised in this process (e.g.
+a test fixture), the backend uses that instance and leaves it running.
+"""
+
+from __future__ import annotations
+
+import collections
+import contextlib
+import logging
+import os
+import socket
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any, TypeVar
+
+from voot.bench.store import Row
+from voot.bench.sweep import failed_row
+
+#: Tries per run when its worker dies (the first try included).
+DEFAULT_MAX_TRIES = 3
+
+T = TypeVar("T")
+
+
+class _Worker:
+    """The actor: runs one run at a time in its own, long-lived process."""
+
+    def run(self, fn: Callable[[Any], Row], item: Any) -> Row:
+        return fn(item)
+
+    def where(self) -> tuple[str, int]:
+        """(host name, process id) of this worker."""
+        return socket.gethostname(), os.getpid()
+
+
+def _lost_errors() -> tuple[type[BaseException], ...]:
+    """Ray's exceptions that mean "the worker (or its node) died", not "the run raised"."""
+    import ray.exceptions as rex
+
+    names = (
+        "RayActorError",  # ActorDiedError, ActorUnavailableError
+        "WorkerCrashedError",
+        "NodeDiedError",
+        "ObjectLostError",  # OwnerDiedError ...
+        "LocalRayletDiedError",
+    )
+    return tuple(getattr(rex, n) for n in names if hasattr(rex, n))
+
+
+class RayBackend:
+    """Runs items on a pool of Ray actors (see the module docstring).
+
+    Args:
+        workers: number of actors (one CPU each); default: every CPU of the instance.
+        address: None to start a local instance, else a cluster address (``"auto"``).
+        max_tries: tries per run when its worker dies (>= 1).
+        init_options: extra keywords of ``ray.init`` (when this backend starts Ray).
+        on_lost: ``on_lost(item, error, tries=n)`` makes the row of a run whose worker
+            died ``max_tries`` times (default :func:`voot.bench.sweep.failed_row`).
+    """
+
+    name = "ray"
+
+    def __init__(
+        self,
+        workers: int | None = None,
+        *,
+        address: str | None = None,
+        max_tries: int = DEFAULT_MAX_TRIES,
+        init_options: dict[str, Any] | None = None,
+        on_lost: Callable[..., Row] = failed_row,
+    ) -> None:
+        if workers is not None and (
+            isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+        ):
+            raise ValueError(f"workers must be an integer >= 1 or None, got {workers!r}")
+        if isinstance(max_tries, bool) or not isinstance(max_tries, int) or max_tries < 1:
+            raise ValueError(f"max_tries must be an integer >= 1, got {max_tries!r}")
+        if address is not None and (not isinstance(address, str) or not address.strip()):
+            raise ValueError(f"address must be a Ray address such as 'auto', got {address!r}")
+        self.workers = workers
+        self.address = address
+        self.max_tries = max_tries
+        self.init_options = dict(init_options or {})
+        self.on_lost = on_lost
+        #: Runs resubmitted after a worker died, in the last :meth:`map_unordered`.
+        self.retries = 0
+
+    def _init(self) -> bool:
+        """Initialise Ray if needed; True if this call started (and must stop) it."""
+        try:
+            import ray
+        except ImportError:
+            raise ValueError(
+                "the ray backend needs Ray: pip install 'voot[ray]' (or pip install ray)"
+            ) from None
+        if ray.is_initialized():
+            return False
+        options: dict[str, Any] = {
+            "include_dashboard": False,
+            "log_to_driver": False,
+            "logging_level": logging.WARNING,
+        }
+        if self.address is None:
+            options["num_cpus"] = self.workers
+        else:
+            options["address"] = self.address
+        options.update(self.init_options)
+        try:
+            ray.init(**options)
+        except ConnectionError as exc:
+            raise ValueError(
+                f"cannot reach a Ray cluster at {self.address!r} ({exc}); start one with"
+                " 'ray start --head' or leave out --address for a local instance"
+            ) from None
+        return True
+
+    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
+        if not items:
+            return
+        import ray
+
+        started = self._init()
+        lost = _lost_errors()
+        actors: list[Any] = []
+        self.retries = 0
+        try:
+            total = int(ray.cluster_resources().get("CPU", 1))
+            n = min(self.workers or max(total, 1), len(items))
+            actor_class = ray.remote(num_cpus=1, max_restarts=0, max_task_retries=0)(_Worker)
+            actors = [actor_class.remote() for _ in range(n)]
+            queue = collections.deque(range(len(items)))
+            tries = [0] * len(items)
+            idle = list(range(n))
+            in_flight: dict[Any, tuple[int, int]] = {}
+            while queue or in_flight:
+                while idle and queue:
+                    a, i = idle.pop(), queue.popleft()
+                    tries[i] += 1
+                    in_flight[actors[a].run.remote(fn, items[i])] = (a, i)
+                done, _ = ray.wait(list(in_flight), num_returns=1)
+                ref = done[0]
+                a, i = in_flight.pop(ref)
+                try:
+                    row = ray.get(ref)
+                except lost as exc:
+                    with contextlib.suppress(Exception):
+                        ray.kill(actors[a], no_restart=True)
+                    actors[a] = actor_class.remote()
+                    idle.append(a)
+                    if tries[i] < self.max_tries:
+                        self.retries += 1
+                        queue.appendleft(i)
+                        continue
+                    reason = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+                    yield self.on_lost(
+                        items[i],
+                        f"{type(exc).__name__}: the worker died in each of {tries[i]} tries"
+                        + (f" (last: {reason})" if reason else ""),
+                        tries=tries[i],
+                    )
+                    continue
+                except ray.exceptions.RayTaskError as exc:  # the run function itself raised
+                    idle.append(a)
+                    cause = exc.cause if exc.cause is not None else exc
+                    yield self.on_lost(items[i], f"{type(cause).__name__}: {cause}", tries=tries[i])
+                    continue
+                idle.append(a)
+                if tries[i] > 1 and isinstance(row, dict):
+                    row["tries"] = tries[i]
+                yield row
+        finally:
+            for actor in actors:
+                with contextlib.suppress(Exception):
+                    ray.kill(actor, no_restart=True)
+            if started:
+                ray.shutdown()

@@ -1,0 +1,271 @@
+"""Tests of voot.bench.plan_sweep: the planning grid, one run's row, determinism, resume."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from voot.bench import problems as P
+from voot.bench.plan_sweep import (
+    EPSILONS,
+    OMEGAS,
+    REEVALUATIONS,
+    PlanSpec,
+    build_plan_specs,
+    planner_grid,
+    record_paths,
+    run_plan_spec,
+    search_seed,
+    strip_timings,
+    summarize_plan_specs,
+)
+from voot.bench.store import ResultStore, Row
+from voot.bench.sweep import ProcessBackend, SerialBackend, run_sweep
+
+
+def tiny(
+    planners: Sequence[str] = ("voot", "pw_uct"), seeds: Sequence[int] = (0, 1), sims: int = 25
+) -> list[PlanSpec]:
+    return build_plan_specs(
+        ["shekel_chain"], [3], planners, seeds, simulations=sims, grid="default"
+    )
+
+
+def test_paper_defaults_per_problem() -> None:
+    specs = build_plan_specs(grid="default")
+    assert {(s.problem, s.dim) for s in specs} == {("shekel_chain", 10), ("shekel_chain", 20)}
+    assert {s.simulations for s in specs} == {10_000}
+    assert {s.seed for s in specs} == set(range(20))
+    assert {s.planner for s in specs} == set(P.CHAIN_PLANNERS)
+    robots = build_plan_specs(["kitchen", "conveyor"], grid="default")
+    kitchen = [s for s in robots if s.problem == "voot/KitchenClearing-v0"]
+    conveyor = [s for s in robots if s.problem == "voot/ConveyorPacking-v0"]
+    assert {s.simulations for s in kitchen} == {2000} and len({s.seed for s in kitchen}) == 20
+    assert {s.simulations for s in conveyor} == {3000} and len({s.seed for s in conveyor}) == 50
+    assert {s.planner for s in robots} == set(P.ROBOT_PLANNERS)
+    assert all(s.dim is None for s in robots)
+    text = summarize_plan_specs(robots)
+    assert "kitchen 2000 simulations, 20 seeds: voot 20," in text
+
+
+def test_grids() -> None:
+    voot = planner_grid("VOOT", "chain")
+    assert len(voot) == len(OMEGAS) * len(REEVALUATIONS["chain"])
+    assert {g["omega"] for g in voot} == set(OMEGAS)
+    assert {g["reevaluations"] for g in planner_grid("voot", "robot")} == set(
+        REEVALUATIONS["robot"]
+    )
+    assert {g["epsilon"] for g in planner_grid("rand-doot", "robot")} == set(EPSILONS)
+    assert set(planner_grid("pw_uct", "robot")[0]) == {"pw_k", "ucb_c"}
+    assert set(planner_grid("voronoi_pw", "chain")[0]) == {"omega", "pw_k"}
+    assert planner_grid("hoot", "chain", "default") == [{}]
+    specs = build_plan_specs(["shekel_chain"], [3, 10], ["voot", "hoot"], [0, 1], simulations=5)
+    assert len(specs) == 2 * (len(voot) + len(planner_grid("hoot", "chain"))) * 2
+    assert len({s.run_id for s in specs}) == len(specs)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"problems": ["nope"]}, "unknown problem 'nope'; valid problems"),
+        ({"planners": ["vooot"]}, "unknown planner 'vooot'; valid planners are: doot"),
+        ({"dims": [5]}, "no reference threshold for the shekel chain in 5-D"),
+        ({"dims": [0]}, "dims must be integers >= 1"),
+        ({"seeds": [-1]}, "seeds must be integers >= 0"),
+        ({"simulations": 0}, "simulations must be integers >= 1"),
+        ({"grid": "huge"}, "unknown grid 'huge'"),
+        ({"fixed": {"omegaa": 1}}, "unknown option.*omegaa.*or a planner parameter"),
+        ({"planners": ["pw_uct"], "fixed": {"omega": 0.1}}, "takes no sampler option"),
+        ({"fixed": {"depth_limit": 0}}, "depth_limit must be an integer >= 1"),
+        ({"record": "run.txt"}, "must end in .rrd"),
+        ({"record": "r.rrd", "seeds": range(60)}, "narrow the sweep"),
+        ({"env_kwargs": {"x": object()}}, "JSON"),
+    ],
+)
+def test_bad_plan_arguments(kwargs: dict[str, Any], match: str) -> None:
+    args: dict[str, Any] = {
+        "problems": ["shekel_chain"],
+        "dims": [3],
+        "planners": ["voot"],
+        "seeds": [0],
+        "simulations": 5,
+        "grid": "default",
+        **kwargs,
+    }
+    with pytest.raises(ValueError, match=match):
+        build_plan_specs(
+            args.pop("problems"), args.pop("dims"), args.pop("planners"), args.pop("seeds"), **args
+        )
+
+
+def test_chain_row_contents() -> None:
+    (spec,) = build_plan_specs(
+        ["shekel_chain"], [3], ["voot"], [0], simulations=40, fixed={"omega": 0.3}
+    )[:1]
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    assert r["kind"] == "plan" and r["run_id"] == spec.run_id and r["config"] == spec.config()
+    best = np.array(r["best_so_far"])
+    assert best.shape == (40,) and best[-1] == r["best_return"]
+    elapsed = np.array(r["elapsed"])
+    assert elapsed.shape == (40,) and np.all(np.diff(elapsed) >= 0) and elapsed[0] > 0
+    assert "objects_left" not in r  # a chain reports no objects
+    assert r["simulator_calls"] == r["n_steps"] + r["n_feasibility_checks"] > 0
+    assert r["planner_config"]["sampler_options"] == {"sampler": "centered_uniform", "omega": 0.3}
+    assert r["planner_config"]["reevaluations"] == spec.params_dict["reevaluations"]
+    assert r["plan_length"] == len(r["best_actions"]) == len(r["best_rewards"])
+    assert r["problem_label"] == "shekel_chain-3D"
+
+
+def test_common_random_numbers_across_settings() -> None:
+    a, b = build_plan_specs(["shekel_chain"], [3], ["voot"], [4], simulations=5)[:2]
+    assert a.params != b.params
+    assert search_seed(a).entropy == search_seed(b).entropy
+    c = build_plan_specs(["shekel_chain"], [3], ["voot"], [5], simulations=5)[0]
+    assert search_seed(c).entropy != search_seed(a).entropy
+
+
+def test_generic_env_path_through_the_chain_registration() -> None:
+    (spec,) = build_plan_specs(
+        ["voot/ShekelChain-v0"],
+        None,
+        ["voot"],
+        [0],
+        simulations=30,
+        grid="default",
+        env_kwargs={"dim": 3},
+    )
+    assert spec.dim is None and spec.label == "voot/ShekelChain-v0(dim=3)"
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    assert len(r["best_so_far"]) == 30
+    assert r["simulator_calls"] == r["n_steps"]  # env.step calls (no feasibility check here)
+    assert r["planner_config"]["reevaluations"] == 100  # the chain's settings, found by id
+
+
+def test_failed_run_gives_a_failed_row() -> None:
+    spec = PlanSpec("shekel_chain", 3, (), "voot", (("omega", 2.0),), 5, 0)
+    r = run_plan_spec(spec)
+    assert r["status"] == "failed" and r["error"].startswith("ValueError: omega")
+    assert "Traceback" in r["traceback"] and r["best_so_far"] == []
+
+
+def test_same_spec_same_row_across_processes() -> None:
+    specs = tiny()
+    here = {s.run_id: strip_timings(run_plan_spec(s)) for s in specs}
+    rows = list(ProcessBackend(workers=2).map_unordered(run_plan_spec, specs))
+    there = {r["run_id"]: strip_timings(r) for r in rows}
+    assert there == here  # bit-identical curves, plans and counters
+
+
+class Interrupting:
+    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
+
+    name = "interrupting"
+
+    def __init__(self, after: int) -> None:
+        self.after = after
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        for i, item in enumerate(items):
+            if i == self.after:
+                raise KeyboardInterrupt
+            yield fn(item)
+
+
+def test_interrupted_plan_sweep_resumes(tmp_path: Path) -> None:
+    specs = tiny(sims=10)
+    store = ResultStore(tmp_path / "r")
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(specs, store, Interrupting(after=3), progress=False)
+    first = {p.name: p.read_bytes() for p in store.row_files()}
+    assert len(first) == 3
+    summary = run_sweep(specs, store, SerialBackend(), progress=False)
+    assert summary.skipped == 3 and summary.ran == len(specs) - 3 and summary.failed == 0
+    for name, data in first.items():
+        assert (store.runs_path / name).read_bytes() == data
+    rows = store.load(kind="plan", arrays=True)
+    assert {r["run_id"] for r in rows} == {s.run_id for s in specs}
+    assert all(isinstance(r["elapsed"], np.ndarray) for r in rows)
+
+
+def test_killed_plan_process_resumes(tmp_path: Path) -> None:
+    """SIGKILL a real `voot-bench plan` midway, rerun it, and check the store."""
+    out = tmp_path / "r"
+    args = [
+        sys.executable, "-m", "voot.bench.cli", "plan", "--out", str(out),
+        "--problems", "shekel_chain", "--dims", "3", "--planners", "doot",
+        "--seeds", "6", "--simulations", "400", "--grid", "default",
+        "--workers", "1", "--no-progress",
+    ]  # fmt: skip
+    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    runs = out / "runs"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and proc.poll() is None:
+        if runs.is_dir() and sum(1 for _ in runs.glob("[!.]*.json")) >= 2:
+            break
+        time.sleep(0.02)
+    if proc.poll() is None:
+        os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    store = ResultStore(out)
+    before = {p.name: p.read_bytes() for p in store.row_files()}
+    assert len(before) >= 2
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert f"{len(before)} already in the store" in done.stdout
+    assert len(store.load(kind="plan")) == 6
+    for name, data in before.items():
+        assert (store.runs_path / name).read_bytes() == data
+
+
+def test_record_paths_and_recording(tmp_path: Path) -> None:
+    specs = tiny(planners=["voot"], seeds=[0, 1], sims=5)
+    paths = record_paths(specs, str(tmp_path / "run.rrd"))
+    assert len(set(paths)) == 2 and all(
+        p.endswith("-seed0.rrd") or p.endswith("-seed1.rrd") for p in paths
+    )
+    assert record_paths(specs[:1], "x/run.rrd") == ["x/run.rrd"]
+    args: dict[str, Any] = {"simulations": 15, "grid": "default"}
+    (spec,) = build_plan_specs(
+        ["shekel_chain"], [3], ["voot"], [0], record=str(tmp_path / "one.rrd"), **args
+    )
+    (plain,) = build_plan_specs(["shekel_chain"], [3], ["voot"], [0], **args)
+    assert spec.record == str(tmp_path / "one.rrd") and plain.record is None
+    assert spec.run_id == plain.run_id  # the recording is not part of the run's identity
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    assert r["recorded"] == spec.record and (tmp_path / "one.rrd").stat().st_size > 0
+
+
+def _mujoco_envs_available() -> bool:
+    try:
+        import voot.envs.kitchen  # noqa: F401
+        import voot.envs.planning  # noqa: F401
+    except Exception:
+        return False
+    return True
+
+
+@pytest.mark.skipif(
+    not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
+)
+def test_kitchen_run_records_objects() -> None:
+    (spec,) = build_plan_specs(["kitchen"], None, ["voot"], [0], simulations=3, grid="default")
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    left = r["objects_left"]
+    assert len(left) == 3 and all(v is not None for v in left)
+    assert r["objects_initial"] >= max(left)
+    assert r["simulator_calls"] >= r["n_steps"] > 0
+    assert r["planner_config"]["gamma"] == 0.9
+    assert r["planner_config"]["sampler_options"]["sampler"] == "uniform"

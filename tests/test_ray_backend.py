@@ -1,0 +1,105 @@
+"""Tests of voot.bench.ray_backend on a real local Ray instance (small and bounded)."""
+
+from __future__ import annotations
+
+import functools
+import logging
+import os
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from voot.bench.plan_sweep import PlanSpec, build_plan_specs, run_plan_spec, strip_timings
+from voot.bench.store import ResultStore, Row
+from voot.bench.sweep import SerialBackend, make_backend, run_sweep
+
+ray = pytest.importorskip("ray")
+
+pytestmark = pytest.mark.ray
+
+
+@pytest.fixture(scope="module")
+def ray_instance() -> Iterator[None]:
+    ray.init(
+        num_cpus=2,
+        include_dashboard=False,
+        log_to_driver=False,
+        logging_level=logging.WARNING,
+    )
+    # the flaky run function below lives in this test module, which workers cannot import
+    ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    try:
+        yield
+    finally:
+        ray.cloudpickle.unregister_pickle_by_value(sys.modules[__name__])
+        ray.shutdown()
+
+
+def specs() -> list[PlanSpec]:
+    return build_plan_specs(
+        ["shekel_chain"], [3], ["voot", "pw_uct"], [0, 1], simulations=15, grid="default"
+    )
+
+
+def test_ray_and_local_sweeps_give_the_same_rows(ray_instance: None, tmp_path: Path) -> None:
+    here, there = ResultStore(tmp_path / "local"), ResultStore(tmp_path / "ray")
+    assert run_sweep(specs(), here, SerialBackend(), progress=False).ran == 4
+    backend = make_backend("ray", 2)
+    summary = run_sweep(specs(), there, backend, progress=False)
+    assert summary.ran == 4 and summary.failed == 0 and backend.retries == 0
+    assert ray.is_initialized()  # an instance it did not start is left running
+    local = {r["run_id"]: strip_timings(r) for r in here.load(kind="plan")}
+    remote = {r["run_id"]: strip_timings(r) for r in there.load(kind="plan")}
+    assert remote == local  # identical rows but for the timings
+    again = run_sweep(specs(), there, backend, progress=False)
+    assert again.ran == 0 and again.skipped == 4  # resume works the same way
+
+
+def flaky_run(marker_dir: str, die_once: str, die_always: str, spec: Any) -> Row:
+    """Kill the worker process on the first try of ``die_once`` and on every try of
+    ``die_always``; run the rest normally."""
+    if spec.run_id == die_always:
+        os._exit(3)
+    if spec.run_id == die_once:
+        marker = Path(marker_dir) / spec.run_id
+        if not marker.exists():
+            marker.write_text("died once")
+            os._exit(3)
+    return run_plan_spec(spec)
+
+
+def test_dead_workers_are_retried_then_recorded_as_failed(
+    ray_instance: None, tmp_path: Path
+) -> None:
+    todo = specs()
+    once, always = todo[0].run_id, todo[1].run_id
+    store = ResultStore(tmp_path / "r")
+    backend = make_backend("ray", 2, max_tries=2)
+    run = functools.partial(flaky_run, str(tmp_path), once, always)
+    summary = run_sweep(todo, store, backend, progress=False, run=run)
+    assert summary.ran == 4 and summary.failed == 1  # the sweep went on
+    assert backend.retries == 2  # once for each of the two runs
+    recovered = store.get(once)
+    assert recovered is not None and recovered["status"] == "ok" and recovered["tries"] == 2
+    failed = store.get(always)
+    assert failed is not None and failed["status"] == "failed" and failed["tries"] == 2
+    assert "died in each of 2 tries" in failed["error"]
+    assert failed["config"] == todo[1].config()
+    assert {r["run_id"] for r in store.load()} == {s.run_id for s in todo} - {always}
+    # a later sweep retries the failed run (here it keeps dying, and stays failed)
+    again = run_sweep(todo, store, backend, progress=False, run=run)
+    assert again.skipped == 3 and again.ran == 1 and again.failed == 1
+
+
+def test_bad_ray_arguments() -> None:
+    from voot.bench.ray_backend import RayBackend
+
+    with pytest.raises(ValueError, match="workers must be an integer >= 1"):
+        RayBackend(0)
+    with pytest.raises(ValueError, match="max_tries must be an integer >= 1"):
+        RayBackend(max_tries=0)
+    with pytest.raises(ValueError, match="address and max_tries apply to the ray backend"):
+        make_backend("process", 2, address="auto")

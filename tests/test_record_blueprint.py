@@ -1,0 +1,32 @@
+"""Tests of voot.record.blueprint: the default viewer layout."""
+
+from __future__ import annotations
+
+import pytest
+
+rrb = pytest.importorskip("rerun.blueprint")
+
+from voot.record.blueprint import default_blueprint  # noqa: E402
+
+
+def _views(container: object) -> list[object]:
+    out: list[object] = []
+    for part in container.contents:  # type: ignore[attr-defined]
+        out.extend(_views(part) if isinstance(part, rrb.Container) else [part])
+    return out
+
+
+@pytest.mark.parametrize(("scene", "plot"), [(True, False), (True, True), (False, True)])
+def test_layout(scene: bool, plot: bool) -> None:
+    bp = default_blueprint(has_scene=scene, has_plot=plot)
+    assert isinstance(bp, rrb.Blueprint)
+    views = _views(bp.root_container)
+    kinds = [type(v).__name__ for v in views]
+    assert kinds.count("GraphView") == 1
+    assert kinds.count("TimeSeriesView") == 3
+    assert kinds.count("Spatial3DView") == (1 if scene else 0)
+    assert kinds.count("Spatial2DView") == (1 if plot else 0)
+    origins = {str(v.origin) for v in views}  # type: ignore[attr-defined]
+    assert {"/search/best_return", "/search/n_nodes", "/tree"} <= origins
+    no_plan = default_blueprint(has_scene=scene, has_plot=plot, has_plan=False)
+    assert [type(v).__name__ for v in _views(no_plan.root_container)].count("TimeSeriesView") == 2

@@ -1,0 +1,108 @@
+"""The paper's Figure 5 from recordings: one node's sampled actions, side by side per planner.
+
+The viewer shows the same thing interactively; this draws it as a still image from the
+``.rrd`` files themselves (read with :func:`voot.record.read_recording`), for documents
+and for machines where the viewer cannot run. Each panel is the latest drawing of one
+entity (by default the first place node's placements) in one recording: the points
+with the colours the recorder gave them (viridis by :math:`\\hat Q`, infeasible grey).
+Needs matplotlib (the ``[bench]`` extra), imported when called.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from voot.record.reader import read_recording
+
+#: Entity drawn by default: the first place node's placements (paper Figure 5).
+DEFAULT_ENTITY = "scene/samples/first_place/placements"
+
+
+def unpack_colors(packed: Any) -> NDArray[np.float64]:
+    """rerun's packed ``0xRRGGBBAA`` colours as ``(n, 4)`` floats in [0, 1]."""
+    c = np.asarray(packed, dtype=np.uint64).reshape(-1)
+    shifts = np.array([24, 16, 8, 0], dtype=np.uint64)
+    return ((c[:, None] >> shifts) & np.uint64(0xFF)).astype(np.float64) / 255.0
+
+
+def node_samples(
+    path: str | os.PathLike[str], entity: str = DEFAULT_ENTITY, timeline: str = "search"
+) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+    """The latest drawing of ``entity`` in a recording: ``(xy (n, 2), rgba (n, 4), time)``.
+
+    Works for the 3-D drawings (``Points3D``/``Arrows3D``) and the 2-D fallback
+    (``Points2D``). Raises ValueError if the recording has no such entity.
+    """
+    rec = read_recording(path)
+    key = entity if entity.startswith("/") else "/" + entity
+    if key not in rec.entities:
+        drawn = sorted(e for e in rec.entities if "/samples/" in e or e.startswith("/samples"))
+        raise ValueError(f"{path} has no entity {key!r}; sampled-action entities: {drawn}")
+    comps = rec.entities[key].components
+    for arch, field in (
+        ("Points3D", "positions"),
+        ("Points2D", "positions"),
+        ("Arrows3D", "origins"),
+    ):
+        if f"{arch}:{field}" in comps:
+            t, pos = rec.column(key, f"{arch}:{field}", timeline)[-1]
+            colors = rec.latest(key, f"{arch}:colors", timeline)
+            xy = np.asarray(pos, dtype=np.float64).reshape(len(pos), -1)[:, :2]
+            return xy, unpack_colors(colors), int(t if t is not None else -1)
+    raise ValueError(f"{key} in {path} holds no points or arrows (components: {list(comps)})")
+
+
+def samples_figure(
+    recordings: Mapping[str, str | os.PathLike[str]],
+    out: str | os.PathLike[str],
+    entity: str = DEFAULT_ENTITY,
+    *,
+    xlim: tuple[float, float] | None = None,
+    ylim: tuple[float, float] | None = None,
+    point_size: float = 14.0,
+) -> Path:
+    """Draw ``entity``'s latest samples of each recording (title: its key) into ``out``.
+
+    Args:
+        recordings: panel title -> ``.rrd`` path, e.g. ``{"VOOT": "voot.rrd",
+            "PW-UCT": "pw.rrd"}`` (same problem and seed for a fair comparison).
+        out: the image file (``.png``, ``.svg`` ...).
+        entity: the entity to draw (default: the first place node's placements).
+        xlim: common x limits (default: fitted to all panels).
+        ylim: common y limits (default: fitted to all panels).
+        point_size: marker area.
+    """
+    if not recordings:
+        raise ValueError("recordings must name at least one .rrd file")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = {name: node_samples(p, entity) for name, p in recordings.items()}
+    fig, axes = plt.subplots(1, len(data), figsize=(4.2 * len(data), 4.2), squeeze=False)
+    every = np.concatenate([xy for xy, _, _ in data.values()])
+    pad = 0.05 * max(float(np.ptp(every[:, 0])), float(np.ptp(every[:, 1])), 1e-9)
+    xl = xlim or (float(every[:, 0].min()) - pad, float(every[:, 0].max()) + pad)
+    yl = ylim or (float(every[:, 1].min()) - pad, float(every[:, 1].max()) + pad)
+    for ax, (name, (xy, rgba, t)) in zip(axes[0], data.items(), strict=True):
+        ax.scatter(xy[:, 0], xy[:, 1], c=rgba, s=point_size, edgecolors="none")
+        ax.set_title(f"{name}: {len(xy)} samples (simulation {t + 1})")
+        ax.set_xlim(*xl)
+        ax.set_ylim(*yl)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+    fig.suptitle(f"{entity}: colour = Q-hat (viridis, low to high), grey = infeasible", fontsize=9)
+    fig.tight_layout()
+    path = Path(out)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
