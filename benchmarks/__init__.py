@@ -1,1 +1,10 @@
-"""Benchmark runner, result store, plots and the ``voot-bench`` command line."""
+"""Benchmark runner, result store, plots and the ``voot-bench`` command line.
+
+* :mod:`voot.bench.store`: the result store (one atomic JSON row per finished run);
+* :mod:`voot.bench.sweep`: the black-box sweep (Figure 3), the sweep loop and backends;
+* :mod:`voot.bench.problems`, :mod:`voot.bench.plan_sweep`: the planning sweep (Figure 4);
+* :mod:`voot.bench.ray_backend`: sweeps on a Ray cluster;
+* :mod:`voot.bench.select`: the paper's hyperparameter selection (best mean final value);
+* :mod:`voot.bench.plot`, :mod:`voot.bench.plan_plot`: figures and tables;
+* :mod:`voot.bench.cli`: ``voot-bench demo | bbfo | plan | select | plot | speed``.
+"""

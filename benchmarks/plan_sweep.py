@@ -168,9 +168,7 @@ def mcts_config(
         if "unknown option" not in str(exc):
             raise
         valid = ", ".join(sorted(config_fields - {"sampler_options"}))
-        raise ValueError(
-            f"{exc}; or a planner parameter (an MCTSConfig field): {valid}"
-        ) from None
+        raise ValueError(f"{exc}; or a planner parameter (an MCTSConfig field): {valid}") from None
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,10 @@ robot's base footprint in the workspace, robot and box must collide with nothing
 base path must exist from the start pose to the placing pose for the robot carrying the
 box. If all three are feasible the reward is ``sum_i exp(-0.1 L_i)`` over the three base
 paths' lengths ``L_i``; if any is infeasible the action earns -2 and nothing moves.
+``info["placement"]`` is the first box's pose ``(x, y, theta)`` and ``info["base_pose"]``
+the robot's base pose placing it; ``info["placements"]`` and ``info["base_poses"]`` list
+them for every box of the action (also for an infeasible action: they follow from the
+action alone).
 The episode terminates when every box is placed (no goal bonus in this domain:
 ``info["goal_bonus"]`` is 0) and is truncated after ``horizon`` steps. When fewer than
 three boxes remain, the action's trailing entries are ignored.
@@ -54,6 +58,7 @@ from voot.envs.task_env import (
     check_positive,
     check_range,
     denormalize,
+    pose_tuple,
 )
 from voot.optim.base import Bounds
 
@@ -313,6 +318,8 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         m = min(OBJECTS_PER_ACTION, self.n - t.placed)
         params = np.stack([denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)])
         names = [self.objects[t.placed + k].name for k in range(m)]
+        placements = tuple(pose_tuple(p) for p in params)
+        bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
         moved: dict[int, tuple[float, float, float, float]] = {}
         lengths: list[float] = []
         paths: list[FloatArray] = []
@@ -354,6 +361,10 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             "base_path_lengths": lengths if feasible else [],
             "base_paths": paths if feasible else [],
             "parameters": params,
+            "base_pose": bases[0],
+            "placement": placements[0],
+            "base_poses": bases,
+            "placements": placements,
             "action_clipped": clipped,
             "next_operator": "place",
             "next_objects": self._next_names(),

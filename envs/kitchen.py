@@ -29,6 +29,12 @@ does not change). When nothing is left on the path the episode terminates and a 
 bonus of +2 is reported in ``info["goal_bonus"]`` (not added to the reward). Episodes
 are truncated after ``horizon`` steps.
 
+Besides the keys every step's info has (``feasible``, ``reason``, ``next_operator`` ...;
+see :mod:`voot.envs.task_env`), ``info["base_pose"]`` is the base pose ``(x, y, theta)``
+of the action (a pick: the sampled base pose; a place: the base pose at the placement,
+which follows from the grasp) and ``info["placement"]`` the placed object's pose
+``(x, y, theta)`` (None for a pick), both also for infeasible actions.
+
 The action space is one ``Box(-1, 1, (6,))`` in normalised units for both operators (a
 fixed space keeps gymnasium's checkers and vectorised wrappers happy); at a place step
 only the first three entries are read and the rest is ignored. ``info["next_operator"]``
@@ -73,6 +79,7 @@ from voot.envs.task_env import (
     check_positive,
     check_range,
     denormalize,
+    pose_tuple,
 )
 from voot.optim.base import Bounds
 
@@ -392,7 +399,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         )
         return self._observation(), float(reward), terminated, truncated, info
 
-    def _infeasible(self, operator: str, obj: int, reason: str) -> tuple[float, dict[str, Any]]:
+    def _infeasible(
+        self,
+        operator: str,
+        obj: int,
+        reason: str,
+        base: ArrayLike,
+        placement: ArrayLike | None = None,
+    ) -> tuple[float, dict[str, Any]]:
         self.task = replace(self.task, steps=self.task.steps + 1)
         return self.config.infeasible_reward, {
             "operator": operator,
@@ -401,6 +415,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             "reason": reason,
             "base_path_length": 0.0,
             "base_path": None,
+            "base_pose": pose_tuple(base),
+            "placement": None if placement is None else pose_tuple(placement),
         }
 
     def pick_base_pose(self, obj: int, params: ArrayLike) -> FloatArray:
@@ -420,7 +436,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         base = self.pick_base_pose(obj, params)
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
-            return self._infeasible("pick", obj, "outside region: the robot leaves the house")
+            return self._infeasible(
+                "pick", obj, "outside region: the robot leaves the house", base
+            )
         pose = self.object_pose(obj)
         grasp = side_grasp(
             self.objects[obj],
@@ -436,7 +454,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         col_time = time.perf_counter() - t0
         if not base_report.free:
             self.last_timing = StepTiming(collision=col_time)
-            return self._infeasible("pick", obj, "collision: " + ", ".join(base_report.hits))
+            return self._infeasible(
+                "pick", obj, "collision: " + ", ".join(base_report.hits), base
+            )
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
         target_r = rb.T @ grasp.rotation
@@ -445,13 +465,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         ik_time = time.perf_counter() - t0
         if not ik.success or ik.q is None:
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
-            return self._infeasible("pick", obj, f"IK failed: {ik.reason}")
+            return self._infeasible("pick", obj, f"IK failed: {ik.reason}", base)
         t0 = time.perf_counter()
         report = self.collision.check(self.data.qpos, base, ik.q, held=obj)
         col_time += time.perf_counter() - t0
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
-            return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits))
+            return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits), base)
         rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
         self._set_robot(base, ik.q)
         reward = cfg.pick_reward if t.last_place_cleared else 0.0
@@ -470,6 +490,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             "reason": "",
             "base_path_length": 0.0,
             "base_path": None,
+            "base_pose": pose_tuple(base),
+            "placement": None,
         }
 
     def held_disc(self) -> CarryDisc:
@@ -494,18 +516,27 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         x, y, theta = (float(v) for v in params)
         z = float(self.object_pose(obj)[2])
         new_box = object_footprint(self.objects[obj], x, y, theta)
+        base = compose2d((x, y, theta), inverse2d(t.held_rel))
+        placement = (x, y, theta)
         if not rect_inside(new_box, cfg.house):
             self.last_timing = StepTiming()
-            return self._infeasible("place", obj, "outside region: the object leaves the house")
+            return self._infeasible(
+                "place", obj, "outside region: the object leaves the house", base, placement
+            )
         if rect_overlaps(new_box, cfg.forbidden):
             self.last_timing = StepTiming()
             return self._infeasible(
-                "place", obj, "forbidden room: the object is in the rooms behind the door"
+                "place",
+                obj,
+                "forbidden room: the object is in the rooms behind the door",
+                base,
+                placement,
             )
-        base = compose2d((x, y, theta), inverse2d(t.held_rel))
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
-            return self._infeasible("place", obj, "outside region: the robot leaves the house")
+            return self._infeasible(
+                "place", obj, "outside region: the robot leaves the house", base, placement
+            )
         t0 = time.perf_counter()
         report = self.collision.check(
             self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
@@ -513,7 +544,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         col_time = time.perf_counter() - t0
         if not report.free:
             self.last_timing = StepTiming(collision=col_time)
-            return self._infeasible("place", obj, "collision: " + ", ".join(report.hits))
+            return self._infeasible(
+                "place", obj, "collision: " + ", ".join(report.hits), base, placement
+            )
         t0 = time.perf_counter()
         disc = self.held_disc()
         path = self.planner.plan(
@@ -525,7 +558,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         plan_time = time.perf_counter() - t0
         self.last_timing = StepTiming(collision=col_time, planning=plan_time)
         if path is None:
-            return self._infeasible("place", obj, "no base path")
+            return self._infeasible("place", obj, "no base path", base, placement)
         base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
         set_object_pose(self.data, self.objects[obj], (x, y, z, theta))
         self._set_robot(base)
@@ -556,6 +589,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             "reason": "",
             "base_path_length": length,
             "base_path": base_path.waypoints,
+            "base_pose": pose_tuple(base),
+            "placement": placement,
         }
 
     # ----- rendering -----------------------------------------------------------------------

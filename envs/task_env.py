@@ -11,6 +11,11 @@ parameter ranges (:func:`denormalize`). Out-of-range entries are clipped to ``[-
 (``info["action_clipped"]`` says so); a NaN or infinite entry, or a wrong shape, raises
 :class:`ValueError`.
 
+Every step's ``info`` carries the poses a recording draws (:mod:`voot.record.samples`):
+``base_pose``, the robot base ``(x, y, theta)`` of the action, and ``placement``, the
+placed object's ``(x, y, theta)`` (None for a pick). They are filled in for infeasible
+actions too, since both follow from the state and the action alone.
+
 Snapshots (:meth:`ManipulationEnv.get_state` / :meth:`~ManipulationEnv.set_state`) are
 immutable :class:`EnvState` values holding the physics (``mujoco.mj_getState`` with the
 ``mjSTATE_INTEGRATION`` signature, recorded in the snapshot), the task's progress (an
@@ -82,6 +87,16 @@ def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray
     hi = np.array([r[1] for r in ranges], dtype=np.float64)
     out: FloatArray = 2.0 * (np.asarray(x, dtype=np.float64) - lo) / (hi - lo) - 1.0
     return out
+
+
+def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
+    """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
+
+    Tuples of floats are immutable, compare exactly and pickle small, which suits the
+    step infos a tree search keeps for each of its nodes.
+    """
+    x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).reshape(3))
+    return x, y, theta
 
 
 def check_range(name: str, value: Any) -> tuple[float, float]:

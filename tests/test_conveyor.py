@@ -61,6 +61,36 @@ def test_scripted_solution_packs_every_box(env: ConveyorPackingEnv) -> None:
         assert math.cos(yaw - math.radians(th)) == pytest.approx(1.0)
 
 
+def test_infos_carry_base_poses_and_placements(env: ConveyorPackingEnv) -> None:
+    """``placement``/``base_pose`` are the first box's; ``placements``/``base_poses`` all."""
+    env.reset(seed=0)
+    start = 0
+    for a in conveyor_actions(env)[:3]:
+        _, _, _, _, info = env.step(a)
+        m = len(info["objects"])
+        assert len(info["placements"]) == len(info["base_poses"]) == m
+        assert info["placement"] == info["placements"][0]
+        assert info["base_pose"] == info["base_poses"][0]
+        for k in range(m):
+            x, y, _, yaw = env.object_pose(start + k)
+            px, py, pth = info["placements"][k]
+            assert (px, py) == pytest.approx((x, y), abs=1e-12)
+            assert math.cos(pth - yaw) == pytest.approx(1.0)
+            expected = env.place_base_pose(start + k, info["placements"][k])
+            np.testing.assert_allclose(info["base_poses"][k], expected, atol=1e-12)
+        start += m
+    # infeasible (the first box sticks out of the loading region): the poses are given
+    env.reset(seed=0)
+    _, r, _, _, info = env.step(
+        _action(env, [(-0.6, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    )
+    assert r == -2.0 and info["reason"].startswith("box 1/3 (obj_00): outside region")
+    np.testing.assert_allclose(info["placement"], (-0.6, 1.0, 0.0), atol=1e-12)
+    np.testing.assert_allclose(info["placements"], info["parameters"], atol=0)
+    assert len(info["base_poses"]) == 3
+    np.testing.assert_allclose(info["base_pose"], env.place_base_pose(0, (-0.6, 1.0, 0.0)))
+
+
 def test_big_box_cannot_pass_the_door(env: ConveyorPackingEnv) -> None:
     env.reset(seed=0)
     s = env.get_state()

@@ -16,7 +16,7 @@ from gymnasium.utils.env_match import check_environments_match
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig
-from voot.envs.robot import inverse2d
+from voot.envs.robot import compose2d, inverse2d
 from voot.envs.scripted import kitchen_actions
 from voot.envs.task_env import normalize
 
@@ -70,6 +70,54 @@ def test_scripted_solution_clears_every_obstacle(env: KitchenClearingEnv) -> Non
     assert [i["objects_left"] for i in infos[1::2]] == [6, 5, 4, 3, 2, 1, 0]
     with pytest.raises(ValueError, match="ended"):
         env.step(np.zeros(6))
+
+
+def test_infos_carry_base_poses_and_placements(env: KitchenClearingEnv) -> None:
+    """``base_pose`` and ``placement`` (what a recording draws) match the state reached."""
+    env.reset(seed=0)
+    for a in kitchen_actions(env):
+        _, _, _, _, info = env.step(a)
+        base = info["base_pose"]
+        assert isinstance(base, tuple) and len(base) == 3
+        assert all(type(v) is float for v in base)
+        np.testing.assert_allclose(base, env.robot.base_pose(env.data), atol=1e-12)
+        if info["operator"] == "pick":
+            assert info["placement"] is None
+        else:
+            x, y, _, yaw = env.object_pose(env.object_index[info["object"]])
+            px, py, pth = info["placement"]
+            np.testing.assert_allclose((px, py), (x, y), atol=1e-12)
+            assert math.cos(pth - yaw) == pytest.approx(1.0)
+            np.testing.assert_allclose(info["parameters"], info["placement"])
+
+
+def test_infeasible_infos_carry_the_poses(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    rng = np.random.default_rng(1)
+    s = env.get_state()
+    reasons = set()
+    for _ in range(200):  # infeasible picks: the sampled base pose
+        a = rng.uniform(-1, 1, 6)
+        _, _, _, _, info = env.step(a)
+        env.set_state(s)
+        expected = env.pick_base_pose(env.task.on_path[0], info["parameters"])
+        np.testing.assert_allclose(info["base_pose"], expected, atol=1e-12)
+        assert info["placement"] is None
+        if not info["feasible"]:
+            reasons.add(info["reason"].split(":")[0])
+    assert {"collision", "IK failed", "outside region"} <= reasons
+    env.step(kitchen_actions(env)[0])
+    held_rel = env.task.held_rel
+    before = env.get_state()
+    for x, y in ((4.0, 2.0), (-1.95, 0.0)):  # a forbidden room; half outside the house
+        _, r, _, _, info = env.step(_place_action(env, x, y, 0.5))
+        env.set_state(before)
+        assert not info["feasible"] and r == -2.0
+        np.testing.assert_allclose(info["placement"], (x, y, 0.5), atol=1e-12)
+        # the base pose follows from the grasp
+        np.testing.assert_allclose(
+            info["base_pose"][:2], compose2d((x, y, 0.5), inverse2d(held_rel))[:2], atol=1e-12
+        )
 
 
 def test_non_clearing_place_is_penalised(env: KitchenClearingEnv) -> None:

@@ -78,7 +78,7 @@ def kitchen_rows() -> list[Row]:
                 seed=seed,
                 params={"omega": 0.3},
                 left=[7.0, 7.0, 7.0, 6.0],
-            )  # fmt: skip
+            )
         )
         # pw_uct never clears the path and takes twice as long per simulation
         rows.append(
@@ -87,7 +87,7 @@ def kitchen_rows() -> list[Row]:
         rows.append(
             plan_row(
                 [-1.0, -0.5, -0.2, -0.1], planner="voot", seed=seed, problem="shekel_chain", dim=10
-            )  # fmt: skip
+            )
         )
     return rows
 

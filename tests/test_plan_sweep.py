@@ -249,7 +249,7 @@ def test_record_paths_and_recording(tmp_path: Path) -> None:
 
 def _mujoco_envs_available() -> bool:
     try:
-        import voot.envs.kitchen  # noqa: F401
+        import voot.envs.kitchen
         import voot.envs.planning  # noqa: F401
     except Exception:
         return False

@@ -89,6 +89,7 @@ def test_voot_plans_feasible_steps_on_griewank_3d() -> None:
     assert res.n_feasibility_checks > res.n_steps
 
 
+@pytest.mark.filterwarnings("ignore:.*(symmetric and normalized|maximum value is infinity).*")
 @pytest.mark.parametrize(
     ("env_id", "name"),
     [

@@ -73,7 +73,7 @@ def test_mujoco_restore_without_forward() -> None:
     env.close()
 
 
-def test_planning_on_reacher_beats_its_first_random_action() -> None:
+def test_plan_on_reacher_replays_exactly_from_the_root() -> None:
     env = gym.make("Reacher-v5", max_episode_steps=50)
     problem = MujocoGymProblem(env, seed=0)
     res = plan(
