@@ -338,7 +338,7 @@ def plot_plan_figure(
         [handles[p] for p in order],
         order,
         loc="outside lower center",
-        ncols=min(len(order), 7),
+        ncols=min(len(order), 4 * ncols),  # a one-column figure is narrow
         frameon=False,
     )
     path = Path(path)

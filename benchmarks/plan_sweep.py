@@ -167,8 +167,8 @@ def mcts_config(
     except ValueError as exc:
         if "unknown option" not in str(exc):
             raise
-        valid = ", ".join(sorted(config_fields - {"sampler_options"}))
-        raise ValueError(f"{exc}; or a planner parameter (an MCTSConfig field): {valid}") from None
+        names = ", ".join(sorted(config_fields - {"sampler_options"}))
+        raise ValueError(f"{exc}; or a planner parameter (an MCTSConfig field): {names}") from None
 
 
 @dataclass(frozen=True)
@@ -230,10 +230,6 @@ class PlanSpec:
         return mcts_config(
             self.problem, self.dim, self.planner, self.params_dict, self.env_kwargs_dict
         )
-
-    def describe(self) -> str:
-        params = ", ".join(f"{k}={v}" for k, v in self.params) or "default"
-        return f"{self.planner} [{params}] on {self.label} seed {self.seed}"
 
 
 def search_seed(spec: PlanSpec) -> np.random.SeedSequence:

@@ -33,9 +33,14 @@ def test_split_trisects_the_longest_side() -> None:
     np.testing.assert_allclose([k.lo[1] for k in kids], [0.0, 1.0, 2.0])
     np.testing.assert_allclose([k.hi[1] for k in kids], [1.0, 2.0, 3.0])
     assert all(k.lo[0] == 0.0 and k.hi[0] == 1.0 and k.depth == 1 for k in kids)
-    np.testing.assert_array_equal(kids[1].centre, node.centre)  # middle child shares it
+    np.testing.assert_array_equal(kids[1].x, node.x)  # middle child shares the centre
     halves = node.split(2)
-    np.testing.assert_allclose([h.centre[1] for h in halves], [0.75, 2.25])
+    np.testing.assert_allclose([h.x[1] for h in halves], [0.75, 2.25])
+    anchored = _Node(np.zeros(2), np.array([1.0, 3.0]), 0, np.array([0.2, 0.6]))
+    left, right = anchored.split_at_point()
+    assert left.hi[1] == right.lo[1] == 0.6 and left.lo[1] == 0.0 and right.hi[1] == 3.0
+    np.testing.assert_allclose(left.x, [0.2, 0.3])
+    np.testing.assert_allclose(right.x, [0.2, 1.8])
 
 
 def test_first_points_are_the_root_centre_and_children() -> None:
@@ -76,10 +81,24 @@ def test_beats_random_search_on_a_smooth_function(d: int, budget: int) -> None:
         assert bam > 0.1 * rnd, (seed, bam, rnd)  # regret at least 10x smaller
 
 
-def test_authors_variant_runs() -> None:
+def test_binary_split_and_variance_bound_run() -> None:
     opt = run(0, budget=12, branching=2, bound_uses_variance=True, eta=0.9)
     assert opt.n_told == 12
     np.testing.assert_array_equal(opt.xs[1], [-0.5, 0.0])  # binary split: quarter points
+
+
+def test_authors_random_root_partition() -> None:
+    a = run(3, budget=12, branching=2, root_point="random")
+    b = run(3, budget=12, branching=2, root_point="random")
+    c = run(4, budget=12, branching=2, root_point="random")
+    np.testing.assert_array_equal(a.xs, b.xs)
+    assert not np.array_equal(a.xs[0], c.xs[0])  # the root point is random
+    assert not np.allclose(a.xs[0], 0.0)
+    # the first cut is at the root point along dimension 0; children halfway to the faces
+    r = a.xs[0]
+    kids = sorted(x[0] for x in a.xs[1:3])
+    np.testing.assert_allclose(kids, [(r[0] - 1.0) / 2.0, (r[0] + 1.0) / 2.0])
+    assert np.all(np.abs(a.xs) <= 1.0)
 
 
 def test_max_skips_forces_evaluations() -> None:
@@ -107,6 +126,8 @@ def test_paper_grid_and_b_n() -> None:
         ({"min_width": 0.0}, "min_width"),
         ({"bound_uses_variance": 1}, "bound_uses_variance"),
         ({"max_points": 0}, "max_points"),
+        ({"root_point": "corner"}, "root_point"),
+        ({"root_point": "random"}, "branching=2"),
     ],
 )
 def test_bad_config_raises(options: dict, match: str) -> None:

@@ -39,7 +39,9 @@ def test_feasible_steps_earn_f_and_the_bonus_infeasible_ones_f_minus_2() -> None
     bad = chain.step(np.array([1.0, 1.0]))
     assert not bad.feasible and bad.reward == pytest.approx(-1.0 - 2.0) and bad.bonus == 0.0
     assert chain.snapshot() == 1  # an infeasible action does not advance
-    assert chain.is_feasible(np.array([0.0, 0.0])) and not chain.is_feasible(np.array([1.0, 0.0]))
+    assert chain.meets_threshold(np.array([0.0, 0.0])) and not chain.meets_threshold(
+        np.array([1.0, 0.0])
+    )
     chain.restore(0)
     assert chain.t == 0
 
@@ -74,14 +76,14 @@ def test_reference_chains(name: str, dim: int) -> None:
     assert chain.bounds == fn.bounds
     # The function's optimum is feasible in every chain.
     if fn.optimum_x is not None:
-        assert chain.is_feasible(np.asarray(fn.optimum_x))
+        assert chain.meets_threshold(np.asarray(fn.optimum_x))
     opts = chain_planner_options(name, dim)
     assert opts["root_commitment"] == spec.root_commitment[dim]
     assert opts["reevaluations"] == 100
 
 
 def test_voot_plans_feasible_steps_on_griewank_3d() -> None:
-    chain = make_chain("griewank", 3)
+    chain = make_chain("griewank", 3, feasibility_precheck=True)
     cfg = planner_config("voot", **{**chain_planner_options("griewank", 3), "reevaluations": 5})
     res = plan(chain, cfg, 150, seed=0)
     assert res.feasible[0] and res.rewards[0] >= chain.threshold

@@ -36,6 +36,15 @@ from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.mcts import MCTS, PlanResult, plan
 from voot.tree.node import Node
 from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.root_parallel import (
+    LocalProcessExecutor,
+    MergeRule,
+    RootParallelConfig,
+    RootParallelResult,
+    SerialExecutor,
+    TreeExecutor,
+    plan_root_parallel,
+)
 from voot.tree.samplers import ActionSampler, OptimizerSampler, UniformSampler
 
 __all__ = [
@@ -51,21 +60,28 @@ __all__ = [
     "FinalAction",
     "GymProblem",
     "HOOConfig",
+    "LocalProcessExecutor",
     "MCTSConfig",
+    "MergeRule",
     "MujocoGymProblem",
     "Node",
     "OptimizerSampler",
     "PlanResult",
     "PlanningProblem",
+    "RootParallelConfig",
+    "RootParallelResult",
     "Selection",
+    "SerialExecutor",
     "StepResult",
     "SyntheticChain",
+    "TreeExecutor",
     "UniformSampler",
     "available_planners",
     "available_samplers",
     "chain_planner_options",
     "make_chain",
     "plan",
+    "plan_root_parallel",
     "planner_config",
     "run_episode",
 ]

@@ -69,6 +69,11 @@ class SyntheticChain:
         infeasible_penalty: added to :math:`f(a)` for an infeasible action (-2).
         horizon: the episode ends after this many feasible actions (None: never).
         bonus_in_reward: count the bonus in the reward (the authors' plotted sums).
+        feasibility_precheck: offer ``is_feasible`` to the planner, so it retries new
+            actions below the threshold before executing one. Off by default, as in the
+            authors' code (a dummy checker passed every action; infeasibility was only
+            found by executing it, and its value :math:`f(a) - 2` reached the node's
+            optimiser).
 
     The state is the number of feasible actions taken so far (an int snapshot).
     """
@@ -82,6 +87,7 @@ class SyntheticChain:
         infeasible_penalty: float = -2.0,
         horizon: int | None = None,
         bonus_in_reward: bool = False,
+        feasibility_precheck: bool = False,
     ) -> None:
         if not callable(function):
             raise ValueError("function must be callable f(action) -> float")
@@ -104,6 +110,10 @@ class SyntheticChain:
         self.horizon = horizon
         self.bonus_in_reward = bool(bonus_in_reward)
         self.t = 0
+        #: The planner's feasibility pre-check (see ``feasibility_precheck``), or None.
+        self.is_feasible: Callable[[FloatArray], bool] | None = (
+            self.meets_threshold if feasibility_precheck else None
+        )
 
     def snapshot(self) -> int:
         return self.t
@@ -121,7 +131,8 @@ class SyntheticChain:
             raise ValueError(f"action must have shape ({self.bounds.dim},), got {a.shape}")
         return float(self.function(a))
 
-    def is_feasible(self, action: FloatArray) -> bool:
+    def meets_threshold(self, action: FloatArray) -> bool:
+        """Is ``action`` feasible, i.e. :math:`f(a) \\ge \\tau`? (Does not advance the state.)"""
         return self.value(action) >= self.threshold
 
     def step(self, action: FloatArray) -> StepResult:
@@ -175,7 +186,8 @@ def chain_planner_options(name: str, dim: int) -> dict[str, Any]:
     """:class:`~voot.tree.MCTSConfig` overrides the authors used on a chain (any planner).
 
     ``reevaluations=100``, ``kappa_r=1.0`` (their decay was off), no depth limit,
-    ``gamma=0.9``, root commitment 5 / 5 / 3 (3 / 10 / 20-D; 5 otherwise). For VOO
+    ``gamma=0.9``, root commitment 5 / 5 / 3 (3 / 10 / 20-D; 5 otherwise), and the
+    authors' "uniform until a reward above -2" rule for VOO (see the code comment). For VOO
     samplers add ``sampler_options={"sampler": "centered_uniform"}`` (VOO's default).
     """
     key = str(name).strip().lower()
@@ -189,4 +201,9 @@ def chain_planner_options(name: str, dim: int) -> dict[str, Any]:
         "depth_limit": None,
         "gamma": 0.9,
         "root_commitment": CHAIN_SPECS[key].root_commitment.get(dim, 5),
+        # The authors' VOO sampled uniformly until a node had an action whose best reward
+        # exceeded -2. An infeasible chain action earns f(a) - 2, which exceeds -2 exactly
+        # when f(a) > 0: always for Shekel (a sum of positive terms), never for the
+        # negated Rastrigin and Griewank. So Shekel nodes exploit from their second action.
+        "voo_uniform_until_feasible": key != "shekel",
     }

@@ -45,7 +45,7 @@ from voot.tree.config import (
 )
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.node import Node
-from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.problem import PlanningProblem, StepResult
 from voot.tree.samplers import UniformSampler, make_optimizer_sampler
 
 #: ``callback(mcts, simulation_index)`` after every simulation; return True to stop early.
@@ -170,9 +170,9 @@ class MCTS:
         self.problem = problem
         self.config = cfg
         self.rng = np.random.default_rng(seed)
-        self._check: Callable[[FloatArray], bool] | None = (
-            problem.is_feasible if isinstance(problem, FeasibilityCheck) else None
-        )
+        # A problem may offer is_feasible (FeasibilityCheck) or set it to None per instance.
+        check = getattr(problem, "is_feasible", None)
+        self._check: Callable[[FloatArray], bool] | None = check if callable(check) else None
         self._sampler_config = cfg.sampler_config()
         self._optimizer_class: Any = None
         if cfg.sampler not in ("uniform", "hoo"):
