@@ -4,6 +4,7 @@ Subcommands::
 
     voot-bench demo                       VOO on Shekel-20D with the paper's budget (5000)
     voot-bench bbfo --out results/bbfo    the Figure-3 sweep (resumable, parallel)
+    voot-bench bbfo --instance 1 ...      the same on test functions with shifted optima
     voot-bench plan --out results/plan    planners x problems x seeds (Figure 4; Ray too)
     voot-bench select results/bbfo        the selected hyperparameters per method
     voot-bench plot results/bbfo --png fig.png --markdown table.md
@@ -145,12 +146,14 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
         grid=args.grid,
         budget_scale=args.budget_scale,
         budget=args.budget,
+        instance=args.instance,
     )
     if not specs:
         raise CLIError("the grid is empty (e.g. rembo is not run in 3-D); widen --dims/--methods")
     evaluations = sum(s.budget for s in specs)
+    instance = f", instance {args.instance}" if args.instance else ""
     print(
-        f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}",
+        f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}{instance}",
         file=sys.stderr,
     )
     if args.dry_run:
@@ -248,6 +251,10 @@ def cmd_plan(args: argparse.Namespace) -> int:
 
 # ----- select / plot -------------------------------------------------------------------
 KINDS = ("bbfo", "plan")
+INSTANCE_FILTER_HELP = (
+    "bbfo runs: the test-function instance to use (default: the only one in the store;"
+    " 0 = the paper's functions)"
+)
 
 
 def _load_rows(path: str, kind: str | None) -> tuple[str, list[Row]]:
@@ -273,10 +280,25 @@ def _load_bbfo(path: str) -> list[Row]:
     return _load_rows(path, "bbfo")[1]
 
 
+def _one_instance(rows: list[Row], kind: str, instance: int | None) -> list[Row]:
+    """The bbfo rows of one test-function instance (``--instance``, or the only one)."""
+    from voot.bench.select import one_instance
+
+    if kind != "bbfo":
+        if instance is not None:
+            raise CLIError("--instance applies to bbfo runs (test functions), not plan runs")
+        return rows
+    chosen, rows = one_instance(rows, instance)
+    if chosen:
+        print(f"test-function instance {chosen} (optima shifted)", file=sys.stderr)
+    return rows
+
+
 def cmd_select(args: argparse.Namespace) -> int:
     from voot.bench.select import largest_budget, select_hyperparameters, selection_table
 
     kind, rows = _load_rows(args.results, args.kind)
+    rows = _one_instance(rows, kind, args.instance)
     selections = select_hyperparameters(largest_budget(rows))
     print(selection_table(selections, all_candidates=args.all, kind=kind))
     return 0
@@ -335,6 +357,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
     if args.log and not args.regret:
         raise CLIError("--log needs --regret (best values can be negative)")
     kind, rows = _load_rows(args.results, args.kind)
+    rows = _one_instance(rows, kind, args.instance)
     if kind == "plan":
         return cmd_plot_plan(args, rows)
     if args.png_seconds or args.problems or args.planners or args.at:
@@ -345,7 +368,14 @@ def cmd_plot(args: argparse.Namespace) -> int:
     functions = [f.lower() for f in split_list(args.functions)] or None
     dims = parse_int_list(args.dims, "--dims") or None
     methods = [normalize_method(m) for m in split_list(args.methods)] or None
-    data = figure_data(rows, regret=args.regret, functions=functions, dims=dims, methods=methods)
+    data = figure_data(
+        rows,
+        regret=args.regret,
+        functions=functions,
+        dims=dims,
+        methods=methods,
+        instance=args.instance,
+    )
     if not data:
         raise CLIError("no finished runs match --functions/--dims/--methods")
     table = final_table(data, regret=args.regret)
@@ -482,6 +512,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--budget-scale", type=float, default=1.0, help="multiply the paper budgets")
     p.add_argument("--budget", type=int, default=None, help="one fixed budget for every run")
     p.add_argument(
+        "--instance",
+        type=int,
+        default=0,
+        metavar="K",
+        help="test-function instance: 0 = the paper's functions (default), K >= 1 = optima"
+        " moved off the box centre (voot.functions)",
+    )
+    p.add_argument(
         "--workers", type=int, default=os.cpu_count() or 1, help="processes (default: %(default)s)"
     )
     p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
@@ -562,6 +600,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("results", help="result store directory")
     p.add_argument("--all", action="store_true", help="list every setting tried")
     p.add_argument("--kind", choices=KINDS, help="bbfo or plan runs (default: what the store has)")
+    p.add_argument("--instance", type=int, metavar="K", help=INSTANCE_FILTER_HELP)
     p.set_defaults(func=cmd_select)
 
     p = sub.add_parser("plot", help="Figure 3 (bbfo runs) or Figure 4 (plan runs), and tables")
@@ -573,6 +612,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
     p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
     _add_filters(p, defaults=False)
+    p.add_argument("--instance", type=int, metavar="K", help=INSTANCE_FILTER_HELP)
     p.add_argument(
         "--problems", nargs="+", metavar="NAME", help="plan runs: problems (default: all)"
     )

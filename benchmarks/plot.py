@@ -13,6 +13,10 @@ Confidence intervals use the **t-distribution**: with ``n`` seeds, sample mean
 computed independently at every evaluation count. With a single seed there is no interval
 (it is reported as NaN and not drawn).
 
+Rows of different test-function instances (shifted optima, see :mod:`voot.functions`)
+are never drawn together: :func:`figure_data` takes one ``instance`` (or the only one the
+rows hold), and the panel titles and tables name a nonzero instance.
+
 Drawing uses matplotlib's object API with the Agg canvas, so importing this module never
 changes the pyplot backend of the caller.
 """
@@ -31,6 +35,7 @@ from voot.bench.select import (
     function_order,
     largest_budget,
     method_order,
+    one_instance,
     select_hyperparameters,
     selected_rows,
 )
@@ -80,17 +85,19 @@ class MethodCurves:
     label: str
     #: best value (or regret) after each evaluation, shape ``(n_seeds, budget)``
     values: NDArray[np.float64]
+    #: test-function instance (0: the paper's function)
+    instance: int = 0
 
     @property
     def n_seeds(self) -> int:
         return int(self.values.shape[0])
 
 
-def optimum_of(function: str, dim: int) -> float:
+def optimum_of(function: str, dim: int, instance: int = 0) -> float:
     """The documented optimum ``f*`` of a function (for regret)."""
     from voot.functions import get_function
 
-    value = get_function(function, dim).optimum_value
+    value = get_function(function, dim, instance).optimum_value
     if value is None or not math.isfinite(float(value)):
         raise ValueError(f"{function}-{dim}D has no known optimum, so no regret can be computed")
     return float(value)
@@ -103,11 +110,14 @@ def figure_data(
     functions: Sequence[str] | None = None,
     dims: Sequence[int] | None = None,
     methods: Sequence[str] | None = None,
+    instance: int | None = None,
 ) -> list[MethodCurves]:
     """Curves of the selected setting of every method, per (function, dim).
 
-    Rows are filtered to ``"ok"``, to the given functions/dims/methods, and to the largest
-    budget per (function, dim); hyperparameters are selected on what remains.
+    Rows are filtered to ``"ok"``, to the given functions/dims/methods, to one
+    test-function ``instance`` (default: the only one present; a ``ValueError`` names them
+    if there are several), and to the largest budget per (function, dim);
+    hyperparameters are selected on what remains.
     """
     keep = [
         r
@@ -118,6 +128,7 @@ def figure_data(
         and (dims is None or int(r["config"]["dim"]) in dims)
         and (methods is None or r["config"]["method"] in methods)
     ]
+    instance, keep = one_instance(keep, instance)
     keep = largest_budget(keep)
     selections = select_hyperparameters(keep)
     chosen = selected_rows(keep, selections)
@@ -132,13 +143,30 @@ def figure_data(
         group.sort(key=lambda r: int(r["config"]["seed"]))
         values = curves(group)
         if regret:
-            values = optimum_of(s.function, s.dim) - values
-        out.append(MethodCurves(s.function, s.dim, s.budget, s.method, s.best.label, values))
+            values = optimum_of(s.function, s.dim, instance) - values
+        out.append(
+            MethodCurves(s.function, s.dim, s.budget, s.method, s.best.label, values, instance)
+        )
     return out
 
 
 def _cells(data: Sequence[MethodCurves]) -> tuple[list[str], list[int]]:
     return function_order(c.function for c in data), sorted({c.dim for c in data})
+
+
+def _instance(data: Sequence[MethodCurves]) -> int:
+    """The one instance of ``data`` (figures and tables never mix instances)."""
+    instances = sorted({c.instance for c in data})
+    if len(instances) > 1:
+        raise ValueError(
+            f"curves of several test-function instances ({', '.join(map(str, instances))});"
+            " draw one instance at a time (figure_data(..., instance=K))"
+        )
+    return instances[0] if instances else 0
+
+
+def _instance_tag(instance: int) -> str:
+    return f" (instance {instance})" if instance else ""
 
 
 def method_colors(methods: Iterable[str]) -> dict[str, tuple[float, float, float, float]]:
@@ -171,6 +199,7 @@ def plot_figure3(
             "no finished bbfo runs to plot (is the store empty or the filter too strict?)"
         )
     functions, dims = _cells(data)
+    tag = _instance_tag(_instance(data))
     methods = method_order(c.method for c in data)
     colors = method_colors(methods)
     fig = Figure(figsize=(4.2 * len(dims), 3.2 * len(functions)), layout="constrained")
@@ -181,7 +210,7 @@ def plot_figure3(
         for j, dim in enumerate(dims):
             ax = axes[i][j]
             cell = [c for c in data if c.function == function and c.dim == dim]
-            ax.set_title(f"{function.capitalize()} {dim}-D")
+            ax.set_title(f"{function.capitalize()} {dim}-D{tag}")
             if not cell:
                 ax.text(0.5, 0.5, "no runs", ha="center", va="center", transform=ax.transAxes)
                 ax.set_axis_off()
@@ -227,6 +256,7 @@ def final_table(data: Sequence[MethodCurves], *, regret: bool = False) -> str:
     95% t-interval; the best mean of each row (highest value, or lowest regret) is bold.
     """
     functions, dims = _cells(data)
+    instance = _instance(data)
     methods = method_order(c.method for c in data)
     what = "final regret (lower is better)" if regret else "final best value (higher is better)"
     lines = [
@@ -257,6 +287,12 @@ def final_table(data: Sequence[MethodCurves], *, regret: bool = False) -> str:
     note = (
         f"\n\n{what}: mean ± half-width of the 95% t-interval over seeds (number of seeds),"
         " each method with its selected hyperparameters; best mean in bold."
+        + (
+            f" Test functions of instance {instance}: optima shifted off the box centre"
+            " (voot.functions)."
+            if instance
+            else ""
+        )
     )
     return "\n".join(lines) + note
 

@@ -10,6 +10,10 @@ Ties (equal means) go to the setting whose label sorts first, so the choice is
 deterministic. Only rows with status ``"ok"`` count; runs of different budgets are kept
 apart (the budget is part of the cell).
 
+Rows of different test-function instances (``config["instance"]``, see
+:mod:`voot.bench.sweep`) are never mixed: :func:`one_instance` keeps the rows of one
+instance, and :func:`select_hyperparameters` refuses rows of several.
+
 The same rule selects the planners' settings of the planning sweep (rows of kind
 ``"plan"``): there a cell is (problem, dim, simulations, planner) and the final value is
 the best return after the last simulation (:func:`cell_of` maps both kinds of row).
@@ -26,7 +30,7 @@ import numpy as np
 from voot.bench.plan_sweep import PLAN_PLANNERS
 from voot.bench.problems import ALIASES, CHAINS, problem_label
 from voot.bench.store import Row
-from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, params_key
+from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, instance_of, params_key
 
 #: (function, dim, budget, method); for plan rows (problem, dim or 0, simulations, planner)
 CellKey = tuple[str, int, int, str]
@@ -43,6 +47,36 @@ def cell_of(row: Row) -> CellKey:
         label = problem_label(str(cfg["problem"]), cfg.get("env_kwargs"))
         return (label, int(cfg.get("dim") or 0), int(cfg["simulations"]), str(cfg["planner"]))
     return (str(cfg["function"]), int(cfg["dim"]), int(cfg["budget"]), str(cfg["method"]))
+
+
+def one_instance(rows: Iterable[Row], instance: int | None = None) -> tuple[int, list[Row]]:
+    """The rows of one test-function instance, and that instance.
+
+    Args:
+        rows: result rows (plan rows, which have no instance, count as instance 0).
+        instance: the instance to keep; ``None`` keeps the only one present.
+
+    Raises:
+        ValueError: ``instance`` is None and the rows hold several instances (the message
+            lists them), or no row is of ``instance``.
+    """
+    rows = list(rows)
+    present = sorted({instance_of(r["config"]) for r in rows})
+    if instance is None:
+        if len(present) > 1:
+            raise ValueError(
+                f"the runs are of several test-function instances ({', '.join(map(str, present))});"
+                " they are different problems and are never mixed: choose one with --instance K"
+                " (instance= in Python; 0 = the paper's functions)"
+            )
+        return (present[0] if present else 0), rows
+    kept = [r for r in rows if instance_of(r["config"]) == instance]
+    if rows and not kept:
+        raise ValueError(
+            f"no runs of instance {instance}; the runs are of instance(s)"
+            f" {', '.join(map(str, present))}"
+        )
+    return instance, kept
 
 
 @dataclass(frozen=True)
@@ -118,11 +152,15 @@ def select_hyperparameters(rows: Iterable[Row]) -> list[Selection]:
     """Select each method's setting per (function, dim, budget): best mean final value.
 
     Returns the selections sorted by function (paper order), dim, budget and method.
+
+    Raises:
+        ValueError: the rows are of several test-function instances (filter them with
+            :func:`one_instance` first).
     """
     groups: dict[CellKey, dict[str, tuple[dict[str, Any], list[float]]]] = {}
-    for row in rows:
-        if row.get("status") != "ok":
-            continue
+    ok = [row for row in rows if row.get("status") == "ok"]
+    one_instance(ok)  # raises on a mix
+    for row in ok:
         key = cell_of(row)
         params = dict(row["config"].get("params") or {})
         label = params_key(params)

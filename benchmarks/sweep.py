@@ -24,6 +24,12 @@ The protocol of one run (``PROTOCOL = 1``):
   which changes between processes).
 * **Record**: the best value so far after every evaluation, the wall time and the best
   point; an exception inside the run gives a row with status ``"failed"`` and the error.
+* **Instance** (not in the paper): ``instance = 0`` runs the paper's functions;
+  ``instance = k >= 1`` runs :func:`voot.functions.get_function` instance ``k``, the
+  function with its optimum moved off the box centre (same box, so the same initial point
+  and optimiser seed). A nonzero instance is part of the row's ``config`` (so of the run
+  id); instance 0 is left out of it, so the paper sweep's run ids are unchanged
+  (:func:`instance_of` reads a missing one as 0).
 
 Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
 """
@@ -102,6 +108,11 @@ def initial_point(
     return lower + rng.random(int(dim)) * (upper - lower)
 
 
+def instance_of(config: Mapping[str, Any]) -> int:
+    """The test-function instance of a row's ``config`` (0, the paper's, when absent)."""
+    return int(config.get("instance") or 0)
+
+
 def optimizer_seed(seed: int, function: str, dim: int, method: str) -> np.random.SeedSequence:
     """Seed of the optimiser of a run (the same for every hyperparameter of ``method``)."""
     return np.random.SeedSequence([int(seed), name_key(function), int(dim), name_key(method)])
@@ -110,7 +121,8 @@ def optimizer_seed(seed: int, function: str, dim: int, method: str) -> np.random
 @dataclass(frozen=True)
 class RunSpec:
     """One black-box optimisation run: ``method`` with ``params`` on ``function`` in ``dim``
-    dimensions, ``budget`` evaluations, ``seed``.
+    dimensions, ``budget`` evaluations, ``seed``, on test-function ``instance`` (0: the
+    paper's function).
 
     ``params`` holds only the hyperparameters set by the grid (sorted ``(name, value)``
     pairs); the rest are the method's defaults.
@@ -122,6 +134,7 @@ class RunSpec:
     params: tuple[tuple[str, Any], ...]
     budget: int
     seed: int
+    instance: int = 0
 
     kind: ClassVar[str] = "bbfo"
 
@@ -130,8 +143,11 @@ class RunSpec:
         return dict(self.params)
 
     def config(self) -> dict[str, Any]:
-        """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
-        return {
+        """The row's ``config`` (JSON-serialisable; hashed into the run id).
+
+        ``"instance"`` is there only when nonzero (instance 0 keeps the run ids it had
+        before instances existed)."""
+        config: dict[str, Any] = {
             "function": self.function,
             "dim": self.dim,
             "method": self.method,
@@ -140,6 +156,9 @@ class RunSpec:
             "seed": self.seed,
             "protocol": PROTOCOL,
         }
+        if self.instance:
+            config["instance"] = self.instance
+        return config
 
     @property
     def run_id(self) -> str:
@@ -212,6 +231,7 @@ def build_specs(
     grid: str = "paper",
     budget_scale: float = 1.0,
     budget: int | None = None,
+    instance: int = 0,
 ) -> list[RunSpec]:
     """Every run of the sweep, in grid order (function, dim, method, params, seed).
 
@@ -223,6 +243,8 @@ def build_specs(
         grid: ``"paper"`` (each method's ``paper_grid()``) or ``"default"``.
         budget_scale: multiplies :func:`paper_budget` (rounded, at least 1).
         budget: a fixed budget for every run instead (overrides ``budget_scale``).
+        instance: test-function instance: 0 for the paper's functions, k >= 1 for
+            :func:`voot.functions.get_function` instance k (optimum off the box centre).
 
     Methods listed in :data:`MIN_DIM` are skipped below their smallest dimension.
     """
@@ -236,12 +258,17 @@ def build_specs(
         raise ValueError(f"budget_scale must be > 0, got {budget_scale!r}")
     if budget is not None:
         _check_int_list([budget], "budget", 1)
+    if isinstance(instance, bool) or not isinstance(instance, int | np.integer) or instance < 0:
+        raise ValueError(
+            f"instance must be an integer >= 0 (0 = the paper's functions), got {instance!r}"
+        )
+    instance = int(instance)
     grids = {m: method_grid(m, grid) for m in dict.fromkeys(method_list)}
     from voot.functions import get_function
 
     for function in dict.fromkeys(funcs):  # e.g. Shekel exists in 3, 10 and 20 dimensions only
         for dim in dict.fromkeys(dim_list):
-            get_function(function, dim)
+            get_function(function, dim, instance)
     specs: list[RunSpec] = []
     for function in dict.fromkeys(funcs):
         for dim in dict.fromkeys(dim_list):
@@ -256,7 +283,7 @@ def build_specs(
                 for params in grids[method]:
                     items = tuple(sorted(params.items()))
                     for seed in dict.fromkeys(seed_list):
-                        specs.append(RunSpec(function, dim, method, items, int(n), seed))
+                        specs.append(RunSpec(function, dim, method, items, int(n), seed, instance))
     return specs
 
 
@@ -275,7 +302,7 @@ def run_spec(spec: RunSpec) -> Row:
     start = time.perf_counter()
     best: list[float] = []
     try:
-        f = get_function(spec.function, spec.dim)
+        f = get_function(spec.function, spec.dim, spec.instance)
         bounds = f.bounds
         x0 = initial_point(spec.function, spec.dim, spec.seed, bounds.lower, bounds.upper)
         config = make_config(spec.method, **spec.params_dict)
@@ -348,9 +375,11 @@ def describe_config(config: Mapping[str, Any]) -> str:
         if config.get("dim") is not None:
             label += f"-{config['dim']}D"
         return f"{config.get('planner')} [{text}] on {label} seed {config.get('seed')}"
+    instance = instance_of(config)
     return (
         f"{config.get('method')} [{text}] on {config.get('function')}-{config.get('dim')}D"
-        f" seed {config.get('seed')}"
+        + (f" instance {instance}" if instance else "")
+        + f" seed {config.get('seed')}"
     )
 
 
@@ -621,15 +650,16 @@ def run_sweep(
 
 
 def summarize_specs(specs: Sequence[RunSpec]) -> str:
-    """One line per (function, dim): budget and number of runs per method."""
-    cells: dict[tuple[str, int, int], dict[str, int]] = {}
+    """One line per (function, dim, instance): budget and number of runs per method."""
+    cells: dict[tuple[str, int, int, int], dict[str, int]] = {}
     for s in specs:
-        counts = cells.setdefault((s.function, s.dim, s.budget), {})
+        counts = cells.setdefault((s.function, s.dim, s.instance, s.budget), {})
         counts[s.method] = counts.get(s.method, 0) + 1
     lines = []
-    for (function, dim, budget), counts in cells.items():
+    for (function, dim, instance, budget), counts in cells.items():
         per = ", ".join(f"{m} {n}" for m, n in counts.items())
-        lines.append(f"{function}-{dim}D budget {budget}: {per}")
+        tag = f" instance {instance}" if instance else ""
+        lines.append(f"{function}-{dim}D{tag} budget {budget}: {per}")
     return "\n".join(lines)
 
 

@@ -16,7 +16,9 @@
 * ``is_feasible(action)`` steps, records the result and restores; the following
   ``step`` with the same action from the same state reuses the recorded result, so a
   feasibility check followed by its execution costs one simulation (the envs are
-  deterministic, so the reuse is exact).
+  deterministic, so the reuse is exact). :attr:`EnvProblem.last_check` keeps the
+  :class:`~voot.tree.problem.StepResult` of the last check (its info says where a
+  rejected proposal would have put the robot and the object).
 
 It steps ``env.unwrapped`` directly (gymnasium's wrappers add nothing a planner needs;
 the envs truncate at their own horizon).
@@ -69,6 +71,8 @@ class EnvProblem:
         self._dim = u.action_dim
         self._version = 0
         self._cache: tuple[int, bytes, StepResult, EnvState[Any]] | None = None
+        #: The result of the last :meth:`is_feasible` call (None before the first).
+        self.last_check: StepResult | None = None
         if seed is not None:
             u.reset(seed=seed)
 
@@ -134,4 +138,5 @@ class EnvProblem:
         after = self.unwrapped.get_state()
         self.unwrapped.set_state(before)
         self._cache = (self._version, np.asarray(action, dtype=np.float64).tobytes(), res, after)
+        self.last_check = res
         return res.feasible

@@ -83,6 +83,7 @@ def test_dry_run_lists_cells(capsys: pytest.CaptureFixture[str]) -> None:
         (["bbfo", "--methods", "rembo", "--dims", "3"], "the grid is empty"),
         (["plot", "/nonexistent/store"], "no voot result store here"),
         (["plot", "x", "--log"], "--log needs --regret"),
+        (["bbfo", "--instance", "-1"], "instance must be an integer >= 0"),
         (["demo", "--function", "nope"], "unknown function 'nope'"),
         (["speed", "--cases", "voo"], "--cases: 'voo' is not METHOD:N"),
     ],
@@ -257,6 +258,39 @@ def test_plot_options_of_the_other_kind(tmp_path: Path, capsys: pytest.CaptureFi
     assert main(["bbfo", "--out", str(bbfo), *small, "--budget", "5", "--workers", "1"]) == 0
     assert main(["plot", str(bbfo), "--png-seconds", "x.png"]) == 2
     assert "apply to plan runs" in capsys.readouterr().err
+
+
+def test_bbfo_instance_runs_apart(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "r"
+    small = ["--functions", "griewank", "--dims", "3", "--methods", "soo,random", "--seeds", "2"]
+    small += ["--budget", "20", "--workers", "1", "--no-progress"]
+    assert main(["bbfo", "--out", str(out), *small, "--dry-run", "--instance", "1"]) == 0
+    cap = capsys.readouterr()
+    assert "griewank-3D instance 1 budget 20: soo 2, random 2" in cap.out
+    assert "4 runs, 80 evaluations, seeds 0..1, instance 1" in cap.err
+    assert main(["bbfo", "--out", str(out), *small]) == 0
+    assert main(["bbfo", "--out", str(out), *small, "--instance", "1"]) == 0
+    assert "4 runs: 0 already in the store, 4 ran" in capsys.readouterr().out  # no collision
+    rows = ResultStore(out).load()
+    assert sorted(r["config"].get("instance", 0) for r in rows) == [0] * 4 + [1] * 4
+    assert len({r["run_id"] for r in rows}) == 8
+    # select and plot refuse to mix the instances, and take one with --instance.
+    assert main(["select", str(out)]) == 2
+    assert "several test-function instances (0, 1)" in capsys.readouterr().err
+    assert main(["plot", str(out)]) == 2
+    assert "choose one with --instance K" in capsys.readouterr().err
+    assert main(["select", str(out), "--instance", "0"]) == 0
+    assert "| griewank | 3 | 20 | soo | default | 0 | 2 |" in capsys.readouterr().out
+    assert main(["plot", str(out), "--instance", "0", "--regret"]) == 0
+    assert "| griewank | 3 | 20 | **0 ± 0 (2)** |" in capsys.readouterr().out  # SOO hits f*
+    png = tmp_path / "fig.png"
+    assert main(["plot", str(out), "--instance", "1", "--regret", "--png", str(png)]) == 0
+    cap = capsys.readouterr()
+    assert "instance 1" in cap.out and "test-function instance 1" in cap.err
+    assert "| griewank | 3 | 20 | **0 ± 0 (2)** |" not in cap.out  # ... but not shifted f*
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert main(["plot", str(out), "--instance", "2"]) == 2
+    assert "no runs of instance 2" in capsys.readouterr().err
 
 
 def test_parse_range() -> None:

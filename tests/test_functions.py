@@ -5,23 +5,28 @@ from __future__ import annotations
 import dataclasses
 import math
 import pickle
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 from deap import benchmarks
 
 from voot.functions import (
+    INSTANCE_MARGIN,
     SCHWEFEL_ARGMAX,
     SHEKEL_DIMS,
     SHEKEL_OPTIMA,
     SHEKEL_REFERENCE_OPTIMA,
     SHEKEL_SEEDS,
+    SHIFTED_FUNCTIONS,
     TestFunction,
     available_functions,
     get_function,
     make_shekel,
     shekel_optimum,
     shekel_parameters,
+    shifted,
 )
 from voot.optim import Bounds, maximize
 
@@ -296,3 +301,116 @@ def test_works_with_maximize() -> None:
     assert res.n_evaluations == 50
     assert f.regret(res.best_value) > 0.0
     np.testing.assert_array_equal(res.values, f(res.xs))
+
+
+# ----- shifted instances ----------------------------------------------------------------------
+SHIFT_CASES = [(name, d) for name in SHIFTED_FUNCTIONS for d in (3, 10)]
+
+
+@pytest.mark.parametrize(("name", "dim"), [*ALL_CASES[:4], ("shekel", 3)])
+def test_instance_zero_is_the_papers_function(name: str, dim: int) -> None:
+    f, g = get_function(name, dim), get_function(name, dim, instance=0)
+    assert g.instance == 0 and str(g) == str(f) and repr(g) == repr(f)
+    np.testing.assert_array_equal(g.shift, np.zeros(dim))
+    np.testing.assert_array_equal(g.optimum_x, f.optimum_x)
+    assert g.optimum_value == f.optimum_value
+    pts = sample_points(f, 20, seed=1)
+    np.testing.assert_array_equal(g(pts), f(pts))
+    np.testing.assert_allclose(g(pts), [deap_value(f, x) for x in pts], rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize(("name", "dim"), SHIFT_CASES)
+def test_shifted_instance_moves_the_optimum(name: str, dim: int) -> None:
+    f0 = get_function(name, dim)
+    for k in (1, 2, 7):
+        f = get_function(name, dim, instance=k)
+        assert (f.instance, str(f), f.bounds) == (k, f"{name}-{dim}d-i{k}", f0.bounds)
+        assert f"instance={k}" in repr(f)
+        # The optimum is where it is said to be, with the paper's optimum value.
+        assert f(f.optimum_x) == f.optimum_value
+        if name == "shekel":
+            assert f.optimum_value == pytest.approx(f0.optimum_value, rel=1e-13)
+        else:
+            assert f.optimum_value == f0.optimum_value == 0.0
+        np.testing.assert_array_equal(f.optimum_x, f0.optimum_x + f.shift)
+        # ... in the central 80% of the box (up to the 2^-16 rounding of the shift).
+        lo, width = f.bounds.lower, f.bounds.upper - f.bounds.lower
+        frac = (f.optimum_x - lo) / width
+        assert np.all(frac >= INSTANCE_MARGIN - 1e-6) and np.all(frac <= 1 - INSTANCE_MARGIN + 1e-6)
+        # f_k(x) = f(x - s_k), batch and single point alike.
+        pts = f.bounds.sample(np.random.default_rng(k), 30)
+        np.testing.assert_array_equal(f(pts), f0(pts - f.shift))
+        assert f(pts[0]) == f0(pts[0] - f.shift)
+        # Nothing beats the optimum: random points nor small moves around it.
+        near = f.optimum_x + np.random.default_rng(0).normal(0.0, 1e-4, (64, dim))
+        assert np.all(f(np.vstack([pts, near])) <= f.optimum_value + 1e-12)
+    # The centre of the box is no longer the optimum.
+    centre = 0.5 * (f0.bounds.lower + f0.bounds.upper)
+    assert get_function(name, dim, instance=1)(centre) < f0.optimum_value - 1e-3
+
+
+def test_instances_differ_by_instance_name_and_dim() -> None:
+    shifts = {
+        (name, dim, k): get_function(name, dim, instance=k).shift
+        for name in ("griewank", "rastrigin")
+        for dim in (3, 10)
+        for k in (1, 2, 3)
+    }
+    fractions = set()
+    for (name, dim, _), s in shifts.items():
+        half = get_function(name, dim).bounds.upper[0]
+        fractions.add(tuple(np.round(s[:3] / half, 12)))
+    assert len(fractions) == len(shifts)  # no two instances share a shift pattern
+    assert not np.array_equal(shifts[("griewank", 3, 1)], shifts[("griewank", 3, 2)])
+
+
+def test_instances_are_deterministic_across_processes() -> None:
+    here = {k: get_function("shekel", 10, instance=k).shift.tobytes().hex() for k in (1, 5)}
+    code = (
+        "from voot.functions import get_function;"
+        "print([get_function('shekel', 10, instance=k).shift.tobytes().hex() for k in (1, 5)])"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout
+    assert out.strip() == str([here[1], here[5]])
+    f = get_function("rastrigin", 10, instance=3)
+    g = pickle.loads(pickle.dumps(f))
+    pts = f.bounds.sample(np.random.default_rng(0), 10)
+    np.testing.assert_array_equal(g(pts), f(pts))
+    assert (g.instance, g.optimum_value) == (3, f.optimum_value)
+    np.testing.assert_array_equal(g.shift, f.shift)
+
+
+def test_schwefel_is_the_same_in_every_instance() -> None:
+    f0, f = get_function("schwefel", 4), get_function("schwefel", 4, instance=2)
+    assert f.instance == 2 and "schwefel" not in SHIFTED_FUNCTIONS
+    np.testing.assert_array_equal(f.shift, np.zeros(4))
+    np.testing.assert_array_equal(f.optimum_x, f0.optimum_x)
+    pts = f0.bounds.sample(np.random.default_rng(0), 20)
+    np.testing.assert_array_equal(f(pts), f0(pts))
+    with pytest.raises(ValueError, match=r"schwefel cannot be shifted.*griewank"):
+        shifted(f0, np.ones(4))
+
+
+def test_shifted_helper() -> None:
+    f0 = get_function("rosenbrock", 2)
+    f = shifted(f0, [3.0, -4.0])
+    np.testing.assert_array_equal(f.optimum_x, [4.0, -3.0])
+    assert f.optimum_value == 0.0 and f.instance == 0
+    g = shifted(f, [1.0, 1.0], instance=9)  # shifts add up
+    np.testing.assert_array_equal(g.shift, [4.0, -3.0])
+    assert g.instance == 9 and g([5.0, -2.0]) == 0.0 and g([0.0, 0.0]) == f0([-4.0, 3.0])
+    with pytest.raises(ValueError, match="outside the box"):
+        shifted(f0, [100.0, 0.0])
+    with pytest.raises(ValueError, match="offset must be 2 finite numbers"):
+        shifted(f0, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="offset must be 2 finite numbers"):
+        shifted(f0, [1.0, np.inf])
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, True, "1"])
+def test_bad_instances_raise(bad: object) -> None:
+    with pytest.raises(ValueError, match=r"instance must be an integer >= 0 \(0 = the paper"):
+        get_function("griewank", 3, instance=bad)  # type: ignore[arg-type]
+    assert get_function("griewank", 3, instance=np.int64(2)).instance == 2

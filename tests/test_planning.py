@@ -48,18 +48,24 @@ def test_goal_bonus_is_separate(kitchen: KitchenClearingEnv) -> None:
 
 def test_snapshot_restore_and_feasibility_cache(kitchen: KitchenClearingEnv) -> None:
     p = EnvProblem(kitchen, seed=0)
+    assert p.last_check is None
     s0 = p.snapshot()
     a = kitchen_actions(kitchen)[0]
     assert p.is_feasible(a)
     assert p.snapshot() == s0  # the check does not advance the state
+    check = p.last_check
+    assert check is not None and check.feasible and len(check.info["base_pose"]) == 3
     cached = p.step(a)  # reuses the check's result
+    assert cached is check
     s1 = p.snapshot()
     p.restore(s0)
     fresh = p.step(a)
     assert fresh.reward == cached.reward and p.snapshot() == s1
     # a different action after a check is stepped for real
     p.restore(s0)
-    p.is_feasible(np.full(6, -0.3))
+    assert not p.is_feasible(np.full(6, -0.3))
+    assert p.last_check is not None and not p.last_check.feasible
+    assert p.last_check.info["base_pose"] is not None  # where the rejected pick stood
     assert p.snapshot() == s0
     res = p.step(a)
     assert res.feasible and p.snapshot() == s1

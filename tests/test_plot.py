@@ -86,3 +86,28 @@ def test_plot_writes_a_png(tmp_path: Path) -> None:
     assert log.stat().st_size > 10_000
     with pytest.raises(ValueError, match="no finished bbfo runs"):
         plot_figure3([], tmp_path / "empty.png")
+
+
+def test_instances_are_plotted_apart(tmp_path: Path) -> None:
+    moved = [
+        make_row(
+            "bbfo",
+            {**r["config"], "instance": 2},
+            status="ok",
+            wall_time=0.1,
+            best_so_far=list(r["best_so_far"]),
+        )
+        for r in rows_fixture()
+    ]
+    with pytest.raises(ValueError, match=r"several test-function instances \(0, 2\)"):
+        figure_data(rows_fixture() + moved)
+    data = figure_data(rows_fixture() + moved, instance=2, regret=True)
+    assert {c.instance for c in data} == {2}
+    optimum = get_function("rastrigin", 3, instance=2).optimum_value
+    voo = next(c for c in data if (c.dim, c.method) == (3, "voo"))
+    assert np.array_equal(voo.values[:, -1], optimum - np.array([-1.0, -2.0, -3.0]))
+    assert "instance 2" in final_table(data, regret=True)
+    assert "instance" not in final_table(figure_data(rows_fixture(), instance=0))
+    assert plot_figure3(data, tmp_path / "moved.png").stat().st_size > 10_000
+    with pytest.raises(ValueError, match="draw one instance at a time"):
+        final_table(figure_data(rows_fixture()) + data)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import pytest
+
 from voot.bench.select import (
     function_order,
     largest_budget,
@@ -130,3 +132,26 @@ def test_plan_rows_select_per_problem_and_planner() -> None:
     assert "| problem | dim | simulations | planner |" in table
     assert "| kitchen |  | 2 | voot | omega=0.3 | 2.5 | 2 | 2 |" in table
     assert method_order(["hoot", "voo", "voot", "pw_uct"]) == ["voo", "voot", "pw_uct", "hoot"]
+
+
+def test_instances_are_never_mixed() -> None:
+    from voot.bench.select import one_instance
+
+    paper = [fake_row(1.0, seed=s) for s in range(2)]
+    moved = [make_row("bbfo", {**r["config"], "instance": 3}, **_rest(r)) for r in paper]
+    assert one_instance(paper) == (0, paper)
+    assert one_instance(moved)[0] == 3
+    assert one_instance(paper + moved, 3) == (3, moved)
+    assert one_instance(paper + moved, 0) == (0, paper)
+    with pytest.raises(ValueError, match=r"several test-function instances \(0, 3\).*--instance"):
+        one_instance(paper + moved)
+    with pytest.raises(ValueError, match=r"no runs of instance 1.*instance\(s\) 0"):
+        one_instance(paper, 1)
+    with pytest.raises(ValueError, match="several test-function instances"):
+        select_hyperparameters(paper + moved)
+    (sel,) = select_hyperparameters(moved)
+    assert sel.best.n == 2
+
+
+def _rest(row: Row) -> dict[str, Any]:
+    return {"status": "ok", "wall_time": 0.1, "best_so_far": list(row["best_so_far"])}

@@ -21,14 +21,17 @@ from voot.bench.sweep import (
     RunSpec,
     SerialBackend,
     build_specs,
+    describe_config,
     execution_order,
     initial_point,
+    instance_of,
     make_backend,
     method_grid,
     paper_budget,
     pending_specs,
     run_spec,
     run_sweep,
+    summarize_specs,
 )
 from voot.functions import get_function
 from voot.optim.voo import VOOConfig
@@ -277,3 +280,34 @@ def test_make_backend() -> None:
         make_backend("ray-ish")
     with pytest.raises(ValueError, match="workers"):
         ProcessBackend(workers=0)
+
+
+# ----- test-function instances -------------------------------------------------------------
+def test_instance_is_in_the_config_and_run_id_only_when_nonzero() -> None:
+    paper = build_specs(["griewank"], [3], ["soo"], [0], budget=5)
+    (shifted,) = build_specs(["griewank"], [3], ["soo"], [0], budget=5, instance=2)
+    (spec,) = paper
+    assert spec.instance == 0 and "instance" not in spec.config()  # paper run ids unchanged
+    assert spec == RunSpec("griewank", 3, "soo", (), 5, 0)
+    assert shifted.instance == 2 and shifted.config()["instance"] == 2
+    assert shifted.run_id != spec.run_id
+    assert {k: v for k, v in shifted.config().items() if k != "instance"} == spec.config()
+    assert "instance 2 seed 0" in describe_config(shifted.config())
+    assert "instance" not in describe_config(spec.config())
+    assert "griewank-3D instance 2 budget 5: soo 1" in summarize_specs([shifted])
+    assert instance_of(spec.config()) == 0 and instance_of(shifted.config()) == 2
+    for bad in (-1, 1.5, True):
+        with pytest.raises(ValueError, match="instance must be an integer >= 0"):
+            build_specs(["griewank"], [3], ["soo"], [0], instance=bad)  # type: ignore[arg-type]
+
+
+def test_shifted_instance_keeps_the_initial_point_and_defeats_the_centre() -> None:
+    f0, f1 = get_function("griewank", 3), get_function("griewank", 3, instance=1)
+    x0 = initial_point("griewank", 3, 0, f0.bounds.lower, f0.bounds.upper)
+    rows = {k: run_spec(RunSpec("griewank", 3, "soo", (), 30, 0, k)) for k in (0, 1)}
+    assert all(r["status"] == "ok" for r in rows.values())
+    assert rows[0]["best_so_far"][0] == f0(x0) and rows[1]["best_so_far"][0] == f1(x0)
+    # SOO samples the centre of the box: the exact optimum of the paper's Griewank only.
+    assert rows[0]["best_so_far"][-1] == 0.0
+    assert rows[1]["best_so_far"][-1] < -1e-3
+    assert f1(np.array(rows[1]["best_x"])) == rows[1]["best_so_far"][-1]

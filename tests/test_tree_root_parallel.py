@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from voot.tree import chain_planner_options, make_chain, plan, planner_config
+from voot.tree import MCTS, chain_planner_options, make_chain, plan, planner_config
 from voot.tree.overhead import NullProblem
 from voot.tree.root_parallel import (
     LocalProcessExecutor,
@@ -27,13 +27,12 @@ from voot.tree.root_parallel import (
     tree_seeds,
 )
 
-#: A cheap chain with feasibility checks, infeasible actions and step info.
+#: A cheap chain with infeasible actions, a bonus and step info.
 CHAIN = functools.partial(make_chain, "shekel", 3)
 CONFIG = planner_config(
     "voot",
     **{**chain_planner_options("shekel", 3), "reevaluations": 3},
     feasibility_retries=5,
-    voo_uniform_until_feasible=False,
 )
 
 
@@ -66,7 +65,7 @@ def test_tree_seeds_are_spawned_and_do_not_depend_on_the_number_of_trees() -> No
 def test_one_tree_equals_a_plain_search_with_the_derived_seed(merge: str) -> None:
     cfg = CONFIG.replace(final_action=merge)
     rp = plan_root_parallel(CHAIN(), cfg, 80, seed=5, n_trees=1, merge=merge, executor="serial")
-    ref = plan(CHAIN(), cfg, 80, seed=tree_seeds(5, 1)[0])
+    ref = MCTS(CHAIN(), cfg, seed=tree_seeds(5, 1)[0]).search(80)
     assert np.array_equal(rp.best_return_curve, ref.best_return_curve)
     assert rp.best_return == ref.best_return
     assert ref.best_action is not None and rp.best_action is not None
@@ -190,7 +189,7 @@ def stats(actions: Any, q: Any, n: Any, feasible: Any = None, box: float = 1.0) 
     a = np.atleast_2d(np.array(actions, dtype=float))
     d = a.shape[1]
     f = np.ones(len(q), dtype=bool) if feasible is None else feasible
-    return RootStats(a, q, n, f, np.zeros(d), np.full(d, box))
+    return RootStats(a, np.array(q, float), np.array(n), np.array(f), np.zeros(d), np.full(d, box))
 
 
 def test_max_q_skips_infeasible_edges_and_breaks_ties_by_tree() -> None:
@@ -254,7 +253,7 @@ def test_vote_distance_is_measured_in_box_widths() -> None:
 
 
 def test_merge_of_empty_roots_and_of_different_boxes() -> None:
-    empty = RootStats(np.empty((0, 2)), [], [], [], [0, 0], [1, 1])
+    empty = RootStats(*map(np.array, ([[]], [], [], [], [0, 0], [1, 1])))
     assert merge_roots([empty, empty], "vote") is None
     assert merge_roots([], "max_q") is None
     a = stats([[0.1]], [1.0], [1])
@@ -262,9 +261,9 @@ def test_merge_of_empty_roots_and_of_different_boxes() -> None:
     with pytest.raises(ValueError, match="same root state"):
         merge_roots([a, b], "max_q")
     with pytest.raises(ValueError, match=r"\(m, 2\)"):
-        RootStats(np.zeros((1, 3)), [1.0], [1], [True], [0, 0], [1, 1])
+        RootStats(*map(np.array, (np.zeros((1, 3)), [1.0], [1], [True], [0, 0], [1, 1])))
     with pytest.raises(ValueError, match="one per action"):
-        RootStats(np.zeros((2, 2)), [1.0], [1, 1], [True, True], [0, 0], [1, 1])
+        RootStats(*map(np.array, (np.zeros((2, 2)), [1.0], [1, 1], [True, True], [0, 0], [1, 1])))
 
 
 # ----- bad input -----------------------------------------------------------------------------

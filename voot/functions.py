@@ -51,10 +51,39 @@ second-best peak is 4.38.
 ``get_function("shekel", d)`` accepts d in :data:`SHEKEL_DIMS` only; build other
 instances (any A, c, box) with :func:`make_shekel`, which computes the optimum the same
 way when it is called.
+
+**Centred optima and shifted instances.** Griewank, Rastrigin and Ackley have their
+optimum at the origin, the centre of their symmetric boxes, and Shekel's peaks lie in
+:math:`[0, 10]^d`, within 1% of the box width of the centre. A method that evaluates the
+centre of the box (SOO and BaMSOO do so at their 3rd and 2nd evaluation) scores the exact
+optimum of Griewank and Rastrigin there: an artifact of the benchmark, not a merit of the
+method (COCO/BBOB avoids it by shifting every instance at random). ``get_function(name, d, instance=k)``
+gives instance ``k``:
+
+* ``k = 0`` (default): the paper's function, unshifted.
+* ``k >= 1``: :math:`f_k(x) = f(x - s_k)`, whose maximiser is
+  :math:`x^\star_k = x^\star + s_k`, drawn uniformly in the **central 80%** of the box
+  (:data:`INSTANCE_MARGIN` = 10% of each coordinate range left out on each side), from
+  ``default_rng(SeedSequence([key("voot.functions.instance"), key(name), d, k]))`` with
+  ``key`` a SHA-256 prefix of the name: the same ``k`` gives the same function in every
+  process, different ``k``, names or dimensions give independent shifts. The shift is
+  rounded to a multiple of :math:`2^{-16}`, so :math:`f_k(x^\star_k)` is exactly
+  :math:`f(x^\star)` (0 for the closed-form functions; Shekel to within rounding).
+  The box, and so every method's initial point, stays the same.
+
+This is valid because :math:`x^\star` maximises :math:`f` on all of
+:math:`\mathbb{R}^d`, not only on the box, for the functions in
+:data:`SHIFTED_FUNCTIONS` (Griewank, Rastrigin, Ackley, Rosenbrock, Shekel). It is not
+for **Schwefel**, whose formula grows beyond :math:`[-500, 500]` (a shifted Schwefel would
+have a higher, different optimum): Schwefel is left unshifted in every instance, which is
+harmless since its optimum (420.97, ...) is near a corner, far from the centre.
+:func:`shifted` shifts any other function by a given offset.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -66,17 +95,20 @@ from numpy.typing import ArrayLike
 from voot.optim.base import Bounds, FloatArray
 
 __all__ = [
+    "INSTANCE_MARGIN",
     "SCHWEFEL_ARGMAX",
     "SHEKEL_DIMS",
     "SHEKEL_OPTIMA",
     "SHEKEL_REFERENCE_OPTIMA",
     "SHEKEL_SEEDS",
+    "SHIFTED_FUNCTIONS",
     "TestFunction",
     "available_functions",
     "get_function",
     "make_shekel",
     "shekel_optimum",
     "shekel_parameters",
+    "shifted",
 ]
 
 Kernel = Callable[[FloatArray], FloatArray]
@@ -102,6 +134,10 @@ class TestFunction:
         optimum_value: :math:`\\max_{x \\in \\text{bounds}} f(x)` (exactly ``f(optimum_x)``).
         optimum_x: a maximiser, shape ``(d,)``, read-only.
         kernel: the vectorised formula, ``(n, d) -> (n,)``, without input checks.
+        instance: 0 for the paper's function, k >= 1 for a shifted instance (see the
+            module docstring).
+        shift: the offset :math:`s` of the formula, :math:`f(x - s)`, shape ``(d,)``,
+            read-only; zeros when unshifted (``None`` is taken as zeros).
     """
 
     __test__: ClassVar[bool] = False  # not a pytest test class despite its name
@@ -112,6 +148,8 @@ class TestFunction:
     optimum_value: float
     optimum_x: FloatArray
     kernel: Kernel = field(repr=False)
+    instance: int = 0
+    shift: FloatArray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         if isinstance(self.dim, bool) or not isinstance(self.dim, int) or self.dim < 1:
@@ -128,6 +166,12 @@ class TestFunction:
         x.setflags(write=False)
         object.__setattr__(self, "optimum_x", x)
         object.__setattr__(self, "optimum_value", float(self.optimum_value))
+        object.__setattr__(self, "instance", _check_instance(self.instance, self.name))
+        s = np.zeros(self.dim) if self.shift is None else np.array(self.shift, dtype=np.float64)
+        if s.shape != (self.dim,) or not np.all(np.isfinite(s)):
+            raise ValueError(f"{self.name}: shift must be {self.dim} finite numbers, got {s!r}")
+        s.setflags(write=False)
+        object.__setattr__(self, "shift", s)
 
     # ----- evaluation -----------------------------------------------------------------
     def __call__(self, x: ArrayLike) -> Any:
@@ -182,7 +226,7 @@ class TestFunction:
         return pts
 
     def __str__(self) -> str:
-        return f"{self.name}-{self.dim}d"
+        return f"{self.name}-{self.dim}d" + (f"-i{self.instance}" if self.instance else "")
 
     def __repr__(self) -> str:
         lo, hi = self.bounds.lower[0], self.bounds.upper[0]
@@ -193,7 +237,9 @@ class TestFunction:
         )
         return (
             f"TestFunction(name={self.name!r}, dim={self.dim}, bounds={box},"
-            f" optimum_value={self.optimum_value!r})"
+            f" optimum_value={self.optimum_value!r}"
+            + (f", instance={self.instance}" if self.instance else "")
+            + ")"
         )
 
 
@@ -264,6 +310,17 @@ class _Shekel:
         den = self.c + np.einsum("md,md->m", diff, diff)
         grad: FloatArray = -2.0 * np.sum(diff / (den * den)[:, None], axis=0)
         return grad
+
+
+class _Shifted:
+    """Kernel of :math:`f(x - s)` (picklable, unlike a closure)."""
+
+    def __init__(self, kernel: Kernel, shift: FloatArray) -> None:
+        self.kernel = kernel
+        self.shift = shift
+
+    def __call__(self, xs: FloatArray) -> FloatArray:
+        return self.kernel(xs - self.shift)
 
 
 # ----------------------------------------------------------------------------------------
@@ -457,16 +514,30 @@ def available_functions() -> list[str]:
     return sorted([*_SPECS, "shekel"])
 
 
-def get_function(name: str, dim: int | np.integer[Any]) -> TestFunction:
+def get_function(
+    name: str, dim: int | np.integer[Any], instance: int | np.integer[Any] = 0
+) -> TestFunction:
     """The test function ``name`` in ``dim`` dimensions, in maximisation form.
 
     >>> f = get_function("rastrigin", 3)
     >>> f([0.0, 0.0, 0.0]), f.optimum_value
     (0.0, 0.0)
+    >>> g = get_function("rastrigin", 3, instance=1)
+    >>> g(g.optimum_x), bool(g([0.0, 0.0, 0.0]) < 0.0)
+    (0.0, True)
+
+    Args:
+        name: one of :func:`available_functions` (case-insensitive).
+        dim: number of variables.
+        instance: 0 for the paper's function; k >= 1 for the function with its optimum
+            moved to a random point of the central 80% of the box, drawn
+            deterministically from ``(name, dim, k)`` (module docstring). Schwefel is
+            the same in every instance.
 
     Raises:
-        ValueError: unknown name (the message lists the valid ones), or a dimension the
-            function does not have (Rosenbrock needs dim >= 2, Shekel dim in 3, 10, 20).
+        ValueError: unknown name (the message lists the valid ones), a dimension the
+            function does not have (Rosenbrock needs dim >= 2, Shekel dim in 3, 10, 20),
+            or an instance that is not an integer >= 0.
     """
     key = str(name).strip().lower()
     if key not in available_functions():
@@ -476,6 +547,7 @@ def get_function(name: str, dim: int | np.integer[Any]) -> TestFunction:
     if isinstance(dim, bool) or not isinstance(dim, int | np.integer) or dim < 1:
         raise ValueError(f"{key}: dim must be an integer >= 1, got {dim!r}")
     dim = int(dim)
+    k = _check_instance(instance, key)
     if key == "shekel":
         _check_shekel_dim(dim)
         a, c = shekel_parameters(dim)
@@ -490,4 +562,97 @@ def get_function(name: str, dim: int | np.integer[Any]) -> TestFunction:
         x_star = np.full(dim, spec.argmax)
         box = Bounds.cube(spec.low, spec.high, dim)
     optimum = float(kernel(x_star[None, :])[0])
-    return TestFunction(key, dim, box, optimum, x_star, kernel)
+    base = TestFunction(key, dim, box, optimum, x_star, kernel)
+    if k == 0:
+        return base
+    if key not in SHIFTED_FUNCTIONS:  # Schwefel: optimum already off-centre, not shiftable
+        return dataclasses.replace(base, instance=k)
+    return shifted(base, _instance_offset(base, k), instance=k)
+
+
+# ----------------------------------------------------------------------------------------
+# Shifted instances
+# ----------------------------------------------------------------------------------------
+SHIFTED_FUNCTIONS: tuple[str, ...] = ("ackley", "griewank", "rastrigin", "rosenbrock", "shekel")
+r"""Functions whose instances k >= 1 are shifted: their maximiser maximises them on all of
+:math:`\mathbb{R}^d`, so :math:`f(x - s)` has its maximum at :math:`x^\star + s`."""
+INSTANCE_MARGIN = 0.1
+"""Fraction of each coordinate range left out on each side when drawing an instance's
+optimum: the optimum is uniform in the central ``1 - 2 * INSTANCE_MARGIN`` (80%)."""
+_SHIFT_GRID = 2.0**-16  # shifts are multiples of this: x* + s - s == x* exactly
+
+
+def _name_key(name: str) -> int:
+    """A process-independent 32-bit integer for a name (never Python's ``hash``)."""
+    return int.from_bytes(hashlib.sha256(name.encode()).digest()[:4], "little")
+
+
+def _check_instance(instance: object, name: str) -> int:
+    if isinstance(instance, bool) or not isinstance(instance, int | np.integer) or instance < 0:
+        raise ValueError(
+            f"{name}: instance must be an integer >= 0 (0 = the paper's function,"
+            f" k >= 1 = shifted), got {instance!r}"
+        )
+    return int(instance)
+
+
+def _instance_offset(f: TestFunction, instance: int) -> FloatArray:
+    """The shift :math:`s_k` that moves ``f``'s optimum to a uniform point of the central
+    80% of its box, drawn from ``(name, dim, instance)`` and rounded to the shift grid."""
+    ss = np.random.SeedSequence(
+        [_name_key("voot.functions.instance"), _name_key(f.name), f.dim, instance]
+    )
+    u = np.random.default_rng(ss).random(f.dim)
+    lo, width = f.bounds.lower, f.bounds.upper - f.bounds.lower
+    target = lo + (INSTANCE_MARGIN + (1.0 - 2.0 * INSTANCE_MARGIN) * u) * width
+    offset: FloatArray = np.round((target - f.optimum_x) / _SHIFT_GRID) * _SHIFT_GRID
+    return offset
+
+
+def shifted(
+    function: TestFunction, offset: ArrayLike, *, instance: int | None = None
+) -> TestFunction:
+    r"""``function`` moved by ``offset``: :math:`x \mapsto f(x - s)` on the same box.
+
+    The optimum moves to ``optimum_x + offset`` and ``optimum_value`` is recomputed there.
+    Valid only when ``function.optimum_x`` maximises the formula on all of
+    :math:`\mathbb{R}^d` (true of every function of :data:`SHIFTED_FUNCTIONS`; not of
+    Schwefel, which is refused, nor of a :func:`make_shekel` instance whose optimum was
+    clipped to its box).
+
+    Args:
+        function: the function to move (may itself be shifted; shifts add up).
+        offset: :math:`s`, shape ``(d,)``.
+        instance: the ``instance`` of the result (default: that of ``function``).
+
+    Raises:
+        ValueError: Schwefel, an offset of the wrong shape or not finite, or one that
+            moves the optimum out of the box.
+    """
+    if function.name == "schwefel":
+        raise ValueError(
+            "schwefel cannot be shifted: its formula grows beyond [-500, 500], so f(x - s)"
+            " would have a different optimum; shiftable: " + ", ".join(SHIFTED_FUNCTIONS)
+        )
+    s = np.array(offset, dtype=np.float64).reshape(-1)
+    if s.shape != (function.dim,) or not np.all(np.isfinite(s)):
+        raise ValueError(
+            f"{function}: offset must be {function.dim} finite numbers, got {np.asarray(offset)!r}"
+        )
+    x_star = function.optimum_x + s
+    if not function.bounds.contains(x_star):
+        raise ValueError(
+            f"{function}: the offset moves the optimum to {x_star.tolist()}, outside the box"
+            f" {function.bounds!r}"
+        )
+    kernel = _Shifted(function.kernel, s)
+    return TestFunction(
+        function.name,
+        function.dim,
+        function.bounds,
+        float(kernel(x_star[None, :])[0]),
+        x_star,
+        kernel,
+        instance=function.instance if instance is None else instance,
+        shift=s if function.shift is None else function.shift + s,
+    )

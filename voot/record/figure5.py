@@ -11,7 +11,7 @@ Needs matplotlib (the ``[bench]`` extra), imported when called.
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -61,11 +61,13 @@ def node_samples(
 def samples_figure(
     recordings: Mapping[str, str | os.PathLike[str]],
     out: str | os.PathLike[str],
-    entity: str = DEFAULT_ENTITY,
+    entity: str | Mapping[str, str | Sequence[str]] = DEFAULT_ENTITY,
     *,
     xlim: tuple[float, float] | None = None,
     ylim: tuple[float, float] | None = None,
     point_size: float = 14.0,
+    background: Callable[[Any], None] | None = None,
+    title: str | None = None,
 ) -> Path:
     """Draw ``entity``'s latest samples of each recording (title: its key) into ``out``.
 
@@ -73,33 +75,64 @@ def samples_figure(
         recordings: panel title -> ``.rrd`` path, e.g. ``{"VOOT": "voot.rrd",
             "PW-UCT": "pw.rrd"}`` (same problem and seed for a fair comparison).
         out: the image file (``.png``, ``.svg`` ...).
-        entity: the entity to draw (default: the first place node's placements).
+        entity: the entity to draw (default: the first place node's placements), or
+            per panel title one entity or several (drawn in that order, the first
+            underneath; e.g. when the watched node has a different id in each tree).
         xlim: common x limits (default: fitted to all panels).
         ylim: common y limits (default: fitted to all panels).
         point_size: marker area.
+        background: called with each panel's matplotlib ``Axes`` before the samples
+            are drawn (e.g. to draw the floor plan underneath).
+        title: the figure's title (default: the entity and the colour legend).
     """
     if not recordings:
         raise ValueError("recordings must name at least one .rrd file")
+    entities: dict[str, list[str]]
+    if isinstance(entity, str):
+        entities = {name: [entity] for name in recordings}
+    else:
+        missing = sorted(set(recordings) - set(entity))
+        if missing:
+            raise ValueError(f"entity gives no entity for the panels {missing}")
+        entities = {
+            name: [entity[name]] if isinstance(entity[name], str) else list(entity[name])
+            for name in recordings
+        }
+        empty = sorted(name for name, e in entities.items() if not e)
+        if empty:
+            raise ValueError(f"entity gives an empty list of entities for the panels {empty}")
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    data = {name: node_samples(p, entity) for name, p in recordings.items()}
+    data = {
+        name: [(e, *node_samples(p, e)) for e in entities[name]] for name, p in recordings.items()
+    }
     fig, axes = plt.subplots(1, len(data), figsize=(4.2 * len(data), 4.2), squeeze=False)
-    every = np.concatenate([xy for xy, _, _ in data.values()])
+    every = np.concatenate([xy for panel in data.values() for _, xy, _, _ in panel])
     pad = 0.05 * max(float(np.ptp(every[:, 0])), float(np.ptp(every[:, 1])), 1e-9)
     xl = xlim or (float(every[:, 0].min()) - pad, float(every[:, 0].max()) + pad)
     yl = ylim or (float(every[:, 1].min()) - pad, float(every[:, 1].max()) + pad)
-    for ax, (name, (xy, rgba, t)) in zip(axes[0], data.items(), strict=True):
-        ax.scatter(xy[:, 0], xy[:, 1], c=rgba, s=point_size, edgecolors="none")
-        ax.set_title(f"{name}: {len(xy)} samples (simulation {t + 1})")
+    for ax, (name, panel) in zip(axes[0], data.items(), strict=True):
+        if background is not None:
+            background(ax)
+        for k, (_, xy, rgba, _) in enumerate(panel):
+            ax.scatter(xy[:, 0], xy[:, 1], c=rgba, s=point_size, edgecolors="none", zorder=3 + k)
+        t = max(t for _, _, _, t in panel)
+        if len(panel) == 1:
+            counts = f"{len(panel[0][1])} samples"
+        else:
+            counts = ", ".join(f"{len(xy)} {e.rsplit('/', 1)[-1]}" for e, xy, _, _ in panel)
+        ax.set_title(f"{name}: {counts} (simulation {t + 1})", fontsize=9)
         ax.set_xlim(*xl)
         ax.set_ylim(*yl)
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
-    fig.suptitle(f"{entity}: colour = Q-hat (viridis, low to high), grey = infeasible", fontsize=9)
+    legend = "colour = Q-hat (viridis, low to high), grey = infeasible"
+    shown = entity if isinstance(entity, str) else "the watched node's samples"
+    fig.suptitle(title if title is not None else f"{shown}: {legend}", fontsize=9)
     fig.tight_layout()
     path = Path(out)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -124,6 +124,8 @@ class SearchRecorder:
             ``unwrapped.model``/``data``), False records no scene, or a ``(model, data)``
             pair / an object holding them (an env).
         recording_id: rerun recording id (default: a random UUID).
+        blueprint: a ``rerun.blueprint.Blueprint`` to send instead of the default layout
+            (:func:`voot.record.blueprint.default_blueprint`).
 
     The recorder is the callback: pass it as ``callback=recorder`` to
     :meth:`voot.tree.MCTS.search` or :func:`voot.tree.plan`, then call :meth:`finish`
@@ -141,6 +143,7 @@ class SearchRecorder:
         *,
         scene: Any = None,
         recording_id: str | None = None,
+        blueprint: Any = None,
         **options: Any,
     ) -> None:
         import rerun as rr
@@ -165,6 +168,7 @@ class SearchRecorder:
         self._root: Node | None = None
         self._count = 0
         self._scene_arg = scene
+        self._blueprint = blueprint
         self.scene: MujocoScene | None = None
         self._mj_data: Any = None
         self._scene_done = False
@@ -355,7 +359,9 @@ class SearchRecorder:
                 if self.config.record_plan:
                     self._log_plan()
             self.rec.send_blueprint(
-                default_blueprint(
+                self._blueprint
+                if self._blueprint is not None
+                else default_blueprint(
                     has_scene=self.scene is not None or "scene" in self._drawn.values(),
                     has_plot="plot" in self._drawn.values(),
                     has_plan=self.config.record_plan,
@@ -470,16 +476,18 @@ def record_plan(
     config: RecorderConfig | None = None,
     scene: Any = None,
     callback: Callback | None = None,
+    blueprint: Any = None,
     **planner_options: Any,
 ) -> PlanResult:
     """Run :func:`voot.tree.plan` with a :class:`SearchRecorder` writing ``path``.
 
-    ``callback`` (e.g. a progress bar) is called too; ``planner_options`` are
+    ``callback`` (e.g. a progress bar) is called too; ``blueprint`` replaces the default
+    layout (see :class:`SearchRecorder`); ``planner_options`` are
     :class:`~voot.tree.MCTSConfig` overrides, as for :func:`voot.tree.plan`.
     """
     from voot.tree.mcts import plan
 
-    with SearchRecorder(path, problem, config, scene=scene) as recorder:
+    with SearchRecorder(path, problem, config, scene=scene, blueprint=blueprint) as recorder:
         result = plan(
             problem,
             planner,

@@ -124,12 +124,10 @@ def _same(a: object, b: object) -> bool:
     return bool(a == b)
 
 
-def _same_fields(a: object, b: object) -> bool:
+def _same_fields(a: Any, b: Any) -> bool:
     """Dataclasses ``a`` and ``b`` agree on every field compared by ``==``."""
     return type(a) is type(b) and all(
-        _same(getattr(a, f.name), getattr(b, f.name))
-        for f in fields(a)
-        if f.compare  # type: ignore[arg-type]
+        _same(getattr(a, f.name), getattr(b, f.name)) for f in fields(a) if f.compare
     )
 
 

@@ -11,7 +11,8 @@ measures:
   wall time of the call, the trees' CPU time, and the merged best return (which does not
   depend on :math:`W`: the search is deterministic). Speed-up is
   :math:`T(1, 1) / T(K, W)` (means over seeds).
-* **Equal wall time**: :math:`K` trees of :math:`S` simulations each on the most workers,
+* **Equal wall time**: :math:`K` trees of :math:`S` simulations each on the most workers
+  the machine has cores for,
   the best return known at the single tree's wall time :math:`T(1, 1)`
   (:meth:`~voot.tree.root_parallel.RootParallelResult.best_return_at`), and the curves
   against total simulations :math:`K i` (equal computation) and per-tree simulations
@@ -89,11 +90,9 @@ class Setup:
 def make_setup(name: str, budget: int | None = None, dim: int = 10) -> Setup:
     """The benchmark's settings for ``name`` (``shekel`` or ``kitchen``).
 
-    Shekel: the authors' chain settings with VOO in ``centered_uniform`` mode, except
-    ``voo_uniform_until_feasible=False``: with the default, uniform proposals in 10-D
-    never pass the threshold within a few thousand simulations, every tree returns the
-    infeasible -2 and there is nothing to merge. Kitchen: :math:`\\gamma = 0.9`, VOO in
-    ``uniform`` mode (``voot-bench plan``'s settings).
+    Shekel: the authors' chain settings (:func:`~voot.tree.chain_planner_options`) with
+    VOO in ``centered_uniform`` mode. Kitchen: :math:`\\gamma = 0.9`, VOO in ``uniform``
+    mode. These are ``voot-bench plan``'s settings.
     """
     if name == "shekel":
         opts = chain_planner_options("shekel", dim)
@@ -101,7 +100,6 @@ def make_setup(name: str, budget: int | None = None, dim: int = 10) -> Setup:
             "voot",
             **opts,
             sampler_options={"sampler": "centered_uniform"},
-            voo_uniform_until_feasible=False,
         )
         return Setup(
             f"shekel{dim}",
@@ -137,6 +135,8 @@ class Measurements:
     trees: list[int]
     workers: list[int]
     seeds: list[int]
+    #: W of the equal-wall-time runs (the most workers the machine has cores for).
+    long_workers: int
     #: (K, W) -> one fixed-budget result per seed.
     fixed: dict[tuple[int, int], list[RootParallelResult]] = field(default_factory=dict)
     #: K -> one result of K trees x S simulations per seed (on the most workers).
@@ -168,7 +168,9 @@ def measure(
             raise ValueError(f"the budget {setup.budget} must be divisible by every K, not by {k}")
     if 1 not in trees or 1 not in workers:
         raise ValueError("trees and workers must include 1 (the baseline of the speed-up)")
-    out = Measurements(setup, trees, workers, list(seeds), load_before=load_average())
+    cores = os.cpu_count() or 1
+    long_w = max([w for w in workers if w <= cores] or [1])
+    out = Measurements(setup, trees, workers, list(seeds), long_w, load_before=load_average())
 
     def run(pool: LocalProcessExecutor, k: int, n: int, seed: int) -> RootParallelResult:
         return plan_root_parallel(
@@ -198,7 +200,7 @@ def measure(
                             f"{setup.name} K={k} W={w} seed={seed}: {res.wall_time:.2f} s,"
                             f" best {res.best_return:.4g}"
                         )
-            if long_runs and w == workers[-1]:
+            if long_runs and w == long_w:
                 for k in trees:
                     for seed in seeds:
                         if k == 1:  # one tree: its fixed-budget run (on one worker)
@@ -238,7 +240,7 @@ def table_rows(m: Measurements) -> list[dict[str, Any]]:
             "best_at_equal_time": math.nan,
             "sims_per_tree_at_equal_time": math.nan,
         }
-        if w == m.workers[-1] and k in m.long:
+        if w == m.long_workers and k in m.long:
             at = [float(r.best_return_at(t)) for r, t in zip(m.long[k], t_single, strict=True)]
             row["best_at_equal_time"] = _mean(at)
             row["sims_per_tree_at_equal_time"] = _mean(
@@ -316,18 +318,22 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
         ax = row[1]
         for i, k in enumerate(m.trees):
             src = m.long.get(k) or m.fixed[(k, 1)]
-            y = _mean_curve([r.best_return_curve for r in src])
+            curve = _mean_curve([r.best_return_curve for r in src])
             c = colors[i % len(colors)]
-            n_total = min(y.size, m.setup.budget // k)
+            n_total = min(curve.size, m.setup.budget // k)
             ax.plot(
                 k * np.arange(1, n_total + 1),
-                y[:n_total],
+                curve[:n_total],
                 color=c,
                 label=f"K={k}, vs total sims K·i",
             )
             if k > 1:
                 ax.plot(
-                    np.arange(1, y.size + 1), y, color=c, ls=":", label=f"K={k}, vs per-tree sims i"
+                    np.arange(1, curve.size + 1),
+                    curve,
+                    color=c,
+                    ls=":",
+                    label=f"K={k}, vs per-tree sims i",
                 )
         ax.set_xlabel("simulations")
         ax.set_ylabel("best return (mean over seeds)")
@@ -353,7 +359,7 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
                 )
             t1 = _mean([r.wall_time for r in m.fixed[(1, 1)]])
             ax.axvline(t1, color="k", lw=0.8, ls="--", label="T(1,1)")
-            ax.set_title(f"best return against wall time, W={m.workers[-1]} workers")
+            ax.set_title(f"best return against wall time, W={m.long_workers} workers")
         ax.set_xlabel("wall-clock seconds")
         ax.set_ylabel("best return (mean over seeds)")
         ax.legend(fontsize=8)

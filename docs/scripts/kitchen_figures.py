@@ -1,0 +1,83 @@
+"""Make the kitchen figures of the README and docs/recordings.md from recordings.
+
+* ``docs/figures/voot_kitchen.gif``: VOOT's best plan clearing the kitchen
+  (:func:`voot.record.kitchen_demo.run`, its default simulations and seed);
+* ``docs/figures/recordings_kitchen_viewer.png``: rerun's viewer on that recording, at
+  the end of the best plan;
+* ``docs/figures/recordings_kitchen_figure5_{voot,pw_uct}.png``: rerun's viewer showing
+  the Figure-5 recordings (:func:`voot.record.kitchen_demo.figure5`, same seed): the
+  placements sampled at the first object's place node after 50 visits; and the
+  viewer's whole window for VOOT (``..._figure5_viewer.png``);
+* ``docs/figures/recordings_kitchen_figure5_drawn.png``: the same data drawn with
+  matplotlib from the ``.rrd`` files (:mod:`voot.record.figure5`).
+
+The screenshots are taken by the native viewer of ``rerun-sdk`` running headless
+(:mod:`voot.record.screenshot`); without a GPU it needs Mesa's lavapipe
+(``apt-get install mesa-vulkan-drivers``). ``--no-viewer`` skips them.
+
+Run from the repository root (about 3 minutes of CPU)::
+
+    python docs/scripts/kitchen_figures.py [--work /tmp/kitchen] [--no-viewer]
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+from pathlib import Path
+
+from PIL import Image
+
+from voot.record.kitchen_demo import figure5, run
+from voot.record.screenshot import viewer_screenshots
+
+FIGURES = Path("docs/figures")
+
+
+def shrink(path: Path, width: int) -> None:
+    """Scale a PNG down to ``width`` pixels wide (in place) and quantise it to save space."""
+    img = Image.open(path).convert("RGB")
+    if img.width > width:
+        img = img.resize((width, round(img.height * width / img.width)), Image.LANCZOS)
+    img.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(path, optimize=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--work", default="/tmp/voot_kitchen_figures", help="scratch folder")
+    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer screenshots")
+    args = parser.parse_args()
+    work = Path(args.work)
+    FIGURES.mkdir(parents=True, exist_ok=True)
+
+    summary = run(work)
+    assert summary.video is not None
+    shutil.copy(summary.video, FIGURES / "voot_kitchen.gif")
+    runs = figure5(work, summary.seed, image="kitchen_figure5.png")
+    shutil.copy(work / "kitchen_figure5.png", FIGURES / "recordings_kitchen_figure5_drawn.png")
+    if args.no_viewer:
+        return
+    shots = viewer_screenshots(
+        summary.recording,
+        {None: FIGURES / "recordings_kitchen_viewer.png"},
+        timeline="plan",
+        sequence=summary.plan_length,
+    )
+    for r in runs.values():
+        outputs: dict[str | None, Path] = {
+            r.view: FIGURES / f"recordings_kitchen_figure5_{r.planner}.png"
+        }
+        if r.planner == "voot":
+            outputs[None] = FIGURES / "recordings_kitchen_figure5_viewer.png"
+        shots.update(
+            viewer_screenshots(
+                r.recording, outputs, timeline="search", sequence=r.n_simulations - 1
+            )
+        )
+    for name, path in shots.items():
+        shrink(path, 1400 if name is None else 1000)
+        print(f"screenshot -> {path} ({path.stat().st_size // 1024} kB)")
+
+
+if __name__ == "__main__":
+    main()
