@@ -2,7 +2,8 @@
 
 Subcommands::
 
-    voot-bench demo                       VOO on Shekel-20D with the paper's budget (5000)
+    voot-bench demo                       VOOT clearing the kitchen (recording + GIF)
+    voot-bench demo-voo                   VOO on Shekel-20D with the paper's budget (5000)
     voot-bench bbfo --out results/bbfo    the Figure-3 sweep (resumable, parallel)
     voot-bench bbfo --instance 1 ...      the same on test functions with shifted optima
     voot-bench plan --out results/plan    planners x problems x seeds (Figure 4; Ray too)
@@ -442,6 +443,20 @@ def cmd_speed(args: argparse.Namespace) -> int:
 
 # ----- demo ----------------------------------------------------------------------------
 def cmd_demo(args: argparse.Namespace) -> int:
+    """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
+    from voot.record import kitchen_demo
+
+    sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
+    seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
+    try:
+        summary = kitchen_demo.run(args.out, sims, seed, args.planner, video=not args.no_video)
+    except ValueError as exc:
+        raise CLIError(str(exc)) from exc
+    print(f"open the recording with: rerun {summary.recording}")
+    return 0
+
+
+def cmd_demo_voo(args: argparse.Namespace) -> int:
     from voot.bench.sweep import RunSpec, check_functions, paper_budget, run_spec
     from voot.functions import get_function
     from voot.optim.registry import normalize_method
@@ -490,13 +505,24 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    p = sub.add_parser("demo", help="VOO on Shekel-20D with the paper's budget")
+    p = sub.add_parser(
+        "demo",
+        help="the README's main job: VOOT clearing the kitchen, with a rerun recording and a GIF",
+    )
+    p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
+    p.add_argument("--simulations", type=int, default=None, help="default: 1000")
+    p.add_argument("--seed", type=int, default=None, help="default: the documented demo seed")
+    p.add_argument("--planner", default="voot")
+    p.add_argument("--no-video", action="store_true", help="skip the GIF")
+    p.set_defaults(func=cmd_demo)
+
+    p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
     p.add_argument("--function", default="shekel")
     p.add_argument("--dim", type=int, default=20)
     p.add_argument("--method", default="voo")
     p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
     p.add_argument("--seed", type=int, default=0)
-    p.set_defaults(func=cmd_demo)
+    p.set_defaults(func=cmd_demo_voo)
 
     p = sub.add_parser("bbfo", help="run the black-box sweep of Figure 3 (resumable)")
     p.add_argument(

@@ -436,9 +436,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         base = self.pick_base_pose(obj, params)
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
-            return self._infeasible(
-                "pick", obj, "outside region: the robot leaves the house", base
-            )
+            return self._infeasible("pick", obj, "outside region: the robot leaves the house", base)
         pose = self.object_pose(obj)
         grasp = side_grasp(
             self.objects[obj],
@@ -454,9 +452,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         col_time = time.perf_counter() - t0
         if not base_report.free:
             self.last_timing = StepTiming(collision=col_time)
-            return self._infeasible(
-                "pick", obj, "collision: " + ", ".join(base_report.hits), base
-            )
+            return self._infeasible("pick", obj, "collision: " + ", ".join(base_report.hits), base)
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
         target_r = rb.T @ grasp.rotation

@@ -84,7 +84,7 @@ def test_dry_run_lists_cells(capsys: pytest.CaptureFixture[str]) -> None:
         (["plot", "/nonexistent/store"], "no voot result store here"),
         (["plot", "x", "--log"], "--log needs --regret"),
         (["bbfo", "--instance", "-1"], "instance must be an integer >= 0"),
-        (["demo", "--function", "nope"], "unknown function 'nope'"),
+        (["demo-voo", "--function", "nope"], "unknown function 'nope'"),
         (["speed", "--cases", "voo"], "--cases: 'voo' is not METHOD:N"),
     ],
 )
@@ -118,7 +118,7 @@ def test_corrupt_and_foreign_stores_are_reported_and_kept(
 
 
 def test_demo_prints_best_optimum_and_regret(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo", "--budget", "200", "--dim", "10"]) == 0
+    assert main(["demo-voo", "--budget", "200", "--dim", "10"]) == 0
     out = capsys.readouterr().out
     assert "voo on shekel-10D: 200 evaluations" in out
     for word in ("best value found", "known optimum", "regret", "best after   100"):
@@ -306,5 +306,14 @@ def test_console_script_help() -> None:
     assert SCRIPT is not None
     done = subprocess.run([SCRIPT, "--help"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0
-    for command in ("demo", "bbfo", "plan", "plot", "speed", "select"):
+    for command in ("demo", "demo-voo", "bbfo", "plan", "plot", "speed", "select"):
         assert command in done.stdout
+
+
+def test_demo_plans_on_the_kitchen_and_writes_a_recording(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "demo"
+    assert main(["demo", "--simulations", "5", "--seed", "0", "--no-video", "--out", str(out)]) == 0
+    assert (out / "kitchen_voot.rrd").stat().st_size > 0
+    assert "rerun " in capsys.readouterr().out

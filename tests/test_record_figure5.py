@@ -49,3 +49,27 @@ def test_two_dimensional_fallback(tmp_path: Path) -> None:
     record_plan(make_chain("shekel", 3, threshold=0.5), path, "voot", 30, seed=0)
     xy, rgba, t = node_samples(path, "samples/root")
     assert xy.shape == (len(rgba), 2) and t == 29
+
+
+def test_several_entities_per_panel_and_a_background(tmp_path: Path) -> None:
+    config = RecorderConfig(watch=("root", "place"))
+    paths = {}
+    for planner in ("voot", "pw_uct"):
+        paths[planner] = tmp_path / f"{planner}.rrd"
+        record_plan(DemoPickPlace(), paths[planner], planner, 60, seed=1, config=config)
+    drawn: list[object] = []
+    entities = ["scene/samples/root/base_poses", "scene/samples/first_place/placements"]
+    out = samples_figure(
+        {"A": paths["voot"], "B": paths["pw_uct"]},
+        tmp_path / "two.png",
+        {"A": entities, "B": entities[0]},
+        background=drawn.append,
+        title="custom",
+    )
+    assert out.stat().st_size > 5000 and len(drawn) == 2  # one background per panel
+    with pytest.raises(ValueError, match=r"no entity for the panels \['B'\]"):
+        samples_figure(
+            {"A": paths["voot"], "B": paths["pw_uct"]}, tmp_path / "x.png", {"A": entities}
+        )
+    with pytest.raises(ValueError, match="empty list"):
+        samples_figure({"A": paths["voot"]}, tmp_path / "x.png", {"A": []})

@@ -261,3 +261,24 @@ def test_reroot_keeps_the_timeline_growing(tmp_path: Path) -> None:
     roots = rec.column("samples/root", "Points2D:positions", "search")
     assert [t for t, _ in roots] == [4, 9, 14, 19]
     assert len(roots[-1][1]) == mcts.root.n_actions
+
+
+def _blueprint_text(path: Path) -> str:
+    from rerun.chunk import RrdReader
+
+    reader = RrdReader(str(path))
+    (store,) = reader.blueprints()
+    return "\n".join(str(c.to_record_batch()) for c in reader.stream(store=store))
+
+
+def test_a_custom_blueprint_replaces_the_default(tmp_path: Path) -> None:
+    import rerun.blueprint as rrb
+
+    custom = rrb.Blueprint(rrb.Spatial2DView(origin="/samples", name="custom-view-xyz"))
+    record_plan(
+        make_chain("shekel", 3, threshold=0.5), tmp_path / "c.rrd", "voot", 5, 0, blueprint=custom
+    )
+    record_plan(make_chain("shekel", 3, threshold=0.5), tmp_path / "d.rrd", "voot", 5, 0)
+    assert "custom-view-xyz" in _blueprint_text(tmp_path / "c.rrd")
+    default = _blueprint_text(tmp_path / "d.rrd")
+    assert "custom-view-xyz" not in default and "Best return" in default

@@ -320,3 +320,13 @@ def test_bad_problems() -> None:
         LocalProcessExecutor(max_workers=0)
     with pytest.raises(ValueError, match="valid start methods"):
         LocalProcessExecutor(start_method="teleport")
+
+
+def test_an_error_in_a_worker_reaches_the_caller_and_stops_the_pool() -> None:
+    broken = functools.partial(make_chain, "no_such_chain", 3)
+    with pytest.raises(ValueError, match="unknown chain 'no_such_chain'"):
+        plan_root_parallel(broken, "voot", 5, n_trees=2, executor="process")
+    pool = LocalProcessExecutor(max_workers=1)
+    with pytest.raises(ValueError, match="unknown chain"), pool:
+        plan_root_parallel(broken, "voot", 5, n_trees=2, executor=pool)
+    assert pool._pool is None  # closed (its workers terminated) by the with block

@@ -63,19 +63,19 @@ def main() -> None:
         timeline="plan",
         sequence=summary.plan_length,
     )
+    widths = {path: 1400 for path in shots.values()}  # whole windows
     for r in runs.values():
         outputs: dict[str | None, Path] = {
             r.view: FIGURES / f"recordings_kitchen_figure5_{r.planner}.png"
         }
         if r.planner == "voot":
             outputs[None] = FIGURES / "recordings_kitchen_figure5_viewer.png"
-        shots.update(
-            viewer_screenshots(
-                r.recording, outputs, timeline="search", sequence=r.n_simulations - 1
-            )
+        taken = viewer_screenshots(
+            r.recording, outputs, timeline="search", sequence=r.n_simulations - 1
         )
-    for name, path in shots.items():
-        shrink(path, 1400 if name is None else 1000)
+        widths.update({path: 1400 if name is None else 1000 for name, path in taken.items()})
+    for path, width in widths.items():
+        shrink(path, width)
         print(f"screenshot -> {path} ({path.stat().st_size // 1024} kB)")
 
 

@@ -94,10 +94,10 @@ def samples_figure(
         missing = sorted(set(recordings) - set(entity))
         if missing:
             raise ValueError(f"entity gives no entity for the panels {missing}")
-        entities = {
-            name: [entity[name]] if isinstance(entity[name], str) else list(entity[name])
-            for name in recordings
-        }
+        entities = {}
+        for name in recordings:
+            given = entity[name]
+            entities[name] = [given] if isinstance(given, str) else list(given)
         empty = sorted(name for name, e in entities.items() if not e)
         if empty:
             raise ValueError(f"entity gives an empty list of entities for the panels {empty}")

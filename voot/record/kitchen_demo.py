@@ -49,13 +49,13 @@ DEFAULT_SIMULATIONS = 1000
 DEFAULT_SEED = 3
 #: Visits of the first object's place node at which Figure 5 is drawn (the paper's 50).
 FIGURE5_VISITS = 50
-#: Free camera of the GIF: the kitchen seen from the south-west, the house's big rooms
-#: (where nothing may be placed) at the right edge.
+#: Free camera of the GIF: the kitchen and the hall seen from the west (the sink on the
+#: left, the start on the right), the house's big rooms behind them.
 KITCHEN_VIEW: dict[str, Any] = {
-    "lookat": (0.5, 0.0, 0.0),
-    "distance": 8.6,
-    "azimuth": 90.0,
-    "elevation": -62.0,
+    "lookat": (0.6, -0.4, 0.0),
+    "distance": 8.7,
+    "azimuth": 0.0,
+    "elevation": -60.0,
 }
 
 Frame = NDArray[np.uint8]
@@ -286,9 +286,31 @@ def _resample(poses: NDArray[np.float64], spacing: float, max_frames: int) -> li
     targets = np.linspace(0.0, s[-1], n + 1)[1:]
     theta = np.unwrap(p[:, 2])
     out = np.column_stack(
-        [np.interp(targets, s, p[:, 0]), np.interp(targets, s, p[:, 1]), np.interp(targets, s, theta)]
+        [
+            np.interp(targets, s, p[:, 0]),
+            np.interp(targets, s, p[:, 1]),
+            np.interp(targets, s, theta),
+        ]
     )
     return list(out)
+
+
+def _drive(env: Any, start: Any, goal: Any) -> NDArray[np.float64]:
+    """Waypoints ``(k, 3)`` of the robot's drive (arm tucked) from ``start`` to ``goal``.
+
+    Shown only, not stepped: the environment plans no path before a pick. The robot's
+    disc is planned among the objects but those it overlaps at either end (the one it
+    just put down, the one it is about to grasp); a straight line if there is no path.
+    """
+    r = env.config.robot_radius
+    boxes = env.object_boxes()
+    touching = set(env.planner.colliding(start, r, boxes)) | set(
+        env.planner.colliding(goal, r, boxes)
+    )
+    path = env.planner.plan(start, goal, r, [b for b in boxes if b.name not in touching])
+    if path is None:
+        return np.stack([np.asarray(start, dtype=np.float64), np.asarray(goal, dtype=np.float64)])
+    return np.asarray(path.waypoints, dtype=np.float64)
 
 
 def plan_animation(
@@ -350,15 +372,14 @@ def plan_animation(
             if not res.feasible:
                 continue
             after = env.get_state()
+            obj_name = str(info["object"]).removeprefix("obj_")
             text = caption(
-                f"step {t}/{n}: {info['operator']} {info['object'][4:]}, {info['objects_left']} left"
+                f"step {t}/{n}: {info['operator']} {obj_name}, {info['objects_left']} left"
             )
             env.set_state(before)
             if info["operator"] == "pick":
                 goal = np.asarray(info["base_pose"])
-                path = env.planner.plan(base0, goal, env.config.robot_radius, env.object_boxes())
-                way = path.waypoints if path is not None else np.stack([base0, goal])
-                for w in _resample(way, spacing, max_motion_frames):
+                for w in _resample(_drive(env, base0, goal), spacing, max_motion_frames):
                     robot.set_base(data, w)
                     frames.append(text())
                 robot.set_base(data, goal)
@@ -385,14 +406,10 @@ def plan_animation(
         if left == 0:  # the path is clear: drive to the sink (shown only, not stepped)
             end = env.get_state()
             text = caption("path clear: to the sink")
-            goal = env.config.goal
-            path = env.planner.plan(
-                robot.base_pose(data), goal, env.config.robot_radius, env.object_boxes()
-            )
-            if path is not None:
-                for w in _resample(path.waypoints, spacing, 2 * max_motion_frames):
-                    robot.set_base(data, w)
-                    frames.append(text())
+            way = _drive(env, robot.base_pose(data), env.config.goal)
+            for w in _resample(way, spacing, 2 * max_motion_frames):
+                robot.set_base(data, w)
+                frames.append(text())
             env.set_state(end)
         else:
             frames.append(caption(f"end of the plan: {left} obstacles left")())
@@ -626,10 +643,10 @@ def figure5(
             rec.rec.log(
                 f"{folder}/rejected",
                 rr.Points3D(
-                    np.column_stack(
-                        [rejected[:, :2], np.full(len(rejected), config.floor_height)]
+                    np.column_stack([rejected[:, :2], np.full(len(rejected), config.floor_height)]),
+                    colors=np.tile(
+                        np.array(config.infeasible_color, dtype=np.uint8), (len(rejected), 1)
                     ),
-                    colors=np.tile(np.array(config.infeasible_color, dtype=np.uint8), (len(rejected), 1)),
                     radii=0.6 * config.point_radius,
                 ),
             )
@@ -645,7 +662,9 @@ def figure5(
                 static=True,
             )
         if node.visits != first.mcts.nodes[node_id].visits:  # type: ignore[union-attr]
-            raise RuntimeError("the recorded search differs from the first one (not deterministic?)")
+            raise RuntimeError(
+                "the recorded search differs from the first one (not deterministic?)"
+            )
         feasible = int(sum(node.feasible))
         runs[key] = Figure5Run(
             planner=key,
@@ -695,9 +714,9 @@ def figure5_blueprint(title: str, folder: str) -> Any:
 
     Left: the house seen from above (south, slightly tilted) with only the samples
     under ``folder`` (the watched node's placements coloured by :math:`\\hat Q` and
-    its rejected proposals in grey) and the forbidden rooms shaded red; right: the best return and the tree size over
-    simulations. The time panel opens paused on the ``search`` timeline, whose last
-    index is the moment the node reached its visits.
+    its rejected proposals in grey) and the forbidden rooms shaded red; right: the
+    best return and the tree size over simulations. The time panel opens paused on the
+    ``search`` timeline, whose last index is the moment the node reached its visits.
     """
     import rerun.blueprint as rrb
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -96,8 +97,8 @@ def viewer_screenshots(
     from rerun.experimental import ViewerClient
 
     port = _free_port()
-    fd, name = tempfile.mkstemp(prefix="rerun-viewer-", suffix=".log")
-    log_path = Path(name)
+    fd, log_name = tempfile.mkstemp(prefix="rerun-viewer-", suffix=".log")
+    log_path = Path(log_name)
     with os.fdopen(fd, "w") as log:
         proc = subprocess.Popen(
             [
@@ -113,6 +114,9 @@ def viewer_screenshots(
             ],
             stdout=log,
             stderr=subprocess.STDOUT,
+            # its own process group: ``rerun`` may be a Python launcher whose child is
+            # the viewer, and both must end with it
+            start_new_session=True,
         )
     try:
         client = _connect(ViewerClient, port, proc, timeout, log_path)
@@ -137,13 +141,21 @@ def viewer_screenshots(
             written[name] = target
         return written
     finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:  # pragma: no cover - a hung viewer
-            proc.kill()
-            proc.wait(10)
+        _end(proc)
         log_path.unlink(missing_ok=True)
+
+
+def _end(proc: subprocess.Popen[bytes]) -> None:
+    """End the viewer's process group (the launcher and the viewer it started)."""
+    try:
+        os.killpg(proc.pid, signal.SIGTERM)
+    except ProcessLookupError:
+        pass
+    try:
+        proc.wait(10)
+    except subprocess.TimeoutExpired:  # pragma: no cover - a hung viewer
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait(10)
 
 
 def _connect(

@@ -686,17 +686,31 @@ class LocalProcessExecutor:
         """Start every worker process now (so that a timed search does not pay for it)."""
         list(self.map(_pid, [None] * (2 * self.max_workers)))
 
-    def close(self) -> None:
-        """Shut the pool down (its workers and their problems go)."""
-        if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
-            self._pool = None
+    def close(self, *, kill: bool = False) -> None:
+        """Shut the pool down (its workers and their problems go).
+
+        Args:
+            kill: terminate the workers instead of letting running trees finish (after
+                an error or an interrupt, so that no orphan keeps computing).
+        """
+        pool, self._pool = self._pool, None
+        if pool is None:
+            return
+        if kill:
+            terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
+            if callable(terminate):
+                terminate()
+            else:
+                for process in list((getattr(pool, "_processes", None) or {}).values()):
+                    with contextlib.suppress(Exception):
+                        process.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
 
     def __enter__(self) -> LocalProcessExecutor:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, exc_type: object, *exc: object) -> None:
+        self.close(kill=exc_type is not None)
 
 
 def _pid(_: object) -> int:
@@ -1035,11 +1049,13 @@ def plan_root_parallel(
     ]
     started = time.time()
     t0 = time.perf_counter()
+    failed = True
     try:
         results = list(_map(executor, run_tree, tasks))
+        failed = False
     finally:
         if own_pool is not None:
-            own_pool.close()
+            own_pool.close(kill=failed)
         if not is_factory:
             problem.restore(root_snapshot)  # type: ignore[union-attr]
     return merge_trees(results, parallel, started, time.perf_counter() - t0)

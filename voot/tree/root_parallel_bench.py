@@ -10,13 +10,15 @@ measures:
   whose workers built the problem before the clock starts), for every :math:`(K, W)`:
   wall time of the call, the trees' CPU time, and the merged best return (which does not
   depend on :math:`W`: the search is deterministic). Speed-up is
-  :math:`T(1, 1) / T(K, W)` (means over seeds).
-* **Equal wall time**: :math:`K` trees of :math:`S` simulations each on the most workers
-  the machine has cores for,
-  the best return known at the single tree's wall time :math:`T(1, 1)`
-  (:meth:`~voot.tree.root_parallel.RootParallelResult.best_return_at`), and the curves
-  against total simulations :math:`K i` (equal computation) and per-tree simulations
-  :math:`i` (equal wall time if every tree has its own core).
+  :math:`T(1, 1) / T(K, W)` (means over seeds). Every seed runs every configuration,
+  in an order rotated from seed to seed, so that a drifting load from other users
+  spreads over all configurations alike.
+* **Equal wall time**: :math:`K \le W` trees of up to :math:`S` simulations each on
+  :math:`W` workers (the most the machine has cores for), stopped after 1.25 times the
+  single tree's search time; the best return known at the single tree's wall time
+  :math:`T(1, 1)` (:meth:`~voot.tree.root_parallel.RootParallelResult.best_return_at`).
+  More trees than workers run in waves, and by the seeds' nesting the first wave is the
+  :math:`K = W` run, so :math:`K > W` is not run here.
 
 It prints a table, the machine's load average before and after (the figures are only
 as good as the cores the other users left), and draws the figure (``--figure``; needs the
@@ -27,6 +29,7 @@ used, so importing this module stays as light as :mod:`voot.tree`.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import functools
 import json
 import math
@@ -56,6 +59,8 @@ DEFAULT_FIGURE = "docs/figures/root_parallel_speedup.png"
 PROBLEMS = ("shekel", "kitchen")
 #: Default total simulation budgets (the kitchen's simulations cost about 20 times more).
 DEFAULT_BUDGETS = {"shekel": 1200, "kitchen": 240}
+#: Equal-wall-time runs stop after this many times the single tree's search time.
+LONG_RUN_MARGIN = 1.25
 #: The step-info key of the kitchen's objects left.
 OBJECTS_KEY = "objects_left"
 
@@ -139,7 +144,8 @@ class Measurements:
     long_workers: int
     #: (K, W) -> one fixed-budget result per seed.
     fixed: dict[tuple[int, int], list[RootParallelResult]] = field(default_factory=dict)
-    #: K -> one result of K trees x S simulations per seed (on the most workers).
+    #: K -> per seed, K trees of up to S simulations on ``long_workers`` workers,
+    #: time-limited (K = 1: the fixed-budget run).
     long: dict[int, list[RootParallelResult]] = field(default_factory=dict)
     load_before: tuple[float, float, float] | None = None
     load_after: tuple[float, float, float] | None = None
@@ -172,7 +178,9 @@ def measure(
     long_w = max([w for w in workers if w <= cores] or [1])
     out = Measurements(setup, trees, workers, list(seeds), long_w, load_before=load_average())
 
-    def run(pool: LocalProcessExecutor, k: int, n: int, seed: int) -> RootParallelResult:
+    def run(
+        pool: LocalProcessExecutor, k: int, n: int, seed: int, limit: float | None = None
+    ) -> RootParallelResult:
         return plan_root_parallel(
             setup.factory,
             setup.config,
@@ -182,34 +190,46 @@ def measure(
             merge=merge,
             executor=pool,
             record_info=setup.record_info,
+            time_limit=limit,
         )
 
-    for w in workers:
-        with LocalProcessExecutor(
-            w, initializer=prebuild_problem, initargs=(setup.factory,)
-        ) as pool:
+    configs = configurations(trees, workers)
+    with contextlib.ExitStack() as stack:
+        pools = {
+            w: stack.enter_context(
+                LocalProcessExecutor(w, initializer=prebuild_problem, initargs=(setup.factory,))
+            )
+            for w in workers
+        }
+        for pool in pools.values():
             pool.warm_up()
+        for j, seed in enumerate(seeds):
+            # Every seed runs every configuration, in an order rotated from seed to seed,
+            # so that the other users' load drifts over all configurations alike.
+            shift = j % len(configs)
+            for k, w in configs[shift:] + configs[:shift]:
+                res = run(pools[w], k, setup.budget // k, seed)
+                out.fixed.setdefault((k, w), []).append(res)
+                if log is not None:
+                    log(
+                        f"{setup.name} seed={seed} K={k} W={w}: {res.wall_time:.2f} s"
+                        f" (CPU {res.cpu_time:.2f} s), best {res.best_return:.4g}"
+                    )
+            if not long_runs:
+                continue
+            single = out.fixed[(1, 1)][-1]
+            out.long.setdefault(1, []).append(single)
             for k in trees:
-                if w > k:
-                    continue
-                for seed in seeds:
-                    res = run(pool, k, setup.budget // k, seed)
-                    out.fixed.setdefault((k, w), []).append(res)
+                if 1 < k <= long_w:
+                    limit = LONG_RUN_MARGIN * max(t.plan.wall_time for t in single.trees)
+                    res = run(pools[long_w], k, setup.budget, seed, limit)
+                    out.long.setdefault(k, []).append(res)
                     if log is not None:
                         log(
-                            f"{setup.name} K={k} W={w} seed={seed}: {res.wall_time:.2f} s,"
-                            f" best {res.best_return:.4g}"
+                            f"{setup.name} seed={seed} K={k} W={long_w} for"
+                            f" {limit:.1f} s: best {res.best_return_at(single.wall_time):.4g}"
+                            f" at {single.wall_time:.2f} s"
                         )
-            if long_runs and w == long_w:
-                for k in trees:
-                    for seed in seeds:
-                        if k == 1:  # one tree: its fixed-budget run (on one worker)
-                            res = out.fixed[(1, 1)][list(seeds).index(seed)]
-                        else:
-                            res = run(pool, k, setup.budget, seed)
-                        out.long.setdefault(k, []).append(res)
-                        if log is not None:
-                            log(f"{setup.name} long K={k} W={w} seed={seed}: {res.wall_time:.2f} s")
     out.load_after = load_average()
     return out
 
@@ -218,10 +238,32 @@ def _mean(values: Sequence[float]) -> float:
     return float(np.mean(values)) if len(values) else math.nan
 
 
+def critical_path(result: RootParallelResult) -> float:
+    """CPU seconds of the busiest worker process (the trees it ran, summed): the wall
+    time the run would take if every worker had a core of its own."""
+    per_worker: dict[int, float] = {}
+    for t in result.trees:
+        per_worker[t.pid] = per_worker.get(t.pid, 0.0) + t.cpu_time
+    return max(per_worker.values())
+
+
+def cpu_speedups(m: Measurements) -> dict[tuple[int, int], float]:
+    r"""Per (K, W <= cores): :math:`\mathrm{CPU}(1, 1)` over the mean critical path: the
+    speed-up on otherwise idle cores, from the CPU time each worker spent."""
+    cores = os.cpu_count() or 1
+    base = _mean([r.cpu_time for r in m.fixed[(1, 1)]])
+    return {
+        kw: base / _mean([critical_path(r) for r in results])
+        for kw, results in m.fixed.items()
+        if kw[1] <= cores
+    }
+
+
 def table_rows(m: Measurements) -> list[dict[str, Any]]:
     """One row per (K, W): times, speed-up, quality at equal budget and equal wall time."""
     base = _mean([r.wall_time for r in m.fixed[(1, 1)]])
     t_single = [r.wall_time for r in m.fixed[(1, 1)]]
+    cpu_up = cpu_speedups(m)
     rows = []
     for (k, w), results in sorted(m.fixed.items(), key=lambda kv: (kv[0][1], kv[0][0])):
         wall = _mean([r.wall_time for r in results])
@@ -235,12 +277,14 @@ def table_rows(m: Measurements) -> list[dict[str, Any]]:
             "speedup": base / wall,
             "efficiency": base / wall / w,
             "cpu_s": _mean([r.cpu_time for r in results]),
+            "cores_used": _mean([r.cpu_time / r.wall_time for r in results]),
+            "cpu_speedup": cpu_up.get((k, w), math.nan),
             "best_at_budget": _mean(best),
             "best_at_budget_sd": float(np.std(best)),
             "best_at_equal_time": math.nan,
             "sims_per_tree_at_equal_time": math.nan,
         }
-        if w == m.long_workers and k in m.long:
+        if k in m.long and (w == m.long_workers or k == 1):
             at = [float(r.best_return_at(t)) for r, t in zip(m.long[k], t_single, strict=True)]
             row["best_at_equal_time"] = _mean(at)
             row["sims_per_tree_at_equal_time"] = _mean(
@@ -262,16 +306,18 @@ def sims_done_by(result: RootParallelResult, seconds: float) -> float:
 def format_table(rows: Sequence[dict[str, Any]]) -> str:
     """The rows as a Markdown table."""
     head = (
-        "| problem | K | W | sims/tree | wall s | speed-up | efficiency | CPU s |"
-        " best @ S (mean ± sd) | best @ T(1,1) | sims/tree by T(1,1) |"
+        "| problem | K | W | sims/tree | wall s | speed-up | efficiency | CPU s | cores used |"
+        " idle-core speed-up | best @ S (mean ± sd) | best @ T(1,1) | sims/tree by T(1,1) |"
     )
-    lines = [head, "|" + "---|" * 11]
+    lines = [head, "|" + "---|" * 13]
     for r in rows:
         eq = r["best_at_equal_time"]
         n_eq = r["sims_per_tree_at_equal_time"]
         lines.append(
             f"| {r['problem']} | {r['K']} | {r['W']} | {r['sims_per_tree']} | {r['wall_s']:.2f} |"
             f" {r['speedup']:.2f} | {r['efficiency']:.2f} | {r['cpu_s']:.2f} |"
+            f" {r['cores_used']:.2f} |"
+            f" {'-' if math.isnan(r['cpu_speedup']) else format(r['cpu_speedup'], '.2f')} |"
             f" {r['best_at_budget']:.4g} ± {r['best_at_budget_sd']:.2g} |"
             f" {'-' if math.isnan(eq) else f'{eq:.4g}'} |"
             f" {'-' if math.isnan(n_eq) else f'{n_eq:.0f}'} |"
@@ -297,6 +343,7 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for row, m in zip(axes, measurements, strict=True):
         ax = row[0]
+        cpu_up = cpu_speedups(m)
         base = _mean([r.wall_time for r in m.fixed[(1, 1)]])
         ws = np.array(m.workers)
         ax.plot(ws, ws, "k--", lw=1, label="ideal")
@@ -307,7 +354,12 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
                 if (k, w) in m.fixed
             ]
             x, y = zip(*pts, strict=True)
-            ax.plot(x, y, "o-", color=colors[i % len(colors)], label=f"K={k} trees")
+            c = colors[i % len(colors)]
+            ax.plot(x, y, "o-", color=c, label=f"K={k}, measured wall time")
+            idle = [(w, cpu_up[(k, w)]) for w in m.workers if (k, w) in cpu_up]
+            if k > 1 and idle:
+                x, y = zip(*idle, strict=True)
+                ax.plot(x, y, "s--", color=c, mfc="none", label=f"K={k}, idle cores (CPU)")
         ax.set_xlabel("worker processes W")
         ax.set_ylabel("speed-up  T(1 tree, 1 worker) / T(K, W)")
         ax.set_xticks(ws)
@@ -317,7 +369,7 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
 
         ax = row[1]
         for i, k in enumerate(m.trees):
-            src = m.long.get(k) or m.fixed[(k, 1)]
+            src = m.fixed[(k, 1)]
             curve = _mean_curve([r.best_return_curve for r in src])
             c = colors[i % len(colors)]
             n_total = min(curve.size, m.setup.budget // k)
@@ -374,6 +426,10 @@ def plot(measurements: Sequence[Measurements], path: str | Path, note: str = "")
     return out
 
 
+def _load(load: tuple[float, float, float] | None) -> str:
+    return "?" if load is None else "/".join(f"{x:.1f}" for x in load)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="python -m voot.tree.root_parallel_bench",
@@ -383,7 +439,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--dim", type=int, default=10, help="Shekel chain dimension (3, 10, 20)")
     parser.add_argument("--trees", nargs="+", type=int, default=[1, 2, 4], help="values of K")
     parser.add_argument("--workers", nargs="+", type=int, default=[1, 2], help="values of W")
-    parser.add_argument("--seeds", type=int, default=3, help="seeds 0 .. N-1")
+    parser.add_argument(
+        "--seeds", type=int, nargs="+", default=[3], help="seeds 0 .. N-1 (per problem)"
+    )
     parser.add_argument("--budget", type=int, nargs="+", default=None, help="S per problem")
     parser.add_argument("--merge", default="max_q")
     parser.add_argument("--no-long", action="store_true", help="skip the equal-wall-time runs")
@@ -395,6 +453,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("--budget takes one value, or one per problem")
     if len(budgets) == 1:
         budgets = budgets * len(args.problems)
+    seeds = args.seeds if len(args.seeds) > 1 else args.seeds * len(args.problems)
+    if len(seeds) != len(args.problems) or min(seeds) < 1:
+        parser.error("--seeds takes one count >= 1, or one per problem")
 
     def log(msg: str) -> None:
         print(msg, file=sys.stderr, flush=True)
@@ -402,14 +463,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(f"cores: {os.cpu_count()}, load average before: {load_average()}", flush=True)
     t0 = time.perf_counter()
     results = []
-    for name, budget in zip(args.problems, budgets, strict=True):
+    for name, budget, n_seeds in zip(args.problems, budgets, seeds, strict=True):
         setup = make_setup(name, budget, args.dim)
         results.append(
             measure(
                 setup,
                 args.trees,
                 args.workers,
-                list(range(args.seeds)),
+                list(range(n_seeds)),
                 args.merge,
                 long_runs=not args.no_long,
                 log=log,
@@ -417,15 +478,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         )
     rows = [row for m in results for row in table_rows(m)]
     print(format_table(rows))
-    loads = ", ".join(f"{m.setup.name}: {m.load_before} -> {m.load_after}" for m in results)
+    loads = ", ".join(
+        f"{m.setup.name}: {_load(m.load_before)} -> {_load(m.load_after)}" for m in results
+    )
     print(f"load averages (1, 5, 15 min) before -> after: {loads}")
     print(f"total {time.perf_counter() - t0:.0f} s")
     if args.json:
         Path(args.json).write_text(json.dumps({"rows": rows, "loads": loads}, indent=1))
     if args.figure:
         note = (
-            f"{os.cpu_count()} cores shared with other users; load averages {loads};"
-            f" merge={args.merge}; seeds 0..{args.seeds - 1}"
+            f"{os.cpu_count()} cores shared with other users; load average (1/5/15 min)"
+            f" before -> after: {loads}; merge={args.merge}; seeds per problem {seeds}"
         )
         print(f"figure: {plot(results, args.figure, note)}")
     return 0
