@@ -264,6 +264,14 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         box = object_footprint(obj, *rel)
         disc = carry_disc(box.corners())
         disc = replace(disc, radius=max(disc.radius, ROBOT_RADIUS))
+        # the kitchen's pick_requires_free_carry rule, checked once: the robot must be able
+        # to move with its load from the start. Placements cannot block it later: the
+        # discs (x <= 0.45 + 0.87 m around the start) stay east of the loading region.
+        hits = self.planner.colliding(disc.center(cfg.start), disc.radius, ())
+        if hits:
+            raise RuntimeError(
+                f"the carry footprint of {obj.name} at the start collides with {', '.join(hits)}"
+            )
         return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------

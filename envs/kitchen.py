@@ -12,8 +12,11 @@ alternating pick and place actions:
   depth fraction in [0.1, 0.9], base distance in [0.4, 0.9] x arm reach (0.92 m), base
   angle around the object (object frame) in [0, 2 pi), heading offset from facing the
   object in [-30, 30] deg. Feasible iff the base footprint is inside the house, the arm's
-  IK reaches the grasp (:mod:`voot.envs.feasibility`) and the robot at the grasp
-  collides with nothing (the gripper may touch the grasped object).
+  IK reaches the grasp (:mod:`voot.envs.feasibility`), the robot at the grasp
+  collides with nothing (the gripper may touch the grasped object) and, with
+  ``pick_requires_free_carry`` (default), the robot can still move with its load: the
+  carry disc the place step plans with is free at the pick pose (otherwise every
+  following place fails with "no base path" and the search is in a dead end).
 * **place** (3-D): the object's new pose (x, y, theta) in the house box
   x in [-2, 6], y in [-4, 4], theta in [0, 2 pi); the base pose follows from the grasp.
   Feasible iff the object is inside the house and not in the forbidden rooms
@@ -116,6 +119,13 @@ class KitchenConfig:
         horizon: Steps after which an episode is truncated.
         render_overlays: Draw the fixed path's swept corridor and the forbidden rooms in
             rendered images.
+        pick_requires_free_carry: A pick is feasible only if the carry disc (the disc
+            enclosing robot and load that the following place plans the base path with,
+            :meth:`KitchenClearingEnv.carry_disc_for`) is collision-free at the pick pose
+            (reason ``carry footprint collides with ...``). Not a paper constant: a fix of
+            the disc model's dead ends (a pick whose carry disc already overlaps a counter,
+            a wall or an object leaves every placement without a base path). True by
+            default; False restores the plain IK/collision/region check.
         ik: IK settings.
         planner: Base planner settings.
     """
@@ -140,6 +150,7 @@ class KitchenConfig:
     goal_bonus: float = 2.0
     horizon: int = 50
     render_overlays: bool = True
+    pick_requires_free_carry: bool = True
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -180,6 +191,12 @@ class KitchenConfig:
         object.__setattr__(self, "infeasible_reward", r)
         if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
             raise ValueError(f"KitchenConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        for name in ("pick_requires_free_carry",):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(
+                    f"KitchenConfig.{name} must be a bool (True or False), "
+                    f"got {getattr(self, name)!r}"
+                )
         if not isinstance(self.ik, IKConfig):
             raise ValueError(f"KitchenConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
         if not isinstance(self.planner, BasePlannerConfig):
@@ -238,6 +255,9 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"``.
         render_size: ``(width, height)`` of rendered images.
+        pick_requires_free_carry: If not None, overrides
+            :attr:`KitchenConfig.pick_requires_free_carry` (so that
+            ``gym.make("voot/KitchenClearing-v0", pick_requires_free_carry=False)`` works).
     """
 
     def __init__(
@@ -246,10 +266,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         render_mode: str | None = None,
         render_camera: str = "perspective",
         render_size: tuple[int, int] = (640, 480),
+        pick_requires_free_carry: bool | None = None,
     ) -> None:
         self.config = config if config is not None else KitchenConfig()
         if not isinstance(self.config, KitchenConfig):
             raise ValueError(f"config must be a KitchenConfig, got {type(self.config).__name__}")
+        if pick_requires_free_carry is not None:
+            # validated by KitchenConfig.__post_init__
+            self.config = replace(self.config, pick_requires_free_carry=pick_requires_free_carry)
         cfg = self.config
         # the fixed path and handling order are needed by _initial_task (called by super)
         self._path: BasePath | None = None
@@ -469,6 +493,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if not report.free:
             return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits), base)
         rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
+        held_rel = (float(rel[0]), float(rel[1]), float(rel[2]))
+        if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
+            t0 = time.perf_counter()
+            carry_reason = self._carry_blocked(obj, held_rel, base)
+            col_time += time.perf_counter() - t0
+            self.last_timing = StepTiming(ik=ik_time, collision=col_time)
+            if carry_reason:
+                return self._infeasible("pick", obj, carry_reason, base)
         self._set_robot(base, ik.q)
         reward = cfg.pick_reward if t.last_place_cleared else 0.0
         self.task = replace(
@@ -476,7 +508,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             steps=t.steps + 1,
             operator="place",
             held=obj,
-            held_rel=(float(rel[0]), float(rel[1]), float(rel[2])),
+            held_rel=held_rel,
             grasp_q=tuple(float(v) for v in ik.q),
         )
         return reward, {
@@ -495,16 +527,47 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         t = self.task
         if t.held < 0:
             return replace(ROBOT_DISC, radius=self.config.robot_radius)
-        key = (t.held, t.held_rel)
+        return self.carry_disc_for(t.held, t.held_rel)
+
+    def carry_disc_for(self, obj: int, held_rel: tuple[float, float, float]) -> CarryDisc:
+        """The base-motion disc of the robot carrying object ``obj`` at ``held_rel``.
+
+        ``held_rel`` is the object's body pose ``(x, y, yaw)`` in the base frame. The disc
+        encloses the base square and the object's footprint (:func:`voot.envs.robot.carry_disc`),
+        with a radius of at least ``robot_radius``; the place step plans with it.
+        """
+        key = (obj, held_rel)
         disc = self._disc_cache.get(key)
         if disc is None:
-            box = object_footprint(self.objects[t.held], *t.held_rel)
+            box = object_footprint(self.objects[obj], *held_rel)
             disc = carry_disc(box.corners())
             disc = replace(disc, radius=max(disc.radius, self.config.robot_radius))
             if len(self._disc_cache) > 4096:
                 self._disc_cache.clear()
             self._disc_cache[key] = disc
         return disc
+
+    def _carry_blocked(
+        self, obj: int, held_rel: tuple[float, float, float], base: ArrayLike
+    ) -> str:
+        """Why the robot could not move carrying ``obj`` from ``base`` ('' if it could).
+
+        The test the place step's base planner makes of its start: the carry disc at
+        ``base`` against the house, the static obstacles and the other objects.
+        """
+        disc = self.carry_disc_for(obj, held_rel)
+        hits = self.planner.colliding(
+            disc.center(base), disc.radius, self.object_boxes(exclude=(obj,))
+        )
+        if not hits:
+            return ""
+        parts = []
+        if hits[0] == "workspace":
+            parts.append("leaves the house")
+            hits = hits[1:]
+        if hits:
+            parts.append("collides with " + ", ".join(hits))
+        return "carry footprint " + " and ".join(parts)
 
     def _place(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task

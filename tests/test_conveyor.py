@@ -39,6 +39,18 @@ def test_fixed_picks_and_door_rule(env: ConveyorPackingEnv) -> None:
         assert len(p.arm_q) == 7 and p.rel[2] == 0.0
 
 
+def test_carry_discs_are_free_at_the_start_and_cannot_be_blocked(
+    env: ConveyorPackingEnv,
+) -> None:
+    # the kitchen's pick_requires_free_carry rule holds for every fixed pick, and no
+    # placement can break it: each disc stays east of the loading region
+    cfg = env.config
+    for pick in env.picks:
+        c = pick.disc.center(cfg.start)
+        assert env.planner.is_free(c, pick.disc.radius)
+        assert c[0] - pick.disc.radius > cfg.loading_region[1]
+
+
 def test_scripted_solution_packs_every_box(env: ConveyorPackingEnv) -> None:
     env.reset(seed=0)
     total = 0.0

@@ -164,6 +164,41 @@ def test_infeasible_pick_reasons(env: KitchenClearingEnv) -> None:
     assert {"collision", "IK failed", "outside region"} <= reasons
 
 
+#: A first pick (paper units: radians, fractions) that passes IK, collision and region
+#: checks but leaves the carry disc (robot + held box) overlapping the chair next to it.
+DEAD_END_PICK = (2.4075, 0.6945, 0.2081, 0.7607, 3.3009, -0.1987)
+
+
+def test_pick_requires_a_free_carry_disc(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    assert env.config.pick_requires_free_carry  # the default
+    s = env.get_state()
+    obs0 = env._observation()
+    a = normalize(DEAD_END_PICK, env.config.pick_ranges)
+    _, r, _, _, info = env.step(a)
+    assert not info["feasible"] and r == -2.0
+    assert info["reason"] == "carry footprint collides with obj_chair1"
+    assert env.task.operator == "pick" and env.task.held == -1
+    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])
+    env.set_state(s)
+
+    # option off (through gym.make's kwargs): the old check accepts the pick, and the
+    # place step's planner then starts in collision (every place: "no base path")
+    off = gym.make("voot/KitchenClearing-v0", pick_requires_free_carry=False).unwrapped
+    assert isinstance(off, KitchenClearingEnv) and not off.config.pick_requires_free_carry
+    off.reset(seed=0)
+    _, r, _, _, info = off.step(a)
+    assert info["feasible"] and info["reason"] == "" and r == 0.0
+    disc = off.held_disc()
+    base = off.robot.base_pose(off.data)
+    boxes = off.object_boxes(exclude=(off.task.held,))
+    assert not off.planner.is_free(disc.center(base), disc.radius, boxes)
+    assert off.planner.colliding(disc.center(base), disc.radius, boxes) == ["obj_chair1"]
+    _, _, _, _, info = off.step(_place_action(off, 1.0, -3.0, 0.0))
+    assert not info["feasible"] and info["reason"] == "no base path"
+    off.close()
+
+
 def test_bad_actions(env: KitchenClearingEnv) -> None:
     env.reset(seed=0)
     with pytest.raises(ValueError, match="NaN"):
@@ -207,6 +242,7 @@ def test_truncation_at_the_horizon() -> None:
         ({"grasp_angle": (2.0, 1.0)}, "grasp_angle"),
         ({"house": (0, 1, 2)}, "house"),
         ({"infeasible_reward": 1.0}, "infeasible_reward"),
+        ({"pick_requires_free_carry": "yes"}, "pick_requires_free_carry"),
     ],
 )
 def test_config_validation(kwargs: dict[str, object], match: str) -> None:

@@ -45,8 +45,8 @@ KITCHEN_ID = "voot/KitchenClearing-v0"
 #: Simulations of :func:`run`: the searches that clear the kitchen do so within about
 #: 600 (measured: seeds 3 and 6 at 600); 1,000 take 30 s of CPU on one core.
 DEFAULT_SIMULATIONS = 1000
-#: Seed of :func:`run` (one of the seeds whose VOOT search clears all obstacles).
-DEFAULT_SEED = 3
+#: Seed of :func:`run`.
+DEFAULT_SEED = 0
 #: Visits of the first object's place node at which Figure 5 is drawn (the paper's 50).
 FIGURE5_VISITS = 50
 #: Free camera of the GIF: the kitchen and the hall seen from the west (the sink on the

@@ -626,9 +626,10 @@ class LocalProcessExecutor:
         max_workers: worker processes (default ``os.cpu_count()``).
         start_method: ``"spawn"`` (default: a fresh interpreter per worker, nothing of
             the parent's state leaks in; slower to start), ``"forkserver"`` or ``"fork"``.
-        initializer, initargs: run in every worker when it starts, e.g.
-            ``initializer=prebuild_problem, initargs=(factory,)`` to build a MuJoCo
+        initializer: run as ``initializer(*initargs)`` in every worker when it starts,
+            e.g. ``initializer=prebuild_problem, initargs=(factory,)`` to build a MuJoCo
             problem in every worker before the first (timed) search.
+        initargs: the initializer's arguments.
 
     The pool starts at the first :meth:`map` and lives until :meth:`close` (or the end of
     a ``with`` block), so problems built from factories stay built in its workers: keep

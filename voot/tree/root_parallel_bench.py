@@ -1,9 +1,13 @@
 r"""Speed-up and quality of root-parallel search over 1, 2, 4 ... workers.
 
-Run ``python -m voot.tree.root_parallel_bench`` (options: ``--help``; about ten minutes on
-two idle cores with the defaults). For every problem (the Shekel chain in 10-D; the
-kitchen with ``--problems shekel kitchen``, which needs the ``envs`` extra) and seed it
-measures:
+Run ``python -m voot.tree.root_parallel_bench`` (options: ``--help``). The figure of
+the documentation was made by::
+
+    python -m voot.tree.root_parallel_bench --problems shekel kitchen \
+        --budget 10000 240 --seeds 5 3 --workers 1 2 4
+
+(5 minutes at a load average of 3 on two cores, 15 at 9). For every problem (the
+Shekel chain in 10-D; the kitchen, which needs the ``envs`` extra) and seed it measures:
 
 * **Fixed total budget** :math:`S`: :math:`K` trees of :math:`S / K` simulations on
   :math:`W \le K` warm worker processes (:class:`~voot.tree.root_parallel.LocalProcessExecutor`
@@ -57,8 +61,8 @@ from voot.tree.root_parallel import (
 DEFAULT_FIGURE = "docs/figures/root_parallel_speedup.png"
 #: Problems this benchmark knows.
 PROBLEMS = ("shekel", "kitchen")
-#: Default total simulation budgets (the kitchen's simulations cost about 20 times more).
-DEFAULT_BUDGETS = {"shekel": 1200, "kitchen": 240}
+#: Default total simulation budgets (a kitchen simulation costs about 150 times a Shekel one).
+DEFAULT_BUDGETS = {"shekel": 10_000, "kitchen": 240}
 #: Equal-wall-time runs stop after this many times the single tree's search time.
 LONG_RUN_MARGIN = 1.25
 #: The step-info key of the kitchen's objects left.
