@@ -46,7 +46,7 @@ import numpy as np
 
 from voot.bench import problems as P
 from voot.bench.store import Row, make_row, make_run_id
-from voot.bench.sweep import GRIDS, name_key
+from voot.bench.sweep import GRIDS, name_key, one_blas_thread
 
 #: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.
 PLAN_PROTOCOL = 1
@@ -397,6 +397,7 @@ def _jsonable(value: Any) -> Any:
     return repr(value)
 
 
+@one_blas_thread
 def run_plan_spec(spec: PlanSpec) -> Row:
     """Run one planning spec and return its row (status ``"failed"`` on an exception)."""
     start = time.perf_counter()

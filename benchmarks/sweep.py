@@ -37,6 +37,7 @@ Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import itertools
 import multiprocessing
@@ -50,6 +51,7 @@ from dataclasses import dataclass, field
 from typing import Any, ClassVar, Protocol, TypeVar
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from voot.bench.store import ResultStore, Row, make_row, make_run_id
 from voot.optim.base import FloatArray
@@ -295,6 +297,27 @@ def _jsonable(value: Any) -> Any:
     return repr(value)
 
 
+_Spec = TypeVar("_Spec")
+_Out = TypeVar("_Out")
+
+
+def one_blas_thread(run: Callable[[_Spec], _Out]) -> Callable[[_Spec], _Out]:
+    """Run ``run(spec)`` with one BLAS/OpenMP thread, in whatever process executes it.
+
+    Results of the GP-based optimisers differ in their last bits between BLAS thread
+    counts, so a run is bit-identical across processes and machines only at a fixed
+    count; one thread also keeps parallel runs from oversubscribing the cores.
+    """
+
+    @functools.wraps(run)
+    def wrapper(spec: _Spec) -> _Out:
+        with threadpool_limits(limits=1):
+            return run(spec)
+
+    return wrapper
+
+
+@one_blas_thread
 def run_spec(spec: RunSpec) -> Row:
     """Run one spec and return its row (status ``"failed"`` with the error on exception)."""
     from voot.functions import get_function

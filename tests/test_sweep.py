@@ -311,3 +311,16 @@ def test_shifted_instance_keeps_the_initial_point_and_defeats_the_centre() -> No
     assert rows[0]["best_so_far"][-1] == 0.0
     assert rows[1]["best_so_far"][-1] < -1e-3
     assert f1(np.array(rows[1]["best_x"])) == rows[1]["best_so_far"][-1]
+
+
+def test_runs_execute_with_one_blas_thread() -> None:
+    from threadpoolctl import threadpool_info
+
+    from voot.bench.sweep import one_blas_thread
+
+    @one_blas_thread
+    def threads(_: object) -> list[int]:
+        return [int(lib["num_threads"]) for lib in threadpool_info()]
+
+    inside = threads(None)
+    assert inside and all(n == 1 for n in inside)
