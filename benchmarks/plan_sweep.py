@@ -36,7 +36,6 @@ import contextlib
 import itertools
 import json
 import time
-import traceback
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
@@ -46,7 +45,7 @@ import numpy as np
 
 from voot.bench import problems as P
 from voot.bench.store import Row, make_row, make_run_id
-from voot.bench.sweep import GRIDS, name_key, one_blas_thread
+from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread
 
 #: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.
 PLAN_PROTOCOL = 1
@@ -462,16 +461,7 @@ def run_plan_spec(spec: PlanSpec) -> Row:
             **extra,
         )
     except Exception as exc:
-        return make_row(
-            spec.kind,
-            spec.config(),
-            status="failed",
-            wall_time=time.perf_counter() - start,
-            best_so_far=best,
-            error=f"{type(exc).__name__}: {exc}",
-            traceback=traceback.format_exc(limit=20),
-            problem_label=spec.label,
-        )
+        return exception_row(spec, exc, start, best, problem_label=spec.label)
 
 
 def summarize_plan_specs(specs: Sequence[PlanSpec]) -> str:

@@ -351,15 +351,7 @@ def run_spec(spec: RunSpec) -> Row:
             method_config={k: _jsonable(v) for k, v in config.to_dict().items()},
         )
     except Exception as exc:
-        return make_row(
-            spec.kind,
-            spec.config(),
-            status="failed",
-            wall_time=time.perf_counter() - start,
-            best_so_far=best,
-            error=f"{type(exc).__name__}: {exc}",
-            traceback=traceback.format_exc(limit=20),
-        )
+        return exception_row(spec, exc, start, best)
 
 
 def run_any(spec: Any) -> Row:
@@ -374,15 +366,36 @@ def run_any(spec: Any) -> Row:
     raise TypeError(f"cannot run a {type(spec).__name__}; expected a RunSpec or a PlanSpec")
 
 
-def failed_row(spec: Any, error: str, *, wall_time: float = 0.0, **extra: Any) -> Row:
-    """The row of a run that produced none (e.g. its worker died): status ``"failed"``."""
+def failed_row(
+    spec: Any,
+    error: str,
+    *,
+    wall_time: float = 0.0,
+    best_so_far: Sequence[float] = (),
+    **extra: Any,
+) -> Row:
+    """The row of a run that failed: status ``"failed"``, with what it had recorded."""
     return make_row(
         spec.kind,
         spec.config(),
         status="failed",
         wall_time=wall_time,
-        best_so_far=[],
+        best_so_far=list(best_so_far),
         error=error,
+        **extra,
+    )
+
+
+def exception_row(
+    spec: Any, exc: Exception, start: float, best: Sequence[float], **extra: Any
+) -> Row:
+    """The row of a run that raised ``exc`` (called inside its ``except`` block)."""
+    return failed_row(
+        spec,
+        f"{type(exc).__name__}: {exc}",
+        wall_time=time.perf_counter() - start,
+        best_so_far=best,
+        traceback=traceback.format_exc(limit=20),
         **extra,
     )
 
