@@ -125,7 +125,7 @@ class Bounds:
         arr = np.asarray(x, dtype=np.float64)
         if arr.shape != (self.dim,):
             raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
-        if not np.all(np.isfinite(arr)):
+        if not np.isfinite(arr).all():
             raise ValueError(f"{name} must be finite, got {arr.tolist()}")
         return arr
 
