@@ -22,6 +22,7 @@ from voot.bench.plan_plot import (
     plan_settings_table,
     plot_plan_figure,
     returns_table,
+    settled_reach,
 )
 from voot.bench.plot import t_interval
 from voot.bench.store import Row, make_row
@@ -119,6 +120,11 @@ def test_median_ci_order_statistics() -> None:
 def test_first_reach_and_time_grid() -> None:
     left = np.array([[3.0, 0.0, 0.0], [np.nan, 2.0, 1.0]])
     assert list(first_reach(left)) == [2.0, math.inf]
+    # the best plan clears everything at 2, leaves one again at 3, clears for good at 4
+    wobble = np.array([[3.0, 0.0, 1.0, 0.0, 0.0], [0.0] * 5, [0.0, 0.0, 0.0, 0.0, 1.0]])
+    assert list(first_reach(wobble)) == [2.0, 1.0, 1.0]
+    assert list(settled_reach(wobble)) == [4.0, 1.0, math.inf]
+    assert list(settled_reach(left)) == [2.0, math.inf]
     values = np.array([[1.0, 2.0, 3.0], [10.0, 20.0, 30.0]])
     elapsed = np.array([[0.1, 0.2, 0.3], [0.2, 0.4, 0.6]])
     times, samples = on_time_grid(values, elapsed, points=3)
@@ -153,8 +159,8 @@ def test_tables() -> None:
     obj = objects_table(data, at=[2])
     assert "| kitchen | 2 | **4 ± 0 (3)** | 1 ± 0 (3) |" in obj and "shekel" not in obj
     done = completion_table(data)
-    assert "| kitchen | voot | 3/3 (100%) | 3 | — |" in done
-    assert "| kitchen | pw_uct | 0/3 (0%) | > 4 | — |" in done
+    assert "| kitchen | voot | 3/3 (100%) | 3 | — | 3/3 (100%) | 3 | — |" in done
+    assert "| kitchen | pw_uct | 0/3 (0%) | > 4 | — | 0/3 (0%) | > 4 | — |" in done
     cost = cost_table(data)
     assert "| kitchen | voot | 10 | 2 | 0.04 |" in cost and "| kitchen | pw_uct | 20 |" in cost
     assert "| kitchen | voot | omega=0.1 | 3 |" in plan_settings_table(data)
