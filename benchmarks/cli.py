@@ -148,6 +148,7 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
         budget_scale=args.budget_scale,
         budget=args.budget,
         instance=args.instance,
+        fixed=parse_assignments(args.set, "--set"),
     )
     if not specs:
         raise CLIError("the grid is empty (e.g. rembo is not run in 3-D); widen --dims/--methods")
@@ -544,6 +545,13 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="K",
         help="test-function instance: 0 = the paper's functions (default), K >= 1 = optima"
         " moved off the box centre (voot.functions)",
+    )
+    p.add_argument(
+        "--set",
+        nargs="+",
+        metavar="NAME=VALUE",
+        help="an optimiser parameter for every run, on top of the grid (e.g. sampler=gaussian"
+        " with --methods voo); it joins every setting's label",
     )
     p.add_argument(
         "--workers", type=int, default=os.cpu_count() or 1, help="processes (default: %(default)s)"

@@ -234,6 +234,7 @@ def build_specs(
     budget_scale: float = 1.0,
     budget: int | None = None,
     instance: int = 0,
+    fixed: Mapping[str, Any] | None = None,
 ) -> list[RunSpec]:
     """Every run of the sweep, in grid order (function, dim, method, params, seed).
 
@@ -247,6 +248,14 @@ def build_specs(
         budget: a fixed budget for every run instead (overrides ``budget_scale``).
         instance: test-function instance: 0 for the paper's functions, k >= 1 for
             :func:`voot.functions.get_function` instance k (optimum off the box centre).
+        fixed: hyperparameters set in every run on top of the grid (e.g.
+            ``{"sampler": "gaussian"}`` for VOO); they become part of every setting's
+            ``params``, so of its run id and label, and override a grid axis of the same
+            name.
+
+    Raises:
+        ValueError: also when a method does not accept a ``fixed`` parameter (the
+            message is the method's own, naming its valid fields).
 
     Methods listed in :data:`MIN_DIM` are skipped below their smallest dimension.
     """
@@ -265,7 +274,18 @@ def build_specs(
             f"instance must be an integer >= 0 (0 = the paper's functions), got {instance!r}"
         )
     instance = int(instance)
+    extra = dict(fixed or {})
     grids = {m: method_grid(m, grid) for m in dict.fromkeys(method_list)}
+    if extra:
+        for method, settings in grids.items():
+            grids[method] = list(
+                {params_key(s): s for s in ({**p, **extra} for p in settings)}.values()
+            )
+            for params in grids[method]:
+                try:
+                    make_config(method, **params)
+                except (TypeError, ValueError) as exc:
+                    raise ValueError(f"{method} with {params_key(params)}: {exc}") from None
     from voot.functions import get_function
 
     for function in dict.fromkeys(funcs):  # e.g. Shekel exists in 3, 10 and 20 dimensions only

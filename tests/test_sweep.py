@@ -324,3 +324,18 @@ def test_runs_execute_with_one_blas_thread() -> None:
 
     inside = threads(None)
     assert inside and all(n == 1 for n in inside)
+
+
+def test_fixed_parameters_join_every_setting_and_are_checked() -> None:
+    specs = build_specs(["griewank"], [3], ["voo"], [0], fixed={"sampler": "gaussian"})
+    assert len(specs) == len(method_grid("voo"))
+    assert all(dict(s.params)["sampler"] == "gaussian" for s in specs)
+    plain = build_specs(["griewank"], [3], ["voo"], [0])
+    assert {s.run_id for s in specs}.isdisjoint(s.run_id for s in plain)
+    # a fixed value overrides the grid axis of the same name: one setting left
+    one = build_specs(["griewank"], [3], ["voo"], [0], fixed={"omega": 0.1})
+    assert [dict(s.params) for s in one] == [{"omega": 0.1}]
+    with pytest.raises(ValueError, match=r"cmaes.*valid options"):
+        build_specs(["griewank"], [3], ["voo", "cmaes"], [0], fixed={"sampler": "gaussian"})
+    with pytest.raises(ValueError, match="valid samplers are"):
+        build_specs(["griewank"], [3], ["voo"], [0], fixed={"sampler": "gauss"})
