@@ -181,6 +181,17 @@ def method_colors(methods: Iterable[str]) -> dict[str, tuple[float, float, float
     return {m: cmap(rank[m] % 10) for m in methods}
 
 
+#: Fewest seeds for which a curve gets its confidence band: with two seeds the 95%
+#: t-interval is :math:`\pm 12.7\, s/\sqrt 2`, wide enough to hide every other curve.
+MIN_SEEDS_FOR_BAND = 3
+
+
+def curve_style(n_seeds: int) -> tuple[str, bool]:
+    """Line style of a mean curve over ``n_seeds`` seeds and whether it gets a band:
+    solid with a band from :data:`MIN_SEEDS_FOR_BAND` seeds on, else dashed without."""
+    return ("-", True) if n_seeds >= MIN_SEEDS_FOR_BAND else ("--", False)
+
+
 def plot_figure3(
     data: Sequence[MethodCurves],
     path: str | Path,
@@ -189,7 +200,11 @@ def plot_figure3(
     log: bool = False,
     dpi: int = 130,
 ) -> Path:
-    """Draw the Figure-3 grid to a PNG at ``path`` and return the path."""
+    """Draw the Figure-3 grid to a PNG at ``path`` and return the path.
+
+    Each curve is the mean over seeds with its 95% t-band; curves from fewer than
+    :data:`MIN_SEEDS_FOR_BAND` seeds are drawn dashed and without a band.
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
@@ -218,8 +233,9 @@ def plot_figure3(
             for c in sorted(cell, key=lambda c: methods.index(c.method)):
                 mean, half = t_interval(c.values)
                 x = np.arange(1, mean.size + 1)
-                (line,) = ax.plot(x, mean, color=colors[c.method], lw=1.4, label=c.method)
-                if np.any(np.isfinite(half)):
+                style, band = curve_style(c.n_seeds)
+                (line,) = ax.plot(x, mean, color=colors[c.method], lw=1.4, ls=style, label=c.method)
+                if band and np.any(np.isfinite(half)):
                     ax.fill_between(
                         x, mean - half, mean + half, color=colors[c.method], alpha=0.2, lw=0
                     )

@@ -7,7 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from voot.bench.plot import figure_data, final_table, plot_figure3, settings_table, t_interval
+from voot.bench.plot import (
+    MIN_SEEDS_FOR_BAND,
+    curve_style,
+    figure_data,
+    final_table,
+    plot_figure3,
+    settings_table,
+    t_interval,
+)
 from voot.bench.store import Row, make_row
 from voot.functions import get_function
 
@@ -86,6 +94,12 @@ def test_plot_writes_a_png(tmp_path: Path) -> None:
     assert log.stat().st_size > 10_000
     with pytest.raises(ValueError, match="no finished bbfo runs"):
         plot_figure3([], tmp_path / "empty.png")
+
+
+def test_curves_from_few_seeds_are_dashed_without_a_band() -> None:
+    assert MIN_SEEDS_FOR_BAND == 3
+    assert curve_style(2) == ("--", False) and curve_style(1) == ("--", False)
+    assert curve_style(3) == ("-", True) and curve_style(20) == ("-", True)
 
 
 def test_instances_are_plotted_apart(tmp_path: Path) -> None:
