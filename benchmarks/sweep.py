@@ -53,6 +53,7 @@ from typing import Any, ClassVar, Protocol, TypeVar
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from voot._workers import single_threaded_children
 from voot.bench.store import ResultStore, Row, make_row, make_run_id
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
@@ -466,21 +467,6 @@ class SerialBackend:
             yield fn(item)
 
 
-@contextlib.contextmanager
-def _single_threaded_children() -> Iterator[None]:
-    """Let worker processes start with one BLAS/OpenMP thread each (unless the user set
-    these variables): ``workers`` processes with many threads each oversubscribe the cores."""
-    names = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
-    added = [n for n in names if n not in os.environ]
-    for n in added:
-        os.environ[n] = "1"
-    try:
-        yield
-    finally:
-        for n in added:
-            os.environ.pop(n, None)
-
-
 def _terminate_workers(pool: ProcessPoolExecutor) -> None:
     """Kill the pool's worker processes (their runs are lost; nothing was written)."""
     terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
@@ -524,7 +510,7 @@ class ProcessBackend:
     def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
         ctx = multiprocessing.get_context(self.start_method)
         # Workers start on demand at submit(), so the environment stays set throughout.
-        with _single_threaded_children():
+        with single_threaded_children():
             pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
             completed = False
             try:

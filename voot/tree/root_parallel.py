@@ -84,6 +84,7 @@ from typing import Any, Protocol, TypeVar, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot._workers import single_threaded_children
 from voot.optim.base import FloatArray
 from voot.tree.config import MCTSConfig, planner_config
 from voot.tree.mcts import MCTS, PlanResult, check_n_simulations, problem_bounds
@@ -604,21 +605,6 @@ class SerialExecutor:
             yield fn(item)
 
 
-@contextlib.contextmanager
-def _single_threaded_children() -> Iterator[None]:
-    """Worker processes start with one BLAS/OpenMP thread each (unless the user set these
-    variables): ``K`` processes with many threads each would oversubscribe the cores."""
-    names = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
-    added = [n for n in names if n not in os.environ]
-    for n in added:
-        os.environ[n] = "1"
-    try:
-        yield
-    finally:
-        for n in added:
-            os.environ.pop(n, None)
-
-
 class LocalProcessExecutor:
     """A :class:`~concurrent.futures.ProcessPoolExecutor` kept between searches.
 
@@ -663,7 +649,7 @@ class LocalProcessExecutor:
     def map(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[R]:
         """Submit every item, yield results as they complete (the first error is raised)."""
         items = list(items)
-        with _single_threaded_children():
+        with single_threaded_children():
             if self._pool is None:
                 ctx = multiprocessing.get_context(self.start_method)
                 self._pool = ProcessPoolExecutor(
