@@ -21,9 +21,12 @@ MuJoCo model is loaded once per process (or Ray actor) instead of once per run.
 Per-problem planner settings (:func:`domain_options`) are the authors' where the
 reference page gives them: on the chains ``w = 100`` re-evaluations, no decay, root
 commitment 5 / 5 / 3, :math:`\\gamma = 0.9`; on the kitchen :math:`\\gamma = 0.9`, on the
-conveyor :math:`\\gamma = 0.99` with :math:`\\omega = 0.3` and 200 feasibility retries for
-progressive widening; VOO samples its best cell in ``centered_uniform`` mode on the
-chains and ``uniform`` mode on the robot domains.
+conveyor :math:`\\gamma = 0.99` with :math:`\\omega = 0.3` (v0: and 200 feasibility retries
+for progressive widening); VOO samples its best cell in ``centered_uniform`` mode on the
+chains and ``uniform`` mode on the robot domains. The v1 domains add the authors'
+tree-side rules (:data:`V1_TREE_RULES`: 50 retries for every planner, commitment
+counting root actions with reward >= 0 at thresholds 10 / 1, the return to the
+original root after a goal, VOO's per-operator distance).
 """
 
 from __future__ import annotations
@@ -45,7 +48,25 @@ CHAINS: Mapping[str, str] = {
 ALIASES: Mapping[str, str] = {
     "kitchen": "voot/KitchenClearing-v0",
     "conveyor": "voot/ConveyorPacking-v0",
+    "kitchen_v1": "voot/KitchenClearing-v1",
+    "conveyor_v1": "voot/ConveyorPacking-v1",
 }
+#: The robot domains under the authors' two-stage protocol, and their tree-side rules
+#: (reference page, "What the original code checks inside the retries"): commitment
+#: counts root actions with reward >= 0 and returns to the original root once a goal
+#: leaf exists; VOO measures the per-operator distance; 50 retries for every planner.
+V1_TREE_RULES: Mapping[str, Any] = {
+    "commit_min_reward": 0.0,
+    "commit_reset_on_goal": True,
+    "feasibility_retries": 50,
+}
+#: Root commitment thresholds of the v1 domains (kitchen 10, conveyor 1).
+V1_COMMITMENT: Mapping[str, int] = {
+    "voot/KitchenClearing-v1": 10,
+    "voot/ConveyorPacking-v1": 1,
+}
+KITCHEN_IDS = frozenset({"voot/KitchenClearing-v0", "voot/KitchenClearing-v1"})
+CONVEYOR_IDS = frozenset({"voot/ConveyorPacking-v0", "voot/ConveyorPacking-v1"})
 #: The chains' gymnasium ids -> function name (their ``dim`` keyword picks the settings).
 CHAIN_ENV_IDS: Mapping[str, str] = {
     "voot/ShekelChain-v0": "shekel",
@@ -80,6 +101,8 @@ PAPER_SETUPS: Mapping[str, PaperSetup] = {
     "chain": PaperSetup(10_000, 20, CHAIN_PLANNERS),
     "voot/KitchenClearing-v0": PaperSetup(2_000, 20, ROBOT_PLANNERS),
     "voot/ConveyorPacking-v0": PaperSetup(3_000, 50, ROBOT_PLANNERS),
+    "voot/KitchenClearing-v1": PaperSetup(2_000, 20, ROBOT_PLANNERS),
+    "voot/ConveyorPacking-v1": PaperSetup(3_000, 50, ROBOT_PLANNERS),
 }
 #: Budget of any other environment.
 DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)
@@ -167,18 +190,22 @@ def domain_options(
         if planner in VOO_PLANNERS:
             options["sampler_options"] = {"sampler": "centered_uniform"}
         return options
-    options = {}
-    if problem == ALIASES["kitchen"]:
+    options: dict[str, Any] = {}
+    if problem in KITCHEN_IDS:
         options["gamma"] = 0.9
-    elif problem == ALIASES["conveyor"]:
+    elif problem in CONVEYOR_IDS:
         options["gamma"] = 0.99
-        if planner in PW_PLANNERS:
+        if planner in PW_PLANNERS and problem == ALIASES["conveyor"]:
             options["feasibility_retries"] = 200
+    if problem in V1_COMMITMENT:
+        options.update(V1_TREE_RULES, root_commitment=V1_COMMITMENT[problem])
     if problem in ALIASES.values() and planner in VOO_PLANNERS:
         voo: dict[str, Any] = {"sampler": "uniform"}
-        if problem == ALIASES["conveyor"]:
+        if problem in CONVEYOR_IDS:
             voo["omega"] = 0.3
         options["sampler_options"] = voo
+        if problem in V1_COMMITMENT:
+            options["use_problem_metric"] = True
     return options
 
 

@@ -29,7 +29,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from types import MappingProxyType
 from typing import Any
 
 import gymnasium as gym
@@ -54,16 +56,20 @@ from voot.envs.task_env import (
     StepTiming,
     add_marker_box,
     check_bounds,
+    check_options,
     check_pose,
     check_positive,
     check_range,
     denormalize,
     pose_tuple,
+    preset_config,
 )
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
+#: What a planner's pre-check of an action covers (:attr:`ConveyorConfig.precheck`).
+PRECHECKS = ("full_step", "kinematic")
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
@@ -92,6 +98,12 @@ class ConveyorConfig:
         infeasible_reward: Reward of an infeasible action.
         horizon: Steps after which an episode is truncated.
         render_overlays: Draw the loading region in rendered images.
+        precheck: What the planners' pre-check of an action covers (stage 1 of
+            :mod:`voot.tree.problem`; :meth:`ConveyorPackingEnv.precheck`).
+            ``"full_step"`` (v0): the whole step. ``"kinematic"`` (v1, the authors'
+            code): the three placements' region and collision checks, in sequence; the
+            base paths (through the door, which the big boxes' carry disc cannot pass)
+            are found only when the action is executed.
         ik: IK settings.
         planner: Base planner settings.
     """
@@ -109,6 +121,7 @@ class ConveyorConfig:
     infeasible_reward: float = -2.0
     horizon: int = 20
     render_overlays: bool = True
+    precheck: str = "full_step"
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -144,6 +157,10 @@ class ConveyorConfig:
         object.__setattr__(self, "infeasible_reward", r)
         if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
             raise ValueError(f"ConveyorConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        if self.precheck not in PRECHECKS:
+            raise ValueError(
+                f"ConveyorConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+            )
         if not isinstance(self.ik, IKConfig):
             raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
         if not isinstance(self.planner, BasePlannerConfig):
@@ -156,6 +173,19 @@ class ConveyorConfig:
         """Ranges of one placement's parameters (x, y, theta)."""
         r = self.loading_region
         return ((r[0], r[1]), (r[2], r[3]), self.place_theta)
+
+
+#: Named versions of the domain: :class:`ConveyorConfig` overrides (see
+#: :data:`voot.envs.kitchen.KITCHEN_PRESETS`).
+CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
+)
+
+
+def conveyor_config(preset: str = "v0", **overrides: Any) -> ConveyorConfig:
+    """The :class:`ConveyorConfig` of a named version (:data:`CONVEYOR_PRESETS`)."""
+    config: ConveyorConfig = preset_config(ConveyorConfig, CONVEYOR_PRESETS, preset, **overrides)
+    return config
 
 
 @dataclass(frozen=True)
@@ -186,10 +216,13 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     """The conveyor-belt packing domain as a gymnasium environment (module docstring).
 
     Args:
-        config: Settings; defaults to :class:`ConveyorConfig` (the paper's values).
+        config: Settings; defaults to the ``preset``'s :class:`ConveyorConfig`.
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"``.
         render_size: ``(width, height)`` of rendered images.
+        preset: The domain version when ``config`` is None: ``"v0"`` or ``"v1"``
+            (:data:`CONVEYOR_PRESETS`; ``voot/ConveyorPacking-v1`` passes ``"v1"``).
+        **options: :class:`ConveyorConfig` fields overriding the config's.
 
     Raises:
         RuntimeError: If the fixed grasp of some box is infeasible (a broken scene).
@@ -201,10 +234,17 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         render_mode: str | None = None,
         render_camera: str = "perspective",
         render_size: tuple[int, int] = (640, 480),
+        preset: str = "v0",
+        **options: Any,
     ) -> None:
-        self.config = config if config is not None else ConveyorConfig()
-        if not isinstance(self.config, ConveyorConfig):
-            raise ValueError(f"config must be a ConveyorConfig, got {type(self.config).__name__}")
+        if config is None:
+            config = conveyor_config(preset)
+        if not isinstance(config, ConveyorConfig):
+            raise ValueError(f"config must be a ConveyorConfig, got {type(config).__name__}")
+        if options:
+            check_options(ConveyorConfig, options)
+            config = replace(config, **options)
+        self.config = config
         cfg = self.config
         super().__init__(
             "conveyor", cfg.workspace, cfg.ik, cfg.planner, render_mode, render_camera, render_size
@@ -397,22 +437,13 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         in collision checks and base planning.
         """
         cfg = self.config
-        col_time = plan_time = 0.0
+        plan_time = 0.0
         x, y, theta = (float(v) for v in xyt)
-        box = object_footprint(self.objects[i], x, y, theta)
-        if not rect_inside(box, cfg.loading_region):
-            return "outside region: the box leaves the loading region", col_time, plan_time
+        reason, col_time = self._place_kinematics(i, xyt, moved)
+        if reason:
+            return reason, col_time, plan_time
         pick = self.picks[i]
         base = self.place_base_pose(i, (x, y, theta))
-        if not rect_inside(base_footprint(base), cfg.workspace):
-            return "outside region: the robot leaves the workspace", col_time, plan_time
-        t0 = time.perf_counter()
-        poses = dict(moved)
-        poses[i] = (x, y, 0.0, theta)
-        report = self.collision.check(self.data.qpos, base, pick.arm_q, held=i, object_poses=poses)
-        col_time = time.perf_counter() - t0
-        if not report.free:
-            return "collision: " + ", ".join(report.hits), col_time, plan_time
         t0 = time.perf_counter()
         movable = [self.object_box(j) for j in range(self.task.placed)] + [
             object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
@@ -427,6 +458,73 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         lengths.append(float(base_path.length))
         paths.append(base_path.waypoints)
         return "", col_time, plan_time
+
+    def _place_kinematics(
+        self,
+        i: int,
+        xyt: FloatArray,
+        moved: dict[int, tuple[float, float, float, float]],
+    ) -> tuple[str, float]:
+        """Region and collision checks of placing box ``i`` at ``xyt`` after ``moved``.
+
+        Returns why it fails (``""`` if it passes) and the seconds spent in collision
+        checks. Changes nothing.
+        """
+        cfg = self.config
+        x, y, theta = (float(v) for v in xyt)
+        box = object_footprint(self.objects[i], x, y, theta)
+        if not rect_inside(box, cfg.loading_region):
+            return "outside region: the box leaves the loading region", 0.0
+        base = self.place_base_pose(i, (x, y, theta))
+        if not rect_inside(base_footprint(base), cfg.workspace):
+            return "outside region: the robot leaves the workspace", 0.0
+        t0 = time.perf_counter()
+        poses = dict(moved)
+        poses[i] = (x, y, 0.0, theta)
+        report = self.collision.check(
+            self.data.qpos, base, self.picks[i].arm_q, held=i, object_poses=poses
+        )
+        col_time = time.perf_counter() - t0
+        if not report.free:
+            return "collision: " + ", ".join(report.hits), col_time
+        return "", col_time
+
+    def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
+        """The cheap kinematic check of ``action`` in the current state (changes nothing).
+
+        Stage 1 of the authors' two-stage feasibility (:mod:`voot.tree.problem`): the
+        placements' region and collision checks in sequence, each seeing the ones before
+        it; the first failure rejects the whole action. The base paths are left to
+        :meth:`step`. Returns whether it passes and an info with ``feasible``,
+        ``reason``, ``placement(s)`` and ``base_pose(s)``.
+        """
+        a, _ = self._validate_action(action)
+        cfg, t = self.config, self.task
+        if t.done or t.steps >= cfg.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        m = min(OBJECTS_PER_ACTION, self.n - t.placed)
+        params = [denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)]
+        placements = tuple(pose_tuple(p) for p in params)
+        bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
+        moved: dict[int, tuple[float, float, float, float]] = {}
+        reason = ""
+        for k in range(m):
+            i = t.placed + k
+            reason, _ = self._place_kinematics(i, params[k], moved)
+            if reason:
+                reason = f"box {k + 1}/{m} ({self.objects[i].name}): {reason}"
+                break
+            x, y, theta = placements[k]
+            moved[i] = (x, y, 0.0, theta)
+        return not reason, {
+            "operator": "place",
+            "feasible": not reason,
+            "reason": reason,
+            "placement": placements[0],
+            "base_pose": bases[0],
+            "placements": placements,
+            "base_poses": bases,
+        }
 
     # ----- rendering -----------------------------------------------------------------------
     def _decorate(self, scene: mujoco.MjvScene) -> None:

@@ -49,7 +49,9 @@ from __future__ import annotations
 import itertools
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from types import MappingProxyType
 from typing import Any
 
 import gymnasium as gym
@@ -78,11 +80,13 @@ from voot.envs.task_env import (
     add_marker_box,
     add_marker_segment,
     check_bounds,
+    check_options,
     check_pose,
     check_positive,
     check_range,
     denormalize,
     pose_tuple,
+    preset_config,
 )
 from voot.optim.base import Bounds
 
@@ -90,6 +94,24 @@ FloatArray = NDArray[np.float64]
 
 #: Operators, in the order actions alternate.
 OPERATORS = ("pick", "place")
+#: What a planner's pre-check of an action covers (:attr:`KitchenConfig.precheck`).
+PRECHECKS = ("full_step", "kinematic")
+#: Named versions of the domain: :class:`KitchenConfig` overrides. ``v0`` is the first
+#: release (every check inside the planners' retries); ``v1`` is the authors' protocol
+#: (two-stage feasibility, see the reference page and docs/environments.md).
+KITCHEN_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {
+        "v0": MappingProxyType({}),
+        "v1": MappingProxyType(
+            {
+                "precheck": "kinematic",
+                "nonclearing_penalty_infeasible": True,
+                "pick_requires_free_carry": False,
+                "pick_base_path": True,
+            }
+        ),
+    }
+)
 
 
 @dataclass(frozen=True)
@@ -126,6 +148,22 @@ class KitchenConfig:
             the disc model's dead ends (a pick whose carry disc already overlaps a counter,
             a wall or an object leaves every placement without a base path). True by
             default; False restores the plain IK/collision/region check.
+        precheck: What the planners' pre-check of an action covers (stage 1 of
+            :mod:`voot.tree.problem`; :meth:`KitchenClearingEnv.precheck`).
+            ``"full_step"`` (v0): the whole step, so every infeasible draw is re-drawn
+            before it costs a simulation. ``"kinematic"`` (v1, the authors' code): pick
+            = region, collision, IK, collision while holding; place = region and
+            collision. The forbidden rooms and the base paths are then found only when
+            the action is executed, and a failure there ends the simulation with -2.
+        nonclearing_penalty_infeasible: A place that clears nothing and whose penalty
+            reaches the cap (``max(-L, -2) == -2``, base path ``L >= 2``) is infeasible:
+            the state does not change and the simulation ends (the authors' tree tests
+            infeasibility as ``reward == -2``). False (v0): it is a feasible step.
+        pick_base_path: A pick is executed only if a base path exists from the robot's
+            pose to the pick pose (robot disc; the object to pick is left out of the
+            obstacles, since the disc is coarser than the robot's collision geometry,
+            which the pre-check tests against it). Reason ``no base path to the pick``.
+            False (v0): the robot reaches every pick pose that passes the checks.
         ik: IK settings.
         planner: Base planner settings.
     """
@@ -151,6 +189,9 @@ class KitchenConfig:
     horizon: int = 50
     render_overlays: bool = True
     pick_requires_free_carry: bool = True
+    precheck: str = "full_step"
+    nonclearing_penalty_infeasible: bool = False
+    pick_base_path: bool = False
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -191,7 +232,15 @@ class KitchenConfig:
         object.__setattr__(self, "infeasible_reward", r)
         if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
             raise ValueError(f"KitchenConfig.horizon must be an int >= 1, got {self.horizon!r}")
-        for name in ("pick_requires_free_carry",):
+        if self.precheck not in PRECHECKS:
+            raise ValueError(
+                f"KitchenConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+            )
+        for name in (
+            "pick_requires_free_carry",
+            "nonclearing_penalty_infeasible",
+            "pick_base_path",
+        ):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(
                     f"KitchenConfig.{name} must be a bool (True or False), "
@@ -220,6 +269,16 @@ class KitchenConfig:
     def place_ranges(self) -> tuple[tuple[float, float], ...]:
         """The place parameters' ranges (x, y, theta), in action order."""
         return ((self.house[0], self.house[1]), (self.house[2], self.house[3]), self.place_theta)
+
+
+def kitchen_config(preset: str = "v0", **overrides: Any) -> KitchenConfig:
+    """The :class:`KitchenConfig` of a named version (:data:`KITCHEN_PRESETS`).
+
+    >>> kitchen_config("v1").precheck
+    'kinematic'
+    """
+    config: KitchenConfig = preset_config(KitchenConfig, KITCHEN_PRESETS, preset, **overrides)
+    return config
 
 
 @dataclass(frozen=True)
@@ -251,13 +310,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     """The object-clearing domain as a gymnasium environment (see the module docstring).
 
     Args:
-        config: Settings; defaults to :class:`KitchenConfig` (the paper's values).
+        config: Settings; defaults to the ``preset``'s :class:`KitchenConfig`.
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"``.
         render_size: ``(width, height)`` of rendered images.
-        pick_requires_free_carry: If not None, overrides
-            :attr:`KitchenConfig.pick_requires_free_carry` (so that
-            ``gym.make("voot/KitchenClearing-v0", pick_requires_free_carry=False)`` works).
+        preset: The domain version when ``config`` is None: ``"v0"`` or ``"v1"``
+            (:data:`KITCHEN_PRESETS`; ``voot/KitchenClearing-v1`` passes ``"v1"``).
+        **options: :class:`KitchenConfig` fields overriding the config's (so that
+            ``gym.make("voot/KitchenClearing-v1", pick_requires_free_carry=True)`` works).
     """
 
     def __init__(
@@ -266,14 +326,17 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         render_mode: str | None = None,
         render_camera: str = "perspective",
         render_size: tuple[int, int] = (640, 480),
-        pick_requires_free_carry: bool | None = None,
+        preset: str = "v0",
+        **options: Any,
     ) -> None:
-        self.config = config if config is not None else KitchenConfig()
-        if not isinstance(self.config, KitchenConfig):
-            raise ValueError(f"config must be a KitchenConfig, got {type(self.config).__name__}")
-        if pick_requires_free_carry is not None:
-            # validated by KitchenConfig.__post_init__
-            self.config = replace(self.config, pick_requires_free_carry=pick_requires_free_carry)
+        if config is None:
+            config = kitchen_config(preset)
+        if not isinstance(config, KitchenConfig):
+            raise ValueError(f"config must be a KitchenConfig, got {type(config).__name__}")
+        if options:
+            check_options(KitchenConfig, options)
+            config = replace(config, **options)
+        self.config = config
         cfg = self.config
         # the fixed path and handling order are needed by _initial_task (called by super)
         self._path: BasePath | None = None
@@ -453,14 +516,22 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
         return np.array([bx, by, heading])
 
-    def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
+    def _pick_kinematics(
+        self, params: FloatArray
+    ) -> tuple[str, FloatArray, Any, tuple[float, float, float]]:
+        """The pick's kinematic checks (its pre-check): why it fails ('' if it passes).
+
+        Also returns the base pose, the IK solution and the object's pose in the base
+        frame (None and zeros where the check stopped before them). Changes nothing.
+        """
         cfg, t = self.config, self.task
         obj = t.on_path[0]
         ik_time = col_time = 0.0
+        no_rel = (0.0, 0.0, 0.0)
         base = self.pick_base_pose(obj, params)
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
-            return self._infeasible("pick", obj, "outside region: the robot leaves the house", base)
+            return "outside region: the robot leaves the house", base, None, no_rel
         pose = self.object_pose(obj)
         grasp = side_grasp(
             self.objects[obj],
@@ -476,7 +547,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         col_time = time.perf_counter() - t0
         if not base_report.free:
             self.last_timing = StepTiming(collision=col_time)
-            return self._infeasible("pick", obj, "collision: " + ", ".join(base_report.hits), base)
+            return "collision: " + ", ".join(base_report.hits), base, None, no_rel
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
         target_r = rb.T @ grasp.rotation
@@ -485,13 +556,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         ik_time = time.perf_counter() - t0
         if not ik.success or ik.q is None:
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
-            return self._infeasible("pick", obj, f"IK failed: {ik.reason}", base)
+            return f"IK failed: {ik.reason}", base, None, no_rel
         t0 = time.perf_counter()
         report = self.collision.check(self.data.qpos, base, ik.q, held=obj)
         col_time += time.perf_counter() - t0
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
-            return self._infeasible("pick", obj, "collision: " + ", ".join(report.hits), base)
+            return "collision: " + ", ".join(report.hits), base, None, no_rel
         rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
         held_rel = (float(rel[0]), float(rel[1]), float(rel[2]))
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
@@ -500,8 +571,31 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             col_time += time.perf_counter() - t0
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
             if carry_reason:
-                return self._infeasible("pick", obj, carry_reason, base)
-        self._set_robot(base, ik.q)
+                return carry_reason, base, None, no_rel
+        return "", base, ik.q, held_rel
+
+    def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
+        cfg, t = self.config, self.task
+        obj = t.on_path[0]
+        reason, base, q, held_rel = self._pick_kinematics(params)
+        if reason:
+            return self._infeasible("pick", obj, reason, base)
+        assert q is not None
+        path_length, path_points = 0.0, None
+        if cfg.pick_base_path:
+            t0 = time.perf_counter()
+            path = self.planner.plan(
+                self.robot.base_pose(self.data),
+                base,
+                cfg.robot_radius,
+                self.object_boxes(exclude=(obj,)),
+            )
+            timing = self.last_timing
+            self.last_timing = replace(timing, planning=time.perf_counter() - t0)
+            if path is None:
+                return self._infeasible("pick", obj, "no base path to the pick", base)
+            path_length, path_points = float(path.length), path.waypoints
+        self._set_robot(base, q)
         reward = cfg.pick_reward if t.last_place_cleared else 0.0
         self.task = replace(
             t,
@@ -509,17 +603,74 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             operator="place",
             held=obj,
             held_rel=held_rel,
-            grasp_q=tuple(float(v) for v in ik.q),
+            grasp_q=tuple(float(v) for v in q),
         )
         return reward, {
             "operator": "pick",
             "object": self.objects[obj].name,
             "feasible": True,
             "reason": "",
-            "base_path_length": 0.0,
-            "base_path": None,
+            "base_path_length": path_length,
+            "base_path": path_points,
             "base_pose": pose_tuple(base),
             "placement": None,
+        }
+
+    def _place_kinematics(
+        self, params: FloatArray
+    ) -> tuple[str, FloatArray, tuple[float, float, float]]:
+        """The place's kinematic checks (its pre-check, without the forbidden rooms and
+        the base path): why it fails ('' if it passes), the base pose and the placement.
+        """
+        cfg, t = self.config, self.task
+        obj = t.held
+        x, y, theta = (float(v) for v in params)
+        new_box = object_footprint(self.objects[obj], x, y, theta)
+        base = compose2d((x, y, theta), inverse2d(t.held_rel))
+        placement = (x, y, theta)
+        if not rect_inside(new_box, cfg.house):
+            return "outside region: the object leaves the house", base, placement
+        if not rect_inside(base_footprint(base), cfg.house):
+            return "outside region: the robot leaves the house", base, placement
+        z = float(self.object_pose(obj)[2])
+        report = self.collision.check(
+            self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
+        )
+        if not report.free:
+            return "collision: " + ", ".join(report.hits), base, placement
+        return "", base, placement
+
+    def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
+        """The cheap kinematic check of ``action`` in the current state (changes nothing).
+
+        Stage 1 of the authors' two-stage feasibility (:mod:`voot.tree.problem`): a pick
+        passes if the robot stays in the house, IK reaches the grasp and nothing collides
+        (with ``pick_requires_free_carry``, also the carry disc); a place if object and
+        robot stay in the house and nothing collides. The forbidden rooms and the base
+        paths are left to :meth:`step`. Returns whether it passes and an info with the
+        keys of an infeasible step's info (``feasible``, ``reason``, ``operator``,
+        ``object``, ``base_pose``, ``placement``).
+        """
+        a, _ = self._validate_action(action)
+        t = self.task
+        if t.done or t.steps >= self.config.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        placement: tuple[float, float, float] | None = None
+        if t.operator == "pick":
+            obj = t.on_path[0]
+            reason, base, _, _ = self._pick_kinematics(denormalize(a, self.config.pick_ranges))
+        else:
+            obj = t.held
+            reason, base, placement = self._place_kinematics(
+                denormalize(a[:3], self.config.place_ranges)
+            )
+        return not reason, {
+            "operator": t.operator,
+            "object": self.objects[obj].name,
+            "feasible": not reason,
+            "reason": reason,
+            "base_pose": pose_tuple(base),
+            "placement": placement,
         }
 
     def held_disc(self) -> CarryDisc:
@@ -619,11 +770,22 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if path is None:
             return self._infeasible("place", obj, "no base path", base, placement)
         base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        before = self.data.qpos.copy() if cfg.nonclearing_penalty_infeasible else None
         set_object_pose(self.data, self.objects[obj], (x, y, z, theta))
         self._set_robot(base)
         on_path = self._on_path()
         cleared = len(on_path) < len(t.on_path)
         length = float(base_path.length)
+        if before is not None and not cleared and length >= cfg.max_place_penalty:
+            self.data.qpos[:] = before
+            return self._infeasible(
+                "place",
+                obj,
+                f"non-clearing place at the penalty cap (base path {length:.2f} m >="
+                f" {cfg.max_place_penalty:g})",
+                base,
+                placement,
+            )
         if cleared:
             reward = (
                 cfg.max_place_reward if length <= 0 else min(1.0 / length, cfg.max_place_reward)

@@ -13,12 +13,22 @@
   env and returns a :class:`~voot.tree.problem.StepResult` whose ``reward`` excludes the
   goal bonus, ``bonus`` is ``info["goal_bonus"]``, ``feasible`` is ``info["feasible"]``
   and ``terminal`` is terminated or truncated;
-* ``is_feasible(action)`` steps, records the result and restores; the following
-  ``step`` with the same action from the same state reuses the recorded result, so a
-  feasibility check followed by its execution costs one simulation (the envs are
-  deterministic, so the reuse is exact). :attr:`EnvProblem.last_check` keeps the
-  :class:`~voot.tree.problem.StepResult` of the last check (its info says where a
-  rejected proposal would have put the robot and the object).
+* ``is_feasible(action)`` is the pre-check (stage 1 of :mod:`voot.tree.problem`) that
+  the env's ``config.precheck`` names:
+
+  - ``"full_step"`` (v0): it steps, records the result and restores; the following
+    ``step`` with the same action from the same state reuses the recorded result, so a
+    check followed by its execution costs one simulation (the envs are deterministic,
+    so the reuse is exact);
+  - ``"kinematic"`` (v1, the authors' protocol): the env's ``precheck(action)``, which
+    copies no state and steps nothing; the forbidden rooms and the base paths are
+    found by ``step``.
+
+  :attr:`EnvProblem.last_check` keeps a :class:`~voot.tree.problem.StepResult` of the
+  last check (its info says where a rejected proposal would have put the robot and the
+  object);
+* ``action_metric()`` is the authors' per-operator distance in the planner's units
+  (:mod:`voot.envs.metrics`), for ``MCTSConfig.use_problem_metric``.
 
 It steps ``env.unwrapped`` directly (gymnasium's wrappers add nothing a planner needs;
 the envs truncate at their own horizon).
@@ -34,9 +44,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot.envs.conveyor import OBJECTS_PER_ACTION, ConveyorPackingEnv
 from voot.envs.kitchen import KitchenClearingEnv
+from voot.envs.metrics import pick_distance, place_distance, to_action_units
 from voot.envs.task_env import EnvState, ManipulationEnv, normalize
 from voot.optim.base import Bounds
-from voot.tree.problem import StepResult
+from voot.tree.problem import ActionDistance, StepResult
 
 FloatArray = NDArray[np.float64]
 
@@ -73,6 +84,8 @@ class EnvProblem:
         self._cache: tuple[int, bytes, StepResult, EnvState[Any]] | None = None
         #: The result of the last :meth:`is_feasible` call (None before the first).
         self.last_check: StepResult | None = None
+        self._kinematic = u.config.precheck == "kinematic"
+        self._metrics: dict[str, ActionDistance] = {}
         if seed is not None:
             u.reset(seed=seed)
 
@@ -132,7 +145,12 @@ class EnvProblem:
         return self._run(action)
 
     def is_feasible(self, action: ArrayLike) -> bool:
-        """Would ``action`` be feasible now? (The state is left unchanged.)"""
+        """Does ``action`` pass the env's pre-check now? (The state is left unchanged.)"""
+        if self._kinematic:
+            ok, info = self.unwrapped.precheck(self.to_env_action(action))
+            reward = 0.0 if ok else float(self.unwrapped.config.infeasible_reward)
+            self.last_check = StepResult(reward=reward, feasible=ok, info=info)
+            return ok
         before = self.unwrapped.get_state()
         res = self._run(action)
         after = self.unwrapped.get_state()
@@ -140,3 +158,28 @@ class EnvProblem:
         self._cache = (self._version, np.asarray(action, dtype=np.float64).tobytes(), res, after)
         self.last_check = res
         return res.feasible
+
+    def action_metric(self) -> ActionDistance:
+        """The authors' distance between actions of the current operator (planner units)."""
+        u = self.unwrapped
+        key = u.task.operator if isinstance(u, KitchenClearingEnv) else "place"
+        metric = self._metrics.get(key)
+        if metric is None:
+            ranges = self._ranges()
+            lo = np.array([r[0] for r in ranges])
+            hi = np.array([r[1] for r in ranges])
+            if self.units == "paper":
+                scale, offset = np.ones_like(lo), np.zeros_like(lo)
+            else:  # paper = lo + (a + 1) (hi - lo) / 2
+                scale, offset = 0.5 * (hi - lo), lo + 0.5 * (hi - lo)
+            if isinstance(u, KitchenClearingEnv):
+                base = (
+                    pick_distance(u.config.planner.rotation_weight)
+                    if key == "pick"
+                    else place_distance()
+                )
+            else:
+                base = place_distance(OBJECTS_PER_ACTION)
+            metric = to_action_units(base, scale, offset)
+            self._metrics[key] = metric
+        return metric

@@ -28,6 +28,7 @@ gives bit-identical observation, reward and info, also in another process: every
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import os
 import sys
@@ -143,6 +144,26 @@ def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
     if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise ValueError(f"{name} must be a finite number {'>=' if allow_zero else '>'} 0, got {v}")
     return v
+
+
+def check_options(config_class: Any, options: Mapping[str, Any]) -> None:
+    """Raise a ValueError naming the valid fields if ``options`` has an unknown one."""
+    valid = sorted(f.name for f in dataclasses.fields(config_class))
+    unknown = sorted(set(options) - set(valid))
+    if unknown:
+        raise ValueError(
+            f"unknown option(s) {unknown} for {config_class.__name__}; valid options are: {valid}"
+        )
+
+
+def preset_config(
+    config_class: Any, presets: Mapping[str, Mapping[str, Any]], preset: str, **overrides: Any
+) -> Any:
+    """``config_class`` at a named preset (a domain version), some fields overridden."""
+    if preset not in presets:
+        raise ValueError(f"unknown preset {preset!r}; valid presets are: {', '.join(presets)}")
+    check_options(config_class, overrides)
+    return config_class(**{**presets[preset], **overrides})
 
 
 TaskT = TypeVar("TaskT")

@@ -14,6 +14,15 @@ ENV_IDS: dict[str, str] = {
     # MuJoCo benchmark domains (voot.envs; need the [envs] extra); keyword: config=...
     "voot/KitchenClearing-v0": "voot.envs.kitchen:KitchenClearingEnv",
     "voot/ConveyorPacking-v0": "voot.envs.conveyor:ConveyorPackingEnv",
+    # The same domains under the authors' protocol (two-stage feasibility, see
+    # docs/environments.md): the entry points above at their "v1" preset.
+    "voot/KitchenClearing-v1": "voot.envs.kitchen:KitchenClearingEnv",
+    "voot/ConveyorPacking-v1": "voot.envs.conveyor:ConveyorPackingEnv",
+}
+#: id -> keyword arguments registered with it.
+ENV_KWARGS: dict[str, dict[str, str]] = {
+    "voot/KitchenClearing-v1": {"preset": "v1"},
+    "voot/ConveyorPacking-v1": {"preset": "v1"},
 }
 
 
@@ -25,4 +34,6 @@ def register_envs() -> None:
         return
     for env_id, entry_point in ENV_IDS.items():
         if env_id not in gymnasium.registry:
-            gymnasium.register(id=env_id, entry_point=entry_point)
+            gymnasium.register(
+                id=env_id, entry_point=entry_point, kwargs=dict(ENV_KWARGS.get(env_id, {}))
+            )

@@ -35,7 +35,7 @@ from voot.tree.gym_adapters import GymProblem, MujocoGymProblem
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.mcts import MCTS, PlanResult, plan
 from voot.tree.node import Node
-from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.problem import ActionMetric, FeasibilityCheck, PlanningProblem, StepResult
 from voot.tree.root_parallel import (
     LocalProcessExecutor,
     MergeRule,
@@ -52,6 +52,7 @@ __all__ = [
     "HOO",
     "MCTS",
     "PLANNERS",
+    "ActionMetric",
     "ActionSampler",
     "Backup",
     "BestReturnOver",

@@ -181,6 +181,18 @@ class MCTSConfig:
             :math:`2c` with a swept :math:`c`).
         best_return_over: paths the reported best return is a maximum over, see
             :class:`BestReturnOver`.
+        commit_min_reward: which root actions count towards ``root_commitment``: the
+            feasible ones with a reward of at least this (the authors' code on the robot
+            domains: 0.0, so at a kitchen place root only clearing places count). None
+            counts every feasible action.
+        commit_reset_on_goal: once a terminal leaf (the goal) has been found, a
+            commitment returns the root to the original root and doubles the threshold,
+            instead of moving down (the authors' code). Off: the root keeps moving down.
+        use_problem_metric: the per-node optimiser measures distances with the
+            problem's ``action_metric()`` for the node's state (e.g. the authors'
+            per-operator distance: places compare x, y only). Needs a sampler with a
+            ``metric`` option (VOO); ignored for the others and for problems without
+            the method. Off: Euclidean distance in the action box.
     """
 
     sampler: str = "voo"
@@ -200,6 +212,9 @@ class MCTSConfig:
     pw_alpha: float = 0.5
     ucb_c: float = 1.0
     best_return_over: BestReturnOver | str = BestReturnOver.LEAVES
+    commit_min_reward: float | None = None
+    commit_reset_on_goal: bool = False
+    use_problem_metric: bool = False
 
     def __post_init__(self) -> None:
         sampler = str(self.sampler).strip().lower().replace("-", "_")
@@ -244,7 +259,12 @@ class MCTSConfig:
         object.__setattr__(
             self, "final_action", _choice(FinalAction, self.final_action, "final_action")
         )
-        for name in ("terminal_child_forces_new", "voo_uniform_until_feasible"):
+        for name in (
+            "terminal_child_forces_new",
+            "voo_uniform_until_feasible",
+            "commit_reset_on_goal",
+            "use_problem_metric",
+        ):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
         pw_k = _number(self.pw_k, "pw_k", low=0.0)
@@ -258,6 +278,12 @@ class MCTSConfig:
             "best_return_over",
             _choice(BestReturnOver, self.best_return_over, "best_return_over"),
         )
+        if self.commit_min_reward is not None:
+            object.__setattr__(
+                self,
+                "commit_min_reward",
+                _number(self.commit_min_reward, "commit_min_reward", low=-math.inf),
+            )
         # Build the sampler's config once, so that bad options fail here, not mid-search.
         self.sampler_config()
 

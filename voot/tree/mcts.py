@@ -29,7 +29,7 @@ import heapq
 import math
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -174,6 +174,16 @@ class MCTS:
         check = getattr(problem, "is_feasible", None)
         self._check: Callable[[FloatArray], bool] | None = check if callable(check) else None
         self._sampler_config = cfg.sampler_config()
+        # The problem's per-state distance (ActionMetric), if asked for and usable.
+        metric = getattr(problem, "action_metric", None)
+        self._metric: Callable[[], Any] | None = (
+            metric
+            if cfg.use_problem_metric
+            and callable(metric)
+            and hasattr(self._sampler_config, "metric")
+            else None
+        )
+        self._metric_configs: dict[Any, Any] = {}
         self._optimizer_class: Any = None
         if cfg.sampler not in ("uniform", "hoo"):
             from voot.optim.registry import optimizer_class
@@ -199,6 +209,7 @@ class MCTS:
         self._prefix: list[tuple[Node, int]] = []
         self._at: Node | None = None
         self._commit_threshold = self.config.root_commitment
+        self._goal_found = False
         self._leaves: list[tuple[float, int]] = [(-root.path_return, root.id)]
         self._best_node = root
         self._has_complete = False
@@ -479,12 +490,25 @@ class MCTS:
             else:
                 node.sampler = make_optimizer_sampler(
                     self._optimizer_class,
-                    self._sampler_config,
+                    self._node_sampler_config(),
                     node.bounds,
                     self.rng,
                     cfg.voo_uniform_until_feasible and cfg.sampler == "voo",
                 )
         return node.sampler
+
+    def _node_sampler_config(self) -> Any:
+        """The sampler config for the problem's current state (its metric, if used)."""
+        if self._metric is None:
+            return self._sampler_config
+        metric = self._metric()
+        if metric is None:
+            return self._sampler_config
+        config = self._metric_configs.get(metric)
+        if config is None:
+            config = replace(self._sampler_config, metric=metric)
+            self._metric_configs[metric] = config
+        return config
 
     def _new_action(self, node: Node) -> int:
         self._goto(node)
@@ -560,6 +584,8 @@ class MCTS:
             node.n_feasible += 1
         if terminal:
             node.n_terminal_children += 1
+            if feasible:
+                self._goal_found = True
         mode = self.config.best_return_over
         if mode is BestReturnOver.LEAVES:
             heapq.heappush(self._leaves, (-child.path_return, child.id))
@@ -579,11 +605,30 @@ class MCTS:
         return node.terminal or node.infeasible or (H is not None and node.depth >= H)
 
     # ----- root commitment -----------------------------------------------------------------
+    def _n_commit_actions(self, node: Node) -> int:
+        """The root actions that count towards commitment (see ``commit_min_reward``)."""
+        low = self.config.commit_min_reward
+        if low is None:
+            return node.n_feasible
+        return sum(1 for r, f in zip(node.rewards, node.feasible, strict=True) if f and r >= low)
+
     def _maybe_commit(self) -> None:
-        """Move the root to its best feasible child once it has enough feasible actions."""
+        """Move the root to its best feasible child once it has enough counted actions.
+
+        With ``commit_reset_on_goal``, once a goal leaf exists the root goes back to the
+        original root instead (and the threshold doubles), so that the search improves
+        the whole plan rather than only its tail.
+        """
         threshold = self._commit_threshold
         root = self.current_root
         if threshold is None or root.n_feasible < threshold:
+            return
+        if self._n_commit_actions(root) < threshold:
+            return
+        if self.config.commit_reset_on_goal and self._goal_found:
+            self._commit_threshold = 2 * threshold
+            self._prefix.clear()
+            self.current_root = self.root
             return
         if root.n_terminal_children:  # the original: stay, and ask for more next time
             self._commit_threshold = 2 * threshold

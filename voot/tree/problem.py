@@ -6,8 +6,30 @@ A planner needs, from any deterministic world:
 * ``restore(snapshot)``: go back to that state exactly;
 * ``step(action)``: apply an action, returning a :class:`StepResult`;
 * ``action_bounds()``: the action box in the *current* state (a pick node and a place
-  node may differ);
-* optionally ``is_feasible(action)``: a feasibility check that does not advance the state.
+  node may differ).
+
+**Two stages of feasibility.** A new action meets the world twice, as in the authors'
+code:
+
+1. *Pre-check* (optional, :class:`FeasibilityCheck`): ``is_feasible(action)`` is a test
+   that leaves the state unchanged. The search re-draws a new action until it passes,
+   at most ``feasibility_retries`` times (the same number for every planner); if all
+   fail, the last draw is executed anyway and earns the infeasible reward. A problem
+   without the method has no pre-check: every draw is executed.
+2. *Execution*: ``step(action)``, which may still find the action infeasible
+   (``StepResult.feasible`` False, e.g. reward -2): the child is created and the
+   simulation ends there.
+
+What the pre-check covers is the problem's choice: the authors' robot domains check
+only cheap kinematics there (IK, collisions, regions) and leave base motion planning and
+the forbidden rooms to execution (``voot/KitchenClearing-v1``); a problem may also make
+the pre-check the whole step (``voot/KitchenClearing-v0``), which filters every
+infeasible draw before it costs a simulation.
+
+Optionally, ``action_metric()`` (:class:`ActionMetric`) gives the distance between
+actions *in the current state* that a Voronoi sampler should use (e.g. the authors'
+per-operator distance: places compare x, y only), used with
+``MCTSConfig.use_problem_metric``.
 
 Determinism contract: ``restore(s); step(a)`` gives bit-identical results every time, in
 any process. The search relies on it to cache a child's snapshot on its tree edge and
@@ -16,7 +38,7 @@ restore it instead of stepping again.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
 
@@ -61,6 +83,25 @@ class PlanningProblem(Protocol):
 
 @runtime_checkable
 class FeasibilityCheck(Protocol):
-    """Optional extension: test an action without advancing the state."""
+    """Optional stage 1: pre-check an action without changing the state.
+
+    The test must leave the problem exactly as it was (same snapshot, same next step);
+    a False answer makes the search draw another action (see the module docstring).
+    """
 
     def is_feasible(self, action: NDArray[np.float64]) -> bool: ...
+
+
+#: A distance from many actions to one: ``metric(points (n, d), y (d,)) -> (n,)``.
+ActionDistance = Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]]
+
+
+@runtime_checkable
+class ActionMetric(Protocol):
+    """Optional: the distance between actions in the current state (None: Euclidean).
+
+    Return the *same* object for states that share a metric (e.g. one per operator), so
+    that the search can reuse the samplers' configs built from it.
+    """
+
+    def action_metric(self) -> ActionDistance | None: ...
