@@ -495,6 +495,24 @@ def cmd_demo_voo(args: argparse.Namespace) -> int:
     return 0
 
 
+# ----- difficulty ----------------------------------------------------------------------
+def cmd_difficulty(args: argparse.Namespace) -> int:
+    """Print (and optionally write) the difficulty tables of :mod:`voot.bench.difficulty`."""
+    from voot.bench import difficulty
+    from voot.bench.problems import normalize_problem
+
+    if args.seed < 0:
+        raise CLIError(f"--seed must be >= 0, got {args.seed}")
+    envs = (
+        difficulty.DEFAULT_ENVS if args.envs is None else [normalize_problem(e) for e in args.envs]
+    )
+    text = difficulty.report(envs, args.samples, args.rollouts, args.seed)
+    print(text)
+    if args.markdown:
+        Path(args.markdown).write_text(text + "\n")
+    return 0
+
+
 # ----- parser --------------------------------------------------------------------------
 def build_parser() -> argparse.ArgumentParser:
     from voot.bench.sweep import BACKENDS, GRIDS
@@ -672,6 +690,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--seed", type=int, default=0)
     p.set_defaults(func=cmd_speed)
+
+    p = sub.add_parser(
+        "difficulty",
+        help="planner-agnostic difficulty of the robot domains (v0, v1): feasibility rates,"
+        " random-rollout success, the scripted solution",
+    )
+    p.add_argument(
+        "--envs", nargs="+", default=None, metavar="ID", help="default: v0 and v1 of both"
+    )
+    p.add_argument("--samples", type=int, default=2000, help="uniform actions per node type")
+    p.add_argument("--rollouts", type=int, default=200, help="random rollouts per environment")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--markdown", default=None, help="also write the tables to this file")
+    p.set_defaults(func=cmd_difficulty)
     return parser
 
 

@@ -344,6 +344,11 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             "next_objects": self._next_names(),
         }
 
+    @property
+    def objects_left(self) -> int:
+        """Boxes still to place."""
+        return self.n - self.task.placed
+
     def _next_names(self) -> list[str]:
         p = self.task.placed
         return [self.objects[i].name for i in range(p, min(p + OBJECTS_PER_ACTION, self.n))]

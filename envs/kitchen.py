@@ -63,6 +63,7 @@ from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
     ARM_REACH,
+    BASE_HALF,
     ROBOT_DISC,
     ROBOT_RADIUS,
     TUCK,
@@ -160,9 +161,16 @@ class KitchenConfig:
             the state does not change and the simulation ends (the authors' tree tests
             infeasibility as ``reward == -2``). False (v0): it is a feasible step.
         pick_base_path: A pick is executed only if a base path exists from the robot's
-            pose to the pick pose (robot disc; the object to pick is left out of the
-            obstacles, since the disc is coarser than the robot's collision geometry,
-            which the pre-check tests against it). Reason ``no base path to the pick``.
+            pose to the pick pose for a disc of radius ``pick_path_radius``. The disc
+            model is coarser than the robot's collision geometry (which the pre-check
+            tests), so the object to pick and the objects the disc already touches
+            where the robot stands (the one it just placed) are left out of the
+            obstacles. Reason ``no base path to the pick``.
+        pick_path_radius: Radius of the pick's base-path disc. Default: the disc
+            inscribed in the base square (0.32 m), since after a place the robot stands
+            next to furniture and its enclosing disc (``robot_radius``) often overlaps
+            it where the real base does not (with the enclosing disc the scripted
+            solution has no path to its fifth pick).
             False (v0): the robot reaches every pick pose that passes the checks.
         ik: IK settings.
         planner: Base planner settings.
@@ -192,6 +200,7 @@ class KitchenConfig:
     precheck: str = "full_step"
     nonclearing_penalty_infeasible: bool = False
     pick_base_path: bool = False
+    pick_path_radius: float = BASE_HALF
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -214,7 +223,7 @@ class KitchenConfig:
             object.__setattr__(
                 self, name, check_range(f"KitchenConfig.{name}", getattr(self, name))
             )
-        for name in ("robot_radius", "max_place_reward", "max_place_penalty"):
+        for name in ("robot_radius", "max_place_reward", "max_place_penalty", "pick_path_radius"):
             object.__setattr__(
                 self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name))
             )
@@ -446,6 +455,11 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         }
 
     @property
+    def objects_left(self) -> int:
+        """Obstacles still on the path."""
+        return len(self.task.on_path)
+
+    @property
     def next_object_name(self) -> str:
         """Name of the object the next action handles ('' when done)."""
         t = self.task
@@ -584,12 +598,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         path_length, path_points = 0.0, None
         if cfg.pick_base_path:
             t0 = time.perf_counter()
-            path = self.planner.plan(
-                self.robot.base_pose(self.data),
-                base,
-                cfg.robot_radius,
-                self.object_boxes(exclude=(obj,)),
-            )
+            here = self.robot.base_pose(self.data)
+            # the disc is coarser than the robot: the object just placed can overlap it
+            # where the robot stands, so objects touching the start are left out too
+            radius = cfg.pick_path_radius
+            touching = self.planner.colliding(here, radius, self.object_boxes())
+            skip = {obj} | {self.object_index[n] for n in touching if n in self.object_index}
+            path = self.planner.plan(here, base, radius, self.object_boxes(exclude=tuple(skip)))
             timing = self.last_timing
             self.last_timing = replace(timing, planning=time.perf_counter() - t0)
             if path is None:
