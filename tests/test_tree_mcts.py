@@ -444,3 +444,133 @@ def test_config_object_and_overrides() -> None:
         res.mcts is not None and res.mcts.config.gamma == 0.5 and res.mcts.config.depth_limit == 2
     )
     assert math.isfinite(res.best_return)
+
+
+# ----- two-stage feasibility and the authors' tree-side rules (the v1 presets) ------------
+class SignedReward(Counter):
+    """Counter with rewards a[0] in [-1, 1]: half the feasible actions earn < 0."""
+
+    def __init__(self, goal_depth: int | None = None) -> None:
+        super().__init__(dim=1, goal_depth=goal_depth)
+        self.bounds = Bounds.cube(-1.0, 1.0, 1)
+
+
+def test_commitment_counts_only_root_actions_with_reward_at_least_the_minimum() -> None:
+    for low in (None, 0.0):
+        problem = SignedReward()
+        mcts = MCTS(
+            problem,
+            planner_config("uniform_t", root_commitment=3, commit_min_reward=low, depth_limit=4),
+            seed=1,
+        )
+        moved: list[tuple[int, int]] = []
+
+        def watch(m: MCTS, i: int, moved: list[tuple[int, int]] = moved) -> None:
+            if m.current_root is not m.root and not moved:
+                root = m.root
+                counted = [
+                    r for r, f in zip(root.rewards, root.feasible, strict=True) if f and r >= 0
+                ]
+                moved.append((root.n_feasible, len(counted)))
+
+        mcts.search(300, callback=watch)
+        assert moved, "the root never moved"
+        n_feasible, n_nonnegative = moved[0]
+        if low is None:
+            assert n_feasible == 3
+        else:  # negative-reward root actions did not count
+            assert n_nonnegative == 3 and n_feasible >= 3
+    # some negative rewards were drawn before the third non-negative one
+    assert any(r < 0 for r in mcts.root.rewards)
+
+
+def test_commitment_returns_to_the_original_root_after_a_goal() -> None:
+    problem = Counter(dim=1, infeasible_below=0.5, goal_depth=6)
+    cfg = planner_config("uniform_t", root_commitment=2, commit_reset_on_goal=True)
+    mcts = MCTS(problem, cfg, seed=1)
+    seen: list[tuple[bool, bool, int | None]] = []
+    mcts.search(
+        400,
+        callback=lambda m, i: seen.append(
+            (m._goal_found, m.current_root is m.root, m._commit_threshold)
+        ),
+    )
+    first_goal = next(i for i, s in enumerate(seen) if s[0])
+    assert any(not s[1] for s in seen[:first_goal])  # it had committed before the goal
+    back = [i for i, s in enumerate(seen) if i > first_goal and s[1]]
+    assert back, "the root never returned to the original root"
+    assert seen[back[0]][2] == 2 * seen[back[0] - 1][2]  # and the threshold doubled
+    # without the rule, the committed root does not come back
+    plain = MCTS(
+        Counter(dim=1, infeasible_below=0.5, goal_depth=6),
+        cfg.replace(commit_reset_on_goal=False),
+        seed=1,
+    )
+    states: list[bool] = []
+    plain.search(400, callback=lambda m, i: states.append(m.current_root is m.root))
+    first_move = states.index(False)
+    assert not any(states[first_move:])
+
+
+@pytest.mark.parametrize(
+    "planner", ["voot", "doot", "rand_doot", "uniform_t", "pw_uct", "voronoi_pw", "hoot"]
+)
+def test_every_planner_gets_the_same_retries(planner: str) -> None:
+    """A pre-check that always fails: 50 draws per new action, then the last is executed."""
+    problem = Counter(dim=2, infeasible_below=2.0, feasibility_check=True)
+    res = plan(problem, planner, 20, seed=0)
+    assert res.n_steps == 20  # one new (infeasible) action per simulation
+    if planner == "doot":  # DOO's proposal is a cell centre: it repeats, so it stops early
+        assert 0 < res.n_feasibility_checks < 50 * res.n_steps
+    else:
+        assert res.n_feasibility_checks == 50 * res.n_steps
+
+
+def test_failed_draws_are_voronoi_sites_with_minus_two() -> None:
+    # all pre-checks fail: the executed last draw is told with -2
+    problem = Counter(dim=2, infeasible_below=2.0, feasibility_check=True)
+    mcts = MCTS(problem, "voot", seed=0)
+    mcts.search(3)
+    opt = mcts.root.sampler.optimizer
+    assert opt.n_told == 3 and np.all(opt.values[:3] == -2.0)
+    np.testing.assert_array_equal(opt.xs, np.array(mcts.root.actions))
+
+    # the pre-check passes, execution fails: also told with -2
+    class PassesThenFails(Counter):
+        def _is_feasible(self, action: np.ndarray) -> bool:
+            self.n_checks += 1
+            return True
+
+    problem = PassesThenFails(dim=2, infeasible_below=0.5, feasibility_check=True)
+    mcts = MCTS(problem, "voot", seed=0)
+    mcts.search(20)
+    root = mcts.root
+    opt = root.sampler.optimizer
+    bad = [i for i, f in enumerate(root.feasible) if not f]
+    assert bad and all(opt.values[i] == -2.0 for i in bad)
+
+
+def test_problem_metric_reaches_the_voo_nodes() -> None:
+    calls = []
+
+    def first_coordinate(points: np.ndarray, y: np.ndarray) -> np.ndarray:
+        calls.append(1)
+        return np.abs(points[:, 0] - y[0])
+
+    class WithMetric(Counter):
+        def action_metric(self) -> object:
+            return first_coordinate
+
+    problem = WithMetric(dim=2, goal_depth=3)
+    mcts = MCTS(problem, planner_config("voot", use_problem_metric=True), seed=0)
+    mcts.search(60)
+    assert mcts.root.sampler.optimizer.config.metric is first_coordinate
+    assert calls
+    off = MCTS(WithMetric(dim=2, goal_depth=3), "voot", seed=0)
+    off.search(10)
+    assert off.root.sampler.optimizer.config.metric is None
+    # samplers without a metric option ignore it
+    doot = MCTS(
+        WithMetric(dim=2, goal_depth=3), planner_config("doot", use_problem_metric=True), seed=0
+    )
+    doot.search(10)
