@@ -445,12 +445,16 @@ def cmd_speed(args: argparse.Namespace) -> int:
 # ----- demo ----------------------------------------------------------------------------
 def cmd_demo(args: argparse.Namespace) -> int:
     """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
+    from voot.bench.problems import normalize_problem
     from voot.record import kitchen_demo
 
     sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
     try:
-        summary = kitchen_demo.run(args.out, sims, seed, args.planner, video=not args.no_video)
+        env_id = normalize_problem(args.env)
+        summary = kitchen_demo.run(
+            args.out, sims, seed, args.planner, video=not args.no_video, env_id=env_id
+        )
     except ValueError as exc:
         raise CLIError(str(exc)) from exc
     print(f"open the recording with: rerun {summary.recording}")
@@ -533,6 +537,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=None, help="default: the documented demo seed")
     p.add_argument("--planner", default="voot")
     p.add_argument("--no-video", action="store_true", help="skip the GIF")
+    p.add_argument(
+        "--env",
+        default="kitchen_v1",
+        help="kitchen_v1 (voot/KitchenClearing-v1, the authors' protocol; default) or kitchen"
+        " (voot/KitchenClearing-v0)",
+    )
     p.set_defaults(func=cmd_demo)
 
     p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
