@@ -186,10 +186,10 @@ def domain_options(
     if is_chain(problem) or problem in CHAIN_ENV_IDS:
         function = CHAINS.get(problem) or CHAIN_ENV_IDS[problem]
         d = dim if dim is not None else int(kwargs.get("dim", 10))
-        options = chain_planner_options(function, d)
+        chain = chain_planner_options(function, d)
         if planner in VOO_PLANNERS:
-            options["sampler_options"] = {"sampler": "centered_uniform"}
-        return options
+            chain["sampler_options"] = {"sampler": "centered_uniform"}
+        return chain
     options: dict[str, Any] = {}
     if problem in KITCHEN_IDS:
         options["gamma"] = 0.9

@@ -225,6 +225,8 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     """
 
     metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 2}  # noqa: RUF012
+    #: The subclass's settings (a frozen dataclass with ``precheck`` and ``infeasible_reward``).
+    config: Any
     #: Signature of the physics part of snapshots.
     STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
 
@@ -285,6 +287,10 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (planner's view)."""
+        raise NotImplementedError
+
+    def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
+        """The cheap kinematic check of ``action`` now, changing nothing (see subclasses)."""
         raise NotImplementedError
 
     # ----- actions -------------------------------------------------------------------------
