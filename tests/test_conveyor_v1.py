@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+import pickle
+import subprocess
+import sys
+import textwrap
+
 import gymnasium as gym
 import numpy as np
 from gymnasium.utils.env_checker import check_env
@@ -50,3 +55,34 @@ def test_scripted_solution_and_checks() -> None:
     pts = np.zeros((2, 9))
     pts[1, 2] = pts[1, 5] = pts[1, 8] = 1.0  # headings only
     np.testing.assert_allclose(m(pts, np.zeros(9)), [0.0, 0.0])
+
+
+def test_determinism_across_processes() -> None:
+    env = gym.make("voot/ConveyorPacking-v1").unwrapped
+    env.reset(seed=0)
+    rng = np.random.default_rng(4)
+    probes = [conveyor_actions(env)[0]] + [rng.uniform(-1, 1, 9) for _ in range(15)]
+    local = [(env.precheck(a), env.step(a)[1:]) for a in probes]
+    script = textwrap.dedent(
+        """
+        import pickle, sys
+        import gymnasium as gym
+        import voot
+        probes = pickle.load(sys.stdin.buffer)
+        env = gym.make("voot/ConveyorPacking-v1").unwrapped
+        env.reset(seed=0)
+        out = [(env.precheck(a), env.step(a)[1:]) for a in probes]
+        sys.stdout.buffer.write(pickle.dumps(out))
+        """
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script],
+        input=pickle.dumps(probes),
+        capture_output=True,
+        check=True,
+        timeout=120,
+    )
+    remote = pickle.loads(proc.stdout)
+    from gymnasium.utils.env_checker import data_equivalence
+
+    assert data_equivalence(local, remote, exact=True)

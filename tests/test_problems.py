@@ -47,6 +47,23 @@ def test_domain_options_are_the_references() -> None:
     assert P.domain_options("Other-v0", None, "voot") == {}
 
 
+def test_v1_domain_options_are_the_authors_tree_rules() -> None:
+    assert P.normalize_problem("kitchen_v1") == "voot/KitchenClearing-v1"
+    assert P.normalize_problem("conveyor-v1") == "voot/ConveyorPacking-v1"
+    for planner in ("voot", "doot", "rand_doot", "pw_uct", "voronoi_pw", "hoot", "uniform_t"):
+        kitchen = P.domain_options("voot/KitchenClearing-v1", None, planner)
+        conveyor = P.domain_options("voot/ConveyorPacking-v1", None, planner)
+        # the same retries for every planner on both domains (the paper: 50)
+        assert kitchen["feasibility_retries"] == conveyor["feasibility_retries"] == 50
+        assert kitchen["commit_min_reward"] == conveyor["commit_min_reward"] == 0.0
+        assert kitchen["commit_reset_on_goal"] and conveyor["commit_reset_on_goal"]
+        assert kitchen["root_commitment"] == 10 and conveyor["root_commitment"] == 1
+        assert kitchen["gamma"] == 0.9 and conveyor["gamma"] == 0.99
+        uses_voo = planner in ("voot", "voronoi_pw")
+        assert kitchen.get("use_problem_metric", False) == uses_voo
+    assert P.paper_setup("voot/ConveyorPacking-v1").simulations == 3000
+
+
 def test_env_kwargs_must_be_json() -> None:
     assert P.check_env_kwargs({"dim": 3}) == {"dim": 3}
     with pytest.raises(ValueError, match="JSON"):
