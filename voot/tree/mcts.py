@@ -582,6 +582,9 @@ class MCTS:
         node.n.append(0)
         if feasible:
             node.n_feasible += 1
+            low = self.config.commit_min_reward
+            if low is None or reward >= low:
+                node.n_commit_actions += 1
         if terminal:
             node.n_terminal_children += 1
             if feasible:
@@ -605,13 +608,6 @@ class MCTS:
         return node.terminal or node.infeasible or (H is not None and node.depth >= H)
 
     # ----- root commitment -----------------------------------------------------------------
-    def _n_commit_actions(self, node: Node) -> int:
-        """The root actions that count towards commitment (see ``commit_min_reward``)."""
-        low = self.config.commit_min_reward
-        if low is None:
-            return node.n_feasible
-        return sum(1 for r, f in zip(node.rewards, node.feasible, strict=True) if f and r >= low)
-
     def _maybe_commit(self) -> None:
         """Move the root to its best feasible child once it has enough counted actions.
 
@@ -621,9 +617,7 @@ class MCTS:
         """
         threshold = self._commit_threshold
         root = self.current_root
-        if threshold is None or root.n_feasible < threshold:
-            return
-        if self._n_commit_actions(root) < threshold:
+        if threshold is None or root.n_commit_actions < threshold:
             return
         if self.config.commit_reset_on_goal and self._goal_found:
             self._commit_threshold = 2 * threshold

@@ -36,6 +36,8 @@ class Node:
             they were tried (``q`` is :math:`\\hat Q`, ``n`` the visit count).
         visits: number of simulations through this node (:math:`N(s)`).
         n_feasible: number of feasible edges.
+        n_commit_actions: number of edges that count towards root commitment
+            (``MCTSConfig.commit_min_reward``).
         n_terminal_children: number of edges leading to a terminal state.
         reevaluations: re-evaluations of the newest action since it was added.
         sampler: the node's action sampler (created at its first new action).
@@ -55,6 +57,7 @@ class Node:
         "infeasible",
         "info",
         "n",
+        "n_commit_actions",
         "n_feasible",
         "n_terminal_children",
         "parent",
@@ -105,6 +108,7 @@ class Node:
         self.tag_to_edge: dict[int, int] = {}
         self.visits = 0
         self.n_feasible = 0
+        self.n_commit_actions = 0
         self.n_terminal_children = 0
         self.reevaluations = 0
         self.sampler: Any = None
