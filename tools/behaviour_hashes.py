@@ -1,0 +1,137 @@
+"""Hashes of a fixed set of voot's outputs, to prove that a restructuring preserves behaviour.
+
+    python tools/behaviour_hashes.py record tools/behaviour_hashes.json   # before
+    python tools/behaviour_hashes.py compare tools/behaviour_hashes.json  # after
+
+Covers: black-box sweep runs (VOO, DOO, CMA-ES), plan-sweep runs on a chain and on both
+kitchen versions, a root-parallel search, the kitchen demo's JSON (timings dropped) and
+its recording's entity list. Every output is deterministic; timings are left out.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+TIMING_KEYS = {"wall_time", "elapsed", "search_time", "finished_at", "versions", "created"}
+
+
+def _digest(value: Any) -> str:
+    """A stable hash of nested plain values and arrays (floats by their exact bits)."""
+
+    def plain(v: Any) -> Any:
+        if isinstance(v, np.ndarray):
+            return {"array": v.dtype.str, "shape": list(v.shape), "hex": v.tobytes().hex()}
+        if isinstance(v, float):
+            return {"float": v.hex()}
+        if isinstance(v, dict):
+            return {str(k): plain(x) for k, x in sorted(v.items()) if k not in TIMING_KEYS}
+        if isinstance(v, list | tuple):
+            return [plain(x) for x in v]
+        if isinstance(v, np.generic):
+            return plain(v.item())
+        return v
+
+    text = json.dumps(plain(value), sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _bbfo() -> dict[str, str]:
+    from voot.bench.sweep import RunSpec, run_spec
+
+    out = {}
+    for method in ("voo", "doo", "cmaes"):
+        row = run_spec(RunSpec("shekel", 3, method, (), 200, 0))
+        out[f"bbfo/{method}"] = _digest({k: row[k] for k in ("best_so_far", "status")})
+    return out
+
+
+def _plan_rows() -> dict[str, str]:
+    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+
+    specs = {
+        "plan/shekel_chain/voot": PlanSpec("shekel_chain", 10, (), "voot", (), 300, 0),
+        "plan/shekel_chain/pw_uct": PlanSpec("shekel_chain", 10, (), "pw_uct", (), 300, 0),
+        "plan/kitchen_v0/voot": PlanSpec("voot/KitchenClearing-v0", None, (), "voot", (), 60, 0),
+        "plan/kitchen_v1/voot": PlanSpec("voot/KitchenClearing-v1", None, (), "voot", (), 300, 0),
+        "plan/kitchen_v1/pw_uct": PlanSpec(
+            "voot/KitchenClearing-v1", None, (), "pw_uct", (), 300, 0
+        ),
+    }
+    out = {}
+    for name, spec in specs.items():
+        row = run_plan_spec(spec)
+        keep = ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes")
+        out[name] = _digest({k: row.get(k) for k in keep} | {"status": row["status"]})
+    return out
+
+
+def _root_parallel() -> dict[str, str]:
+    from voot.tree import make_chain, plan_root_parallel
+
+    res = plan_root_parallel(
+        make_chain("shekel", 10), "voot", 200, seed=0, n_trees=2, executor="serial"
+    )
+    return {"root_parallel/shekel10": _digest([res.best_return_curve, list(res.actions)])}
+
+
+def _demo() -> dict[str, str]:
+    from voot.record import kitchen_demo
+    from voot.record.reader import read_recording
+
+    out = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for env_id in ("voot/KitchenClearing-v0", "voot/KitchenClearing-v1"):
+            folder = Path(tmp) / env_id.replace("/", "_")
+            summary = kitchen_demo.run(folder, 60, 0, video=False, verbose=False, env_id=env_id)
+            data = summary.to_dict()
+            for key in ("search_seconds", "total_seconds", "recording", "video"):
+                data.pop(key, None)
+            out[f"demo/{env_id}/json"] = _digest(data)
+            rec = read_recording(summary.recording)
+            out[f"demo/{env_id}/entities"] = _digest(sorted(rec.entities))
+    return out
+
+
+PARTS: dict[str, Callable[[], dict[str, str]]] = {
+    "bbfo": _bbfo,
+    "plan": _plan_rows,
+    "root_parallel": _root_parallel,
+    "demo": _demo,
+}
+
+
+def collect() -> dict[str, str]:
+    out: dict[str, str] = {}
+    for part in PARTS.values():
+        out.update(part())
+    return out
+
+
+def main(argv: list[str]) -> int:
+    if len(argv) != 2 or argv[0] not in ("record", "compare"):
+        print(__doc__)
+        return 2
+    path = Path(argv[1])
+    hashes = collect()
+    if argv[0] == "record":
+        path.write_text(json.dumps(hashes, indent=1, sort_keys=True) + "\n")
+        print(f"{len(hashes)} hashes -> {path}")
+        return 0
+    expected = json.loads(path.read_text())
+    bad = sorted(k for k in expected.keys() | hashes.keys() if expected.get(k) != hashes.get(k))
+    for k in bad:
+        print(f"CHANGED {k}: {expected.get(k)} -> {hashes.get(k)}")
+    print(f"{len(expected) - len(bad)} of {len(expected)} outputs unchanged")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
