@@ -90,7 +90,7 @@ def test_forbidden_room_passes_the_precheck_and_fails_at_execution(
     problem = EnvProblem(env)
     mcts = MCTS(problem, planner_config("uniform_t", root_commitment=None), seed=0)
     root = mcts.root
-    mcts._goto(root)
+    mcts.goto(root)
     i = mcts._execute(root, a)
     assert root.children[i].infeasible and root.rewards[i] == -2.0
 

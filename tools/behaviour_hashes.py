@@ -59,6 +59,12 @@ def _plan_rows() -> dict[str, str]:
     specs = {
         "plan/shekel_chain/voot": PlanSpec("shekel_chain", 10, (), "voot", (), 300, 0),
         "plan/shekel_chain/pw_uct": PlanSpec("shekel_chain", 10, (), "pw_uct", (), 300, 0),
+        "plan/shekel_chain/hoot": PlanSpec("shekel_chain", 10, (), "hoot", (), 300, 0),
+        "plan/shekel_chain/doot": PlanSpec("shekel_chain", 3, (), "doot", (), 300, 0),
+        "plan/kitchen_v1/hoot": PlanSpec("voot/KitchenClearing-v1", None, (), "hoot", (), 200, 0),
+        "plan/kitchen_v1/rand_doot": PlanSpec(
+            "voot/KitchenClearing-v1", None, (), "rand_doot", (), 200, 0
+        ),
         "plan/kitchen_v0/voot": PlanSpec("voot/KitchenClearing-v0", None, (), "voot", (), 60, 0),
         "plan/kitchen_v1/voot": PlanSpec("voot/KitchenClearing-v1", None, (), "voot", (), 300, 0),
         "plan/kitchen_v1/pw_uct": PlanSpec(

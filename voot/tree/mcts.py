@@ -40,13 +40,13 @@ from voot.tree.config import (
     BestReturnOver,
     FinalAction,
     MCTSConfig,
-    Selection,
     planner_config,
 )
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.node import Node
 from voot.tree.problem import PlanningProblem, StepResult
 from voot.tree.samplers import UniformSampler, make_optimizer_sampler
+from voot.tree.selection import SelectionRule, make_selection
 
 #: ``callback(mcts, simulation_index)`` after every simulation; return True to stop early.
 Callback = Callable[["MCTS", int], Any]
@@ -189,11 +189,10 @@ class MCTS:
             from voot.optim.registry import optimizer_class
 
             self._optimizer_class = optimizer_class(cfg.sampler)
-        self._selection = Selection(cfg.selection)
+        self._rule: SelectionRule = make_selection(cfg)
         self._backup = Backup(cfg.backup)
         self._gamma = float(cfg.gamma)
         self._H = cfg.depth_limit
-        self._reeval_budget: list[float] = []
         root_bounds = problem_bounds(problem)
         self._init_tree(Node(0, None, -1, 0, 1.0, 0.0, problem.snapshot()))
         self.root.bounds = root_bounds
@@ -361,10 +360,10 @@ class MCTS:
         path_nodes: list[Node] = []
         path_edges: list[int] = []
         depth = 0
-        select = self._select
+        select = self._rule.select
         limit = MAX_UNLIMITED_DEPTH if H is None else H
         while not (node.terminal or node.infeasible) and depth < limit:
-            i = select(node, depth)
+            i = select(self, node, depth)
             path_nodes.append(node)
             path_edges.append(i)
             node = node.children[i]
@@ -385,7 +384,8 @@ class MCTS:
         rule = self._backup
         is_max = rule is Backup.MAX
         is_jump = rule is Backup.JUMP_MAX_ELSE_MEAN
-        hoo = self._selection is Selection.HOO
+        observe = self._rule.observe
+        tell = self._rule.tells_sampler
         v = 0.0
         for j in range(len(path_nodes) - 1, -1, -1):
             node = path_nodes[j]
@@ -396,18 +396,17 @@ class MCTS:
             node.visits += 1
             q = node.q[i]
             sampler = node.sampler
-            if hoo:
-                sampler.update(node.tags[i], ret)
+            observe(node, i, ret)
             if c == 1:
                 node.q[i] = ret
-                if not hoo and sampler is not None:
+                if tell and sampler is not None:
                     sampler.add(node.actions[i], ret, node.feasible[i])
                 v = ret
                 continue
             if is_max:
                 if ret > q:
                     node.q[i] = ret
-                    if not hoo:
+                    if tell:
                         sampler.update(i, ret)
                     v = ret
                 else:
@@ -419,63 +418,18 @@ class MCTS:
                 new = q + (ret - q) / c
             if new != q:
                 node.q[i] = new
-                if not hoo:
+                if tell:
                     sampler.update(i, new)
             v = ret
 
-    def _select(self, node: Node, depth: int) -> int:
-        sel = self._selection
-        if sel is Selection.REEVALUATE:
-            k = len(node.actions)
-            if (
-                k
-                and node.n_feasible
-                and node.feasible[k - 1]
-                and not node.children[k - 1].terminal
-                and not (node.n_terminal_children and self.config.terminal_child_forces_new)
-                and (self._H is None or depth != self._H - 1)
-                and node.reevaluations < self._budget(depth)
-            ):
-                node.reevaluations += 1
-                return k - 1
-            node.reevaluations = 0
-            return self._new_action(node)
-        if sel is Selection.PROGRESSIVE_WIDENING:
-            k = len(node.actions)
-            cfg = self.config
-            if (
-                k == 0
-                or node.n_feasible == 0
-                or (node.n_terminal_children and cfg.terminal_child_forces_new)
-                or k <= cfg.pw_k * node.visits**cfg.pw_alpha
-            ):
-                return self._new_action(node)
-            return self._ucb(node)
-        return self._hoo_action(node)
-
-    def _budget(self, depth: int) -> float:
-        """Re-evaluations allowed at relative depth ``depth``: ``w * kappa_r**depth``."""
-        budget = self._reeval_budget
-        while len(budget) <= depth:
-            budget.append(self.config.reevaluations * self.config.kappa_r ** len(budget))
-        return budget[depth]
-
-    def _ucb(self, node: Node) -> int:
-        """argmax over feasible edges of :math:`\\hat Q + c\\sqrt{\\ln N / n}` (first on ties)."""
-        q = np.array(node.q)
-        n = np.array(node.n, dtype=np.float64)
-        score = q + self.config.ucb_c * np.sqrt(math.log(max(node.visits, 1)) / n)
-        if node.n_feasible < len(node.q):
-            score[~np.array(node.feasible)] = -np.inf
-        return int(np.argmax(score))
-
-    # ----- new actions ----------------------------------------------------------------------
-    def _goto(self, node: Node) -> None:
+    # ----- new actions (what the selection rules call) ---------------------------------------
+    def goto(self, node: Node) -> None:
+        """Put the problem in ``node``'s state (a restore unless it is there already)."""
         if self._at is not node:
             self.problem.restore(node.snapshot)
             self._at = node
 
-    def _sampler(self, node: Node) -> Any:
+    def sampler(self, node: Node) -> Any:
         """The node's sampler, created on its first new action (the problem is at ``node``)."""
         if node.sampler is None:
             if node.bounds is None:
@@ -510,30 +464,28 @@ class MCTS:
             self._metric_configs[metric] = config
         return config
 
-    def _new_action(self, node: Node) -> int:
-        self._goto(node)
-        sampler = self._sampler(node)
-        x = sampler.propose()
-        check = self._check
-        if check is not None:
-            retries = self.config.feasibility_retries
-            for t in range(retries):
-                self.n_feasibility_checks += 1
-                if check(x) or t == retries - 1:
-                    break
-                sampler.reject(x)
-                previous, x = x, sampler.propose()
-                if np.array_equal(previous, x):  # a deterministic sampler repeats itself
-                    break
-        return self._execute(node, x)
+    def new_action(self, node: Node) -> int:
+        """Draw a new action from ``node``'s sampler, pre-check it, execute it: its edge."""
+        self.goto(node)
+        sampler = self.sampler(node)
 
-    def _hoo_action(self, node: Node) -> int:
-        self._goto(node)
-        hoo: HOO = self._sampler(node)
-        cell, is_new = hoo.select()
-        if not is_new:
-            return node.tag_to_edge[cell]
-        x = hoo.point(cell).copy()
+        def redraw(previous: FloatArray) -> FloatArray | None:
+            sampler.reject(previous)
+            x: FloatArray = sampler.propose()
+            # a deterministic sampler repeats itself: no new draw to check
+            return None if np.array_equal(previous, x) else x
+
+        return self.add_action(node, sampler.propose(), redraw)
+
+    def add_action(
+        self, node: Node, x: FloatArray, redraw: Callable[[FloatArray], FloatArray | None]
+    ) -> int:
+        """The two stages of a new action at ``node`` (the problem is there): its edge.
+
+        Stage 1: while ``x`` fails the problem's pre-check, ``redraw(x)`` gives the next
+        draw (None: nothing new to draw), at most ``feasibility_retries`` draws in all;
+        stage 2: the last draw is executed (:meth:`_execute`), feasible or not.
+        """
         check = self._check
         if check is not None:
             retries = self.config.feasibility_retries
@@ -541,11 +493,11 @@ class MCTS:
                 self.n_feasibility_checks += 1
                 if check(x) or t == retries - 1:
                     break
-                x = hoo.redraw(cell).copy()
-        i = self._execute(node, x)
-        node.tags.append(cell)
-        node.tag_to_edge[cell] = i
-        return i
+                following = redraw(x)
+                if following is None:
+                    break
+                x = following
+        return self._execute(node, x)
 
     def _execute(self, node: Node, x: FloatArray) -> int:
         """Step the problem (which is at ``node``) with ``x``; add the edge and its child."""
