@@ -446,7 +446,7 @@ def cmd_speed(args: argparse.Namespace) -> int:
 def cmd_demo(args: argparse.Namespace) -> int:
     """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
     from voot.bench.problems import normalize_problem
-    from voot.record import kitchen_demo
+    from voot.bench import kitchen_demo
 
     sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
@@ -458,6 +458,24 @@ def cmd_demo(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise CLIError(str(exc)) from exc
     print(f"open the recording with: rerun {summary.recording}")
+    return 0
+
+
+def cmd_figure5(args: argparse.Namespace) -> int:
+    """Record the paper's Figure 5 on the kitchen and draw it (:mod:`voot.bench.kitchen_figure5`)."""
+    from voot.bench.kitchen_figure5 import figure5
+    from voot.bench.problems import normalize_problem
+
+    if args.seed < 0:
+        raise CLIError(f"--seed must be >= 0, got {args.seed}")
+    figure5(
+        args.out,
+        args.seed,
+        planners=args.planners,
+        visits=args.visits,
+        max_simulations=args.max_simulations,
+        env_id=normalize_problem(args.env),
+    )
     return 0
 
 
@@ -544,6 +562,18 @@ def build_parser() -> argparse.ArgumentParser:
         " (voot/KitchenClearing-v0)",
     )
     p.set_defaults(func=cmd_demo)
+
+    p = sub.add_parser(
+        "figure5",
+        help="the paper's Figure 5 on the kitchen: placements sampled at the first place node",
+    )
+    p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"], metavar="NAME")
+    p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
+    p.add_argument("--max-simulations", type=int, default=2000)
+    p.add_argument("--env", default="kitchen", help="kitchen (v0, default) or kitchen_v1")
+    p.set_defaults(func=cmd_figure5)
 
     p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
     p.add_argument("--function", default="shekel")

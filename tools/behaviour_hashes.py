@@ -89,7 +89,7 @@ def _root_parallel() -> dict[str, str]:
 
 
 def _demo() -> dict[str, str]:
-    from voot.record import kitchen_demo
+    from voot.bench import kitchen_demo
     from voot.record.reader import read_recording
 
     out = {}
