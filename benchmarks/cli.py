@@ -445,8 +445,8 @@ def cmd_speed(args: argparse.Namespace) -> int:
 # ----- demo ----------------------------------------------------------------------------
 def cmd_demo(args: argparse.Namespace) -> int:
     """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
-    from voot.bench.problems import normalize_problem
     from voot.bench import kitchen_demo
+    from voot.bench.problems import normalize_problem
 
     sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
@@ -533,6 +533,30 @@ def cmd_difficulty(args: argparse.Namespace) -> int:
     if args.markdown:
         Path(args.markdown).write_text(text + "\n")
     return 0
+
+
+# ----- measurement commands with their own options -------------------------------------
+#: ``voot-bench NAME ARGS...`` -> ``module:function(ARGS)``: commands whose options their
+#: module parses (``voot-bench NAME --help`` lists them).
+PASSTHROUGH: dict[str, tuple[str, str]] = {
+    "overhead": ("voot.bench.overhead:tree_main", "the planner's own overhead per node visit"),
+    "record-overhead": ("voot.bench.overhead:record_main", "the cost of recording a search"),
+    "record-demo": (
+        "voot.bench.record_demo:main",
+        "recordings, Figure-5 panels and a GIF on the tiny pick-and-place demo",
+    ),
+    "env-speed": ("voot.bench.env_speed:main", "step costs and sparsity of the robot domains"),
+    "env-figures": ("voot.bench.env_figures:main", "render the environment figures of the docs"),
+}
+
+
+def cmd_passthrough(args: argparse.Namespace) -> int:
+    """Run a :data:`PASSTHROUGH` command with the rest of the command line."""
+    import importlib
+
+    module, function = PASSTHROUGH[args.command][0].split(":")
+    status = getattr(importlib.import_module(module), function)(list(args.rest))
+    return int(status or 0)
 
 
 # ----- parser --------------------------------------------------------------------------
@@ -744,13 +768,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--markdown", default=None, help="also write the tables to this file")
     p.set_defaults(func=cmd_difficulty)
+
+    for name, (_, text) in PASSTHROUGH.items():
+        p = sub.add_parser(name, help=text, add_help=False)
+        p.add_argument("rest", nargs=argparse.REMAINDER, help="the command's own options")
+        p.set_defaults(func=cmd_passthrough)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``voot-bench``; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    words = list(sys.argv[1:] if argv is None else argv)
+    if words and words[0] in PASSTHROUGH:  # its module parses the rest (argparse would not)
+        args = argparse.Namespace(command=words[0], rest=words[1:], func=cmd_passthrough)
+    else:
+        args = parser.parse_args(words)
     try:
         return int(args.func(args))
     except (CLIError, StoreError, ValueError) as exc:

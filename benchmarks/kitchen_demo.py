@@ -22,9 +22,6 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-from numpy.typing import NDArray
-
 from voot.bench.problems import domain_options
 from voot.record.kitchen_animation import plan_animation
 from voot.tree.config import normalize_planner
@@ -43,6 +40,7 @@ DEMO_ENV = "voot/KitchenClearing-v1"
 DEFAULT_SIMULATIONS = 1000
 #: Seed of :func:`run`.
 DEFAULT_SEED = 0
+
 
 def planner_options(planner: str) -> dict[str, Any]:
     r"""The authors' :class:`~voot.tree.MCTSConfig` overrides on object clearing (v0).

@@ -12,9 +12,9 @@ A problem is named either
   :class:`~voot.tree.gym_adapters.MujocoGymProblem`.
 
 Environments are made with ``gymnasium.make(id, disable_env_checker=True, **kwargs)`` and
-adapted by the adapter their package offers (:class:`voot.envs.planning.EnvProblem` for
-the voot robot domains, :class:`~voot.tree.gym_adapters.GymProblem` otherwise). Each
-process keeps the environments it made (:func:`cached_env`, a small LRU): a run resets
+adapted by the adapter the env offers (its ``planning_problem(env)`` method:
+:class:`voot.envs.planning.EnvProblem` for the voot robot domains), else by
+:class:`~voot.tree.gym_adapters.GymProblem`. Each process keeps the environments it made (:func:`cached_env`, a small LRU): a run resets
 its env with the run's seed, so a kept env behaves exactly as a fresh one, while the
 MuJoCo model is loaded once per process (or Ray actor) instead of once per run.
 
@@ -252,10 +252,9 @@ def adapt_env(env: Any) -> Any:
         ValueError: the env cannot be snapshotted (says what is missing).
     """
     u = env.unwrapped
-    if type(u).__module__.startswith("voot.envs."):
-        from voot.envs.planning import EnvProblem
-
-        return EnvProblem(env)
+    offer = getattr(u, "planning_problem", None)  # the env's own adapter (voot's robot envs)
+    if callable(offer):
+        return offer(env)
     if callable(getattr(u, "get_state", None)) and callable(getattr(u, "set_state", None)):
         from voot.tree.gym_adapters import GymProblem
 

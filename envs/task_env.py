@@ -199,7 +199,7 @@ class EnvState(Generic[TaskT]):
 
 @dataclass(frozen=True)
 class StepTiming:
-    """Wall-clock seconds spent in the last step's checks (for :mod:`voot.envs.speed`)."""
+    """Wall-clock seconds spent in the last step's checks (for :mod:`voot.bench.env_speed`)."""
 
     ik: float = 0.0
     collision: float = 0.0
@@ -292,6 +292,15 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
         """The cheap kinematic check of ``action`` now, changing nothing (see subclasses)."""
         raise NotImplementedError
+
+    def planning_problem(self, env: Any = None) -> Any:
+        """This env as a :mod:`voot.tree` planning problem (:class:`~voot.envs.planning.EnvProblem`).
+
+        ``env`` is the env as made (``gym.make`` wrappers included); default: this one.
+        """
+        from voot.envs.planning import EnvProblem
+
+        return EnvProblem(self if env is None else env)
 
     # ----- actions -------------------------------------------------------------------------
     @property

@@ -1,4 +1,4 @@
-"""The environments' speed benchmark command (voot.envs.speed) runs; no timing assertions."""
+"""The environments' speed benchmark command (voot.bench.env_speed, voot-bench env-speed) runs; no timing assertions."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from voot.envs import speed
+from voot.bench import env_speed as speed
 
 
 def test_run_and_report(capsys: pytest.CaptureFixture[str]) -> None:

@@ -11,8 +11,8 @@ pytest.importorskip("rerun")
 pytest.importorskip("matplotlib")
 pytest.importorskip("mujoco")
 
+from voot.envs.pick_place_demo import DemoPickPlace
 from voot.record import RecorderConfig, record_plan
-from voot.record.demo import DemoPickPlace
 from voot.record.figure5 import node_samples, samples_figure, unpack_colors
 from voot.tree import make_chain
 

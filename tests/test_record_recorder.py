@@ -14,6 +14,7 @@ pytest.importorskip("mujoco")
 
 import rerun as rr
 
+from voot.envs.pick_place_demo import DemoPickPlace
 from voot.record import (
     RecorderConfig,
     SearchRecorder,
@@ -21,10 +22,9 @@ from voot.record import (
     read_recording,
     record_plan,
 )
-from voot.record.demo import DemoPickPlace
 from voot.record.recorder import watch_name
 from voot.tree import MCTS, MCTSConfig, make_chain, plan
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 
 @pytest.fixture(autouse=True)

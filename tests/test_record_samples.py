@@ -8,7 +8,7 @@ import pytest
 from voot.optim.base import Bounds
 from voot.record.samples import NodeSamples, SampleLog, pose_of
 from voot.tree import MCTS, MCTSConfig, StepResult
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 
 class Poses:

@@ -36,8 +36,8 @@ def test_screenshot_of_a_demo_recording(tmp_path: Path) -> None:
     pytest.importorskip("mujoco")
     from PIL import Image
 
+    from voot.envs.pick_place_demo import DemoPickPlace
     from voot.record import record_plan
-    from voot.record.demo import DemoPickPlace
 
     rrd = tmp_path / "demo.rrd"
     record_plan(DemoPickPlace(), rrd, "voot", 40, seed=0)

@@ -12,7 +12,7 @@ from voot.record.tree_graph import (
     select_nodes,
 )
 from voot.tree import MCTS, MCTSConfig
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 
 def _tree(n: int = 80) -> MCTS:

@@ -15,7 +15,7 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
-from voot.record.demo import DemoPickPlace  # noqa: E402
+from voot.envs.pick_place_demo import DemoPickPlace  # noqa: E402
 from voot.record.video import collect_states, plan_frames, write_plan_video, write_video  # noqa: E402
 
 #: A plan of the demo problem: pick next to the box, place it on the goal's edge.

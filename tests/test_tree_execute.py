@@ -7,7 +7,7 @@ import pytest
 
 from voot.optim.base import Bounds
 from voot.tree import StepResult, planner_config, run_episode
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 
 class Counter:

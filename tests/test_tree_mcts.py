@@ -11,7 +11,7 @@ import pytest
 
 from voot.optim.base import Bounds
 from voot.tree import MCTS, MCTSConfig, Node, StepResult, plan, planner_config
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 
 class OneStep:
@@ -348,7 +348,7 @@ def test_nodes_are_inspectable() -> None:
 # ----- determinism -----------------------------------------------------------------------
 FINGERPRINT = """
 from voot.tree import plan
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 
 def fingerprint(planner):
     res = plan(NullProblem(4), planner, 300, seed=123, depth_limit=4, root_commitment=5)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from voot.tree import MCTS, chain_planner_options, make_chain, plan, planner_config
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
 from voot.tree.root_parallel import (
     LocalProcessExecutor,
     MergeRule,

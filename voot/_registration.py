@@ -7,10 +7,10 @@ from __future__ import annotations
 
 #: id -> entry point ("module:Class"). Filled in by the environment modules' issues.
 ENV_IDS: dict[str, str] = {
-    # Synthetic planning chains (voot.tree.chain_env); keyword: dim=3 | 10 | 20.
-    "voot/ShekelChain-v0": "voot.tree.chain_env:ShekelChainEnv",
-    "voot/GriewankChain-v0": "voot.tree.chain_env:GriewankChainEnv",
-    "voot/RastriginChain-v0": "voot.tree.chain_env:RastriginChainEnv",
+    # Synthetic planning chains (voot.envs.chain_env); keyword: dim=3 | 10 | 20.
+    "voot/ShekelChain-v0": "voot.envs.chain_env:ShekelChainEnv",
+    "voot/GriewankChain-v0": "voot.envs.chain_env:GriewankChainEnv",
+    "voot/RastriginChain-v0": "voot.envs.chain_env:RastriginChainEnv",
     # MuJoCo benchmark domains (voot.envs; need the [envs] extra); keyword: config=...
     "voot/KitchenClearing-v0": "voot.envs.kitchen:KitchenClearingEnv",
     "voot/ConveyorPacking-v0": "voot.envs.conveyor:ConveyorPackingEnv",

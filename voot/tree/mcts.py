@@ -610,7 +610,7 @@ def plan(
         record_info: see :meth:`MCTS.search`.
         **options: :class:`MCTSConfig` fields overriding the planner's.
 
-    >>> from voot.tree.overhead import NullProblem
+    >>> from voot.tree.null_problem import NullProblem
     >>> res = plan(NullProblem(dim=2), "voot", n_simulations=50, seed=0, depth_limit=3)
     >>> res.best_return_curve.shape
     (50,)

@@ -953,7 +953,7 @@ def plan_root_parallel(
     configuration and ``seed``: not on the executor, the number of workers, or the order
     in which trees finish.
 
-    >>> from voot.tree.overhead import NullProblem
+    >>> from voot.tree.null_problem import NullProblem
     >>> res = plan_root_parallel(NullProblem(dim=2), "voot", 20, seed=0, n_trees=3,
     ...                          executor="serial", depth_limit=3)
     >>> res.best_return_curve.shape, res.total_simulations

@@ -1,25 +1,27 @@
-"""The cost of recording: the same search timed with and without a :class:`SearchRecorder`.
+r"""What the search itself costs: ``voot-bench overhead`` and ``voot-bench record-overhead``.
 
-Run ``python -m voot.record.overhead`` (options: ``--help``). For each problem it runs
-the search without a recorder and with one (the recorder's ``finish``, which logs the
-tree, the plan and the blueprint and closes the file, included; the one-off start-up of
-rerun in a process is measured apart on a warm-up recording), alternating
-``--repeats`` times and keeping the fastest run of each (the machine is shared; wall
-time and process CPU time are both reported, the latter less disturbed by other
-processes), checks
-that both searches gave the same curve (recording must not change the search), and
-prints the ratio ``on / off``. The goal: at most 1.5.
+**The planner's own overhead** (:func:`measure`, ``voot-bench overhead``): for every
+planner, action dimension and budget, one search of depth ``--depth`` on
+:class:`~voot.tree.null_problem.NullProblem`, printing the wall time per simulation and
+per node visit (one action taken inside a simulation, new or re-evaluated) and the
+process CPU time per node visit (the figure to trust on a shared machine). The null step
+is a few microseconds of Python, so the figures are the search's cost: the goal is VOOT
+under 100 microseconds per node visit, so that the simulator, not the search, bounds the
+speed.
 
-Problems: ``shekel`` (the synthetic Shekel chain in ``--dim`` dimensions with the
-authors' chain settings, see :func:`voot.tree.chain_planner_options`) and ``null``
-(:class:`voot.tree.overhead.NullProblem` at depth 5: a step that costs nothing, the
-worst case for the recorder's relative cost).
+**The cost of recording** (:func:`measure_overhead`, ``voot-bench record-overhead``): the
+same search timed with and without a :class:`~voot.record.SearchRecorder` (its
+``finish`` included; rerun's one-off start-up measured apart on a warm-up recording),
+alternating ``--repeats`` times and keeping the fastest run of each (wall and process
+CPU time), checking that both gave the same curve, and printing ``on / off`` (goal: at
+most 1.5). Problems: ``shekel`` (the Shekel chain in ``--dim`` dimensions with the
+authors' chain settings) and ``null`` (the null problem at depth 5, the worst case for
+the recorder's relative cost).
 """
 
 from __future__ import annotations
 
 import argparse
-import sys
 import tempfile
 import time
 from collections.abc import Sequence
@@ -33,7 +35,71 @@ from voot.record.recorder import SearchRecorder
 from voot.tree.chains import chain_planner_options, make_chain
 from voot.tree.config import planner_config
 from voot.tree.mcts import MCTS
-from voot.tree.overhead import NullProblem
+from voot.tree.null_problem import NullProblem
+
+#: The planners the paper compares, plus HOOT and Voronoi progressive widening.
+DEFAULT_PLANNERS = ("voot", "doot", "rand_doot", "pw_uct", "voronoi_pw", "hoot")
+
+
+def measure(
+    planner: str, dim: int, n_simulations: int, depth: int = 5, seed: int = 0
+) -> dict[str, float | int | str]:
+    """One timed search on :class:`NullProblem`; overhead figures in microseconds."""
+    problem = NullProblem(dim)
+    config = planner_config(planner, depth_limit=depth, root_commitment=None)
+    mcts = MCTS(problem, config, seed=seed)
+    t0, c0 = time.perf_counter(), time.process_time()
+    res = mcts.search(n_simulations)
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return {
+        "planner": planner,
+        "dim": dim,
+        "simulations": n_simulations,
+        "node_visits": res.n_node_visits,
+        "nodes": res.n_nodes,
+        "steps": res.n_steps,
+        "seconds": wall,
+        "cpu_seconds": cpu,
+        "us_per_simulation": 1e6 * wall / n_simulations,
+        "us_per_visit": 1e6 * wall / max(res.n_node_visits, 1),
+        "cpu_us_per_visit": 1e6 * cpu / max(res.n_node_visits, 1),
+    }
+
+
+def tree_main(argv: Sequence[str] | None = None) -> int:
+    """``voot-bench overhead``: print the planner's overhead table."""
+    parser = argparse.ArgumentParser(
+        prog="voot-bench overhead", description="the planner's own overhead per node visit"
+    )
+    parser.add_argument("--planners", nargs="+", default=list(DEFAULT_PLANNERS))
+    parser.add_argument("--dims", nargs="+", type=int, default=[6, 9])
+    parser.add_argument("--simulations", nargs="+", type=int, default=[1000, 10000])
+    parser.add_argument("--depth", type=int, default=5)
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args(argv)
+    header = (
+        f"{'planner':<11} {'dim':>3} {'sims':>6} {'visits':>7} {'nodes':>7} {'steps':>7}"
+        f" {'s':>7} {'us/sim':>8} {'us/visit':>8} {'cpu us/visit':>12}"
+    )
+    print(f"null problem, depth {args.depth}, seed {args.seed}")
+    print(header)
+    for planner in args.planners:
+        for dim in args.dims:
+            for n in args.simulations:
+                try:
+                    row = measure(planner, dim, n, args.depth, args.seed)
+                except ValueError as exc:  # e.g. a sampler whose module is missing
+                    print(f"{planner:<11} {dim:>3} {n:>6} skipped: {exc}")
+                    continue
+                print(
+                    f"{row['planner']:<11} {row['dim']:>3} {row['simulations']:>6}"
+                    f" {row['node_visits']:>7} {row['nodes']:>7} {row['steps']:>7}"
+                    f" {row['seconds']:>7.2f} {row['us_per_simulation']:>8.1f}"
+                    f" {row['us_per_visit']:>8.1f} {row['cpu_us_per_visit']:>12.1f}",
+                    flush=True,
+                )
+    return 0
+
 
 #: Problems :func:`measure_overhead` knows.
 PROBLEMS = ("shekel", "null")
@@ -123,10 +189,10 @@ def measure_overhead(
     }
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Print the overhead of recording (see the module docstring)."""
+def record_main(argv: Sequence[str] | None = None) -> int:
+    """``voot-bench record-overhead``: print the overhead of recording."""
     parser = argparse.ArgumentParser(
-        prog="python -m voot.record.overhead", description=(__doc__ or "").split("\n\n")[0]
+        prog="voot-bench record-overhead", description="the cost of recording a search"
     )
     parser.add_argument("--problems", nargs="+", default=list(PROBLEMS), choices=PROBLEMS)
     parser.add_argument("--dim", type=int, default=10)
@@ -152,7 +218,3 @@ def main(argv: Sequence[str] | None = None) -> int:
             flush=True,
         )
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

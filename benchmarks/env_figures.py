@@ -1,6 +1,6 @@
 """Render the documentation figures of the two scenes (headless, ``MUJOCO_GL=egl``).
 
-``python -m voot.envs.figures [out_dir]`` (default ``docs/figures``) writes:
+``voot-bench env-figures [out_dir]`` (default ``docs/figures``) writes:
 
 * ``kitchen_top_down.png``, ``kitchen_perspective.png``: the kitchen at the start, with
   the swept corridor of the fixed path (blue) and the forbidden rooms (red);
@@ -72,10 +72,6 @@ def render_all(out_dir: Path) -> None:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Command line: ``python -m voot.envs.figures [out_dir]``."""
+    """Command line: ``voot-bench env-figures [out_dir]``."""
     args = sys.argv[1:] if argv is None else argv
     render_all(Path(args[0]) if args else Path("docs/figures"))
-
-
-if __name__ == "__main__":
-    main()

@@ -1,6 +1,6 @@
 """Speed benchmark of the two environments (a command, not a test).
 
-``python -m voot.envs.speed [--n N] [--seed S]`` prints, per operator (kitchen pick,
+``voot-bench env-speed [--n N] [--seed S]`` prints, per operator (kitchen pick,
 kitchen place, conveyor 3-box place):
 
 * the median cost of one step, split into IK, collision checks and base motion planning
@@ -181,8 +181,10 @@ def report(results: dict[str, Any]) -> str:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """Command line: ``python -m voot.envs.speed [--n N] [--seed S]``."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    """Command line: ``voot-bench env-speed [--n N] [--seed S]``."""
+    parser = argparse.ArgumentParser(
+        prog="voot-bench env-speed", description=__doc__.splitlines()[0]
+    )
     parser.add_argument(
         "--n", type=int, default=1000, help="random actions per operator (default 1000)"
     )
@@ -191,7 +193,3 @@ def main(argv: list[str] | None = None) -> None:
     if args.n < 1:
         parser.error("--n must be >= 1")
     print(report(run(args.n, args.seed)))
-
-
-if __name__ == "__main__":
-    main()

@@ -1,4 +1,4 @@
-"""Tests of voot.record.overhead: the cost of recording (figures in docs/recordings.md)."""
+"""Tests of voot.bench.overhead: the planner's own overhead and the cost of recording."""
 
 from __future__ import annotations
 
@@ -6,9 +6,20 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("rerun")
+from voot.bench.overhead import measure, measure_overhead, tree_main
+from voot.bench.overhead import record_main as main
 
-from voot.record.overhead import main, measure_overhead
+
+def test_measure_counts_visits() -> None:
+    row = measure("voot", 3, 50, depth=5)
+    assert row["node_visits"] == 250 and row["simulations"] == 50
+    assert float(row["us_per_visit"]) > 0
+
+
+def test_tree_main_prints_a_table(capsys: pytest.CaptureFixture[str]) -> None:
+    assert tree_main(["--planners", "voot", "hoot", "--dims", "2", "--simulations", "20"]) == 0
+    out = capsys.readouterr().out
+    assert "us/visit" in out and "voot" in out and "hoot" in out
 
 
 def test_measure_returns_the_figures(tmp_path: Path) -> None:
