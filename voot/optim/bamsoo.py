@@ -49,11 +49,10 @@ from enum import StrEnum
 from typing import Any, ClassVar
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from voot.optim._generator import GeneratorOptimizer, Search
 from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int
-from voot.optim.base import Bounds, FloatArray, OptimizerConfig
+from voot.optim.base import FloatArray, OptimizerConfig
 from voot.optim.gp import GaussianProcess
 
 
@@ -189,14 +188,8 @@ class BaMSOO(GeneratorOptimizer):
     config_class: ClassVar[type[OptimizerConfig]] = BaMSOOConfig
     config: BaMSOOConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         self.surrogate = Surrogate(self.bounds.dim, self.config, self.rng)
         #: Children whose value was set from the GP lower bound (not evaluated).
         self.n_skipped = 0

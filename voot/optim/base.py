@@ -183,8 +183,9 @@ class Optimizer(ABC):
     Determinism: all randomness comes from ``self.rng = np.random.default_rng(seed)``,
     so the same seed and the same told values give the same asked points.
 
-    Subclasses implement :meth:`_ask` and may override :meth:`_tell`; the base class keeps
-    the history (``xs``, ``values``), the best point and input validation.
+    Subclasses implement :meth:`_ask`, may override :meth:`_tell` and build their own
+    state in :meth:`_setup`; the base class owns the constructor, the history (``xs``,
+    ``values``), the best point and input validation.
     """
 
     #: Registry name (set by subclasses), e.g. ``"voo"``.
@@ -221,6 +222,15 @@ class Optimizer(ABC):
         self._n = 0
         self._best_index = -1
         self._pending: FloatArray | None = None
+        self._setup()
+
+    def _setup(self) -> None:
+        """Hook: the method's own state, built once the common state above exists.
+
+        Subclasses override it (calling ``super()._setup()`` first) instead of
+        ``__init__``, so that every optimiser has the same constructor.
+        """
+        return None
 
     # ----- public API -----------------------------------------------------------------
     def ask(self) -> FloatArray:

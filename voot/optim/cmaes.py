@@ -38,9 +38,8 @@ from typing import Any, ClassVar
 
 import cma
 import numpy as np
-from numpy.typing import ArrayLike
 
-from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
 class RestartStrategy(StrEnum):
@@ -237,14 +236,8 @@ class CMAES(Optimizer):
     supports_revalue: ClassVar[bool] = False
     config: CMAESConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         cfg = self.config
         d = self.bounds.dim
         if self.initial_point is not None:

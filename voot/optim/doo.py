@@ -53,7 +53,6 @@ from enum import StrEnum
 from typing import Any, ClassVar
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from voot.optim._partition import (
     CellTree,
@@ -63,7 +62,7 @@ from voot.optim._partition import (
     parse_split,
     scale_weights,
 )
-from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 #: The authors' epsilon grid for DOO on the synthetic functions (sorted, duplicates
 #: removed): float64 and float32 machine epsilon, 1e-7, 1e-6, 1e-4, 1e-3, 0.01, 0.1, 1.
@@ -161,14 +160,8 @@ class DOO(Optimizer):
     #: Representative points uniform in the cell (RAND-DOO) instead of the centre.
     _random_points: ClassVar[bool] = False
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         cfg = self.config
         weights = scale_weights(cfg.scale, self.bounds)
         #: The cells (bounds, centres, depths, representative points, b-values).
@@ -348,14 +341,8 @@ class RandDOO(DOO):
     config: RandDOOConfig
     _random_points: ClassVar[bool] = True
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         #: Told indices marked infeasible (they represent no cell).
         self.infeasible: list[int] = []
 

@@ -24,11 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-import numpy as np
-from numpy.typing import ArrayLike
-
 from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int, check_zeta, maximize_ucb
-from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
 @dataclass(frozen=True)
@@ -72,14 +69,8 @@ class GPUCB(Optimizer):
     supports_revalue: ClassVar[bool] = True
     config: GPUCBConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         self.surrogate = Surrogate(self.bounds.dim, self.config, self.rng)
         #: Acquisition value of the last GP-proposed point (diagnostic).
         self.last_acquisition = float("nan")

@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int, check_zeta, maximize_ucb
-from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
 def default_low_dim(dim: int) -> int:
@@ -97,14 +97,8 @@ class REMBO(Optimizer):
     supports_revalue: ClassVar[bool] = True
     config: REMBOConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         D = self.bounds.dim
         d = self.config.low_dim if self.config.low_dim is not None else default_low_dim(D)
         if d >= D:

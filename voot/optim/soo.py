@@ -37,12 +37,9 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-import numpy as np
-from numpy.typing import ArrayLike
-
 from voot.optim._generator import GeneratorOptimizer, Search
 from voot.optim._partition import CellTree, Scale, Split, parse_scale, parse_split, scale_weights
-from voot.optim.base import Bounds, OptimizerConfig
+from voot.optim.base import OptimizerConfig
 
 
 @dataclass(frozen=True)
@@ -80,14 +77,8 @@ class SOO(GeneratorOptimizer):
     config_class: ClassVar[type[OptimizerConfig]] = SOOConfig
     config: SOOConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         cfg = self.config
         #: The cells (bounds, centres, depths, representative points, b-values).
         self.partition = CellTree(

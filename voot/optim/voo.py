@@ -38,7 +38,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 #: A semi-metric evaluated from many points to one: ``metric(points (n, d), y (d,)) -> (n,)``.
 Metric = Callable[[FloatArray, FloatArray], FloatArray]
@@ -299,14 +299,8 @@ class VOO(Optimizer):
     supports_revalue: ClassVar[bool] = True
     config: VOOConfig
 
-    def __init__(
-        self,
-        bounds: Bounds | ArrayLike,
-        config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
-        initial_point: ArrayLike | None = None,
-    ) -> None:
-        super().__init__(bounds, config, seed, initial_point)
+    def _setup(self) -> None:
+        super()._setup()
         self.sampler = BestCellSampler(self.config.sampler)
         #: Number of proposals rejected so far (a diagnostic of the best-cell sampler).
         self.n_rejected = 0
