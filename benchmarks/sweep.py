@@ -36,27 +36,29 @@ Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import hashlib
 import itertools
-import multiprocessing
-import os
 import sys
 import time
-import traceback
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Protocol, TypeVar
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from voot._workers import single_threaded_children
-from voot.bench.store import ResultStore, Row, make_row, make_run_id
+from voot.bench.store import (  # failed_row, exception_row: re-exported
+    ResultStore,
+    Row,
+    exception_row,
+    failed_row,  # noqa: F401 - re-exported (voot.bench.sweep.failed_row)
+    make_row,
+    make_run_id,
+)
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
+from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 
 #: Version of the run protocol (initial point and seeding rules); part of every run id.
 PROTOCOL = 1
@@ -375,50 +377,31 @@ def run_spec(spec: RunSpec) -> Row:
         return exception_row(spec, exc, start, best)
 
 
+#: The run function of each spec kind (``RunSpec.kind`` -> :func:`run_spec`); modules
+#: defining other kinds add theirs with :func:`register_runner` when imported (e.g.
+#: :mod:`voot.bench.plan_sweep`: ``"plan"`` -> ``run_plan_spec``). Unpickling a spec in a
+#: worker imports its module, so the worker knows its run function too.
+RUNNERS: dict[str, Callable[[Any], Row]] = {}
+
+
+def register_runner(kind: str, run: Callable[[Any], Row]) -> None:
+    """Make :func:`run_any` run specs of ``kind`` with ``run``."""
+    RUNNERS[kind] = run
+
+
 def run_any(spec: Any) -> Row:
-    """Run a spec of any kind: :func:`run_spec` for :class:`RunSpec`,
-    :func:`voot.bench.plan_sweep.run_plan_spec` for a plan spec."""
-    if isinstance(spec, RunSpec):
-        return run_spec(spec)
-    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
-
-    if isinstance(spec, PlanSpec):
-        return run_plan_spec(spec)
-    raise TypeError(f"cannot run a {type(spec).__name__}; expected a RunSpec or a PlanSpec")
-
-
-def failed_row(
-    spec: Any,
-    error: str,
-    *,
-    wall_time: float = 0.0,
-    best_so_far: Sequence[float] = (),
-    **extra: Any,
-) -> Row:
-    """The row of a run that failed: status ``"failed"``, with what it had recorded."""
-    return make_row(
-        spec.kind,
-        spec.config(),
-        status="failed",
-        wall_time=wall_time,
-        best_so_far=list(best_so_far),
-        error=error,
-        **extra,
-    )
+    """Run a spec of any registered kind (:data:`RUNNERS`): :func:`run_spec` for a
+    :class:`RunSpec`, :func:`voot.bench.plan_sweep.run_plan_spec` for a plan spec."""
+    run = RUNNERS.get(getattr(spec, "kind", None))  # type: ignore[arg-type]
+    if run is None:
+        raise TypeError(
+            f"cannot run a {type(spec).__name__}; expected a spec of a registered kind"
+            f" ({', '.join(sorted(RUNNERS))}), e.g. a RunSpec or a PlanSpec"
+        )
+    return run(spec)
 
 
-def exception_row(
-    spec: Any, exc: Exception, start: float, best: Sequence[float], **extra: Any
-) -> Row:
-    """The row of a run that raised ``exc`` (called inside its ``except`` block)."""
-    return failed_row(
-        spec,
-        f"{type(exc).__name__}: {exc}",
-        wall_time=time.perf_counter() - start,
-        best_so_far=best,
-        traceback=traceback.format_exc(limit=20),
-        **extra,
-    )
+register_runner(RunSpec.kind, run_spec)
 
 
 def describe_config(config: Mapping[str, Any]) -> str:
@@ -441,46 +424,20 @@ def describe_config(config: Mapping[str, Any]) -> str:
 
 
 # ----- backends ------------------------------------------------------------------------
-T = TypeVar("T")
+#: Where runs execute: any :class:`voot.parallel.Executor` (the sweep uses its
+#: ``map_unordered``, rows in completion order, and its ``name``). A backend must not drop
+#: rows: when the consumer stops early (exception, Ctrl-C) it cancels what has not
+#: started. ``fn`` and the items must be picklable for backends that run elsewhere.
+Backend = Executor
+
+#: Runs everything in this process, in order (for tests, debugging, one core).
+SerialBackend = SerialExecutor
 
 
-class Backend(Protocol):
-    """Where runs execute. ``map_unordered`` yields one row per item, in completion order.
-
-    A backend must not drop rows: when the consumer stops early (exception, Ctrl-C) it
-    cancels what has not started. ``fn`` and the items must be picklable for backends
-    that run elsewhere.
-    """
-
-    name: str
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]: ...
-
-
-class SerialBackend:
-    """Runs everything in this process, in order (for tests, debugging, one core)."""
-
-    name = "serial"
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
-        for item in items:
-            yield fn(item)
-
-
-def _terminate_workers(pool: ProcessPoolExecutor) -> None:
-    """Kill the pool's worker processes (their runs are lost; nothing was written)."""
-    terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
-    if callable(terminate):
-        terminate()
-        return
-    processes = getattr(pool, "_processes", None) or {}
-    for process in list(processes.values()):
-        with contextlib.suppress(Exception):
-            process.terminate()
-
-
-class ProcessBackend:
-    """A local :class:`~concurrent.futures.ProcessPoolExecutor` with ``workers`` processes.
+class ProcessBackend(ProcessExecutor):
+    """A local process pool of ``workers`` processes, started by every
+    ``map_unordered`` and shut down when it ends (its workers terminated if it was
+    interrupted): a :class:`voot.parallel.ProcessExecutor` with ``keep_alive=False``.
 
     Args:
         workers: number of processes (default ``os.cpu_count()``).
@@ -489,47 +446,13 @@ class ProcessBackend:
         max_pending: runs submitted ahead of completion (bounds memory on huge sweeps).
     """
 
-    name = "process"
-
     def __init__(
         self,
         workers: int | None = None,
         start_method: str = "spawn",
         max_pending: int | None = None,
     ) -> None:
-        n = (os.cpu_count() or 1) if workers is None else workers
-        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-        valid = multiprocessing.get_all_start_methods()
-        if start_method not in valid:
-            raise ValueError(f"unknown start method {start_method!r}; valid: {', '.join(valid)}")
-        self.workers = n
-        self.start_method = start_method
-        self.max_pending = max_pending if max_pending is not None else 4 * n
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
-        ctx = multiprocessing.get_context(self.start_method)
-        # Workers start on demand at submit(), so the environment stays set throughout.
-        with single_threaded_children():
-            pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
-            completed = False
-            try:
-                todo = iter(items)
-                pending: set[Future[Row]] = set()
-                for item in itertools.islice(todo, self.max_pending):
-                    pending.add(pool.submit(fn, item))
-                while pending:
-                    done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                    for fut in done:
-                        nxt = next(todo, None)
-                        if nxt is not None:
-                            pending.add(pool.submit(fn, nxt))
-                        yield fut.result()
-                completed = True
-            finally:
-                if not completed:  # interrupted: stop the runs in flight, keep no orphans
-                    _terminate_workers(pool)
-                pool.shutdown(wait=True, cancel_futures=True)
+        super().__init__(workers, start_method, max_pending=max_pending, keep_alive=False)
 
 
 BACKENDS: tuple[str, ...] = ("process", "serial", "ray")
