@@ -4,8 +4,8 @@ A sweep is a grid of functions x dimensions x optimisers (each with its hyperpar
 grid) x seeds. :func:`build_specs` turns the grid into :class:`RunSpec` values,
 :func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store`), and
 :func:`run_sweep` runs every spec not yet in a :class:`~voot.bench.store.ResultStore` on a
-:class:`Backend` (in-process, a local process pool, or Ray:
-:mod:`voot.bench.ray_backend`), writing each row as soon as its run finishes. The
+backend (:mod:`voot.bench.backends`: in-process, a local process pool, or Ray), writing
+each row as soon as its run finishes. The
 planning sweep (:mod:`voot.bench.plan_sweep`) runs through the same :func:`run_sweep`.
 
 The protocol of one run (``PROTOCOL = 1``):
@@ -48,6 +48,13 @@ from typing import Any, ClassVar, Protocol, TypeVar
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from voot.bench.backends import (  # re-exported: voot.bench.sweep.make_backend ...
+    BACKENDS,  # noqa: F401
+    Backend,
+    ProcessBackend,  # noqa: F401
+    SerialBackend,
+    make_backend,  # noqa: F401
+)
 from voot.bench.store import (  # failed_row, exception_row: re-exported
     ResultStore,
     Row,
@@ -58,7 +65,6 @@ from voot.bench.store import (  # failed_row, exception_row: re-exported
 )
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
-from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 
 #: Version of the run protocol (initial point and seeding rules); part of every run id.
 PROTOCOL = 1
@@ -421,70 +427,6 @@ def describe_config(config: Mapping[str, Any]) -> str:
         + (f" instance {instance}" if instance else "")
         + f" seed {config.get('seed')}"
     )
-
-
-# ----- backends ------------------------------------------------------------------------
-#: Where runs execute: any :class:`voot.parallel.Executor` (the sweep uses its
-#: ``map_unordered``, rows in completion order, and its ``name``). A backend must not drop
-#: rows: when the consumer stops early (exception, Ctrl-C) it cancels what has not
-#: started. ``fn`` and the items must be picklable for backends that run elsewhere.
-Backend = Executor
-
-#: Runs everything in this process, in order (for tests, debugging, one core).
-SerialBackend = SerialExecutor
-
-
-class ProcessBackend(ProcessExecutor):
-    """A local process pool of ``workers`` processes, started by every
-    ``map_unordered`` and shut down when it ends (its workers terminated if it was
-    interrupted): a :class:`voot.parallel.ProcessExecutor` with ``keep_alive=False``.
-
-    Args:
-        workers: number of processes (default ``os.cpu_count()``).
-        start_method: multiprocessing start method; ``"spawn"`` (default) gives every
-            worker a fresh interpreter, so nothing of the parent's state leaks into runs.
-        max_pending: runs submitted ahead of completion (bounds memory on huge sweeps).
-    """
-
-    def __init__(
-        self,
-        workers: int | None = None,
-        start_method: str = "spawn",
-        max_pending: int | None = None,
-    ) -> None:
-        super().__init__(workers, start_method, max_pending=max_pending, keep_alive=False)
-
-
-BACKENDS: tuple[str, ...] = ("process", "serial", "ray")
-
-
-def make_backend(
-    name: str = "process",
-    workers: int | None = None,
-    *,
-    address: str | None = None,
-    max_tries: int | None = None,
-) -> Backend:
-    """A backend by name: ``process`` (a local pool; one worker runs in this process),
-    ``serial`` or ``ray`` (:class:`voot.bench.ray_backend.RayBackend`; ``address`` of an
-    existing cluster, e.g. ``"auto"``, and ``max_tries`` per run)."""
-    if name != "ray" and (address is not None or max_tries is not None):
-        raise ValueError("address and max_tries apply to the ray backend only (--backend ray)")
-    if name == "process":
-        if workers == 1:
-            return SerialBackend()
-        return ProcessBackend(workers)
-    if name == "serial":
-        return SerialBackend()
-    if name == "ray":
-        from voot.bench.ray_backend import DEFAULT_MAX_TRIES, RayBackend
-
-        return RayBackend(
-            workers,
-            address=address,
-            max_tries=DEFAULT_MAX_TRIES if max_tries is None else max_tries,
-        )
-    raise ValueError(f"unknown backend {name!r}; valid backends are: {', '.join(BACKENDS)}")
 
 
 # ----- the sweep -----------------------------------------------------------------------
