@@ -40,6 +40,10 @@ class ProcessBackend(ProcessExecutor):
         start_method: str = "spawn",
         max_pending: int | None = None,
     ) -> None:
+        if workers is not None and (
+            isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+        ):
+            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
         super().__init__(workers, start_method, max_pending=max_pending, keep_alive=False)
 
 

@@ -29,6 +29,11 @@ def test_sweep_re_exports_the_backends() -> None:
         assert getattr(sweep, name) is getattr(backends, name)
 
 
+def test_bad_workers_are_named_as_the_sweep_names_them() -> None:
+    with pytest.raises(ValueError, match=r"^workers must be an integer >= 1, got 0"):
+        backends.ProcessBackend(workers=0)
+
+
 def test_ray_options_need_the_ray_backend() -> None:
     with pytest.raises(ValueError, match="apply to the ray backend only"):
         backends.make_backend("serial", max_tries=2)
