@@ -45,7 +45,7 @@ import numpy as np
 
 from voot.bench import problems as P
 from voot.bench.store import Row, make_row, make_run_id
-from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread
+from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread, register_runner
 
 #: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.
 PLAN_PROTOCOL = 1
@@ -462,6 +462,9 @@ def run_plan_spec(spec: PlanSpec) -> Row:
         )
     except Exception as exc:
         return exception_row(spec, exc, start, best, problem_label=spec.label)
+
+
+register_runner(PlanSpec.kind, run_plan_spec)
 
 
 def summarize_plan_specs(specs: Sequence[PlanSpec]) -> str:

@@ -14,7 +14,9 @@ A problem is named either
 Environments are made with ``gymnasium.make(id, disable_env_checker=True, **kwargs)`` and
 adapted by the adapter the env offers (its ``planning_problem(env)`` method:
 :class:`voot.envs.planning.EnvProblem` for the voot robot domains), else by
-:class:`~voot.tree.gym_adapters.GymProblem`. Each process keeps the environments it made (:func:`cached_env`, a small LRU): a run resets
+:class:`~voot.tree.gym_adapters.GymProblem`. Each process keeps the environments it made
+(:func:`cached_env`, in the process's worker cache :mod:`voot.parallel.cache`, a small
+LRU shared with root-parallel search): a run resets
 its env with the run's seed, so a kept env behaves exactly as a fresh one, while the
 MuJoCo model is loaded once per process (or Ray actor) instead of once per run.
 
@@ -31,12 +33,14 @@ original root after a goal, VOO's per-operator distance).
 
 from __future__ import annotations
 
+import functools
 import json
 import math
-from collections import OrderedDict
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
+
+from voot.parallel import CACHE_SIZE, clear_worker_cache, worker_cache
 
 #: The synthetic chains, by problem name -> function name.
 CHAINS: Mapping[str, str] = {
@@ -79,8 +83,9 @@ VOO_PLANNERS = frozenset({"voot", "voronoi_pw"})
 PW_PLANNERS = frozenset({"pw_uct", "voronoi_pw"})
 #: Step-info key of the objects still to handle (recorded at the best leaf).
 OBJECTS_KEY = "objects_left"
-#: Environments each process keeps made (least recently used ones are closed).
-ENV_CACHE_SIZE = 4
+#: Objects each process keeps (environments among them; the least recently used one is
+#: closed): the size of the process's worker cache.
+ENV_CACHE_SIZE = CACHE_SIZE
 
 
 @dataclass(frozen=True)
@@ -210,39 +215,34 @@ def domain_options(
 
 
 # ----- construction ----------------------------------------------------------------------
-_ENV_CACHE: OrderedDict[str, Any] = OrderedDict()
+#: This process's worker cache (:mod:`voot.parallel.cache`), where made environments
+#: are kept (under ``("env", id and keywords)``), beside what other users of the process
+#: keep (e.g. the problems of root-parallel search).
+_ENV_CACHE = worker_cache()
 
 
 def cached_env(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> Any:
     """``gymnasium.make(env_id, **env_kwargs)``, kept for later runs in this process."""
+    key = ("env", json.dumps([env_id, dict(env_kwargs or {})], sort_keys=True))
+    return worker_cache().get(key, functools.partial(_make_env, env_id, env_kwargs), _close_env)
+
+
+def _make_env(env_id: str, env_kwargs: Mapping[str, Any] | None) -> Any:
     import gymnasium
 
     import voot  # noqa: F401 - registers the voot/... ids
 
-    key = json.dumps([env_id, dict(env_kwargs or {})], sort_keys=True)
-    env = _ENV_CACHE.get(key)
-    if env is not None:
-        _ENV_CACHE.move_to_end(key)
-        return env
-    env = gymnasium.make(env_id, disable_env_checker=True, **dict(env_kwargs or {}))
-    _ENV_CACHE[key] = env
-    while len(_ENV_CACHE) > ENV_CACHE_SIZE:
-        _, old = _ENV_CACHE.popitem(last=False)
-        try:
-            old.close()
-        except Exception:  # pragma: no cover - closing is best effort
-            pass
-    return env
+    return gymnasium.make(env_id, disable_env_checker=True, **dict(env_kwargs or {}))
+
+
+def _close_env(env: Any) -> None:
+    env.close()
 
 
 def clear_env_cache() -> None:
-    """Close and forget every kept environment of this process."""
-    while _ENV_CACHE:
-        _, env = _ENV_CACHE.popitem()
-        try:
-            env.close()
-        except Exception:  # pragma: no cover
-            pass
+    """Close and forget every kept environment of this process (this clears the process's
+    whole worker cache, :func:`voot.parallel.clear_worker_cache`)."""
+    clear_worker_cache()
 
 
 def adapt_env(env: Any) -> Any:

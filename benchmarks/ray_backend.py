@@ -1,7 +1,10 @@
 """Run a sweep on Ray: a local Ray instance or an existing cluster (``--backend ray``).
 
-:class:`RayBackend` is a :class:`~voot.bench.sweep.Backend`: the same runs, the same
-rows, the same store as the local backends; only where the runs execute changes.
+:class:`RayBackend` is a :class:`voot.parallel.Executor` (so a
+:class:`~voot.bench.sweep.Backend`): the same runs, the same rows, the same store as the
+local backends; only where the runs execute changes. Its ``map`` (results in order,
+exceptions raised) serves any function, e.g. the trees of
+:func:`voot.tree.root_parallel.plan_root_parallel` (``executor=RayBackend(...)``).
 
 * **Workers keep their models.** The backend starts one long-lived actor per CPU (or
   ``workers``); each runs one run at a time in its own process, so what a run loads
@@ -27,25 +30,37 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import dataclasses
 import logging
 import os
 import socket
-from collections.abc import Callable, Iterator, Sequence
-from typing import Any, TypeVar
+from collections.abc import Callable, Generator, Iterator, Sequence
+from typing import Any, TypeVar, cast
 
-from voot.bench.store import Row
-from voot.bench.sweep import failed_row
+from voot.bench.store import Row, failed_row
 
 #: Tries per run when its worker dies (the first try included).
 DEFAULT_MAX_TRIES = 3
 
 T = TypeVar("T")
+R = TypeVar("R")
+
+
+@dataclasses.dataclass(frozen=True)
+class _Failure:
+    """Why an item has no result: a message, the exception, the tries made, and whether
+    the worker died (``lost``) rather than the function raised."""
+
+    message: str
+    error: BaseException
+    tries: int
+    lost: bool
 
 
 class _Worker:
     """The actor: runs one run at a time in its own, long-lived process."""
 
-    def run(self, fn: Callable[[Any], Row], item: Any) -> Row:
+    def run(self, fn: Callable[[Any], Any], item: Any) -> Any:
         return fn(item)
 
     def where(self) -> tuple[str, int]:
@@ -76,10 +91,11 @@ class RayBackend:
         max_tries: tries per run when its worker dies (>= 1).
         init_options: extra keywords of ``ray.init`` (when this backend starts Ray).
         on_lost: ``on_lost(item, error, tries=n)`` makes the row of a run whose worker
-            died ``max_tries`` times (default :func:`voot.bench.sweep.failed_row`).
+            died ``max_tries`` times (default :func:`voot.bench.store.failed_row`).
     """
 
     name = "ray"
+    in_process = False
 
     def __init__(
         self,
@@ -135,7 +151,11 @@ class RayBackend:
             ) from None
         return True
 
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
+    def _outcomes(
+        self, fn: Callable[[T], R], items: Sequence[T]
+    ) -> Generator[tuple[int, Any, _Failure | None], None, None]:
+        """``(index, result, None)`` for every item as it completes, or ``(index, None,
+        failure)`` when its worker died ``max_tries`` times or ``fn`` raised."""
         if not items:
             return
         import ray
@@ -162,7 +182,7 @@ class RayBackend:
                 ref = done[0]
                 a, i = in_flight.pop(ref)
                 try:
-                    row = ray.get(ref)
+                    value = ray.get(ref)
                 except lost as exc:
                     with contextlib.suppress(Exception):
                         ray.kill(actors[a], no_restart=True)
@@ -173,25 +193,68 @@ class RayBackend:
                         queue.appendleft(i)
                         continue
                     reason = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
-                    yield self.on_lost(
-                        items[i],
+                    message = (
                         f"{type(exc).__name__}: the worker died in each of {tries[i]} tries"
-                        + (f" (last: {reason})" if reason else ""),
-                        tries=tries[i],
+                        + (f" (last: {reason})" if reason else "")
                     )
+                    yield i, None, _Failure(message, exc, tries[i], lost=True)
                     continue
                 except ray.exceptions.RayTaskError as exc:  # the run function itself raised
                     idle.append(a)
                     cause = exc.cause if exc.cause is not None else exc
-                    yield self.on_lost(items[i], f"{type(cause).__name__}: {cause}", tries=tries[i])
+                    yield (
+                        i,
+                        None,
+                        _Failure(f"{type(cause).__name__}: {cause}", cause, tries[i], lost=False),
+                    )
                     continue
                 idle.append(a)
-                if tries[i] > 1 and isinstance(row, dict):
-                    row["tries"] = tries[i]
-                yield row
+                if tries[i] > 1 and isinstance(value, dict):
+                    value["tries"] = tries[i]
+                yield i, value, None
         finally:
             for actor in actors:
                 with contextlib.suppress(Exception):
                     ray.kill(actor, no_restart=True)
             if started:
                 ray.shutdown()
+
+    def map_unordered(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[R]:
+        """Results (rows) as their runs complete; a run whose worker died ``max_tries``
+        times, or whose function raised, gets the row ``on_lost(item, error, tries=n)``
+        instead (so ``fn`` should be a run function returning rows; use :meth:`map` for
+        other functions)."""
+        for i, row, failure in self._outcomes(fn, items):
+            if failure is not None:
+                yield cast(R, self.on_lost(items[i], failure.message, tries=failure.tries))
+            else:
+                yield row
+
+    def map(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[R]:
+        """Results in the items' order (any function, e.g. root-parallel trees); an
+        item's exception is raised (a lost worker: a RuntimeError)."""
+        buffer: dict[int, R] = {}
+        following = 0
+        outcomes = self._outcomes(fn, items)
+        try:
+            for i, value, failure in outcomes:
+                if failure is not None:
+                    if not failure.lost:
+                        raise failure.error
+                    raise RuntimeError(failure.message) from failure.error
+                buffer[i] = value
+                while following in buffer:
+                    yield buffer.pop(following)
+                    following += 1
+        finally:
+            outcomes.close()
+
+    def close(self, *, kill: bool = False) -> None:
+        """Nothing to shut down: the actors live for one ``map`` call (and Ray with them,
+        if that call started it)."""
+
+    def __enter__(self) -> RayBackend:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -59,6 +59,8 @@ import math
 import os
 import platform
 import tempfile
+import time
+import traceback
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -171,6 +173,40 @@ def make_row(
     }
     row.update(extra)
     return row
+
+
+def failed_row(
+    spec: Any,
+    error: str,
+    *,
+    wall_time: float = 0.0,
+    best_so_far: Sequence[float] = (),
+    **extra: Any,
+) -> Row:
+    """The row of a run that failed: status ``"failed"``, with what it had recorded."""
+    return make_row(
+        spec.kind,
+        spec.config(),
+        status="failed",
+        wall_time=wall_time,
+        best_so_far=list(best_so_far),
+        error=error,
+        **extra,
+    )
+
+
+def exception_row(
+    spec: Any, exc: Exception, start: float, best: Sequence[float], **extra: Any
+) -> Row:
+    """The row of a run that raised ``exc`` (called inside its ``except`` block)."""
+    return failed_row(
+        spec,
+        f"{type(exc).__name__}: {exc}",
+        wall_time=time.perf_counter() - start,
+        best_so_far=best,
+        traceback=traceback.format_exc(limit=20),
+        **extra,
+    )
 
 
 def check_row(row: Any, source: str = "row") -> Row:

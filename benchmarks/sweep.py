@@ -4,8 +4,8 @@ A sweep is a grid of functions x dimensions x optimisers (each with its hyperpar
 grid) x seeds. :func:`build_specs` turns the grid into :class:`RunSpec` values,
 :func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store`), and
 :func:`run_sweep` runs every spec not yet in a :class:`~voot.bench.store.ResultStore` on a
-:class:`Backend` (in-process, a local process pool, or Ray:
-:mod:`voot.bench.ray_backend`), writing each row as soon as its run finishes. The
+backend (:mod:`voot.bench.backends`: in-process, a local process pool, or Ray), writing
+each row as soon as its run finishes. The
 planning sweep (:mod:`voot.bench.plan_sweep`) runs through the same :func:`run_sweep`.
 
 The protocol of one run (``PROTOCOL = 1``):
@@ -36,25 +36,33 @@ Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
 
 from __future__ import annotations
 
-import contextlib
 import functools
 import hashlib
 import itertools
-import multiprocessing
-import os
 import sys
 import time
-import traceback
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Protocol, TypeVar
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from voot._workers import single_threaded_children
-from voot.bench.store import ResultStore, Row, make_row, make_run_id
+from voot.bench.backends import (  # re-exported: voot.bench.sweep.make_backend ...
+    BACKENDS,  # noqa: F401
+    Backend,
+    ProcessBackend,  # noqa: F401
+    SerialBackend,
+    make_backend,  # noqa: F401
+)
+from voot.bench.store import (  # failed_row, exception_row: re-exported
+    ResultStore,
+    Row,
+    exception_row,
+    failed_row,  # noqa: F401 - re-exported (voot.bench.sweep.failed_row)
+    make_row,
+    make_run_id,
+)
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
 
@@ -375,50 +383,31 @@ def run_spec(spec: RunSpec) -> Row:
         return exception_row(spec, exc, start, best)
 
 
+#: The run function of each spec kind (``RunSpec.kind`` -> :func:`run_spec`); modules
+#: defining other kinds add theirs with :func:`register_runner` when imported (e.g.
+#: :mod:`voot.bench.plan_sweep`: ``"plan"`` -> ``run_plan_spec``). Unpickling a spec in a
+#: worker imports its module, so the worker knows its run function too.
+RUNNERS: dict[str, Callable[[Any], Row]] = {}
+
+
+def register_runner(kind: str, run: Callable[[Any], Row]) -> None:
+    """Make :func:`run_any` run specs of ``kind`` with ``run``."""
+    RUNNERS[kind] = run
+
+
 def run_any(spec: Any) -> Row:
-    """Run a spec of any kind: :func:`run_spec` for :class:`RunSpec`,
-    :func:`voot.bench.plan_sweep.run_plan_spec` for a plan spec."""
-    if isinstance(spec, RunSpec):
-        return run_spec(spec)
-    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
-
-    if isinstance(spec, PlanSpec):
-        return run_plan_spec(spec)
-    raise TypeError(f"cannot run a {type(spec).__name__}; expected a RunSpec or a PlanSpec")
-
-
-def failed_row(
-    spec: Any,
-    error: str,
-    *,
-    wall_time: float = 0.0,
-    best_so_far: Sequence[float] = (),
-    **extra: Any,
-) -> Row:
-    """The row of a run that failed: status ``"failed"``, with what it had recorded."""
-    return make_row(
-        spec.kind,
-        spec.config(),
-        status="failed",
-        wall_time=wall_time,
-        best_so_far=list(best_so_far),
-        error=error,
-        **extra,
-    )
+    """Run a spec of any registered kind (:data:`RUNNERS`): :func:`run_spec` for a
+    :class:`RunSpec`, :func:`voot.bench.plan_sweep.run_plan_spec` for a plan spec."""
+    run = RUNNERS.get(getattr(spec, "kind", None))  # type: ignore[arg-type]
+    if run is None:
+        raise TypeError(
+            f"cannot run a {type(spec).__name__}; expected a spec of a registered kind"
+            f" ({', '.join(sorted(RUNNERS))}), e.g. a RunSpec or a PlanSpec"
+        )
+    return run(spec)
 
 
-def exception_row(
-    spec: Any, exc: Exception, start: float, best: Sequence[float], **extra: Any
-) -> Row:
-    """The row of a run that raised ``exc`` (called inside its ``except`` block)."""
-    return failed_row(
-        spec,
-        f"{type(exc).__name__}: {exc}",
-        wall_time=time.perf_counter() - start,
-        best_so_far=best,
-        traceback=traceback.format_exc(limit=20),
-        **extra,
-    )
+register_runner(RunSpec.kind, run_spec)
 
 
 def describe_config(config: Mapping[str, Any]) -> str:
@@ -438,130 +427,6 @@ def describe_config(config: Mapping[str, Any]) -> str:
         + (f" instance {instance}" if instance else "")
         + f" seed {config.get('seed')}"
     )
-
-
-# ----- backends ------------------------------------------------------------------------
-T = TypeVar("T")
-
-
-class Backend(Protocol):
-    """Where runs execute. ``map_unordered`` yields one row per item, in completion order.
-
-    A backend must not drop rows: when the consumer stops early (exception, Ctrl-C) it
-    cancels what has not started. ``fn`` and the items must be picklable for backends
-    that run elsewhere.
-    """
-
-    name: str
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]: ...
-
-
-class SerialBackend:
-    """Runs everything in this process, in order (for tests, debugging, one core)."""
-
-    name = "serial"
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
-        for item in items:
-            yield fn(item)
-
-
-def _terminate_workers(pool: ProcessPoolExecutor) -> None:
-    """Kill the pool's worker processes (their runs are lost; nothing was written)."""
-    terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
-    if callable(terminate):
-        terminate()
-        return
-    processes = getattr(pool, "_processes", None) or {}
-    for process in list(processes.values()):
-        with contextlib.suppress(Exception):
-            process.terminate()
-
-
-class ProcessBackend:
-    """A local :class:`~concurrent.futures.ProcessPoolExecutor` with ``workers`` processes.
-
-    Args:
-        workers: number of processes (default ``os.cpu_count()``).
-        start_method: multiprocessing start method; ``"spawn"`` (default) gives every
-            worker a fresh interpreter, so nothing of the parent's state leaks into runs.
-        max_pending: runs submitted ahead of completion (bounds memory on huge sweeps).
-    """
-
-    name = "process"
-
-    def __init__(
-        self,
-        workers: int | None = None,
-        start_method: str = "spawn",
-        max_pending: int | None = None,
-    ) -> None:
-        n = (os.cpu_count() or 1) if workers is None else workers
-        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-        valid = multiprocessing.get_all_start_methods()
-        if start_method not in valid:
-            raise ValueError(f"unknown start method {start_method!r}; valid: {', '.join(valid)}")
-        self.workers = n
-        self.start_method = start_method
-        self.max_pending = max_pending if max_pending is not None else 4 * n
-
-    def map_unordered(self, fn: Callable[[T], Row], items: Sequence[T]) -> Iterator[Row]:
-        ctx = multiprocessing.get_context(self.start_method)
-        # Workers start on demand at submit(), so the environment stays set throughout.
-        with single_threaded_children():
-            pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx)
-            completed = False
-            try:
-                todo = iter(items)
-                pending: set[Future[Row]] = set()
-                for item in itertools.islice(todo, self.max_pending):
-                    pending.add(pool.submit(fn, item))
-                while pending:
-                    done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                    for fut in done:
-                        nxt = next(todo, None)
-                        if nxt is not None:
-                            pending.add(pool.submit(fn, nxt))
-                        yield fut.result()
-                completed = True
-            finally:
-                if not completed:  # interrupted: stop the runs in flight, keep no orphans
-                    _terminate_workers(pool)
-                pool.shutdown(wait=True, cancel_futures=True)
-
-
-BACKENDS: tuple[str, ...] = ("process", "serial", "ray")
-
-
-def make_backend(
-    name: str = "process",
-    workers: int | None = None,
-    *,
-    address: str | None = None,
-    max_tries: int | None = None,
-) -> Backend:
-    """A backend by name: ``process`` (a local pool; one worker runs in this process),
-    ``serial`` or ``ray`` (:class:`voot.bench.ray_backend.RayBackend`; ``address`` of an
-    existing cluster, e.g. ``"auto"``, and ``max_tries`` per run)."""
-    if name != "ray" and (address is not None or max_tries is not None):
-        raise ValueError("address and max_tries apply to the ray backend only (--backend ray)")
-    if name == "process":
-        if workers == 1:
-            return SerialBackend()
-        return ProcessBackend(workers)
-    if name == "serial":
-        return SerialBackend()
-    if name == "ray":
-        from voot.bench.ray_backend import DEFAULT_MAX_TRIES, RayBackend
-
-        return RayBackend(
-            workers,
-            address=address,
-            max_tries=DEFAULT_MAX_TRIES if max_tries is None else max_tries,
-        )
-    raise ValueError(f"unknown backend {name!r}; valid backends are: {', '.join(BACKENDS)}")
 
 
 # ----- the sweep -----------------------------------------------------------------------

@@ -269,3 +269,11 @@ def test_kitchen_run_records_objects() -> None:
     assert r["simulator_calls"] >= r["n_steps"] > 0
     assert r["planner_config"]["gamma"] == 0.9
     assert r["planner_config"]["sampler_options"]["sampler"] == "uniform"
+
+
+def test_plan_specs_are_registered_with_run_any() -> None:
+    from voot.bench.sweep import RUNNERS, run_any
+
+    assert RUNNERS["plan"] is run_plan_spec
+    spec = PlanSpec("shekel_chain", 3, (), "voot", (), 10, 0)
+    assert run_any(spec)["best_so_far"] == run_plan_spec(spec)["best_so_far"]

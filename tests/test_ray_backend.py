@@ -103,3 +103,26 @@ def test_bad_ray_arguments() -> None:
         RayBackend(max_tries=0)
     with pytest.raises(ValueError, match="address and max_tries apply to the ray backend"):
         make_backend("process", 2, address="auto")
+
+
+def raise_on_three(x: int) -> int:
+    if x == 3:
+        raise ValueError("three")
+    return x * x
+
+
+def test_ray_backend_is_an_executor_for_root_parallel_trees(ray_instance: None) -> None:
+    from voot.bench.ray_backend import RayBackend
+    from voot.parallel import Executor
+    from voot.tree import make_chain, plan_root_parallel
+
+    backend = RayBackend(2)
+    assert isinstance(backend, Executor) and not backend.in_process
+    assert list(backend.map(raise_on_three, [4, 1, 2])) == [16, 1, 4]  # the items' order
+    with pytest.raises(ValueError, match="three"):
+        list(backend.map(raise_on_three, [1, 3]))
+    factory = functools.partial(make_chain, "shekel", 3)
+    serial = plan_root_parallel(factory, "voot", 20, seed=1, n_trees=3, executor="serial")
+    with backend:
+        on_ray = plan_root_parallel(factory, "voot", 20, seed=1, n_trees=3, executor=backend)
+    assert on_ray == serial

@@ -339,3 +339,20 @@ def test_fixed_parameters_join_every_setting_and_are_checked() -> None:
         build_specs(["griewank"], [3], ["voo", "cmaes"], [0], fixed={"sampler": "gaussian"})
     with pytest.raises(ValueError, match="valid samplers are"):
         build_specs(["griewank"], [3], ["voo"], [0], fixed={"sampler": "gauss"})
+
+
+# ----- the registry of spec kinds -------------------------------------------------------------
+def test_run_any_dispatches_on_the_registered_kinds() -> None:
+    from voot.bench import sweep
+
+    assert sweep.RUNNERS["bbfo"] is run_spec
+    spec = RunSpec("rastrigin", 3, "random", (), 5, 0)
+    assert sweep.run_any(spec)["best_so_far"] == run_spec(spec)["best_so_far"]
+    with pytest.raises(TypeError, match="cannot run a int"):
+        sweep.run_any(3)
+
+
+def test_sweep_does_not_import_the_plan_sweep() -> None:
+    code = "import sys, voot.bench.sweep; print('voot.bench.plan_sweep' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

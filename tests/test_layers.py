@@ -1,0 +1,53 @@
+"""The import layers: lower packages load nothing of the layers above them (nor MuJoCo).
+
+Each check imports packages in a fresh interpreter and inspects ``sys.modules``.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def loaded_after(*packages: str) -> list[str]:
+    """The modules loaded in a fresh interpreter after importing ``packages``."""
+    code = (
+        "import importlib, json, sys\n"
+        f"for name in {list(packages)!r}:\n"
+        "    importlib.import_module(name)\n"
+        "print(json.dumps(sorted(sys.modules)))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], check=True, capture_output=True, text=True, timeout=120
+    )
+    modules: list[str] = json.loads(out.stdout.strip().splitlines()[-1])
+    return modules
+
+
+def offending(modules: list[str], *prefixes: str) -> list[str]:
+    """The modules that are one of ``prefixes`` or inside one of them."""
+    return [m for m in modules if any(m == p or m.startswith(p + ".") for p in prefixes)]
+
+
+def test_optim_functions_tree_load_no_mujoco_envs_or_bench() -> None:
+    modules = loaded_after("voot.tree", "voot.optim", "voot.functions")
+    assert "voot.tree.root_parallel" in modules
+    assert offending(modules, "mujoco", "voot.envs", "voot.bench", "voot.record") == []
+
+
+def test_parallel_loads_nothing_of_the_layers_above() -> None:
+    modules = loaded_after("voot.parallel")
+    assert offending(modules, "mujoco", "voot.tree", "voot.envs", "voot.bench", "ray") == []
+
+
+def test_record_loads_no_bench() -> None:
+    modules = loaded_after("voot.record")
+    assert offending(modules, "voot.bench") == []
+
+
+@pytest.mark.parametrize("package", ["voot.tree", "voot.optim", "voot.functions"])
+def test_each_lower_package_alone_loads_no_mujoco(package: str) -> None:
+    assert offending(loaded_after(package), "mujoco", "voot.envs", "voot.bench") == []
