@@ -547,6 +547,10 @@ PASSTHROUGH: dict[str, tuple[str, str]] = {
     ),
     "env-speed": ("voot.bench.env_speed:main", "step costs and sparsity of the robot domains"),
     "env-figures": ("voot.bench.env_figures:main", "render the environment figures of the docs"),
+    "root-parallel": (
+        "voot.bench.root_parallel_bench:main",
+        "root-parallel search: speed-up and quality against one tree",
+    ),
 }
 
 

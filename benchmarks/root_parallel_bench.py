@@ -1,9 +1,9 @@
 r"""Speed-up and quality of root-parallel search over 1, 2, 4 ... workers.
 
-Run ``python -m voot.tree.root_parallel_bench`` (options: ``--help``). The figure of
+Run ``voot-bench root-parallel`` (options: ``--help``). The figure of
 the documentation was made by::
 
-    python -m voot.tree.root_parallel_bench --problems shekel kitchen \
+    voot-bench root-parallel --problems shekel kitchen \
         --budget 10000 240 --seeds 5 3 --workers 1 2 4
 
 (5 minutes at a load average of 3 on two cores, 15 at 9). For every problem (the
@@ -47,7 +47,8 @@ from typing import Any
 
 import numpy as np
 
-from voot.tree.chains import chain_planner_options, make_chain
+from voot.bench.problems import ALIASES, domain_options
+from voot.tree.chains import make_chain
 from voot.tree.config import MCTSConfig, planner_config
 from voot.tree.problem import PlanningProblem
 from voot.tree.root_parallel import (
@@ -100,16 +101,11 @@ def make_setup(name: str, budget: int | None = None, dim: int = 10) -> Setup:
     """The benchmark's settings for ``name`` (``shekel`` or ``kitchen``).
 
     Shekel: the authors' chain settings (:func:`~voot.tree.chain_planner_options`) with
-    VOO in ``centered_uniform`` mode. Kitchen: :math:`\\gamma = 0.9`, VOO in ``uniform``
-    mode. These are ``voot-bench plan``'s settings.
+    VOO in ``centered_uniform`` mode. Kitchen (v0): :math:`\\gamma = 0.9`, VOO in
+    ``uniform`` mode. Both are ``voot-bench plan``'s settings (:func:`domain_options`).
     """
     if name == "shekel":
-        opts = chain_planner_options("shekel", dim)
-        cfg = planner_config(
-            "voot",
-            **opts,
-            sampler_options={"sampler": "centered_uniform"},
-        )
+        cfg = planner_config("voot", **domain_options("shekel_chain", dim, "voot"))
         return Setup(
             f"shekel{dim}",
             functools.partial(shekel_problem, dim),
@@ -117,7 +113,7 @@ def make_setup(name: str, budget: int | None = None, dim: int = 10) -> Setup:
             budget or DEFAULT_BUDGETS["shekel"],
         )
     if name == "kitchen":
-        cfg = planner_config("voot", gamma=0.9, sampler_options={"sampler": "uniform"})
+        cfg = planner_config("voot", **domain_options(ALIASES["kitchen"], None, "voot"))
         return Setup(
             "kitchen",
             functools.partial(kitchen_problem, 0),
@@ -436,7 +432,7 @@ def _load(load: tuple[float, float, float] | None) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="python -m voot.tree.root_parallel_bench",
+        prog="voot-bench root-parallel",
         description="Speed-up and quality of root-parallel search (see the module docstring).",
     )
     parser.add_argument("--problems", nargs="+", default=["shekel"], choices=PROBLEMS)
@@ -496,7 +492,3 @@ def main(argv: Sequence[str] | None = None) -> int:
         )
         print(f"figure: {plot(results, args.figure, note)}")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

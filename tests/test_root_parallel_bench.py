@@ -1,4 +1,4 @@
-"""Tests of voot.tree.root_parallel_bench (tiny budgets; the real run is a command)."""
+"""Tests of voot.bench.root_parallel_bench (tiny budgets; the real run is a command)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from voot.tree.root_parallel_bench import (
+from voot.bench.root_parallel_bench import (
     configurations,
     format_table,
     main,
@@ -72,7 +72,7 @@ def test_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
 
 def test_importing_the_benchmark_loads_neither_matplotlib_nor_mujoco() -> None:
     code = (
-        "import sys, voot.tree.root_parallel_bench;"
+        "import sys, voot.bench.root_parallel_bench;"
         " print(sorted(m for m in ('matplotlib', 'mujoco', 'voot.envs') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
