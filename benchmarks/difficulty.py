@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
+
 #: Domain versions reported by default.
 DEFAULT_ENVS: tuple[str, ...] = (
     "voot/KitchenClearing-v0",
@@ -216,8 +218,7 @@ def report(
 ) -> str:
     """The difficulty tables as Markdown (what ``voot-bench difficulty`` prints)."""
     for name, v in (("samples", samples), ("rollouts", rollouts)):
-        if isinstance(v, bool) or not isinstance(v, int) or v < 1:
-            raise ValueError(f"{name} must be an integer >= 1, got {v!r}")
+        V.integer(v, name, 1)
     lines = [
         f"Uniform actions per node type ({samples} samples, seed {seed}):",
         "",

@@ -22,6 +22,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+from voot import validation as V
 from voot.bench.problems import domain_options
 from voot.record.kitchen_animation import plan_animation
 from voot.tree.config import normalize_planner
@@ -157,8 +158,7 @@ def run(
         :func:`voot.record.read_recording` (a ValueError if it does not load).
     """
     check_n_simulations(n_simulations)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
+    V.integer(seed, "seed", 0)
     key = normalize_planner(planner)
     out = _check_dir(out_dir)
     from voot.record.reader import read_recording

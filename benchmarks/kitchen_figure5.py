@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot import validation as V
 from voot.bench.kitchen_demo import DEFAULT_SEED, KITCHEN_ID, _check_dir, make_problem, options_for
 from voot.tree.config import normalize_planner
 from voot.tree.mcts import MCTS, check_n_simulations, plan
@@ -148,8 +149,7 @@ def figure5(
     Raises:
         ValueError: if no place node gets ``visits`` visits within ``max_simulations``.
     """
-    if isinstance(visits, bool) or not isinstance(visits, int) or visits < 1:
-        raise ValueError(f"visits must be an integer >= 1, got {visits!r}")
+    V.integer(visits, "visits", 1)
     check_n_simulations(max_simulations)
     out = _check_dir(out_dir)
     import rerun as rr

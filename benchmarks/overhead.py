@@ -30,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.record.config import RecorderConfig
 from voot.record.recorder import SearchRecorder
 from voot.tree.chains import chain_planner_options, make_chain
@@ -136,8 +137,7 @@ def measure_overhead(
     ``on_s``), ``rrd_bytes``, ``n_nodes`` and the settings. Raises a
     RuntimeError if recording changed the search's best-return curve.
     """
-    if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
-        raise ValueError(f"repeats must be an integer >= 1, got {repeats!r}")
+    V.integer(repeats, "repeats", 1)
     off: list[float] = []
     on: list[float] = []
     off_cpu: list[float] = []

@@ -37,6 +37,7 @@ import socket
 from collections.abc import Callable, Generator, Iterator, Sequence
 from typing import Any, TypeVar, cast
 
+from voot import validation as V
 from voot.bench.store import Row, failed_row
 
 #: Tries per run when its worker dies (the first try included).
@@ -110,8 +111,7 @@ class RayBackend:
             isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
         ):
             raise ValueError(f"workers must be an integer >= 1 or None, got {workers!r}")
-        if isinstance(max_tries, bool) or not isinstance(max_tries, int) or max_tries < 1:
-            raise ValueError(f"max_tries must be an integer >= 1, got {max_tries!r}")
+        V.integer(max_tries, "max_tries", 1)
         if address is not None and (not isinstance(address, str) or not address.strip()):
             raise ValueError(f"address must be a Ray address such as 'auto', got {address!r}")
         self.workers = workers

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim import Bounds, make_optimizer
 from voot.optim.registry import normalize_method
 
@@ -66,8 +67,7 @@ def measure_ask_cost(
     """
     key = normalize_method(method)
     for name, value, low in (("n", n, 0), ("dim", dim, 1), ("repeats", repeats, 1)):
-        if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
-            raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+        V.integer(value, name, low)
     opt = make_optimizer(key, Bounds.cube(-1.0, 1.0, int(dim)), seed=seed, **options)
     for _ in range(int(n)):
         x = opt.ask()

@@ -92,6 +92,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 
 __all__ = [
@@ -152,8 +153,7 @@ class TestFunction:
     shift: FloatArray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
-        if isinstance(self.dim, bool) or not isinstance(self.dim, int) or self.dim < 1:
-            raise ValueError(f"{self.name}: dim must be an integer >= 1, got {self.dim!r}")
+        V.integer(self.dim, f"{self.name}: dim", 1)
         if self.bounds.dim != self.dim:
             raise ValueError(
                 f"{self.name}: bounds have {self.bounds.dim} dimensions but dim is {self.dim}"
@@ -544,8 +544,7 @@ def get_function(
         raise ValueError(
             f"unknown test function {name!r}; valid names are: {', '.join(available_functions())}"
         )
-    if isinstance(dim, bool) or not isinstance(dim, int | np.integer) or dim < 1:
-        raise ValueError(f"{key}: dim must be an integer >= 1, got {dim!r}")
+    V.integer(dim, f"{key}: dim", 1)
     dim = int(dim)
     k = _check_instance(instance, key)
     if key == "shekel":

@@ -50,6 +50,7 @@ import scipy.linalg as sla
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize
 
+from voot import validation as V
 from voot.optim.base import FloatArray
 
 _LOG_2PI = math.log(2.0 * math.pi)
@@ -135,8 +136,7 @@ class GaussianProcess:
         noise_variance_bounds: tuple[float, float] = (1e-6, 1.0),
         jitter: float = 1e-10,
     ) -> None:
-        if isinstance(dim, bool) or not isinstance(dim, int | np.integer) or dim < 1:
-            raise ValueError(f"dim must be an integer >= 1, got {dim!r}")
+        V.integer(dim, "dim", 1)
         self.dim = int(dim)
         self.ard = bool(ard)
         try:

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray, Optimizer, OptimizerConfig
 
 #: name -> "module:ClassName"; modules are imported on first use.
@@ -118,8 +119,7 @@ def maximize(
     True
     """
     key = normalize_method(method)
-    if isinstance(budget, bool) or not isinstance(budget, int | np.integer) or budget < 1:
-        raise ValueError(f"budget must be an integer >= 1, got {budget!r}")
+    V.integer(budget, "budget", 1)
     opt = make_optimizer(key, bounds, seed=seed, initial_point=initial_point, **options)
     for _ in range(int(budget)):
         x = opt.ask()

@@ -38,6 +38,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot import validation as V
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 #: A semi-metric evaluated from many points to one: ``metric(points (n, d), y (d,)) -> (n,)``.
@@ -106,8 +107,7 @@ class VOOConfig(OptimizerConfig):
             ) from None
         for name in ("max_tries", "uniform_max_tries", "batch_size"):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-                raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+            V.integer(value, name, 1)
         if self.metric is not None and not callable(self.metric):
             raise ValueError("metric must be callable metric(points, y) -> distances, or None")
 

@@ -21,6 +21,8 @@ from collections import OrderedDict
 from collections.abc import Callable, Hashable
 from typing import Any, TypeVar
 
+from voot import validation
+
 V = TypeVar("V")
 
 #: Objects each process keeps (the least recently used one is dropped, and closed).
@@ -39,8 +41,7 @@ class WorkerCache:
     """
 
     def __init__(self, size: int = CACHE_SIZE) -> None:
-        if isinstance(size, bool) or not isinstance(size, int) or size < 1:
-            raise ValueError(f"size must be an integer >= 1, got {size!r}")
+        validation.integer(size, "size", 1)
         self.size = size
         self._entries: OrderedDict[Hashable, tuple[Any, Callable[[Any], object] | None]] = (
             OrderedDict()

@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot import validation as V
 from voot.record.mujoco_scene import find_mujoco
 
 Frame = NDArray[np.uint8]
@@ -38,9 +39,7 @@ FORMATS = (".gif", ".mp4")
 
 
 def _check_positive_int(value: object, name: str, low: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
-    return value
+    return V.integer(value, name, low)
 
 
 def _state_of(

@@ -30,6 +30,7 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any
 
+from voot import validation as V
 from voot.optim.base import OptimizerConfig
 
 
@@ -108,31 +109,6 @@ def available_samplers() -> list[str]:
     from voot.optim.registry import available_methods
 
     return sorted(set(available_methods()) | set(_TREE_SAMPLERS))
-
-
-def _choice(enum: type[StrEnum], value: object, name: str) -> Any:
-    try:
-        return enum(value)  # type: ignore[arg-type]
-    except ValueError:
-        valid = ", ".join(e.value for e in enum)
-        raise ValueError(f"unknown {name} {value!r}; valid choices are: {valid}") from None
-
-
-def _number(value: object, name: str, *, low: float, high: float = math.inf) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
-    if not low <= float(value) <= high:
-        raise ValueError(f"{name} must be in [{low}, {high}], got {value!r}")
-    return float(value)
-
-
-def _count(value: object, name: str, *, low: int, optional: bool = False) -> int | None:
-    if optional and value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        none = " or None" if optional else ""
-        raise ValueError(f"{name} must be an integer >= {low}{none}, got {value!r}")
-    return int(value)
 
 
 @dataclass(frozen=True)
@@ -230,7 +206,7 @@ class MCTSConfig:
             )
         # A private copy (a plain dict, so that configs pickle for parallel sweeps).
         object.__setattr__(self, "sampler_options", dict(self.sampler_options))
-        sel = _choice(Selection, self.selection, "selection")
+        sel = V.choice(Selection, self.selection, "selection")
         object.__setattr__(self, "selection", sel)
         if (sel is Selection.HOO) != (sampler == "hoo"):
             raise ValueError(
@@ -238,26 +214,26 @@ class MCTSConfig:
                 f" itself); got sampler={sampler!r}, selection={sel.value!r}"
             )
         object.__setattr__(
-            self, "reevaluations", _number(self.reevaluations, "reevaluations", low=0.0)
+            self, "reevaluations", V.number(self.reevaluations, "reevaluations", 0.0)
         )
-        object.__setattr__(self, "kappa_r", _number(self.kappa_r, "kappa_r", low=0.0, high=1.0))
+        object.__setattr__(self, "kappa_r", V.number(self.kappa_r, "kappa_r", 0.0, 1.0))
         object.__setattr__(
-            self, "depth_limit", _count(self.depth_limit, "depth_limit", low=1, optional=True)
+            self, "depth_limit", V.optional_integer(self.depth_limit, "depth_limit", 1)
         )
-        object.__setattr__(self, "gamma", _number(self.gamma, "gamma", low=0.0, high=1.0))
-        object.__setattr__(self, "backup", _choice(Backup, self.backup, "backup"))
+        object.__setattr__(self, "gamma", V.number(self.gamma, "gamma", 0.0, 1.0))
+        object.__setattr__(self, "backup", V.choice(Backup, self.backup, "backup"))
         object.__setattr__(
             self,
             "feasibility_retries",
-            _count(self.feasibility_retries, "feasibility_retries", low=1),
+            V.integer(self.feasibility_retries, "feasibility_retries", 1),
         )
         object.__setattr__(
             self,
             "root_commitment",
-            _count(self.root_commitment, "root_commitment", low=1, optional=True),
+            V.optional_integer(self.root_commitment, "root_commitment", 1),
         )
         object.__setattr__(
-            self, "final_action", _choice(FinalAction, self.final_action, "final_action")
+            self, "final_action", V.choice(FinalAction, self.final_action, "final_action")
         )
         for name in (
             "terminal_child_forces_new",
@@ -265,24 +241,23 @@ class MCTSConfig:
             "commit_reset_on_goal",
             "use_problem_metric",
         ):
-            if not isinstance(getattr(self, name), bool):
-                raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
-        pw_k = _number(self.pw_k, "pw_k", low=0.0)
+            object.__setattr__(self, name, V.flag(getattr(self, name), name))
+        pw_k = V.number(self.pw_k, "pw_k", 0.0)
         if pw_k <= 0.0:
             raise ValueError(f"pw_k must be > 0, got {self.pw_k!r}")
         object.__setattr__(self, "pw_k", pw_k)
-        object.__setattr__(self, "pw_alpha", _number(self.pw_alpha, "pw_alpha", low=0.0, high=1.0))
-        object.__setattr__(self, "ucb_c", _number(self.ucb_c, "ucb_c", low=0.0))
+        object.__setattr__(self, "pw_alpha", V.number(self.pw_alpha, "pw_alpha", 0.0, 1.0))
+        object.__setattr__(self, "ucb_c", V.number(self.ucb_c, "ucb_c", 0.0))
         object.__setattr__(
             self,
             "best_return_over",
-            _choice(BestReturnOver, self.best_return_over, "best_return_over"),
+            V.choice(BestReturnOver, self.best_return_over, "best_return_over"),
         )
         if self.commit_min_reward is not None:
             object.__setattr__(
                 self,
                 "commit_min_reward",
-                _number(self.commit_min_reward, "commit_min_reward", low=-math.inf),
+                V.number(self.commit_min_reward, "commit_min_reward", -math.inf),
             )
         # Build the sampler's config once, so that bad options fail here, not mid-search.
         self.sampler_config()

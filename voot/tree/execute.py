@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import FloatArray
 from voot.tree.config import MCTSConfig, planner_config
 from voot.tree.mcts import MCTS, Callback, PlanResult, check_n_simulations
@@ -74,8 +75,7 @@ def run_episode(
         **options: :class:`MCTSConfig` overrides.
     """
     n_sims = check_n_simulations(n_simulations)
-    if isinstance(max_steps, bool) or not isinstance(max_steps, int) or max_steps < 1:
-        raise ValueError(f"max_steps must be an integer >= 1, got {max_steps!r}")
+    V.integer(max_steps, "max_steps", 1)
     if isinstance(planner, MCTSConfig):
         config = planner.replace(**options) if options else planner
     else:

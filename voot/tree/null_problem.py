@@ -8,6 +8,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.problem import StepResult
 
@@ -21,8 +22,7 @@ class NullProblem:
     """
 
     def __init__(self, dim: int = 6, optimum: Sequence[float] | None = None) -> None:
-        if isinstance(dim, bool) or not isinstance(dim, int) or dim < 1:
-            raise ValueError(f"dim must be an integer >= 1, got {dim!r}")
+        V.integer(dim, "dim", 1)
         self.dim = dim
         self.bounds = Bounds.cube(-1.0, 1.0, dim)
         c = np.full(dim, 0.3) if optimum is None else np.asarray(optimum, dtype=np.float64)

@@ -15,6 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
+
 
 class MergeRule(StrEnum):
     """How the root statistics of the trees choose the merged root action.
@@ -45,8 +47,7 @@ class RootParallelConfig:
 
     def __post_init__(self) -> None:
         k = self.n_trees
-        if isinstance(k, bool) or not isinstance(k, int | np.integer) or k < 1:
-            raise ValueError(f"n_trees must be an integer >= 1, got {k!r}")
+        V.integer(k, "n_trees", 1)
         object.__setattr__(self, "n_trees", int(k))
         object.__setattr__(self, "merge", merge_rule(self.merge))
         r = self.vote_radius
@@ -86,8 +87,7 @@ def tree_seeds(
     its entropy and spawn key is spawned from), so the same call always gives the same
     seeds. Tree ``k``'s seed does not depend on ``n_trees``.
     """
-    if isinstance(n_trees, bool) or not isinstance(n_trees, int | np.integer) or n_trees < 1:
-        raise ValueError(f"n_trees must be an integer >= 1, got {n_trees!r}")
+    V.integer(n_trees, "n_trees", 1)
     if isinstance(seed, np.random.SeedSequence):
         base = np.random.SeedSequence(
             seed.entropy, spawn_key=seed.spawn_key, pool_size=seed.pool_size

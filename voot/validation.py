@@ -1,0 +1,147 @@
+"""The one vocabulary of argument checks that every config and entry point uses.
+
+Each check returns the value in its canonical type (a Python ``int``, ``float``, ``bool``
+or enum member) or raises a :class:`ValueError` that names the argument, says what is
+valid and shows what was given, e.g. ``n_trees must be an integer >= 1, got 0``. Booleans
+are not numbers here (``True`` is not ``1``), NaN is never a valid number, and numpy's
+integer and float scalars are accepted like Python's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from enum import Enum
+from typing import Any, TypeVar
+
+import numpy as np
+
+E = TypeVar("E", bound=Enum)
+
+_INTEGER_TYPES = (int, np.integer)
+_NUMBER_TYPES = (int, float, np.integer, np.floating)
+
+
+def is_integer(value: object) -> bool:
+    """Whether ``value`` is an integer (Python or numpy), not a bool."""
+    return isinstance(value, _INTEGER_TYPES) and not isinstance(value, bool | np.bool_)
+
+
+def is_number(value: object) -> bool:
+    """Whether ``value`` is a real number (Python or numpy), not a bool."""
+    return isinstance(value, _NUMBER_TYPES) and not isinstance(value, bool | np.bool_)
+
+
+def _as_int(value: object) -> int | None:
+    """``value`` as an ``int`` if it is an integer (not a bool), else None."""
+    return int(value) if is_integer(value) else None  # type: ignore[call-overload]
+
+
+def integer(value: object, name: str, low: int | None = None, high: int | None = None) -> int:
+    """``value`` as an ``int`` in ``[low, high]`` (either end may be open: None)."""
+    v = _as_int(value)
+    if v is None or (low is not None and v < low) or (high is not None and v > high):
+        raise ValueError(f"{name} must be {_integer_range(low, high)}, got {value!r}")
+    return v
+
+
+def optional_integer(value: object, name: str, low: int | None = None) -> int | None:
+    """None, or ``value`` as an ``int >= low``."""
+    if value is None:
+        return None
+    v = _as_int(value)
+    if v is None or (low is not None and v < low):
+        raise ValueError(f"{name} must be {_integer_range(low, None)} or None, got {value!r}")
+    return v
+
+
+def integers(values: Iterable[object], name: str, low: int | None = None) -> list[int]:
+    """Every item of ``values`` as an ``int >= low``."""
+    out = []
+    for value in values:
+        v = _as_int(value)
+        if v is None or (low is not None and v < low):
+            what = "integers" if low is None else f"integers >= {low}"
+            raise ValueError(f"{name} must be {what}, got {value!r}")
+        out.append(v)
+    return out
+
+
+def number(
+    value: object,
+    name: str,
+    low: float = -math.inf,
+    high: float = math.inf,
+    *,
+    open_low: bool = False,
+    open_high: bool = False,
+) -> float:
+    """``value`` as a finite ``float`` in the interval ``low .. high``.
+
+    The ends are closed unless ``open_low`` / ``open_high``; an infinite end is no bound.
+    """
+    ok = is_number(value) and math.isfinite(float(value))  # type: ignore[arg-type]
+    if ok:
+        v = float(value)  # type: ignore[arg-type]
+        ok = (v > low if open_low else v >= low) and (v < high if open_high else v <= high)
+    if not ok:
+        what = _number_range(low, high, open_low, open_high)
+        raise ValueError(f"{name} must be {what}, got {value!r}")
+    return float(value)  # type: ignore[arg-type]
+
+
+def positive(value: object, name: str, *, allow_zero: bool = False) -> float:
+    """``value`` as a finite ``float > 0`` (``>= 0`` with ``allow_zero``)."""
+    return number(value, name, 0.0, open_low=not allow_zero)
+
+
+def probability(value: object, name: str) -> float:
+    """``value`` as a ``float`` in ``[0, 1]``."""
+    return number(value, name, 0.0, 1.0)
+
+
+def flag(value: object, name: str) -> bool:
+    """``value`` as a ``bool`` (only ``True`` or ``False``, numpy's included)."""
+    if not isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def choice(enum: type[E], value: object, name: str) -> E:
+    """``value`` as a member of ``enum`` (by value), or an error listing the valid ones."""
+    try:
+        return enum(value)
+    except ValueError:
+        valid = ", ".join(str(e.value) for e in enum)
+        raise ValueError(f"unknown {name} {value!r}; valid choices are: {valid}") from None
+
+
+def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
+    """``value`` if it is one of ``valid``, or an error listing them."""
+    options = tuple(valid)
+    if value not in options:
+        raise ValueError(
+            f"{name} must be one of {', '.join(str(v) for v in options)}, got {value!r}"
+        )
+    return value
+
+
+def _integer_range(low: int | None, high: int | None) -> str:
+    if low is not None and high is not None:
+        return f"an integer in [{low}, {high}]"
+    if low is not None:
+        return f"an integer >= {low}"
+    if high is not None:
+        return f"an integer <= {high}"
+    return "an integer"
+
+
+def _number_range(low: float, high: float, open_low: bool, open_high: bool) -> str:
+    if math.isfinite(low) and math.isfinite(high):
+        left, right = "(" if open_low else "[", ")" if open_high else "]"
+        return f"a finite number in {left}{low:g}, {high:g}{right}"
+    if math.isfinite(low):
+        return f"a finite number {'>' if open_low else '>='} {low:g}"
+    if math.isfinite(high):
+        return f"a finite number {'<' if open_high else '<='} {high:g}"
+    return "a finite number"
