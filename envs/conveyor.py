@@ -317,7 +317,8 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         """The base pose placing box ``i`` at ``(x, y, theta)`` with its fixed grasp."""
         return compose2d(np.asarray(obj_pose, dtype=np.float64), inverse2d(self.picks[i].rel))
 
-    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """One step without its observation (see :meth:`ManipulationEnv.transition`)."""
         a, clipped = self._validate_action(action)
         cfg, t = self.config, self.task
         if t.done or t.steps >= cfg.horizon:
@@ -380,7 +381,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             "objects_placed": t.placed,
             "goal_bonus": 0.0,
         }
-        return self._observation(), float(reward), terminated, truncated, info
+        return float(reward), terminated, truncated, info
 
     def _check_place(
         self,

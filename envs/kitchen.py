@@ -396,7 +396,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         return Bounds.cube(-1.0, 1.0, dim)
 
     # ----- stepping ------------------------------------------------------------------------
-    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """One step without its observation (see :meth:`ManipulationEnv.transition`)."""
         a, clipped = self._validate_action(action)
         t = self.task
         if t.done or t.steps >= self.config.horizon:
@@ -421,7 +422,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             objects_left=len(t.on_path),
             goal_bonus=self.config.goal_bonus if terminated else 0.0,
         )
-        return self._observation(), float(reward), terminated, truncated, info
+        return float(reward), terminated, truncated, info
 
     def _infeasible(
         self,

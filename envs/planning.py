@@ -21,7 +21,16 @@
   rejected proposal would have put the robot and the object).
 
 It steps ``env.unwrapped`` directly (gymnasium's wrappers add nothing a planner needs;
-the envs truncate at their own horizon).
+the envs truncate at their own horizon), through
+:meth:`~voot.envs.task_env.ManipulationEnv.transition`: the same reward, info and next
+state as ``step``, without the observation that no planner reads.
+
+The check path is lean but exact: the problem remembers the snapshot the env is at
+(after ``restore``, a cached ``step`` or ``snapshot``), so a check does not take a new
+one first; an action that changed neither the physics nor the generator (every
+infeasible one: it only counts the step) is undone by putting the task progress back
+instead of a full ``set_state``; the action boxes are built once per operator. Every
+result, snapshot and random number is the same as with the plain step-record-restore.
 """
 
 from __future__ import annotations
@@ -70,7 +79,10 @@ class EnvProblem:
         self.units = units
         self._dim = u.action_dim
         self._version = 0
-        self._cache: tuple[int, bytes, StepResult, EnvState[Any]] | None = None
+        self._cache: tuple[int, bytes, StepResult, EnvState[Any], EnvState[Any]] | None = None
+        # a snapshot equal to the env's current state, or None if unknown
+        self._here: EnvState[Any] | None = None
+        self._bounds: dict[str, Bounds] = {}
         #: The result of the last :meth:`is_feasible` call (None before the first).
         self.last_check: StepResult | None = None
         if seed is not None:
@@ -85,12 +97,22 @@ class EnvProblem:
         assert isinstance(u, ConveyorPackingEnv)
         return tuple(u.config.place_ranges) * OBJECTS_PER_ACTION
 
+    def _operator(self) -> str:
+        u = self.unwrapped
+        return u.task.operator if isinstance(u, KitchenClearingEnv) else "place"
+
     def action_bounds(self) -> Bounds:
-        """The current operator's action box."""
-        if self.units == "paper":
-            r = self._ranges()
-            return Bounds([lo for lo, _ in r], [hi for _, hi in r])
-        return self.unwrapped.action_bounds()
+        """The current operator's action box (built once per operator and shared)."""
+        key = self._operator()
+        box = self._bounds.get(key)
+        if box is None:
+            if self.units == "paper":
+                r = self._ranges()
+                box = Bounds([lo for lo, _ in r], [hi for _, hi in r])
+            else:
+                box = self.unwrapped.action_bounds()
+            self._bounds[key] = box
+        return box
 
     def to_env_action(self, action: ArrayLike) -> FloatArray:
         """The env's (normalised, full-length) action for a planner's action."""
@@ -106,14 +128,20 @@ class EnvProblem:
 
     # ----- protocol ------------------------------------------------------------------------
     def snapshot(self) -> EnvState[Any]:
-        return self.unwrapped.get_state()
+        here = self._here
+        if here is None:
+            here = self._here = self.unwrapped.get_state()
+        return here
 
     def restore(self, snapshot: EnvState[Any]) -> None:
         self.unwrapped.set_state(snapshot)
+        self._here = snapshot
         self._version += 1
 
     def _run(self, action: ArrayLike) -> StepResult:
-        _, reward, terminated, truncated, info = self.unwrapped.step(self.to_env_action(action))
+        reward, terminated, truncated, info = self.unwrapped.transition(
+            self.to_env_action(action)
+        )
         return StepResult(
             reward=float(reward),
             feasible=bool(info["feasible"]),
@@ -127,16 +155,43 @@ class EnvProblem:
         cache, self._cache = self._cache, None
         self._version += 1
         if cache is not None and cache[0] == self._version - 1 and cache[1] == key:
-            self.unwrapped.set_state(cache[3])
+            self._jump(cache[3], cache[4])
             return cache[2]
+        self._here = None
         return self._run(action)
+
+    def _jump(self, before: EnvState[Any], after: EnvState[Any]) -> None:
+        """Go from snapshot ``before`` (the current state) to ``after``.
+
+        When both share the physics and generator state (``is_feasible`` makes them share
+        when the step changed neither), only the task progress differs.
+        """
+        u = self.unwrapped
+        if after.physics is before.physics and after.rng_state is before.rng_state:
+            u.task = after.task
+        else:
+            u.set_state(after)
+        self._here = after
 
     def is_feasible(self, action: ArrayLike) -> bool:
         """Would ``action`` be feasible now? (The state is left unchanged.)"""
-        before = self.unwrapped.get_state()
+        u = self.unwrapped
+        before = self.snapshot()
         res = self._run(action)
-        after = self.unwrapped.get_state()
-        self.unwrapped.set_state(before)
-        self._cache = (self._version, np.asarray(action, dtype=np.float64).tobytes(), res, after)
+        after = u.get_state()
+        if (
+            after.rng_state is before.rng_state
+            and after.physics.tobytes() == before.physics.tobytes()
+        ):
+            # the step changed the task progress only (an infeasible action counts a step)
+            after = EnvState(before.physics, before.signature, after.task, before.rng_state)
+        self._jump(after, before)
+        self._cache = (
+            self._version,
+            np.asarray(action, dtype=np.float64).tobytes(),
+            res,
+            before,
+            after,
+        )
         self.last_check = res
         return res.feasible

@@ -23,6 +23,13 @@ immutable dataclass of the subclass, including the held object and its grasp) an
 state of the env's random generator. Restoring a snapshot and applying the same action
 gives bit-identical observation, reward and info, also in another process: every check
 (IK, collision, base planning) is a deterministic function of the state and the action.
+No step draws from the env's generator, so consecutive snapshots share one copy of its
+state (a plain dict that nobody may mutate) instead of deep-copying it every time.
+
+:meth:`ManipulationEnv.transition` is the step without its observation: reward,
+terminated, truncated and info, bit-identical to :meth:`~ManipulationEnv.step`'s. A
+planner's feasibility checks (:class:`voot.envs.planning.EnvProblem`) never read the
+observation, and building it (every object's pose) cost about a tenth of a check.
 """
 
 from __future__ import annotations
@@ -246,6 +253,9 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
         self._renderer: mujoco.Renderer | None = None
         self._box_cache: dict[int, tuple[bytes, Box2D]] = {}
+        # the generator state of the last snapshot, shared by the snapshots after it while
+        # it does not change (see _rng_snapshot)
+        self._rng_shared: Mapping[str, Any] | None = None
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
 
@@ -265,6 +275,19 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (planner's view)."""
         raise NotImplementedError
+
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """:meth:`step` without the observation: ``(reward, terminated, truncated, info)``.
+
+        The state changes exactly as by :meth:`step`; the observation of the new state is
+        ``self._observation()`` whenever it is wanted.
+        """
+        raise NotImplementedError
+
+    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+        """Gymnasium's step: :meth:`transition`, then the observation of the new state."""
+        reward, terminated, truncated, info = self.transition(action)
+        return self._observation(), reward, terminated, truncated, info
 
     # ----- actions -------------------------------------------------------------------------
     @property
@@ -288,6 +311,10 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
             raise ValueError(
                 f"action must have shape {space.shape} (normalised units in [-1, 1]), got shape {a.shape}"
             )
+        # fast path: every entry finite and in [-1, 1] (a NaN fails the comparisons), so
+        # clipping would return the same numbers
+        if all(-1.0 <= v <= 1.0 for v in a.tolist()):
+            return a.copy(), False
         if not np.all(np.isfinite(a)):
             bad = np.flatnonzero(~np.isfinite(a)).tolist()
             raise ValueError(f"action has NaN or infinite entries at indices {bad}: {a.tolist()}")
@@ -326,12 +353,26 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         physics = np.empty(self._state_size)
         mujoco.mj_getState(self.model, self.data, physics, self.STATE_SIGNATURE)
         physics.setflags(write=False)
-        return EnvState(
-            physics,
-            self.STATE_SIGNATURE,
-            self.task,
-            copy.deepcopy(self.np_random.bit_generator.state),
-        )
+        return EnvState(physics, self.STATE_SIGNATURE, self.task, self._rng_snapshot())
+
+    def _rng_snapshot(self) -> Mapping[str, Any]:
+        """The generator's state for a snapshot, shared with the last one if unchanged.
+
+        ``bit_generator.state`` builds a fresh dict on every read; for the PCG64 family
+        (gymnasium's default) it holds only strings and ints, so equality is cheap and
+        exact, and one dict can stand for every snapshot taken while nobody draws from the
+        generator (no step does). Other bit generators (whose states hold arrays) get a
+        deep copy per snapshot, as before.
+        """
+        bg = self.np_random.bit_generator
+        state = bg.state
+        if not isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
+            return copy.deepcopy(state)
+        shared = self._rng_shared
+        if shared is not None and shared == state:
+            return shared
+        self._rng_shared = state
+        return state
 
     def set_state(self, state: EnvState[TaskT]) -> None:
         """Return to the snapshot ``state`` exactly."""
@@ -347,7 +388,12 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
             )
         mujoco.mj_setState(self.model, self.data, state.physics, self.STATE_SIGNATURE)
         self.task = state.task
-        self.np_random.bit_generator.state = copy.deepcopy(dict(state.rng_state))
+        bg = self.np_random.bit_generator
+        if isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
+            bg.state = dict(state.rng_state)  # read, not kept, by the generator
+            self._rng_shared = state.rng_state
+        else:
+            bg.state = copy.deepcopy(dict(state.rng_state))
 
     # ----- gymnasium API -------------------------------------------------------------------
     def reset(
