@@ -139,9 +139,7 @@ class EnvProblem:
         self._version += 1
 
     def _run(self, action: ArrayLike) -> StepResult:
-        reward, terminated, truncated, info = self.unwrapped.transition(
-            self.to_env_action(action)
-        )
+        reward, terminated, truncated, info = self.unwrapped.transition(self.to_env_action(action))
         return StepResult(
             reward=float(reward),
             feasible=bool(info["feasible"]),
