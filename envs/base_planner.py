@@ -188,6 +188,36 @@ class Box2D:
     def __hash__(self) -> int:
         return self._hash  # type: ignore[attr-defined,no-any-return]
 
+    @classmethod
+    def fast(
+        cls, cx: float, cy: float, half_x: float, half_y: float, yaw: float, name: str
+    ) -> Box2D:
+        """The box of these fields, built without the dataclass machinery when they are valid.
+
+        The same object as ``Box2D(...)`` (fields as Python floats, the same hash); any
+        invalid field goes through the constructor, which raises as usual. The envs make
+        a footprint per feasibility check, where the validation was a visible cost.
+        """
+        cx, cy, half_x, half_y, yaw = float(cx), float(cy), float(half_x), float(half_y), float(yaw)
+        if not (
+            type(name) is str
+            and half_x > 0.0
+            and half_y > 0.0
+            and math.isfinite(cx + cy + half_x + half_y + yaw)
+        ):
+            return cls(cx, cy, half_x, half_y, yaw, name)
+        box = object.__new__(cls)
+        box.__dict__.update(
+            cx=cx,
+            cy=cy,
+            half_x=half_x,
+            half_y=half_y,
+            yaw=yaw,
+            name=name,
+            _hash=hash((cx, cy, half_x, half_y, yaw, name)),
+        )
+        return box
+
     def __reduce__(self) -> tuple[type[Box2D], tuple[float, float, float, float, float, str]]:
         # rebuild through __init__ so that the cached hash is recomputed (string hashes
         # differ between processes)

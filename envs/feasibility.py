@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from voot.envs.robot import (
     ARM_JOINTS,
     FINGER_JOINTS,
+    FINGER_OPEN,
     FOREARM,
     SHOULDER,
     TOOL,
@@ -133,36 +134,57 @@ def side_grasp(
         depth_fraction: Position across the face, in [0, 1].
         standoff: Distance of the tool point outside the face (metres).
     """
+    # Plain floats instead of 2- and 3-vectors: every product, sum and cross product is
+    # the one numpy computed elementwise, in the same order, so the pose is bit-identical
+    # to the array version's, at a fifth of its cost.
     x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
     c, s = math.cos(yaw), math.sin(yaw)
+    hx, hy = float(obj.half[0]), float(obj.half[1])
     # outward normals of the four faces, world frame, with the face's half extents
     faces = (
-        ("+x", np.array([c, s]), float(obj.half[0]), float(obj.half[1])),
-        ("-x", np.array([-c, -s]), float(obj.half[0]), float(obj.half[1])),
-        ("+y", np.array([-s, c]), float(obj.half[1]), float(obj.half[0])),
-        ("-y", np.array([s, -c]), float(obj.half[1]), float(obj.half[0])),
+        ("+x", c, s, hx, hy),
+        ("-x", -c, -s, hx, hy),
+        ("+y", -s, c, hy, hx),
+        ("-y", s, -c, hy, hx),
     )
-    heading = np.array([math.cos(base_heading), math.sin(base_heading)])
-    scores = [float(n @ heading) for _, n, _, _ in faces]
-    k = int(np.argmin(scores))  # most opposite to the heading; ties: first
-    face, n, half_normal, half_across = faces[k]
-    tangent = np.array([-n[1], n[0]])  # horizontal, along the face
-    cx = x + c * obj.center[0] - s * obj.center[1]
-    cy = y + s * obj.center[0] + c * obj.center[1]
-    p_xy = (
-        np.array([cx, cy])
-        + (half_normal + standoff) * n
-        + (2.0 * depth_fraction - 1.0) * half_across * tangent
-    )
-    p = np.array([p_xy[0], p_xy[1], z + height_fraction * obj.height])
-    approach = np.array([-n[0], -n[1], 0.0])
-    y0 = np.array([tangent[0], tangent[1], 0.0])
-    z0 = np.cross(approach, y0)
+    k = _facing_face(faces, base_heading)
+    face, n0, n1, half_normal, half_across = faces[k]
+    t0, t1 = -n1, n0  # horizontal, along the face
+    ox, oy = obj.center[0], obj.center[1]
+    cx = float(x + c * ox - s * oy)
+    cy = float(y + s * ox + c * oy)
+    a = half_normal + standoff
+    b = float((2.0 * depth_fraction - 1.0) * half_across)
+    p = np.array([cx + a * n0 + b * t0, cy + a * n1 + b * t1, z + height_fraction * obj.height])
+    # approach = (-n0, -n1, 0), y0 = (t0, t1, 0); z0 = approach x y0 as np.cross computes it
+    a0, a1, a2 = -n0, -n1, 0.0
+    z00 = a1 * 0.0 - a2 * t1
+    z01 = a2 * t0 - a0 * 0.0
+    z02 = a0 * t1 - a1 * t0
     ca, sa = math.cos(grasp_angle), math.sin(grasp_angle)
-    y_axis = ca * y0 + sa * z0
-    z_axis = np.cross(approach, y_axis)
-    rot = np.column_stack([approach, y_axis, z_axis])
+    y00, y01, y02 = ca * t0 + sa * z00, ca * t1 + sa * z01, ca * 0.0 + sa * z02
+    z10 = a1 * y02 - a2 * y01
+    z11 = a2 * y00 - a0 * y02
+    z12 = a0 * y01 - a1 * y00
+    rot = np.array([[a0, y00, z10], [a1, y01, z11], [a2, y02, z12]])
     return GraspPose(p, rot, face)
+
+
+def _facing_face(faces: tuple[tuple[str, float, float, float, float], ...], heading: float) -> int:
+    """Index of the face whose normal is most opposite to ``heading`` (first on ties).
+
+    The scores are computed with plain floats; only when two of them are within 1e-12
+    (where the rounding of numpy's dot product could decide) are they recomputed with
+    numpy as before, so the choice is always numpy's.
+    """
+    hx, hy = math.cos(heading), math.sin(heading)
+    scores = [n0 * hx + n1 * hy for _, n0, n1, _, _ in faces]
+    k = min(range(len(scores)), key=scores.__getitem__)
+    if any(j != k and scores[j] - scores[k] < 1e-12 for j in range(len(scores))):
+        h = np.array([hx, hy])
+        exact = [float(np.array([n0, n1]) @ h) for _, n0, n1, _, _ in faces]
+        k = int(np.argmin(exact))
+    return k
 
 
 # ----------------------------------------------------------------------------------------
@@ -389,6 +411,14 @@ class CollisionChecker:
         self._owner = np.full(n, -1, dtype=np.intp)  # object index, or -1
         for i, o in enumerate(objects):
             self._owner[list(o.geoms)] = i
+        # plain lists and slices for check(), whose contacts are few: indexing them from
+        # Python is cheaper than numpy masks over a handful of rows
+        self._robot_l: list[bool] = self._is_robot.tolist()
+        self._gripper_l: list[bool] = self._is_gripper.tolist()
+        self._owner_l: list[int] = self._owner.tolist()
+        self._base_sl = _as_slice(robot.base_qadr)
+        self._arm_sl = _as_slice(robot.arm_qadr)
+        self._finger_sl = _as_slice(robot.finger_qadr)
         self._names = []
         for g in range(n):
             owner = int(self._owner[g])
@@ -423,9 +453,16 @@ class CollisionChecker:
             without duplicates; prefixed ``"robot-"`` or ``"object-"`` by the party hit.
         """
         m, d = self.model, self.data
-        d.qpos[:] = qpos
-        self.robot.set_base(d, base_pose)
-        self.robot.set_arm(d, arm_q)
+        q = d.qpos
+        q[:] = qpos
+        base_sl, arm_sl, finger_sl = self._base_sl, self._arm_sl, self._finger_sl
+        if base_sl is not None and arm_sl is not None and finger_sl is not None:
+            q[base_sl] = base_pose
+            q[arm_sl] = arm_q
+            q[finger_sl] = FINGER_OPEN
+        else:  # pragma: no cover - robot.xml keeps each joint group contiguous
+            self.robot.set_base(d, base_pose)
+            self.robot.set_arm(d, arm_q)
         if object_poses:
             for i, pose in object_poses.items():
                 set_object_pose(d, self.objects[i], pose)
@@ -434,23 +471,28 @@ class CollisionChecker:
         ncon = d.ncon
         if ncon == 0:
             return CollisionReport()
-        geom = d.contact.geom[:ncon]
-        g1, g2 = geom[:, 0], geom[:, 1]
+        robot, owner, gripper, names = self._robot_l, self._owner_l, self._gripper_l, self._names
         held_i = -2 if held is None else held
-        own1, own2 = self._owner[g1], self._owner[g2]
-        rob1, rob2 = self._is_robot[g1], self._is_robot[g2]
-        hold1, hold2 = own1 == held_i, own2 == held_i
-        relevant = rob1 | rob2 | hold1 | hold2
-        grasp_contact = (self._is_gripper[g1] & hold2) | (self._is_gripper[g2] & hold1)
-        keep = np.flatnonzero(relevant & ~grasp_contact)
         hits = set()
-        for k in keep:
-            a, b = int(g1[k]), int(g2[k])
-            if not (self._is_robot[a] or self._owner[a] == held_i):
+        for a, b in d.contact.geom[:ncon].tolist():
+            hold_a, hold_b = owner[a] == held_i, owner[b] == held_i
+            if not (robot[a] or robot[b] or hold_a or hold_b):
+                continue  # between two other parties
+            if (gripper[a] and hold_b) or (gripper[b] and hold_a):
+                continue  # the grasp itself
+            if not (robot[a] or hold_a):
                 a, b = b, a  # a is ours (robot or held), b the other party
-            who = "robot" if self._is_robot[a] else "object"
-            hits.add(f"{who}-{self._names[b]}" if not self._is_robot[b] else f"{who}-robot")
+            who = "robot" if robot[a] else "object"
+            hits.add(f"{who}-{names[b]}" if not robot[b] else f"{who}-robot")
         return CollisionReport(sorted(hits))
+
+
+def _as_slice(index: NDArray[np.intp]) -> slice | None:
+    """``index`` as an equivalent slice if it is a run of consecutive addresses."""
+    lo = int(index[0])
+    if index.tolist() == list(range(lo, lo + len(index))):
+        return slice(lo, lo + len(index))
+    return None  # pragma: no cover - robot.xml keeps each joint group contiguous
 
 
 def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:

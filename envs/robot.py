@@ -135,7 +135,7 @@ class Robot:
 def base_footprint(pose: ArrayLike, name: str = "robot") -> Box2D:
     """The base's square footprint at ``pose`` ``(x, y, theta)``."""
     x, y, th = (float(v) for v in np.asarray(pose, dtype=np.float64))
-    return Box2D(x, y, BASE_HALF, BASE_HALF, th, name)
+    return Box2D.fast(x, y, BASE_HALF, BASE_HALF, th, name)
 
 
 @dataclass(frozen=True)
