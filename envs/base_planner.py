@@ -82,7 +82,7 @@ import itertools
 import math
 from collections import OrderedDict
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -582,6 +582,86 @@ def segments_hit_boxes(
     return seg_i[hit], box_j[hit]
 
 
+def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
+    """The scene's boxes as lists of Python floats (built once per scene)."""
+    if scene.lists is None:
+        b = scene.boxes
+        scene.lists = (
+            b.center[:, 0].tolist(),
+            b.center[:, 1].tolist(),
+            b.cos.tolist(),
+            b.sin.tolist(),
+            b.half[:, 0].tolist(),
+            b.half[:, 1].tolist(),
+            b.reach.tolist(),
+        )
+    return scene.lists
+
+
+def _open_box_met(
+    px: float, py: float, dx: float, dy: float, cross: float, hx: float, hy: float
+) -> bool:
+    """:func:`_segment_meets_open_box` for one segment, on Python floats."""
+    qx = px + dx
+    qy = py + dy
+    if max(px, qx) <= -hx or min(px, qx) >= hx or max(py, qy) <= -hy or min(py, qy) >= hy:
+        return False
+    reach = abs(dy) * hx + abs(dx) * hy
+    return not (abs(cross) >= reach and reach > 0.0)
+
+
+def _segment_hits_any(
+    p0: float, p1: float, q0: float, q1: float, boxes: tuple[list[float], ...], radius: float
+) -> bool:
+    """``segments_hit_any`` for the one segment ``p -> q``, on Python floats.
+
+    Every quantity is the elementwise expression of :func:`segments_hit_boxes` and
+    :func:`_segment_box_pairs_hit` for this segment, evaluated in the same order with
+    the same IEEE operations (no reduction reorders a sum), so the answer is identical;
+    for one segment against a few dozen boxes it is several times cheaper than the
+    array version's fixed costs.
+    """
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
+    dx = q0 - p0
+    dy = q1 - p1
+    inv_dd = 1.0 / max(dx * dx + dy * dy, 1e-300)
+    r2 = radius * radius
+    for k in range(len(bcx)):
+        cx, cy = bcx[k], bcy[k]
+        ex = cx - p0
+        ey = cy - p1
+        t = min(max((ex * dx + ey * dy) * inv_dd, 0.0), 1.0)
+        ox = ex - t * dx
+        oy = ey - t * dy
+        lim = breach[k] + radius
+        if not ox * ox + oy * oy < lim * lim:
+            continue
+        # the exact test in the box frame
+        c, s = bcos[k], bsin[k]
+        hx, hy = bhx[k], bhy[k]
+        rx = p0 - cx
+        ry = p1 - cy
+        px = rx * c + ry * s
+        py = ry * c - rx * s
+        sdx = dx * c + dy * s
+        sdy = dy * c - dx * s
+        cross = px * sdy - py * sdx
+        if _open_box_met(px, py, sdx, sdy, cross, hx + radius, hy):
+            return True
+        if _open_box_met(px, py, sdx, sdy, cross, hx, hy + radius):
+            return True
+        inv = 1.0 / max(sdx * sdx + sdy * sdy, 1e-300)
+        for sx, sy in ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)):
+            vx = sx * hx - px
+            vy = sy * hy - py
+            tc = min(max((vx * sdx + vy * sdy) * inv, 0.0), 1.0)
+            wx = vx - tc * sdx
+            wy = vy - tc * sdy
+            if wx * wx + wy * wy < r2:
+                return True
+    return False
+
+
 def segments_hit_any(p: FloatArray, q: FloatArray, boxes: BoxArrays, radius: float) -> BoolArray:
     """``(e,)`` mask: does segment ``k`` pass within ``radius`` of any box?"""
     p = np.asarray(p, dtype=np.float64).reshape(-1, 2)
@@ -644,6 +724,12 @@ class _Scene:
     movable: BoxArrays
     boxes: BoxArrays  # static then movable
     graph: _Graph | None = None
+    # for the no-path shortcut (BasePlanner._no_path): the graph's connected components,
+    # and per start point the nodes in the components the start sees
+    components: IntArray | None = None
+    reach: OrderedDict[tuple[float, float], IntArray] = field(default_factory=OrderedDict)
+    # the boxes as Python lists, for the single-segment test
+    lists: tuple[list[float], ...] | None = None
 
 
 #: Lines through a vertex whose sines to both neighbours multiply to more than
@@ -781,10 +867,12 @@ class BasePlanner:
             return None
         if points_hit_boxes(ends, scene.boxes, r_hit).any():
             return None
-        if not segments_hit_any(ends[:1], ends[1:], scene.boxes, r_hit)[0]:
+        if not _segment_hits_any(s.x, s.y, g.x, g.y, _box_lists(scene), r_hit):
             return self._make_path(s, g, ends)
         if scene.graph is None:
             scene.graph = self._build_graph(scene)
+        if self._no_path(scene, ends, r_hit):
+            return None
         polyline = self._search(scene.graph, ends, scene.boxes, r_hit)
         if polyline is None:
             return None
@@ -998,6 +1086,60 @@ class BasePlanner:
         ia = np.concatenate([new_index[static.i[keep]], mi + nb, mi2 + nb])
         ib = np.concatenate([new_index[static.j[keep]], bj, mj2 + nb])
         return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, scene.boxes, r_hit))
+
+    @staticmethod
+    def _visible(nodes: _Nodes, point: FloatArray, boxes: BoxArrays, r_hit: float) -> IntArray:
+        """Indices of ``nodes`` that ``point`` connects to, as :meth:`_search` connects it.
+
+        The same elementwise tangency and segment tests as :meth:`_search` runs for each
+        end (each pair's answer depends on that pair alone), so the set is the same.
+        """
+        ux = nodes.pos[None, :, 0] - point[0]
+        uy = nodes.pos[None, :, 1] - point[1]
+        _, node_k = np.nonzero(_tangent_grid(nodes, ux, uy, 1))
+        if node_k.size == 0:
+            return node_k
+        ok = ~segments_hit_any(
+            np.broadcast_to(point, (node_k.size, 2)), nodes.pos[node_k], boxes, r_hit
+        )
+        visible: IntArray = node_k[ok]
+        return visible
+
+    def _no_path(self, scene: _Scene, ends: FloatArray, r_hit: float) -> bool:
+        """Is it certain that :meth:`_search` finds no path between ``ends``?
+
+        :meth:`_search` fails iff no node the goal connects to is in a connected component
+        of the graph holding a node the start connects to. The components are computed
+        once per graph and, per start point, the nodes of the start's components (a
+        planning session asks many goals from one start); the goal is then tested against
+        those nodes only. A False answer runs :meth:`_search` as before, so every path
+        returned is the one it always was.
+        """
+        graph = scene.graph
+        assert graph is not None
+        nodes = graph.nodes
+        if len(nodes) == 0:
+            return True
+        key = (float(ends[0, 0]), float(ends[0, 1]))
+        reach = scene.reach.get(key)
+        if reach is None:
+            if scene.components is None:
+                from scipy.sparse import coo_matrix
+                from scipy.sparse.csgraph import connected_components
+
+                n = len(nodes)
+                adj = coo_matrix((np.ones(graph.i.size), (graph.i, graph.j)), shape=(n, n))
+                scene.components = connected_components(adj, directed=False)[1]
+            comp = scene.components
+            seen = self._visible(nodes, ends[0], scene.boxes, r_hit)
+            reach = np.flatnonzero(np.isin(comp, comp[seen]))
+            scene.reach[key] = reach
+            if len(scene.reach) > 16:
+                scene.reach.popitem(last=False)
+        if reach.size == 0:
+            return True
+        goal_seen = self._visible(nodes.take(reach), ends[1], scene.boxes, r_hit)
+        return bool(goal_seen.size == 0)
 
     def _search(
         self, graph: _Graph, ends: FloatArray, boxes: BoxArrays, r_hit: float

@@ -192,16 +192,29 @@ def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
     return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
+def _xyt(pose: ArrayLike) -> list[float]:
+    """A pose's three numbers as Python floats (the same values numpy holds)."""
+    if isinstance(pose, np.ndarray) and pose.dtype == np.float64:
+        return pose.reshape(-1).tolist()  # type: ignore[no-any-return]
+    if isinstance(pose, tuple | list) and all(type(v) is float for v in pose):
+        return list(pose)
+    return np.asarray(pose, dtype=np.float64).reshape(-1).tolist()  # type: ignore[no-any-return]
+
+
 def compose2d(a: ArrayLike, b: ArrayLike) -> FloatArray:
-    """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses."""
-    a = np.asarray(a, dtype=np.float64)
-    b = np.asarray(b, dtype=np.float64)
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return np.array([a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2]])
+    """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses.
+
+    Computed on Python floats (the same IEEE operations, in the same order, as on numpy
+    scalars), which is several times cheaper for three numbers.
+    """
+    ax, ay, at = _xyt(a)
+    bx, by, bt = _xyt(b)
+    c, s = math.cos(at), math.sin(at)
+    return np.array([ax + c * bx - s * by, ay + s * bx + c * by, at + bt])
 
 
 def inverse2d(a: ArrayLike) -> FloatArray:
-    """SE(2) inverse of ``(x, y, theta)``."""
-    a = np.asarray(a, dtype=np.float64)
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return np.array([-c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]])
+    """SE(2) inverse of ``(x, y, theta)`` (on Python floats, as :func:`compose2d`)."""
+    ax, ay, at = _xyt(a)
+    c, s = math.cos(at), math.sin(at)
+    return np.array([-c * ax - s * ay, s * ax - c * ay, -at])

@@ -82,10 +82,29 @@ def ensure_headless_gl() -> None:
 
 def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
     """Map ``a`` in ``[-1, 1]^d`` to the box ``ranges`` (``d`` pairs ``(low, high)``)."""
-    lo = np.array([r[0] for r in ranges], dtype=np.float64)
-    hi = np.array([r[1] for r in ranges], dtype=np.float64)
-    out: FloatArray = lo + 0.5 * (a + 1.0) * (hi - lo)
+    lo, width = _range_arrays(ranges)
+    out: FloatArray = lo + 0.5 * (a + 1.0) * width
     return out
+
+
+#: ``(low, high - low)`` arrays of the ranges :func:`denormalize` has seen.
+_RANGE_ARRAYS: dict[tuple[tuple[float, float], ...], tuple[FloatArray, FloatArray]] = {}
+
+
+def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, FloatArray]:
+    """The read-only ``low`` and ``high - low`` arrays of ``ranges`` (built once per ranges)."""
+    key = tuple((r[0], r[1]) for r in ranges)
+    hit = _RANGE_ARRAYS.get(key)
+    if hit is None:
+        lo = np.array([r[0] for r in key], dtype=np.float64)
+        hi = np.array([r[1] for r in key], dtype=np.float64)
+        width = hi - lo
+        lo.setflags(write=False)
+        width.setflags(write=False)
+        if len(_RANGE_ARRAYS) >= 64:
+            _RANGE_ARRAYS.clear()
+        hit = _RANGE_ARRAYS[key] = (lo, width)
+    return hit
 
 
 def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
@@ -102,6 +121,9 @@ def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     Tuples of floats are immutable, compare exactly and pickle small, which suits the
     step infos a tree search keeps for each of its nodes.
     """
+    if isinstance(pose, np.ndarray) and pose.dtype == np.float64 and pose.shape == (3,):
+        x, y, theta = pose.tolist()
+        return x, y, theta
     x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).reshape(3))
     return x, y, theta
 
