@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import gymnasium as gym
@@ -59,6 +59,7 @@ from voot.envs.task_env import (
     check_range,
     denormalize,
     pose_tuple,
+    replace,
 )
 from voot.optim.base import Bounds
 

@@ -49,7 +49,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import gymnasium as gym
@@ -83,6 +83,7 @@ from voot.envs.task_env import (
     check_range,
     denormalize,
     pose_tuple,
+    replace,
 )
 from voot.optim.base import Bounds
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -192,12 +193,13 @@ def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
     return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
-def _xyt(pose: ArrayLike) -> list[float]:
+def _xyt(pose: ArrayLike) -> list[float] | tuple[float, ...]:
     """A pose's three numbers as Python floats (the same values numpy holds)."""
-    if isinstance(pose, np.ndarray) and pose.dtype == np.float64:
-        return pose.reshape(-1).tolist()  # type: ignore[no-any-return]
-    if isinstance(pose, tuple | list) and all(type(v) is float for v in pose):
-        return list(pose)
+    kind = type(pose)
+    if kind is np.ndarray and pose.dtype == np.float64:  # type: ignore[union-attr]
+        return pose.reshape(-1).tolist()  # type: ignore[no-any-return,union-attr]
+    if kind is tuple and all(type(v) is float for v in pose):  # type: ignore[union-attr]
+        return pose  # type: ignore[return-value]
     return np.asarray(pose, dtype=np.float64).reshape(-1).tolist()  # type: ignore[no-any-return]
 
 
@@ -214,7 +216,21 @@ def compose2d(a: ArrayLike, b: ArrayLike) -> FloatArray:
 
 
 def inverse2d(a: ArrayLike) -> FloatArray:
-    """SE(2) inverse of ``(x, y, theta)`` (on Python floats, as :func:`compose2d`)."""
-    ax, ay, at = _xyt(a)
-    c, s = math.cos(at), math.sin(at)
-    return np.array([-c * ax - s * ay, s * ax - c * ay, -at])
+    """SE(2) inverse of ``(x, y, theta)`` (on Python floats, as :func:`compose2d`).
+
+    Inverses of tuples (the envs' grasp poses, asked for at every check) are remembered.
+    """
+    key = a if type(a) is tuple else None
+    hit = _INVERSES.get(key) if key is not None else None
+    if hit is None:
+        ax, ay, at = _xyt(a)
+        c, s = math.cos(at), math.sin(at)
+        hit = (-c * ax - s * ay, s * ax - c * ay, -at)
+        if key is not None and all(type(v) is float for v in key):
+            if len(_INVERSES) >= 4096:
+                _INVERSES.clear()
+            _INVERSES[key] = hit
+    return np.array(hit)
+
+
+_INVERSES: dict[Any, tuple[float, float, float]] = {}

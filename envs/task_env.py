@@ -35,6 +35,7 @@ observation, and building it (every object's pose) cost about a tenth of a check
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import os
 import sys
@@ -78,6 +79,43 @@ def ensure_headless_gl() -> None:
     from mujoco.egl import GLContext
 
     gl_context.GLContext = GLContext  # type: ignore[attr-defined]
+
+
+_PLAIN_DATACLASSES: dict[type, tuple[str, ...] | None] = {}
+
+
+def replace(obj: Any, /, **changes: Any) -> Any:
+    """:func:`dataclasses.replace`, minus its generic cost for plain dataclasses.
+
+    A *plain* dataclass (every field an ``__init__`` argument, no ``__post_init__``, no
+    slots, such as the task-progress records and :class:`StepTiming`) is copied field
+    by field with the changes applied, which is what ``dataclasses.replace`` does through
+    ``__init__``; anything else, or an unknown field name, goes to
+    ``dataclasses.replace`` itself. The envs replace their task record at every step.
+    """
+    cls = type(obj)
+    names = _PLAIN_DATACLASSES.get(cls, ())
+    if names == ():
+        names = _plain_fields(cls)
+        _PLAIN_DATACLASSES[cls] = names
+    if names is None or not changes.keys() <= set(names):
+        return dataclasses.replace(obj, **changes)
+    state = obj.__dict__
+    new = object.__new__(cls)
+    new.__dict__.update({name: state[name] for name in names}, **changes)
+    return new
+
+
+def _plain_fields(cls: type) -> tuple[str, ...] | None:
+    """The field names of a plain dataclass (see :func:`replace`), or None."""
+    if not dataclasses.is_dataclass(cls) or hasattr(cls, "__post_init__"):
+        return None
+    if "__slots__" in cls.__dict__:
+        return None
+    fields = dataclasses.fields(cls)
+    if any(not f.init for f in fields) or len(fields) != len(cls.__dataclass_fields__):
+        return None
+    return tuple(f.name for f in fields)
 
 
 def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
