@@ -136,6 +136,9 @@ class Pose2D:
         """Accept a :class:`Pose2D` or a length-3 ``(x, y, theta)`` sequence/array."""
         if isinstance(pose, Pose2D):
             return pose
+        if type(pose) is np.ndarray and pose.dtype == np.float64 and pose.shape == (3,):
+            x, y, theta = pose.tolist()
+            return cls(x, y, theta)
         arr = np.asarray(pose, dtype=np.float64).reshape(-1)
         if arr.shape != (3,):
             raise ValueError(f"{name} must be a Pose2D or (x, y, theta); got shape {arr.shape}")
@@ -598,6 +601,52 @@ def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
     return scene.lists
 
 
+def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: float) -> bool:
+    """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations)."""
+    bcx, bcy, bcos, bsin, bhx, bhy, _ = boxes
+    r2 = radius * radius
+    for k in range(len(bcx)):
+        rx = x - bcx[k]
+        ry = y - bcy[k]
+        c, s = bcos[k], bsin[k]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = max(abs(lx) - bhx[k], 0.0)
+        dy = max(abs(ly) - bhy[k], 0.0)
+        if dx * dx + dy * dy < r2:
+            return True
+    return False
+
+
+def _sees_any(
+    nodes: tuple[list[float], ...],
+    x: float,
+    y: float,
+    boxes: tuple[list[float], ...],
+    radius: float,
+) -> bool:
+    """Does the point ``(x, y)`` connect to any of ``nodes``, as :meth:`BasePlanner._search`
+    connects an end (tangent at the node, segment clear of every box)?
+
+    ``nodes`` holds the nodes' positions and neighbour directions as lists. The tangency
+    test is :func:`_tangent_grid`'s expression and the segment test
+    :func:`_segment_hits_any`, both on Python floats with the same operations, so each
+    pair's answer is the array version's; it stops at the first connected node.
+    """
+    xs, ys, pxs, pys, nxs, nys = nodes
+    for k in range(len(xs)):
+        nx_, ny_ = xs[k], ys[k]
+        ux = nx_ - x
+        uy = ny_ - y
+        cross_prev = ux * pys[k] - uy * pxs[k]
+        cross_next = ux * nys[k] - uy * nxs[k]
+        if not cross_prev * cross_next >= -_TANGENT_EPS * (ux * ux + uy * uy):
+            continue
+        if not _segment_hits_any(x, y, nx_, ny_, boxes, radius):
+            return True
+    return False
+
+
 def _open_box_met(
     px: float, py: float, dx: float, dy: float, cross: float, hx: float, hy: float
 ) -> bool:
@@ -626,7 +675,11 @@ def _segment_hits_any(
     dy = q1 - p1
     inv_dd = 1.0 / max(dx * dx + dy * dy, 1e-300)
     r2 = radius * radius
-    for k in range(len(bcx)):
+    n = len(bcx)
+    first = _LAST_HIT[0] if _LAST_HIT[0] < n else 0
+    # the box that blocked the last segment first: segments asked in a row are mostly
+    # blocked by the same wall (the answer does not depend on the order)
+    for k in itertools.chain(range(first, n), range(first)):
         cx, cy = bcx[k], bcy[k]
         ex = cx - p0
         ey = cy - p1
@@ -646,9 +699,10 @@ def _segment_hits_any(
         sdx = dx * c + dy * s
         sdy = dy * c - dx * s
         cross = px * sdy - py * sdx
-        if _open_box_met(px, py, sdx, sdy, cross, hx + radius, hy):
-            return True
-        if _open_box_met(px, py, sdx, sdy, cross, hx, hy + radius):
+        if _open_box_met(px, py, sdx, sdy, cross, hx + radius, hy) or _open_box_met(
+            px, py, sdx, sdy, cross, hx, hy + radius
+        ):
+            _LAST_HIT[0] = k
             return True
         inv = 1.0 / max(sdx * sdx + sdy * sdy, 1e-300)
         for sx, sy in ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)):
@@ -658,8 +712,13 @@ def _segment_hits_any(
             wx = vx - tc * sdx
             wy = vy - tc * sdy
             if wx * wx + wy * wy < r2:
+                _LAST_HIT[0] = k
                 return True
     return False
+
+
+#: Index of the box that blocked the last segment of :func:`_segment_hits_any`.
+_LAST_HIT = [0]
 
 
 def segments_hit_any(p: FloatArray, q: FloatArray, boxes: BoxArrays, radius: float) -> BoolArray:
@@ -727,7 +786,9 @@ class _Scene:
     # for the no-path shortcut (BasePlanner._no_path): the graph's connected components,
     # and per start point the nodes in the components the start sees
     components: IntArray | None = None
-    reach: OrderedDict[tuple[float, float], IntArray] = field(default_factory=OrderedDict)
+    reach: OrderedDict[tuple[float, float], tuple[list[float], ...]] = field(
+        default_factory=OrderedDict
+    )
     # the boxes as Python lists, for the single-segment test
     lists: tuple[list[float], ...] | None = None
 
@@ -863,9 +924,10 @@ class BasePlanner:
         scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
         r_hit = scene.radius - self.config.contact_tolerance
         ends = np.array([[s.x, s.y], [g.x, g.y]])
-        if not np.all(self._inside(ends, r_hit)):
+        if not (self._inside_xy(s.x, s.y, r_hit) and self._inside_xy(g.x, g.y, r_hit)):
             return None
-        if points_hit_boxes(ends, scene.boxes, r_hit).any():
+        lists = _box_lists(scene)
+        if _point_hits_any(s.x, s.y, lists, r_hit) or _point_hits_any(g.x, g.y, lists, r_hit):
             return None
         if not _segment_hits_any(s.x, s.y, g.x, g.y, _box_lists(scene), r_hit):
             return self._make_path(s, g, ends)
@@ -1132,14 +1194,20 @@ class BasePlanner:
                 scene.components = connected_components(adj, directed=False)[1]
             comp = scene.components
             seen = self._visible(nodes, ends[0], scene.boxes, r_hit)
-            reach = np.flatnonzero(np.isin(comp, comp[seen]))
+            near = nodes.take(np.flatnonzero(np.isin(comp, comp[seen])))
+            reach = (
+                near.pos[:, 0].tolist(),
+                near.pos[:, 1].tolist(),
+                near.to_prev[:, 0].tolist(),
+                near.to_prev[:, 1].tolist(),
+                near.to_next[:, 0].tolist(),
+                near.to_next[:, 1].tolist(),
+            )
             scene.reach[key] = reach
             if len(scene.reach) > 16:
                 scene.reach.popitem(last=False)
-        if reach.size == 0:
-            return True
-        goal_seen = self._visible(nodes.take(reach), ends[1], scene.boxes, r_hit)
-        return bool(goal_seen.size == 0)
+        gx, gy = float(ends[1, 0]), float(ends[1, 1])
+        return not _sees_any(reach, gx, gy, _box_lists(scene), r_hit)
 
     def _search(
         self, graph: _Graph, ends: FloatArray, boxes: BoxArrays, r_hit: float
