@@ -603,11 +603,14 @@ def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
 
 def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: float) -> bool:
     """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations)."""
-    bcx, bcy, bcos, bsin, bhx, bhy, _ = boxes
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
     r2 = radius * radius
     for k in range(len(bcx)):
         rx = x - bcx[k]
         ry = y - bcy[k]
+        far = breach[k] + radius + 1e-6  # the point is at least this far from the box centre
+        if rx * rx + ry * ry > far * far:
+            continue  # farther than circumradius + radius (+ a margin above rounding)
         c, s = bcos[k], bsin[k]
         lx = rx * c + ry * s
         ly = -rx * s + ry * c

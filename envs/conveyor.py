@@ -326,7 +326,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             raise ValueError("the episode has ended (terminated or truncated); call reset()")
         start_time = time.perf_counter()
         m = min(OBJECTS_PER_ACTION, self.n - t.placed)
-        params = np.stack([denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)])
+        params = denormalize(a[: 3 * m], cfg.place_ranges * m).reshape(m, 3)
         names = [self.objects[t.placed + k].name for k in range(m)]
         placements = tuple(pose_tuple(p) for p in params)
         bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))

@@ -20,6 +20,7 @@ Three building blocks, each deterministic (same inputs, same answer, in any proc
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -399,8 +400,8 @@ class CollisionChecker:
     """
 
     def __init__(self, model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]) -> None:
-        self.model = model
-        self.data = mujoco.MjData(model)
+        self.model, self._held_affinity = _robot_pairs_model(model, robot, objects)
+        self.data = mujoco.MjData(self.model)
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -467,7 +468,14 @@ class CollisionChecker:
             for i, pose in object_poses.items():
                 set_object_pose(d, self.objects[i], pose)
         mujoco.mj_kinematics(m, d)
-        mujoco.mj_collision(m, d)
+        restore = self._held_affinity.get(held) if held is not None else None
+        if restore is not None:
+            geoms, full, reduced = restore
+            m.geom_conaffinity[geoms] = full
+            mujoco.mj_collision(m, d)
+            m.geom_conaffinity[geoms] = reduced
+        else:
+            mujoco.mj_collision(m, d)
         ncon = d.ncon
         if ncon == 0:
             return CollisionReport()
@@ -485,6 +493,56 @@ class CollisionChecker:
             who = "robot" if robot[a] else "object"
             hits.add(f"{who}-{names[b]}" if not robot[b] else f"{who}-robot")
         return CollisionReport(sorted(hits))
+
+
+def _robot_pairs_model(
+    model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]
+) -> tuple[mujoco.MjModel, dict[int, tuple[list[int], NDArray[np.int32], NDArray[np.int32]]]]:
+    """A copy of ``model`` whose collision filter keeps only the pairs a check reports.
+
+    :meth:`CollisionChecker.check` reports contacts of the robot and of the held object
+    only; MuJoCo would also compute every contact between two other parties (an object
+    resting against a wall). In the copy, every non-robot geom's ``conaffinity`` keeps
+    only the robot's ``contype`` bits, so such pairs are never tested, and the held
+    object's geoms get their own ``conaffinity`` back for the duration of a check. Pairs
+    with the robot keep their filter, and a pair of the held object and another geom is
+    kept exactly when it was (verified here for every object against every geom;
+    otherwise the original filter is used). Contacts are computed per pair, so the ones
+    reported are the same. Returns the model and, per object index, its geoms with
+    their original and reduced ``conaffinity``.
+    """
+    contype = model.geom_contype.astype(np.int64)
+    affinity = model.geom_conaffinity.astype(np.int64)
+    is_robot = np.zeros(model.ngeom, dtype=bool)
+    is_robot[list(robot.geoms)] = True
+    robot_bits = int(np.bitwise_or.reduce(contype[is_robot])) if is_robot.any() else 0
+    if np.any(contype[~is_robot] & robot_bits):  # pragma: no cover - not in the scenes
+        return model, {}
+    reduced = np.where(is_robot, affinity, affinity & robot_bits)
+
+    def pairs(ct: NDArray[np.int64], af: NDArray[np.int64]) -> NDArray[np.bool_]:
+        return ((ct[:, None] & af[None, :]) | (ct[None, :] & af[:, None])) != 0
+
+    original = pairs(contype, affinity)
+    held: dict[int, tuple[list[int], NDArray[np.int32], NDArray[np.int32]]] = {}
+    for i, obj in enumerate(objects):
+        geoms = list(obj.geoms)
+        trial = reduced.copy()
+        trial[geoms] = affinity[geoms]
+        filtered = pairs(contype, trial)
+        ours = is_robot.copy()
+        ours[geoms] = True
+        # every pair with the robot or this object is filtered as before
+        if not np.array_equal(filtered[ours], original[ours]):  # pragma: no cover
+            return model, {}
+        held[i] = (
+            geoms,
+            model.geom_conaffinity[geoms].copy(),
+            reduced[geoms].astype(model.geom_conaffinity.dtype),
+        )
+    copy_ = copy.copy(model)
+    copy_.geom_conaffinity[:] = reduced.astype(model.geom_conaffinity.dtype)
+    return copy_, held
 
 
 def _as_slice(index: NDArray[np.intp]) -> slice | None:

@@ -27,9 +27,11 @@ state as ``step``, without the observation that no planner reads.
 
 The check path is lean but exact: the problem remembers the snapshot the env is at
 (after ``restore``, a cached ``step`` or ``snapshot``), so a check does not take a new
-one first; an action that changed neither the physics nor the generator (every
-infeasible one: it only counts the step) is undone by putting the task progress back
-instead of a full ``set_state``; the action boxes are built once per operator. Every
+one first; an infeasible action changes nothing but the task record (the envs'
+:attr:`~voot.envs.task_env.ManipulationEnv.INFEASIBLE_CHANGES_TASK_ONLY` contract: it
+only counts the step), so it is undone by putting the task record back instead of a
+snapshot and a full ``set_state`` (a feasible action that happened to change nothing
+is detected and treated alike); the action boxes are built once per operator. Every
 result, snapshot and random number is the same as with the plain step-record-restore.
 """
 
@@ -176,13 +178,16 @@ class EnvProblem:
         u = self.unwrapped
         before = self.snapshot()
         res = self._run(action)
-        after = u.get_state()
-        if (
-            after.rng_state is before.rng_state
-            and after.physics.tobytes() == before.physics.tobytes()
-        ):
-            # the step changed the task progress only (an infeasible action counts a step)
-            after = EnvState(before.physics, before.signature, after.task, before.rng_state)
+        if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
+            # only the task record moved on (the step count): share the rest
+            after = EnvState(before.physics, before.signature, u.task, before.rng_state)
+        else:
+            after = u.get_state()
+            if (
+                after.rng_state is before.rng_state
+                and after.physics.tobytes() == before.physics.tobytes()
+            ):
+                after = EnvState(before.physics, before.signature, after.task, before.rng_state)
         self._jump(after, before)
         self._cache = (
             self._version,

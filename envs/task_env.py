@@ -271,6 +271,12 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     """
 
     metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 2}  # noqa: RUF012
+    #: The envs' contract that :class:`voot.envs.planning.EnvProblem` relies on to undo
+    #: a rejected check cheaply: an infeasible action changes nothing but the task
+    #: record (its step count); the physics and the generator are untouched (the envs
+    #: move the robot and objects only once every check has passed). A subclass that
+    #: breaks it must set this to False.
+    INFEASIBLE_CHANGES_TASK_ONLY: ClassVar[bool] = True
     #: Signature of the physics part of snapshots.
     STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
 
