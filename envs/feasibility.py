@@ -555,10 +555,12 @@ def _as_slice(index: NDArray[np.intp]) -> slice | None:
 
 def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:
     """Put ``obj``'s body at ``(x, y, z, yaw)`` (free joint qpos)."""
-    x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    if type(pose) is tuple and len(pose) == 4:
+        x, y, z, yaw = (float(v) for v in pose)
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
     a = obj.qpos_adr
-    data.qpos[a : a + 3] = (x, y, z)
-    data.qpos[a + 3 : a + 7] = (math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+    data.qpos[a : a + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
 
 
 def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:

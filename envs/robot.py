@@ -135,7 +135,7 @@ class Robot:
 
 def base_footprint(pose: ArrayLike, name: str = "robot") -> Box2D:
     """The base's square footprint at ``pose`` ``(x, y, theta)``."""
-    x, y, th = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    x, y, th = _xyt(pose)
     return Box2D.fast(x, y, BASE_HALF, BASE_HALF, th, name)
 
 
@@ -154,8 +154,7 @@ class CarryDisc:
 
     def center(self, base_pose: ArrayLike) -> FloatArray:
         """The disc's centre pose ``(x, y, theta)`` for the base at ``base_pose``."""
-        b = np.asarray(base_pose, dtype=np.float64)
-        return compose2d(b, (self.offset[0], self.offset[1], 0.0))
+        return compose2d(base_pose, (float(self.offset[0]), float(self.offset[1]), 0.0))
 
     def base(self, center_poses: ArrayLike) -> FloatArray:
         """Base poses ``(k, 3)`` for disc-centre poses ``(k, 3)``."""

@@ -194,9 +194,11 @@ def movable_objects(model: mujoco.MjModel) -> list[ObjectInfo]:
 def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
     """The footprint of ``obj`` with its body at ``(x, y)`` and heading ``yaw``."""
     c, s = math.cos(yaw), math.sin(yaw)
-    cx = x + c * obj.center[0] - s * obj.center[1]
-    cy = y + s * obj.center[0] + c * obj.center[1]
-    return Box2D.fast(cx, cy, float(obj.half[0]), float(obj.half[1]), yaw, obj.name)
+    ox, oy = obj.center.tolist()  # the same numbers as numpy scalars, cheaper to multiply
+    hx, hy = obj.half.tolist()
+    cx = x + c * ox - s * oy
+    cy = y + s * ox + c * oy
+    return Box2D.fast(cx, cy, hx, hy, yaw, obj.name)
 
 
 #: Margin (metres) of the float shortcuts of :func:`rect_inside` and :func:`rect_overlaps`:
