@@ -138,6 +138,10 @@ class Pose2D:
             return pose
         if type(pose) is np.ndarray and pose.dtype == np.float64 and pose.shape == (3,):
             x, y, theta = pose.tolist()
+            if math.isfinite(x) and math.isfinite(y) and math.isfinite(theta):
+                out = object.__new__(cls)  # the fields are valid floats: skip __init__
+                out.__dict__.update(x=x, y=y, theta=theta)
+                return out
             return cls(x, y, theta)
         arr = np.asarray(pose, dtype=np.float64).reshape(-1)
         if arr.shape != (3,):
@@ -622,7 +626,7 @@ def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: 
 
 
 def _sees_any(
-    nodes: tuple[list[float], ...],
+    nodes: tuple[list[Any], ...],
     x: float,
     y: float,
     boxes: tuple[list[float], ...],
@@ -631,12 +635,13 @@ def _sees_any(
     """Does the point ``(x, y)`` connect to any of ``nodes``, as :meth:`BasePlanner._search`
     connects an end (tangent at the node, segment clear of every box)?
 
-    ``nodes`` holds the nodes' positions and neighbour directions as lists. The tangency
+    ``nodes`` holds the nodes' positions and neighbour directions as lists, and a hint
+    per node for :func:`_segment_hits_any` (the box that blocked it last). The tangency
     test is :func:`_tangent_grid`'s expression and the segment test
     :func:`_segment_hits_any`, both on Python floats with the same operations, so each
     pair's answer is the array version's; it stops at the first connected node.
     """
-    xs, ys, pxs, pys, nxs, nys = nodes
+    xs, ys, pxs, pys, nxs, nys, hints = nodes
     for k in range(len(xs)):
         nx_, ny_ = xs[k], ys[k]
         ux = nx_ - x
@@ -645,7 +650,7 @@ def _sees_any(
         cross_next = ux * nys[k] - uy * nxs[k]
         if not cross_prev * cross_next >= -_TANGENT_EPS * (ux * ux + uy * uy):
             continue
-        if not _segment_hits_any(x, y, nx_, ny_, boxes, radius):
+        if not _segment_hits_any(x, y, nx_, ny_, boxes, radius, hints[k]):
             return True
     return False
 
@@ -663,7 +668,13 @@ def _open_box_met(
 
 
 def _segment_hits_any(
-    p0: float, p1: float, q0: float, q1: float, boxes: tuple[list[float], ...], radius: float
+    p0: float,
+    p1: float,
+    q0: float,
+    q1: float,
+    boxes: tuple[list[float], ...],
+    radius: float,
+    hint: list[int] | None = None,
 ) -> bool:
     """``segments_hit_any`` for the one segment ``p -> q``, on Python floats.
 
@@ -671,15 +682,19 @@ def _segment_hits_any(
     :func:`_segment_box_pairs_hit` for this segment, evaluated in the same order with
     the same IEEE operations (no reduction reorders a sum), so the answer is identical;
     for one segment against a few dozen boxes it is several times cheaper than the
-    array version's fixed costs.
+    array version's fixed costs. The boxes are tried from ``hint[0]`` on (the box that
+    blocked the caller's last segment; the answer does not depend on the order), and
+    ``hint[0]`` is set to the blocking box.
     """
+    if hint is None:
+        hint = _LAST_HIT
     bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
     dx = q0 - p0
     dy = q1 - p1
     inv_dd = 1.0 / max(dx * dx + dy * dy, 1e-300)
     r2 = radius * radius
     n = len(bcx)
-    first = _LAST_HIT[0] if _LAST_HIT[0] < n else 0
+    first = hint[0] if hint[0] < n else 0
     # the box that blocked the last segment first: segments asked in a row are mostly
     # blocked by the same wall (the answer does not depend on the order)
     for k in itertools.chain(range(first, n), range(first)):
@@ -705,7 +720,7 @@ def _segment_hits_any(
         if _open_box_met(px, py, sdx, sdy, cross, hx + radius, hy) or _open_box_met(
             px, py, sdx, sdy, cross, hx, hy + radius
         ):
-            _LAST_HIT[0] = k
+            hint[0] = k
             return True
         inv = 1.0 / max(sdx * sdx + sdy * sdy, 1e-300)
         for sx, sy in ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)):
@@ -715,7 +730,7 @@ def _segment_hits_any(
             wx = vx - tc * sdx
             wy = vy - tc * sdy
             if wx * wx + wy * wy < r2:
-                _LAST_HIT[0] = k
+                hint[0] = k
                 return True
     return False
 
@@ -789,7 +804,7 @@ class _Scene:
     # for the no-path shortcut (BasePlanner._no_path): the graph's connected components,
     # and per start point the nodes in the components the start sees
     components: IntArray | None = None
-    reach: OrderedDict[tuple[float, float], tuple[list[float], ...]] = field(
+    reach: OrderedDict[tuple[float, float], tuple[list[Any], ...]] = field(
         default_factory=OrderedDict
     )
     # the boxes as Python lists, for the single-segment test
@@ -1205,6 +1220,7 @@ class BasePlanner:
                 near.to_prev[:, 1].tolist(),
                 near.to_next[:, 0].tolist(),
                 near.to_next[:, 1].tolist(),
+                [[0] for _ in range(len(near))],  # per node: the box that blocked it last
             )
             scene.reach[key] = reach
             if len(scene.reach) > 16:

@@ -402,6 +402,10 @@ class CollisionChecker:
     def __init__(self, model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]) -> None:
         self.model, self._held_affinity = _robot_pairs_model(model, robot, objects)
         self.data = mujoco.MjData(self.model)
+        # views into the model's and data's buffers, fetched once (each attribute access
+        # builds a new array object)
+        self._affinity_view = self.model.geom_conaffinity
+        self._qpos_view = self.data.qpos
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -454,7 +458,7 @@ class CollisionChecker:
             without duplicates; prefixed ``"robot-"`` or ``"object-"`` by the party hit.
         """
         m, d = self.model, self.data
-        q = d.qpos
+        q = self._qpos_view
         q[:] = qpos
         base_sl, arm_sl, finger_sl = self._base_sl, self._arm_sl, self._finger_sl
         if base_sl is not None and arm_sl is not None and finger_sl is not None:
@@ -471,9 +475,10 @@ class CollisionChecker:
         restore = self._held_affinity.get(held) if held is not None else None
         if restore is not None:
             geoms, full, reduced = restore
-            m.geom_conaffinity[geoms] = full
+            affinity = self._affinity_view
+            affinity[geoms] = full
             mujoco.mj_collision(m, d)
-            m.geom_conaffinity[geoms] = reduced
+            affinity[geoms] = reduced
         else:
             mujoco.mj_collision(m, d)
         ncon = d.ncon
@@ -497,7 +502,9 @@ class CollisionChecker:
 
 def _robot_pairs_model(
     model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]
-) -> tuple[mujoco.MjModel, dict[int, tuple[list[int], NDArray[np.int32], NDArray[np.int32]]]]:
+) -> tuple[
+    mujoco.MjModel, dict[int, tuple[slice | list[int], NDArray[np.int32], NDArray[np.int32]]]
+]:
     """A copy of ``model`` whose collision filter keeps only the pairs a check reports.
 
     :meth:`CollisionChecker.check` reports contacts of the robot and of the held object
@@ -524,7 +531,7 @@ def _robot_pairs_model(
         return ((ct[:, None] & af[None, :]) | (ct[None, :] & af[:, None])) != 0
 
     original = pairs(contype, affinity)
-    held: dict[int, tuple[list[int], NDArray[np.int32], NDArray[np.int32]]] = {}
+    held: dict[int, tuple[slice | list[int], NDArray[np.int32], NDArray[np.int32]]] = {}
     for i, obj in enumerate(objects):
         geoms = list(obj.geoms)
         trial = reduced.copy()
@@ -535,8 +542,9 @@ def _robot_pairs_model(
         # every pair with the robot or this object is filtered as before
         if not np.array_equal(filtered[ours], original[ours]):  # pragma: no cover
             return model, {}
+        run = _as_slice(np.asarray(geoms, dtype=np.intp))
         held[i] = (
-            geoms,
+            geoms if run is None else run,
             model.geom_conaffinity[geoms].copy(),
             reduced[geoms].astype(model.geom_conaffinity.dtype),
         )
@@ -550,7 +558,7 @@ def _as_slice(index: NDArray[np.intp]) -> slice | None:
     lo = int(index[0])
     if index.tolist() == list(range(lo, lo + len(index))):
         return slice(lo, lo + len(index))
-    return None  # pragma: no cover - robot.xml keeps each joint group contiguous
+    return None
 
 
 def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:

@@ -66,8 +66,13 @@ class Bounds:
             )
         lo.setflags(write=False)
         hi.setflags(write=False)
+        width = hi - lo
+        width.setflags(write=False)
         object.__setattr__(self, "lower", lo)
         object.__setattr__(self, "upper", hi)
+        # derived once: tree search samples a node's box at every proposal
+        object.__setattr__(self, "_width", width)
+        object.__setattr__(self, "_dim", int(lo.size))
 
     @classmethod
     def cube(cls, low: float, high: float, dim: int) -> Bounds:
@@ -107,11 +112,12 @@ class Bounds:
 
     @property
     def dim(self) -> int:
-        return int(self.lower.size)
+        return self._dim  # type: ignore[attr-defined,no-any-return]
 
     @property
     def width(self) -> FloatArray:
-        return self.upper - self.lower
+        """``upper - lower`` (read-only, computed once)."""
+        return self._width  # type: ignore[attr-defined,no-any-return]
 
     @property
     def center(self) -> FloatArray:
