@@ -456,7 +456,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self.task = state.task
         bg = self.np_random.bit_generator
         if isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
-            bg.state = dict(state.rng_state)  # read, not kept, by the generator
+            bg.state = dict(state.rng_state)  # type: ignore[assignment]  # read, not kept
             self._rng_shared = state.rng_state
         else:
             bg.state = copy.deepcopy(dict(state.rng_state))

@@ -538,3 +538,67 @@ def test_plan_speed_report() -> None:
     for name, ts in by_outcome.items():
         print(f"{name:>7}: {len(ts):4d} queries, median {np.median(ts) * 1e3:.2f} ms")
     assert np.median(r) < 5.0
+
+
+# ----------------------------------------------------------------------------------------
+# the float shortcuts and the no-path shortcut answer as the array code does
+# ----------------------------------------------------------------------------------------
+def _lists(boxes: list[Box2D]) -> tuple[list[float], ...]:
+    scene = bp._Scene(0.5, bp.BoxArrays.from_boxes([]), bp.BoxArrays.from_boxes(boxes))
+    return bp._box_lists(scene)
+
+
+def test_single_segment_and_point_tests_match_the_arrays() -> None:
+    boxes = house_static() + house_movable()
+    arrays = bp.BoxArrays.from_boxes(boxes)
+    lists = _lists(boxes)
+    rng = np.random.default_rng(11)
+    pts = rng.uniform((-2.5, -4.5), (6.5, 4.5), (4000, 2))
+    # and segments that graze a box corner at exactly the radius
+    for k in range(0, 4000, 4):
+        b = boxes[k % len(boxes)]
+        pts[k] = b.corners()[k % 4] + 0.5 * np.array([1.0, 0.0])
+    hint = [0]
+    for k in range(0, len(pts) - 1, 2):
+        p, q = pts[k], pts[k + 1]
+        r = [0.3, 0.48, 0.5, 0.9][k % 4]
+        ref = bool(bp.segments_hit_any(p[None], q[None], arrays, r)[0])
+        got = bp._segment_hits_any(
+            float(p[0]), float(p[1]), float(q[0]), float(q[1]), lists, r, hint
+        )
+        assert got == ref
+        ref_pt = bool(bp.points_hit_boxes(p[None], arrays, r).any())
+        assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r) == ref_pt
+
+
+def test_no_path_shortcut_agrees_with_the_search() -> None:
+    """_no_path says True only where _search finds nothing, and plans are unchanged."""
+    static, movable = house_static(), house_movable()
+    fast = BasePlanner(WORKSPACE, static)
+    for radius in (0.45, 0.52):
+        poses = random_free_poses(fast, radius, movable, 60, seed=4)
+        for k in range(0, len(poses) - 1, 2):
+            s, g = poses[k], poses[k + 1]
+            path = fast.plan(s, g, radius, movable)
+            scene = fast._scene(fast._inflated_radius(radius), tuple(movable))
+            if scene.graph is None:
+                continue  # the straight line was free: no search
+            ends = np.array([[s.x, s.y], [g.x, g.y]])
+            r_hit = scene.radius - fast.config.contact_tolerance
+            full = fast._search(scene.graph, ends, scene.boxes, r_hit)
+            assert fast._no_path(scene, ends, r_hit) == (full is None)
+            assert (path is None) == (full is None)
+    # a door too narrow for the disc: start and goal in different components
+    blocked = fast.plan((0.0, 0.0, 0.0), (4.5, -1.5, 0.0), 0.55, movable)
+    assert blocked is None
+
+
+def test_box_fast_is_the_constructed_box() -> None:
+    a = Box2D(1.0, -2.0, 0.5, 0.25, 0.3, "x")
+    b = Box2D.fast(np.float64(1.0), -2.0, 0.5, 0.25, 0.3, "x")
+    assert a == b and hash(a) == hash(b) and vars(a) == vars(b)
+    assert pickle.loads(pickle.dumps(b)) == a
+    with pytest.raises(ValueError, match="half_x"):
+        Box2D.fast(0.0, 0.0, -1.0, 1.0, 0.0, "bad")
+    with pytest.raises(ValueError, match="finite"):
+        Box2D.fast(math.nan, 0.0, 1.0, 1.0, 0.0, "bad")
