@@ -605,6 +605,43 @@ def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
     return scene.lists
 
 
+def _component_lists(graph: _Graph) -> list[tuple[list[Any], ...]]:
+    """The graph's connected components, each as the node lists :func:`_sees_any` takes.
+
+    Union-find over the edges (a property of the graph: no arithmetic involved), then per
+    component its nodes' positions, neighbour directions and blocking-box hints.
+    """
+    n = len(graph.nodes)
+    parent = list(range(n))
+
+    def root(v: int) -> int:
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for a, b in zip(graph.i.tolist(), graph.j.tolist(), strict=True):
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    groups: dict[int, list[int]] = {}
+    for v in range(n):
+        groups.setdefault(root(v), []).append(v)
+    nodes = graph.nodes
+    cols = (
+        nodes.pos[:, 0].tolist(),
+        nodes.pos[:, 1].tolist(),
+        nodes.to_prev[:, 0].tolist(),
+        nodes.to_prev[:, 1].tolist(),
+        nodes.to_next[:, 0].tolist(),
+        nodes.to_next[:, 1].tolist(),
+    )
+    return [
+        (*([col[v] for v in members] for col in cols), [[0] for _ in members])
+        for members in groups.values()
+    ]
+
+
 def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: float) -> bool:
     """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations)."""
     bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
@@ -803,7 +840,7 @@ class _Scene:
     graph: _Graph | None = None
     # for the no-path shortcut (BasePlanner._no_path): the graph's connected components,
     # and per start point the nodes in the components the start sees
-    components: IntArray | None = None
+    components: list[tuple[list[Any], ...]] | None = None
     reach: OrderedDict[tuple[float, float], tuple[list[Any], ...]] = field(
         default_factory=OrderedDict
     )
@@ -1190,9 +1227,10 @@ class BasePlanner:
 
         :meth:`_search` fails iff no node the goal connects to is in a connected component
         of the graph holding a node the start connects to. The components are computed
-        once per graph and, per start point, the nodes of the start's components (a
-        planning session asks many goals from one start); the goal is then tested against
-        those nodes only. A False answer runs :meth:`_search` as before, so every path
+        once per graph and, per start point, the nodes of the components the start
+        connects to (a planning session asks many goals from one start; one connected
+        node settles a component); the goal is then tested against those nodes only,
+        until one connects. A False answer runs :meth:`_search` as before, so every path
         returned is the one it always was.
         """
         graph = scene.graph
@@ -1204,23 +1242,13 @@ class BasePlanner:
         reach = scene.reach.get(key)
         if reach is None:
             if scene.components is None:
-                from scipy.sparse import coo_matrix
-                from scipy.sparse.csgraph import connected_components
-
-                n = len(nodes)
-                adj = coo_matrix((np.ones(graph.i.size), (graph.i, graph.j)), shape=(n, n))
-                scene.components = connected_components(adj, directed=False)[1]
-            comp = scene.components
-            seen = self._visible(nodes, ends[0], scene.boxes, r_hit)
-            near = nodes.take(np.flatnonzero(np.isin(comp, comp[seen])))
-            reach = (
-                near.pos[:, 0].tolist(),
-                near.pos[:, 1].tolist(),
-                near.to_prev[:, 0].tolist(),
-                near.to_prev[:, 1].tolist(),
-                near.to_next[:, 0].tolist(),
-                near.to_next[:, 1].tolist(),
-                [[0] for _ in range(len(near))],  # per node: the box that blocked it last
+                scene.components = _component_lists(graph)
+            boxes = _box_lists(scene)
+            # the components the start connects to (one connected node is enough)
+            seen = [c for c in scene.components if _sees_any(c, key[0], key[1], boxes, r_hit)]
+            reach = tuple(
+                [v for c in seen for v in c[f]] if f < 6 else [[0] for c in seen for _ in c[0]]
+                for f in range(7)
             )
             scene.reach[key] = reach
             if len(scene.reach) > 16:

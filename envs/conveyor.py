@@ -46,7 +46,7 @@ from voot.envs.robot import (
     base_footprint,
     carry_disc,
     compose2d,
-    inverse2d,
+    compose_inverse2d,
 )
 from voot.envs.scene import object_footprint, rect_inside
 from voot.envs.task_env import (
@@ -316,7 +316,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     # ----- stepping ------------------------------------------------------------------------
     def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:
         """The base pose placing box ``i`` at ``(x, y, theta)`` with its fixed grasp."""
-        return compose2d(np.asarray(obj_pose, dtype=np.float64), inverse2d(self.picks[i].rel))
+        return compose_inverse2d(obj_pose, self.picks[i].rel)
 
     def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
         """One step without its observation (see :meth:`ManipulationEnv.transition`)."""

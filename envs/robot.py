@@ -233,3 +233,19 @@ def inverse2d(a: ArrayLike) -> FloatArray:
 
 
 _INVERSES: dict[Any, tuple[float, float, float]] = {}
+
+
+def compose_inverse2d(a: ArrayLike, b: tuple[float, float, float]) -> FloatArray:
+    """``compose2d(a, inverse2d(b))`` for a tuple ``b`` (a grasp pose), the same numbers.
+
+    The envs turn an object pose into the base pose holding it this way at every check;
+    ``b``'s inverse is remembered and nothing goes through a temporary array.
+    """
+    inv = _INVERSES.get(b)
+    if inv is None:
+        inv = tuple(inverse2d(b).tolist())  # type: ignore[assignment]
+        assert inv is not None
+    bx, by, bt = inv
+    ax, ay, at = _xyt(a)
+    c, s = math.cos(at), math.sin(at)
+    return np.array([ax + c * bx - s * by, ay + s * bx + c * by, at + bt])

@@ -17,6 +17,7 @@ from voot.envs.robot import (
     base_footprint,
     carry_disc,
     compose2d,
+    compose_inverse2d,
     inverse2d,
 )
 from voot.envs.scene import load_model
@@ -74,6 +75,8 @@ def test_float_se2_helpers_match_numpy() -> None:
         assert inverse2d(a).tobytes() == inv.tobytes()
         assert inverse2d(tuple(a.tolist())).tobytes() == inv.tobytes()  # remembered
         assert inverse2d(tuple(a.tolist())).tobytes() == inv.tobytes()
+        rel = tuple(b.tolist())
+        assert compose_inverse2d(a, rel).tobytes() == compose2d(a, inverse2d(b)).tobytes()
     out = inverse2d((1.0, 2.0, 0.5))
     out[0] = 99.0  # a fresh array every time
     assert inverse2d((1.0, 2.0, 0.5))[0] != 99.0
