@@ -978,17 +978,17 @@ class BasePlanner:
         g = Pose2D.coerce(goal, "goal")
         scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
         r_hit = scene.radius - self.config.contact_tolerance
-        ends = np.array([[s.x, s.y], [g.x, g.y]])
         if not (self._inside_xy(s.x, s.y, r_hit) and self._inside_xy(g.x, g.y, r_hit)):
             return None
         lists = _box_lists(scene)
         if _point_hits_any(s.x, s.y, lists, r_hit) or _point_hits_any(g.x, g.y, lists, r_hit):
             return None
-        if not _segment_hits_any(s.x, s.y, g.x, g.y, _box_lists(scene), r_hit):
+        ends = np.array([[s.x, s.y], [g.x, g.y]])
+        if not _segment_hits_any(s.x, s.y, g.x, g.y, lists, r_hit):
             return self._make_path(s, g, ends)
         if scene.graph is None:
             scene.graph = self._build_graph(scene)
-        if self._no_path(scene, ends, r_hit):
+        if self._no_path(scene, s.x, s.y, g.x, g.y, r_hit):
             return None
         polyline = self._search(scene.graph, ends, scene.boxes, r_hit)
         if polyline is None:
@@ -1222,8 +1222,10 @@ class BasePlanner:
         visible: IntArray = node_k[ok]
         return visible
 
-    def _no_path(self, scene: _Scene, ends: FloatArray, r_hit: float) -> bool:
-        """Is it certain that :meth:`_search` finds no path between ``ends``?
+    def _no_path(
+        self, scene: _Scene, sx: float, sy: float, gx: float, gy: float, r_hit: float
+    ) -> bool:
+        """Is it certain that :meth:`_search` finds no path from ``(sx, sy)`` to ``(gx, gy)``?
 
         :meth:`_search` fails iff no node the goal connects to is in a connected component
         of the graph holding a node the start connects to. The components are computed
@@ -1238,14 +1240,14 @@ class BasePlanner:
         nodes = graph.nodes
         if len(nodes) == 0:
             return True
-        key = (float(ends[0, 0]), float(ends[0, 1]))
+        key = (sx, sy)
         reach = scene.reach.get(key)
         if reach is None:
             if scene.components is None:
                 scene.components = _component_lists(graph)
             boxes = _box_lists(scene)
             # the components the start connects to (one connected node is enough)
-            seen = [c for c in scene.components if _sees_any(c, key[0], key[1], boxes, r_hit)]
+            seen = [c for c in scene.components if _sees_any(c, sx, sy, boxes, r_hit)]
             reach = tuple(
                 [v for c in seen for v in c[f]] if f < 6 else [[0] for c in seen for _ in c[0]]
                 for f in range(7)
@@ -1253,7 +1255,6 @@ class BasePlanner:
             scene.reach[key] = reach
             if len(scene.reach) > 16:
                 scene.reach.popitem(last=False)
-        gx, gy = float(ends[1, 0]), float(ends[1, 1])
         return not _sees_any(reach, gx, gy, _box_lists(scene), r_hit)
 
     def _search(

@@ -180,14 +180,14 @@ class EnvProblem:
         res = self._run(action)
         if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
             # only the task record moved on (the step count): share the rest
-            after = EnvState(before.physics, before.signature, u.task, before.rng_state)
+            after = before.with_task(u.task)
         else:
             after = u.get_state()
             if (
                 after.rng_state is before.rng_state
                 and after.physics.tobytes() == before.physics.tobytes()
             ):
-                after = EnvState(before.physics, before.signature, after.task, before.rng_state)
+                after = before.with_task(after.task)
         self._jump(after, before)
         self._cache = (
             self._version,

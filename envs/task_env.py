@@ -131,9 +131,12 @@ _RANGE_ARRAYS: dict[tuple[tuple[float, float], ...], tuple[FloatArray, FloatArra
 
 def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, FloatArray]:
     """The read-only ``low`` and ``high - low`` arrays of ``ranges`` (built once per ranges)."""
-    key = tuple((r[0], r[1]) for r in ranges)
-    hit = _RANGE_ARRAYS.get(key)
+    try:
+        hit = _RANGE_ARRAYS.get(ranges)  # type: ignore[call-overload]
+    except TypeError:  # not hashable (lists)
+        hit = None
     if hit is None:
+        key = tuple((r[0], r[1]) for r in ranges)
         lo = np.array([r[0] for r in key], dtype=np.float64)
         hi = np.array([r[1] for r in key], dtype=np.float64)
         width = hi - lo
@@ -241,6 +244,18 @@ class EnvState(Generic[TaskT]):
         )
 
     __hash__ = None  # type: ignore[assignment]
+
+    def with_task(self, task: TaskT) -> EnvState[TaskT]:
+        """This snapshot with another task record, sharing the physics and generator state.
+
+        What an action that changed only the task progress leads to (an infeasible one);
+        built without the dataclass ``__init__`` (the other fields are this snapshot's).
+        """
+        out: EnvState[TaskT] = object.__new__(EnvState)
+        out.__dict__.update(
+            physics=self.physics, signature=self.signature, task=task, rng_state=self.rng_state
+        )
+        return out
 
 
 @dataclass(frozen=True)

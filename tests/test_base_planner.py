@@ -586,7 +586,7 @@ def test_no_path_shortcut_agrees_with_the_search() -> None:
             ends = np.array([[s.x, s.y], [g.x, g.y]])
             r_hit = scene.radius - fast.config.contact_tolerance
             full = fast._search(scene.graph, ends, scene.boxes, r_hit)
-            assert fast._no_path(scene, ends, r_hit) == (full is None)
+            assert fast._no_path(scene, s.x, s.y, g.x, g.y, r_hit) == (full is None)
             assert (path is None) == (full is None)
     # a door too narrow for the disc: start and goal in different components
     blocked = fast.plan((0.0, 0.0, 0.0), (4.5, -1.5, 0.0), 0.55, movable)
