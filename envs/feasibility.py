@@ -406,6 +406,8 @@ class CollisionChecker:
         # builds a new array object)
         self._affinity_view = self.model.geom_conaffinity
         self._qpos_view = self.data.qpos
+        # (geom, geom, held) -> what the contact reports (a pure function of the three)
+        self._pair_hit: dict[tuple[int, int, int], str | None] = {}
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -484,20 +486,32 @@ class CollisionChecker:
         ncon = d.ncon
         if ncon == 0:
             return CollisionReport()
-        robot, owner, gripper, names = self._robot_l, self._owner_l, self._gripper_l, self._names
         held_i = -2 if held is None else held
+        memo = self._pair_hit
         hits = set()
         for a, b in d.contact.geom[:ncon].tolist():
-            hold_a, hold_b = owner[a] == held_i, owner[b] == held_i
-            if not (robot[a] or robot[b] or hold_a or hold_b):
-                continue  # between two other parties
-            if (gripper[a] and hold_b) or (gripper[b] and hold_a):
-                continue  # the grasp itself
-            if not (robot[a] or hold_a):
-                a, b = b, a  # a is ours (robot or held), b the other party
-            who = "robot" if robot[a] else "object"
-            hits.add(f"{who}-{names[b]}" if not robot[b] else f"{who}-robot")
+            key = (a, b, held_i)
+            name = memo.get(key, 0)
+            if name == 0:
+                name = memo[key] = self._hit_name(a, b, held_i)
+            if name is not None:
+                hits.add(name)
+        if len(memo) > 200_000:  # pragma: no cover - bounded by ngeom^2 x objects
+            memo.clear()
         return CollisionReport(sorted(hits))
+
+    def _hit_name(self, a: int, b: int, held_i: int) -> str | None:
+        """What a contact between geoms ``a`` and ``b`` reports (None: not reported)."""
+        robot, owner, gripper, names = self._robot_l, self._owner_l, self._gripper_l, self._names
+        hold_a, hold_b = owner[a] == held_i, owner[b] == held_i
+        if not (robot[a] or robot[b] or hold_a or hold_b):
+            return None  # between two other parties
+        if (gripper[a] and hold_b) or (gripper[b] and hold_a):
+            return None  # the grasp itself
+        if not (robot[a] or hold_a):
+            a, b = b, a  # a is ours (robot or held), b the other party
+        who = "robot" if robot[a] else "object"
+        return f"{who}-{names[b]}" if not robot[b] else f"{who}-robot"
 
 
 def _robot_pairs_model(
