@@ -51,6 +51,14 @@ we search a *reduced visibility graph*:
    plus start and goal gives the shortest polyline; headings are interpolated linearly in
    travelled distance along it by the shortest turn from the start to the goal heading.
 
+Two shortcuts answer exactly as the steps above: a query whose start or goal is in
+collision, or whose straight segment is free, is decided by single-point and
+single-segment tests on Python floats (the array kernels' expressions, evaluated in the
+same order); and a query is answered "no path" without A* when no graph node the goal
+connects to lies in a connected component of a node the start connects to (components
+and, per start, the reachable nodes are cached with the graph: tree search asks many
+goals from one start, most of them unreachable).
+
 The static part (static vertices and their mutual visibility) is computed once per radius
 and cached; the graph including the movable obstacles is cached per
 ``(radius, movable)`` (tree search queries many goals from the same state); a query then

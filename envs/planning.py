@@ -131,7 +131,9 @@ class EnvProblem:
     # ----- protocol ------------------------------------------------------------------------
     def snapshot(self) -> EnvState[Any]:
         here = self._here
-        if here is None:
+        # every step, reset or set_state gives the env a new task record, so an env moved
+        # behind the problem's back is noticed (and snapshotted afresh)
+        if here is None or here.task is not self.unwrapped.task:
             here = self._here = self.unwrapped.get_state()
         return here
 
@@ -154,7 +156,12 @@ class EnvProblem:
         key = np.asarray(action, dtype=np.float64).tobytes()
         cache, self._cache = self._cache, None
         self._version += 1
-        if cache is not None and cache[0] == self._version - 1 and cache[1] == key:
+        if (
+            cache is not None
+            and cache[0] == self._version - 1
+            and cache[1] == key
+            and cache[3].task is self.unwrapped.task
+        ):
             self._jump(cache[3], cache[4])
             return cache[2]
         self._here = None

@@ -232,3 +232,16 @@ def test_v0_curves_reproduce_bit_for_bit(run: dict) -> None:
     assert res.n_feasibility_checks == run["n_feasibility_checks"]
     assert float(res.best_return).hex() == run["best_return"]
     assert [float(v).hex() for v in res.best_return_curve] == run["curve"]
+
+
+def test_an_env_moved_behind_the_problem_is_noticed(kitchen: KitchenClearingEnv) -> None:
+    p = EnvProblem(kitchen, seed=0)
+    a = kitchen_actions(kitchen)[0]
+    s0 = p.snapshot()
+    assert p.is_feasible(a)
+    kitchen.step(a)  # not through the problem
+    assert p.snapshot() != s0 and p.snapshot() == kitchen.get_state()
+    with pytest.raises(ValueError, match="3 entries"):
+        p.step(a)  # not the check's cached result: stepped from the new state (a place)
+    kitchen.reset(seed=0)
+    assert p.snapshot() == s0
