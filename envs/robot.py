@@ -192,10 +192,15 @@ def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
     return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
+_F64 = np.dtype(np.float64)
+
+
 def _xyt(pose: ArrayLike) -> list[float] | tuple[float, ...]:
     """A pose's three numbers as Python floats (the same values numpy holds)."""
     kind = type(pose)
-    if kind is np.ndarray and pose.dtype == np.float64:  # type: ignore[union-attr]
+    if kind is np.ndarray and pose.dtype is _F64:  # type: ignore[union-attr]
+        if pose.ndim == 1:  # type: ignore[union-attr]
+            return pose.tolist()  # type: ignore[no-any-return,union-attr]
         return pose.reshape(-1).tolist()  # type: ignore[no-any-return,union-attr]
     if kind is tuple and all(type(v) is float for v in pose):  # type: ignore[union-attr]
         return pose  # type: ignore[return-value]

@@ -156,13 +156,16 @@ def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray
     return out
 
 
+_F64 = np.dtype(np.float64)
+
+
 def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
 
     Tuples of floats are immutable, compare exactly and pickle small, which suits the
     step infos a tree search keeps for each of its nodes.
     """
-    if isinstance(pose, np.ndarray) and pose.dtype == np.float64 and pose.shape == (3,):
+    if type(pose) is np.ndarray and pose.dtype is _F64 and pose.shape == (3,):
         x, y, theta = pose.tolist()
         return x, y, theta
     x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).reshape(3))
