@@ -282,6 +282,13 @@ def path_length(waypoints: ArrayLike, rotation_weight: float) -> float:
         raise ValueError(f"waypoints must have shape (k, 3), got {w.shape}")
     if w.shape[0] < 2:
         return 0.0
+    if w.shape[0] == 2:
+        # one segment (a straight path): the same operations on floats (numpy's hypot;
+        # Python's float % is numpy's remainder), without the array round trips
+        (x0, y0, t0), (x1, y1, t1) = w.tolist()
+        trans = float(np.hypot(x1 - x0, y1 - y0))
+        rot = abs((t1 - t0 + math.pi) % (2.0 * math.pi) - math.pi)
+        return float(trans + rotation_weight * rot)
     diff = np.diff(w, axis=0)
     trans = np.hypot(diff[:, 0], diff[:, 1])
     rot = np.abs(wrap_angle(diff[:, 2]))
@@ -1299,6 +1306,11 @@ class BasePlanner:
 
     def _make_path(self, start: Pose2D, goal: Pose2D, polyline: FloatArray) -> BasePath:
         """Add headings turning linearly in travelled distance by the shortest way."""
+        if len(polyline) == 2:
+            # the two ends keep their own headings (the interpolation below is
+            # overwritten at both ends): the straight path needs no arithmetic
+            waypoints = np.array([[start.x, start.y, start.theta], [goal.x, goal.y, goal.theta]])
+            return BasePath.from_waypoints(waypoints, self.config.rotation_weight)
         xy = np.array(polyline, dtype=np.float64)
         xy[0] = (start.x, start.y)
         xy[-1] = (goal.x, goal.y)

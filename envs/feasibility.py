@@ -471,8 +471,15 @@ class CollisionChecker:
             self.robot.set_base(d, base_pose)
             self.robot.set_arm(d, arm_q)
         if object_poses:
+            objects = self.objects
             for i, pose in object_poses.items():
-                set_object_pose(d, self.objects[i], pose)
+                if type(pose) is tuple and len(pose) == 4:
+                    # set_object_pose's numbers, written straight into the qpos view
+                    x, y, z, yaw = pose
+                    adr = objects[i].qpos_adr
+                    q[adr : adr + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+                else:
+                    set_object_pose(d, objects[i], pose)
         mujoco.mj_kinematics(m, d)
         restore = self._held_affinity.get(held) if held is not None else None
         if restore is not None:

@@ -602,3 +602,26 @@ def test_box_fast_is_the_constructed_box() -> None:
         Box2D.fast(0.0, 0.0, -1.0, 1.0, 0.0, "bad")
     with pytest.raises(ValueError, match="finite"):
         Box2D.fast(math.nan, 0.0, 1.0, 1.0, 0.0, "bad")
+
+
+def _path_length_arrays(w: np.ndarray, rw: float) -> float:
+    diff = np.diff(w, axis=0)
+    trans = np.hypot(diff[:, 0], diff[:, 1])
+    rot = np.abs(wrap_angle(diff[:, 2]))
+    return float(np.sum(trans) + rw * np.sum(rot))
+
+
+def test_straight_paths_are_the_array_version() -> None:
+    rng = np.random.default_rng(8)
+    for w in rng.uniform(-7, 7, (2000, 2, 3)):
+        for rw in (1.0, 0.3):
+            assert path_length(w, rw) == _path_length_arrays(w, rw)
+    w = np.array([[0.0, 0.0, math.pi], [1.0, 1.0, -math.pi]])  # a turn of exactly 2 pi
+    assert path_length(w, 1.0) == _path_length_arrays(w, 1.0)
+    planner = BasePlanner(WORKSPACE, [])
+    for s, g in rng.uniform(-1.0, 1.0, (200, 2, 3)):
+        path = planner.plan(s, g, 0.4)
+        assert path is not None and path.waypoints.shape == (2, 3)
+        # what _make_path computed for two points: the ends with their own headings
+        assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
+        assert path.length == _path_length_arrays(np.array([s, g]), 1.0)
