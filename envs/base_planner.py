@@ -286,9 +286,9 @@ def path_length(waypoints: ArrayLike, rotation_weight: float) -> float:
         # one segment (a straight path): the same operations on floats (numpy's hypot;
         # Python's float % is numpy's remainder), without the array round trips
         (x0, y0, t0), (x1, y1, t1) = w.tolist()
-        trans = float(np.hypot(x1 - x0, y1 - y0))
-        rot = abs((t1 - t0 + math.pi) % (2.0 * math.pi) - math.pi)
-        return float(trans + rotation_weight * rot)
+        step = float(np.hypot(x1 - x0, y1 - y0))
+        turn = abs((t1 - t0 + math.pi) % (2.0 * math.pi) - math.pi)
+        return float(step + rotation_weight * turn)
     diff = np.diff(w, axis=0)
     trans = np.hypot(diff[:, 0], diff[:, 1])
     rot = np.abs(wrap_angle(diff[:, 2]))

@@ -495,11 +495,12 @@ class CollisionChecker:
             return CollisionReport()
         held_i = -2 if held is None else held
         memo = self._pair_hit
-        hits = set()
+        hits: set[str] = set()
         for a, b in d.contact.geom[:ncon].tolist():
             key = (a, b, held_i)
-            name = memo.get(key, 0)
-            if name == 0:
+            if key in memo:
+                name = memo[key]
+            else:
                 name = memo[key] = self._hit_name(a, b, held_i)
             if name is not None:
                 hits.add(name)
