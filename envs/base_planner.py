@@ -677,6 +677,29 @@ def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: 
     return False
 
 
+def _point_hit_indices(
+    x: float, y: float, boxes: tuple[list[float], ...], radius: float
+) -> list[int]:
+    """The boxes :func:`points_hit_boxes` marks for one point, in order (floats)."""
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
+    r2 = radius * radius
+    out = []
+    for k in range(len(bcx)):
+        rx = x - bcx[k]
+        ry = y - bcy[k]
+        far = breach[k] + radius + 1e-6
+        if rx * rx + ry * ry > far * far:
+            continue
+        c, s = bcos[k], bsin[k]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = max(abs(lx) - bhx[k], 0.0)
+        dy = max(abs(ly) - bhy[k], 0.0)
+        if dx * dx + dy * dy < r2:
+            out.append(k)
+    return out
+
+
 def _sees_any(
     nodes: tuple[list[Any], ...],
     x: float,
@@ -967,6 +990,7 @@ class BasePlanner:
         self._static = BoxArrays.from_boxes(self.static_obstacles)
         self._template = self._make_template(config.corner_segments)
         self._static_cache: OrderedDict[float, _Graph] = OrderedDict()
+        self._static_lists: tuple[list[float], ...] | None = None
         self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
 
     # ----- public API -------------------------------------------------------------------
@@ -1030,14 +1054,42 @@ class BasePlanner:
         environment's "collision with what" diagnostics.
         """
         p = Pose2D.coerce(pose, "pose")
-        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
-        r_hit = scene.radius - self.config.contact_tolerance
-        pt = np.array([[p.x, p.y]])
-        hits = np.flatnonzero(points_hit_boxes(pt, scene.boxes, r_hit)[0])
-        names = [scene.boxes.names[k] for k in hits]
+        radius = self._inflated_radius(robot_radius)
+        mov = self._movable(movable)
+        r_hit = radius - self.config.contact_tolerance
+        # the point test of points_hit_boxes box by box on floats; a one-off radius (a
+        # carried object's disc) needs no scene in the graph cache
+        scene = self._graph_cache.get((radius, mov))
+        lists = _box_lists(scene) if scene is not None else self._box_lists_of(mov)
+        names = [*(b.name for b in self.static_obstacles), *(b.name for b in mov)]
+        out = [names[k] for k in _point_hit_indices(p.x, p.y, lists, r_hit)]
         if not self._inside_xy(p.x, p.y, r_hit):
-            names.insert(0, "workspace")
-        return names
+            out.insert(0, "workspace")
+        return out
+
+    def _box_lists_of(self, movable: tuple[Box2D, ...]) -> tuple[list[float], ...]:
+        """:func:`_box_lists` of the static boxes followed by ``movable``, without a scene.
+
+        Cosines and sines come from numpy over the movable yaws, as
+        :meth:`BoxArrays.from_boxes` computes them; the rest are the boxes' own fields.
+        """
+        if self._static_lists is None:
+            st = self._static
+            self._static_lists = (
+                st.center[:, 0].tolist(), st.center[:, 1].tolist(), st.cos.tolist(),
+                st.sin.tolist(), st.half[:, 0].tolist(), st.half[:, 1].tolist(),
+                st.reach.tolist(),
+            )  # fmt: skip
+        if not movable:
+            return self._static_lists
+        yaw = np.array([b.yaw for b in movable], dtype=np.float64)
+        half = np.array([[b.half_x, b.half_y] for b in movable], dtype=np.float64)
+        extra = (
+            [b.cx for b in movable], [b.cy for b in movable], np.cos(yaw).tolist(),
+            np.sin(yaw).tolist(), [b.half_x for b in movable], [b.half_y for b in movable],
+            np.hypot(half[:, 0], half[:, 1]).tolist(),
+        )  # fmt: skip
+        return tuple(a + b for a, b in zip(self._static_lists, extra, strict=True))
 
     def path_is_free(
         self, waypoints: ArrayLike, robot_radius: float, movable: Sequence[Box2D] = ()

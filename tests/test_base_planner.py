@@ -625,3 +625,25 @@ def test_straight_paths_are_the_array_version() -> None:
         # what _make_path computed for two points: the ends with their own headings
         assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
         assert path.length == _path_length_arrays(np.array([s, g]), 1.0)
+
+
+def test_colliding_names_as_the_array_test() -> None:
+    static, movable = house_static(), house_movable()
+    planner = BasePlanner(WORKSPACE, static)
+    boxes = bp.BoxArrays.from_boxes(static + movable)
+    rng = np.random.default_rng(9)
+    seen = 0
+    for x, y, r in rng.uniform((-2.5, -4.5, 0.3), (6.5, 4.5, 0.9), (1500, 3)):
+        got = planner.colliding((x, y, 0.0), r, movable)
+        r_hit = r - planner.config.contact_tolerance
+        hits = np.flatnonzero(bp.points_hit_boxes(np.array([[x, y]]), boxes, r_hit)[0])
+        ref = [boxes.names[k] for k in hits]
+        if not planner._inside_xy(x, y, r_hit):
+            ref.insert(0, "workspace")
+        assert got == ref
+        seen += bool(got)
+        # the same with the scene cached (a planning query made it)
+        planner.plan((0.0, 0.0, 0.0), (x, y, 0.0), r, movable)
+        assert planner.colliding((x, y, 0.0), r, movable) == ref
+    assert 100 < seen < 1400
+    assert planner.colliding((0.0, 0.0, 0.0), 0.4) == []
