@@ -277,6 +277,8 @@ class ArmIK:
         self.limits = [mink.ConfigurationLimit(self.model)]
         self.lower = self.model.jnt_range[:, 0].copy()
         self.upper = self.model.jnt_range[:, 1].copy()
+        self._lower_l: list[float] = self.lower.tolist()
+        self._upper_l: list[float] = self.upper.tolist()
         self._site = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_SITE, "grasp")
 
     # ----- closed form ------------------------------------------------------------------
@@ -312,6 +314,31 @@ class ArmIK:
     def _violation(self, q: FloatArray) -> float:
         return float(np.sum(np.maximum(self.lower - q, 0) + np.maximum(q - self.upper, 0)))
 
+    def _closest_seed(self, seeds: list[FloatArray]) -> tuple[int, bool]:
+        """The seed :meth:`solve` refines (least limit violation, first on ties) and
+        whether it is inside the limits.
+
+        The violations are summed on floats; only when two nonzero ones come within 1e-9
+        (where numpy's summation order could decide) does :meth:`_violation` decide. A
+        zero violation is exact either way (every term is zero).
+        """
+        lower, upper = self._lower_l, self._upper_l
+        approx = []
+        for q in seeds:
+            v = 0.0
+            for qj, lo, hi in zip(q.tolist(), lower, upper, strict=True):
+                v += max(lo - qj, 0.0) + max(qj - hi, 0.0)
+            approx.append(v)
+        m = min(approx)
+        if m == 0.0:
+            return approx.index(0.0), True
+        close = [i for i, v in enumerate(approx) if v - m <= 1e-9]
+        if len(close) == 1:
+            return close[0], False
+        viol = [self._violation(q) for q in seeds]
+        k = min(range(len(seeds)), key=lambda i: (viol[i], i))
+        return k, viol[k] == 0.0
+
     def _errors(self, q: FloatArray) -> tuple[float, float]:
         self.configuration.update(q)
         err = self.task.compute_error(self.configuration)
@@ -331,11 +358,10 @@ class ArmIK:
         if not seeds:
             return IKResult(False, None, 0, reason="out of reach")
         # the seed closest to the limits (exact seeds inside them first), then in order
-        viol = [self._violation(q) for q in seeds]
-        order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
-        best = np.clip(seeds[order[0]], self.lower, self.upper)
+        first, inside = self._closest_seed(seeds)
+        best = np.clip(seeds[first], self.lower, self.upper)
         self.task.set_target(mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(r), p))
-        if viol[order[0]] == 0.0:
+        if inside:
             pe, oe = self._errors(best)
             if pe <= cfg.position_tolerance and oe <= cfg.orientation_tolerance:
                 return IKResult(True, best, 0, pe, oe)
@@ -596,6 +622,7 @@ def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> No
 def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:
     """``(x, y, z, yaw)`` of ``obj``'s body from its free joint."""
     a = obj.qpos_adr
-    q = data.qpos[a + 3 : a + 7]
-    yaw = math.atan2(2.0 * (q[0] * q[3] + q[1] * q[2]), 1.0 - 2.0 * (q[2] ** 2 + q[3] ** 2))
-    return np.array([data.qpos[a], data.qpos[a + 1], data.qpos[a + 2], yaw])
+    # floats: the same products and powers (C pow) as on numpy scalars, cheaper
+    x, y, z, q0, q1, q2, q3 = data.qpos[a : a + 7].tolist()
+    yaw = math.atan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2**2 + q3**2))
+    return np.array([x, y, z, yaw])

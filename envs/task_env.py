@@ -98,11 +98,12 @@ def replace(obj: Any, /, **changes: Any) -> Any:
     if names == ():
         names = _plain_fields(cls)
         _PLAIN_DATACLASSES[cls] = names
-    if names is None or not changes.keys() <= set(names):
-        return dataclasses.replace(obj, **changes)
     state = obj.__dict__
+    if names is None or len(state) != len(names) or not changes.keys() <= state.keys():
+        return dataclasses.replace(obj, **changes)
     new = object.__new__(cls)
-    new.__dict__.update({name: state[name] for name in names}, **changes)
+    new.__dict__.update(state)  # exactly the fields (as many, every change one of them)
+    new.__dict__.update(changes)
     return new
 
 

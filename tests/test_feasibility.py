@@ -257,3 +257,17 @@ def test_collision_model_filter_reports_the_same_contacts() -> None:
     assert np.array_equal(
         checker.model.geom_conaffinity[list(objects[0].geoms)], [1] * len(objects[0].geoms)
     )
+
+
+def test_closest_seed_is_the_sorted_violation_choice(ik: ArmIK) -> None:
+    """_closest_seed picks what sorting by (_violation, index) picked."""
+    rng = np.random.default_rng(4)
+    for k in range(400):
+        seeds = list(rng.uniform(-3.5, 3.5, (int(rng.integers(1, 9)), 7)))
+        if k % 3 == 0:  # inside the limits, and duplicates (exact ties)
+            seeds = [np.clip(q, ik.lower, ik.upper) for q in seeds] + [seeds[0]]
+        if k % 5 == 0 and len(seeds) > 1:
+            seeds[1] = seeds[0].copy()
+        viol = [ik._violation(q) for q in seeds]
+        order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
+        assert ik._closest_seed(seeds) == (order[0], viol[order[0]] == 0.0)
