@@ -10,7 +10,7 @@ search (``time.process_time`` around :func:`voot.tree.plan`; the env's construct
 not counted), simulations per second, the ratio, and whether the two best-return curves
 are bit-identical (their float64 bytes compared through a SHA-256).
 
-For the current code it also splits the time of a simulation into the checks' MuJoCo
+For both it also splits the time of a simulation into the checks' MuJoCo
 collision queries, arm IK and base planning (the ``last_timing`` each env step records,
 wall-clock) and the rest: the env's own Python and the tree search with its adapter.
 
@@ -367,7 +367,8 @@ def compare(
         for w in workloads:
             if log is not None:
                 print(f"{w.name}: {w.simulations} simulations, baseline {full[:7]} ...", file=log)
-            old = run_workload(base_root, w, "baseline", curve=curve, timeout=timeout)
+            # both runs are timed alike (the split's bookkeeping costs both the same)
+            old = run_workload(base_root, w, "baseline", split=split, curve=curve, timeout=timeout)
             if log is not None:
                 print(f"{w.name}: {old.cpu:.1f} s; current code ...", file=log)
             new = run_workload(cur_root, w, "current", split=split, curve=curve, timeout=timeout)
@@ -395,7 +396,7 @@ def split_line(run: RunResult) -> str:
     cells = ", ".join(
         f"{name} {1e3 * sec / sims:.2f} ({100 * sec / total:.0f}%)" for name, sec in parts.items()
     )
-    return f"  per simulation {1e3 * total / sims:.2f} ms wall = {cells}"
+    return f"  {1e3 * total / sims:.2f} ms wall per simulation = {cells}"
 
 
 def format_report(baseline: str, current: str, comparisons: Sequence[Comparison]) -> str:
@@ -419,9 +420,10 @@ def format_report(baseline: str, current: str, comparisons: Sequence[Comparison]
             f"{'':<16} {'':>6} {'ratio':<9} {c.ratio:>7.2f}x   best-return curve bit-identical:"
             f" {'yes' if c.identical else 'NO'}"
         )
-        detail = split_line(c.current)
-        if detail:
-            lines.append(detail)
+        for run in (c.baseline, c.current):
+            detail = split_line(run)
+            if detail:
+                lines.append(f"  {run.code:<9}" + detail.strip())
         lines.append("")
     return "\n".join(lines).rstrip() + "\n"
 

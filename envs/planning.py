@@ -144,12 +144,13 @@ class EnvProblem:
 
     def _run(self, action: ArrayLike) -> StepResult:
         reward, terminated, truncated, info = self.unwrapped.transition(self.to_env_action(action))
+        # reward, feasible, terminal, bonus, info
         return StepResult(
-            reward=float(reward),
-            feasible=bool(info["feasible"]),
-            terminal=bool(terminated or truncated),
-            bonus=float(info["goal_bonus"]),
-            info=info,
+            float(reward),
+            bool(info["feasible"]),
+            bool(terminated or truncated),
+            float(info["goal_bonus"]),
+            info,
         )
 
     def step(self, action: ArrayLike) -> StepResult:
@@ -183,11 +184,16 @@ class EnvProblem:
     def is_feasible(self, action: ArrayLike) -> bool:
         """Would ``action`` be feasible now? (The state is left unchanged.)"""
         u = self.unwrapped
-        before = self.snapshot()
+        before = self._here
+        if before is None or before.task is not u.task:
+            before = self.snapshot()
         res = self._run(action)
         if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
-            # only the task record moved on (the step count): share the rest
+            # only the task record moved on (the step count): share the rest, and put
+            # the task record back (what _jump does for such a pair)
             after = before.with_task(u.task)
+            u.task = before.task
+            self._here = before
         else:
             after = u.get_state()
             if (
@@ -195,13 +201,8 @@ class EnvProblem:
                 and after.physics.tobytes() == before.physics.tobytes()
             ):
                 after = before.with_task(after.task)
-        self._jump(after, before)
-        self._cache = (
-            self._version,
-            np.asarray(action, dtype=np.float64).tobytes(),
-            res,
-            before,
-            after,
-        )
+            self._jump(after, before)
+        key = np.asarray(action, dtype=np.float64).tobytes()
+        self._cache = (self._version, key, res, before, after)
         self.last_check = res
         return res.feasible

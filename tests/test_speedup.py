@@ -86,7 +86,9 @@ def test_compare_tiny_workloads() -> None:
             c.current.curve_sha256
         )
     text = speedup.format_report(full, current, comparisons)
-    assert "bit-identical: yes" in text and "per simulation" in text and "kitchen-voot" in text
+    assert (
+        "bit-identical: yes" in text and "ms wall per simulation" in text and "kitchen-voot" in text
+    )
     data = speedup.report_json(full, current, comparisons)
     assert [w["curve_identical"] for w in data["workloads"]] == [True, True]
 
