@@ -47,6 +47,7 @@ from voot.envs.robot import (
     carry_disc,
     compose2d,
     compose_inverse2d,
+    compose_inverse_tuple,
 )
 from voot.envs.scene import object_footprint, rect_inside
 from voot.envs.task_env import (
@@ -58,7 +59,6 @@ from voot.envs.task_env import (
     check_positive,
     check_range,
     denormalize,
-    pose_tuple,
     replace,
 )
 from voot.optim.base import Bounds
@@ -328,8 +328,10 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         m = min(OBJECTS_PER_ACTION, self.n - t.placed)
         params = denormalize(a[: 3 * m], cfg.place_ranges * m).reshape(m, 3)
         names = [self.objects[t.placed + k].name for k in range(m)]
-        placements = tuple(pose_tuple(p) for p in params)
-        bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
+        placements = tuple((x, y, th) for x, y, th in params.tolist())
+        bases = tuple(
+            compose_inverse_tuple(p, self.picks[t.placed + k].rel) for k, p in enumerate(placements)
+        )
         moved: dict[int, tuple[float, float, float, float]] = {}
         lengths: list[float] = []
         paths: list[FloatArray] = []

@@ -250,7 +250,25 @@ def compose_inverse2d(a: ArrayLike, b: tuple[float, float, float]) -> FloatArray
     if inv is None:
         inv = tuple(inverse2d(b).tolist())  # type: ignore[assignment]
         assert inv is not None
+    return np.array(_compose_inverse(_xyt(a), inv))
+
+
+def compose_inverse_tuple(
+    a: tuple[float, float, float] | list[float], b: tuple[float, float, float]
+) -> tuple[float, float, float]:
+    """:func:`compose_inverse2d` for a pose of floats, as a tuple (what ``pose_tuple`` of
+    the array gives)."""
+    inv = _INVERSES.get(b)
+    if inv is None:
+        inv = tuple(inverse2d(b).tolist())  # type: ignore[assignment]
+        assert inv is not None
+    return _compose_inverse(a, inv)
+
+
+def _compose_inverse(
+    a: tuple[float, ...] | list[float], inv: tuple[float, float, float]
+) -> tuple[float, float, float]:
     bx, by, bt = inv
-    ax, ay, at = _xyt(a)
+    ax, ay, at = a
     c, s = math.cos(at), math.sin(at)
-    return np.array([ax + c * bx - s * by, ay + s * bx + c * by, at + bt])
+    return (ax + c * bx - s * by, ay + s * bx + c * by, at + bt)

@@ -80,3 +80,15 @@ def test_float_se2_helpers_match_numpy() -> None:
     out = inverse2d((1.0, 2.0, 0.5))
     out[0] = 99.0  # a fresh array every time
     assert inverse2d((1.0, 2.0, 0.5))[0] != 99.0
+
+
+def test_compose_inverse_tuple_is_pose_tuple_of_the_array() -> None:
+    from voot.envs.robot import compose_inverse_tuple
+    from voot.envs.task_env import pose_tuple
+
+    rng = np.random.default_rng(1)
+    for a, b in rng.uniform(-7, 7, (300, 2, 3)):
+        rel = tuple(b.tolist())
+        got = compose_inverse_tuple(tuple(a.tolist()), rel)
+        assert got == pose_tuple(compose_inverse2d(a, rel))
+        assert all(type(v) is float for v in got)
