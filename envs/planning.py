@@ -125,7 +125,9 @@ class EnvProblem:
         if self.units == "paper":
             a = normalize(a, self._ranges())
         if dim < self._dim:
-            a = np.concatenate([a, np.zeros(self._dim - dim)])
+            padded = np.zeros(self._dim)
+            padded[:dim] = a
+            return padded
         return a
 
     # ----- protocol ------------------------------------------------------------------------

@@ -396,9 +396,10 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
             raise ValueError(
                 f"action must have shape {space.shape} (normalised units in [-1, 1]), got shape {a.shape}"
             )
-        # fast path: every entry finite and in [-1, 1] (a NaN fails the comparisons), so
-        # clipping would return the same numbers
-        if all(-1.0 <= v <= 1.0 for v in a.tolist()):
+        # fast path: every entry finite (a NaN or infinity makes the sum non-finite) and in
+        # [-1, 1], so clipping would return the same numbers
+        values = a.tolist()
+        if min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values)):
             return a.copy(), False
         if not np.all(np.isfinite(a)):
             bad = np.flatnonzero(~np.isfinite(a)).tolist()

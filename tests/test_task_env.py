@@ -60,8 +60,13 @@ def test_validate_action_fast_path(kitchen: KitchenClearingEnv) -> None:
     assert not clipped and out.tobytes() == a.tobytes() and out is not a
     out, clipped = kitchen._validate_action(a * 1.5)
     assert clipped and out.max() == 1.0 and out.min() == -1.0
-    with pytest.raises(ValueError, match="NaN"):
-        kitchen._validate_action(np.full(6, np.nan))
+    for bad in (
+        np.full(6, np.nan),
+        np.array([0.5, np.nan, 0, 0, 0, 0]),
+        np.array([0, 0, 0, 0, 0, np.inf]),
+    ):
+        with pytest.raises(ValueError, match="NaN"):
+            kitchen._validate_action(bad)
 
 
 def test_denormalize_and_pose_tuple() -> None:
