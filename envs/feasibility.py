@@ -138,9 +138,12 @@ def side_grasp(
     # Plain floats instead of 2- and 3-vectors: every product, sum and cross product is
     # the one numpy computed elementwise, in the same order, so the pose is bit-identical
     # to the array version's, at a fifth of its cost.
-    x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
+    if type(obj_pose) is np.ndarray and obj_pose.shape == (4,):
+        x, y, z, yaw = obj_pose.astype(np.float64, copy=False).tolist()
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
     c, s = math.cos(yaw), math.sin(yaw)
-    hx, hy = float(obj.half[0]), float(obj.half[1])
+    hx, hy = obj.half.tolist()
     # outward normals of the four faces, world frame, with the face's half extents
     faces = (
         ("+x", c, s, hx, hy),
@@ -151,9 +154,9 @@ def side_grasp(
     k = _facing_face(faces, base_heading)
     face, n0, n1, half_normal, half_across = faces[k]
     t0, t1 = -n1, n0  # horizontal, along the face
-    ox, oy = obj.center[0], obj.center[1]
-    cx = float(x + c * ox - s * oy)
-    cy = float(y + s * ox + c * oy)
+    ox, oy = obj.center.tolist()
+    cx = x + c * ox - s * oy
+    cy = y + s * ox + c * oy
     a = half_normal + standoff
     b = float((2.0 * depth_fraction - 1.0) * half_across)
     p = np.array([cx + a * n0 + b * t0, cy + a * n1 + b * t1, z + height_fraction * obj.height])
