@@ -10,6 +10,7 @@ Subcommands::
     voot-bench select results/bbfo        the selected hyperparameters per method
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
+    voot-bench speedup                    tree search on the robot domains: 6af33b5 vs now
 
 Errors in the input (unknown function or method, inverted ranges, a corrupt or foreign
 result directory) print one line ``voot-bench: error: ...`` and exit with status 2.
@@ -442,6 +443,29 @@ def cmd_speed(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+def cmd_speedup(args: argparse.Namespace) -> int:
+    """The baseline commit's code and the current code on the same workloads (see speedup)."""
+    from voot.bench import speedup
+
+    try:
+        workloads = speedup.select_workloads(split_list(args.workloads), args.simulations)
+        baseline, current, comparisons = speedup.compare(
+            workloads,
+            args.baseline,
+            split=not args.no_split,
+            timeout=args.timeout,
+            log=sys.stderr,
+        )
+    except speedup.SpeedupError as exc:
+        raise CLIError(str(exc)) from exc
+    print(speedup.format_report(baseline, current, comparisons), end="", flush=True)
+    if args.json:
+        Path(args.json).write_text(
+            json.dumps(speedup.report_json(baseline, current, comparisons), indent=2) + "\n"
+        )
+    return 0 if all(c.identical for c in comparisons) else 1
+
+
 # ----- demo ----------------------------------------------------------------------------
 def cmd_demo(args: argparse.Namespace) -> int:
     """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
@@ -777,6 +801,36 @@ def build_parser() -> argparse.ArgumentParser:
         p = sub.add_parser(name, help=text, add_help=False)
         p.add_argument("rest", nargs=argparse.REMAINDER, help="the command's own options")
         p.set_defaults(func=cmd_passthrough)
+
+    p = sub.add_parser(
+        "speedup",
+        help="tree search on the robot domains: CPU time of a baseline commit's code and the"
+        " current code side by side, and whether the best-return curves are bit-identical",
+    )
+    p.add_argument(
+        "--baseline",
+        default="6af33b5",
+        help="commit to compare against (default: 6af33b5, main before the speed work)",
+    )
+    p.add_argument(
+        "--workloads",
+        nargs="+",
+        metavar="NAME",
+        help="kitchen-voot (KitchenClearing-v0, VOOT, 2000 sims) and/or conveyor-pwuct"
+        " (ConveyorPacking-v0, PW-UCT, 3000 sims); default: both",
+    )
+    p.add_argument(
+        "--simulations",
+        nargs="+",
+        metavar="N|NAME=N",
+        help="scale down: N simulations for every workload, or NAME=N for one",
+    )
+    p.add_argument("--json", metavar="PATH", help="also write the numbers as JSON")
+    p.add_argument("--no-split", action="store_true", help="skip the per-simulation time split")
+    p.add_argument(
+        "--timeout", type=float, default=None, help="seconds allowed per run (default: none)"
+    )
+    p.set_defaults(func=cmd_speedup)
     return parser
 
 

@@ -363,27 +363,33 @@ def record_paths(specs: Sequence[PlanSpec], template: str) -> list[str]:
 
 @contextlib.contextmanager
 def _count_env_steps(env: Any) -> Iterator[list[int]]:
-    """Count calls of the unwrapped env's ``step`` (the simulator) during the block."""
+    """Count simulator calls of the unwrapped env during the block.
+
+    The robot envs' simulator call is ``transition`` (``step`` without the observation,
+    which ``step`` itself calls and :class:`voot.envs.planning.EnvProblem` calls
+    directly); other envs are counted at ``step``.
+    """
     counter = [0]
     if env is None:
         yield counter
         return
     u = env.unwrapped
-    own = vars(u).get("step")
-    original = u.step
+    name = "transition" if callable(getattr(type(u), "transition", None)) else "step"
+    own = vars(u).get(name)
+    original = getattr(u, name)
 
-    def step(action: Any) -> Any:
+    def call(action: Any) -> Any:
         counter[0] += 1
         return original(action)
 
-    u.step = step
+    setattr(u, name, call)
     try:
         yield counter
     finally:
         if own is None:
-            del u.step
+            delattr(u, name)
         else:
-            u.step = own
+            setattr(u, name, own)
 
 
 def _jsonable(value: Any) -> Any:

@@ -51,6 +51,14 @@ we search a *reduced visibility graph*:
    plus start and goal gives the shortest polyline; headings are interpolated linearly in
    travelled distance along it by the shortest turn from the start to the goal heading.
 
+Two shortcuts answer exactly as the steps above: a query whose start or goal is in
+collision, or whose straight segment is free, is decided by single-point and
+single-segment tests on Python floats (the array kernels' expressions, evaluated in the
+same order); and a query is answered "no path" without A* when no graph node the goal
+connects to lies in a connected component of a node the start connects to (components
+and, per start, the reachable nodes are cached with the graph: tree search asks many
+goals from one start, most of them unreachable).
+
 The static part (static vertices and their mutual visibility) is computed once per radius
 and cached; the graph including the movable obstacles is cached per
 ``(radius, movable)`` (tree search queries many goals from the same state); a query then
@@ -82,7 +90,7 @@ import itertools
 import math
 from collections import OrderedDict
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -136,6 +144,13 @@ class Pose2D:
         """Accept a :class:`Pose2D` or a length-3 ``(x, y, theta)`` sequence/array."""
         if isinstance(pose, Pose2D):
             return pose
+        if type(pose) is np.ndarray and pose.dtype == np.float64 and pose.shape == (3,):
+            x, y, theta = pose.tolist()
+            if math.isfinite(x) and math.isfinite(y) and math.isfinite(theta):
+                out = object.__new__(cls)  # the fields are valid floats: skip __init__
+                out.__dict__.update(x=x, y=y, theta=theta)
+                return out
+            return cls(x, y, theta)
         arr = np.asarray(pose, dtype=np.float64).reshape(-1)
         if arr.shape != (3,):
             raise ValueError(f"{name} must be a Pose2D or (x, y, theta); got shape {arr.shape}")
@@ -188,6 +203,36 @@ class Box2D:
     def __hash__(self) -> int:
         return self._hash  # type: ignore[attr-defined,no-any-return]
 
+    @classmethod
+    def fast(
+        cls, cx: float, cy: float, half_x: float, half_y: float, yaw: float, name: str
+    ) -> Box2D:
+        """The box of these fields, built without the dataclass machinery when they are valid.
+
+        The same object as ``Box2D(...)`` (fields as Python floats, the same hash); any
+        invalid field goes through the constructor, which raises as usual. The envs make
+        a footprint per feasibility check, where the validation was a visible cost.
+        """
+        cx, cy, half_x, half_y, yaw = float(cx), float(cy), float(half_x), float(half_y), float(yaw)
+        if not (
+            type(name) is str
+            and half_x > 0.0
+            and half_y > 0.0
+            and math.isfinite(cx + cy + half_x + half_y + yaw)
+        ):
+            return cls(cx, cy, half_x, half_y, yaw, name)
+        box = object.__new__(cls)
+        box.__dict__.update(
+            cx=cx,
+            cy=cy,
+            half_x=half_x,
+            half_y=half_y,
+            yaw=yaw,
+            name=name,
+            _hash=hash((cx, cy, half_x, half_y, yaw, name)),
+        )
+        return box
+
     def __reduce__(self) -> tuple[type[Box2D], tuple[float, float, float, float, float, str]]:
         # rebuild through __init__ so that the cached hash is recomputed (string hashes
         # differ between processes)
@@ -237,6 +282,13 @@ def path_length(waypoints: ArrayLike, rotation_weight: float) -> float:
         raise ValueError(f"waypoints must have shape (k, 3), got {w.shape}")
     if w.shape[0] < 2:
         return 0.0
+    if w.shape[0] == 2:
+        # one segment (a straight path): the same operations on floats (numpy's hypot;
+        # Python's float % is numpy's remainder), without the array round trips
+        (x0, y0, t0), (x1, y1, t1) = w.tolist()
+        step = float(np.hypot(x1 - x0, y1 - y0))
+        turn = abs((t1 - t0 + math.pi) % (2.0 * math.pi) - math.pi)
+        return float(step + rotation_weight * turn)
     diff = np.diff(w, axis=0)
     trans = np.hypot(diff[:, 0], diff[:, 1])
     rot = np.abs(wrap_angle(diff[:, 2]))
@@ -552,6 +604,216 @@ def segments_hit_boxes(
     return seg_i[hit], box_j[hit]
 
 
+def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
+    """The scene's boxes as lists of Python floats (built once per scene)."""
+    if scene.lists is None:
+        b = scene.boxes
+        scene.lists = (
+            b.center[:, 0].tolist(),
+            b.center[:, 1].tolist(),
+            b.cos.tolist(),
+            b.sin.tolist(),
+            b.half[:, 0].tolist(),
+            b.half[:, 1].tolist(),
+            b.reach.tolist(),
+        )
+    return scene.lists
+
+
+def _component_lists(graph: _Graph) -> list[tuple[list[Any], ...]]:
+    """The graph's connected components, each as the node lists :func:`_sees_any` takes.
+
+    Union-find over the edges (a property of the graph: no arithmetic involved), then per
+    component its nodes' positions, neighbour directions and blocking-box hints.
+    """
+    n = len(graph.nodes)
+    parent = list(range(n))
+
+    def root(v: int) -> int:
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for a, b in zip(graph.i.tolist(), graph.j.tolist(), strict=True):
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    groups: dict[int, list[int]] = {}
+    for v in range(n):
+        groups.setdefault(root(v), []).append(v)
+    nodes = graph.nodes
+    cols = (
+        nodes.pos[:, 0].tolist(),
+        nodes.pos[:, 1].tolist(),
+        nodes.to_prev[:, 0].tolist(),
+        nodes.to_prev[:, 1].tolist(),
+        nodes.to_next[:, 0].tolist(),
+        nodes.to_next[:, 1].tolist(),
+    )
+    return [
+        (*([col[v] for v in members] for col in cols), [[0] for _ in members])
+        for members in groups.values()
+    ]
+
+
+def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: float) -> bool:
+    """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations)."""
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
+    r2 = radius * radius
+    for k in range(len(bcx)):
+        rx = x - bcx[k]
+        ry = y - bcy[k]
+        far = breach[k] + radius + 1e-6  # the point is at least this far from the box centre
+        if rx * rx + ry * ry > far * far:
+            continue  # farther than circumradius + radius (+ a margin above rounding)
+        c, s = bcos[k], bsin[k]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = max(abs(lx) - bhx[k], 0.0)
+        dy = max(abs(ly) - bhy[k], 0.0)
+        if dx * dx + dy * dy < r2:
+            return True
+    return False
+
+
+def _point_hit_indices(
+    x: float, y: float, boxes: tuple[list[float], ...], radius: float
+) -> list[int]:
+    """The boxes :func:`points_hit_boxes` marks for one point, in order (floats)."""
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
+    r2 = radius * radius
+    out = []
+    for k in range(len(bcx)):
+        rx = x - bcx[k]
+        ry = y - bcy[k]
+        far = breach[k] + radius + 1e-6
+        if rx * rx + ry * ry > far * far:
+            continue
+        c, s = bcos[k], bsin[k]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = max(abs(lx) - bhx[k], 0.0)
+        dy = max(abs(ly) - bhy[k], 0.0)
+        if dx * dx + dy * dy < r2:
+            out.append(k)
+    return out
+
+
+def _sees_any(
+    nodes: tuple[list[Any], ...],
+    x: float,
+    y: float,
+    boxes: tuple[list[float], ...],
+    radius: float,
+) -> bool:
+    """Does the point ``(x, y)`` connect to any of ``nodes``, as :meth:`BasePlanner._search`
+    connects an end (tangent at the node, segment clear of every box)?
+
+    ``nodes`` holds the nodes' positions and neighbour directions as lists, and a hint
+    per node for :func:`_segment_hits_any` (the box that blocked it last). The tangency
+    test is :func:`_tangent_grid`'s expression and the segment test
+    :func:`_segment_hits_any`, both on Python floats with the same operations, so each
+    pair's answer is the array version's; it stops at the first connected node.
+    """
+    xs, ys, pxs, pys, nxs, nys, hints = nodes
+    for k in range(len(xs)):
+        nx_, ny_ = xs[k], ys[k]
+        ux = nx_ - x
+        uy = ny_ - y
+        cross_prev = ux * pys[k] - uy * pxs[k]
+        cross_next = ux * nys[k] - uy * nxs[k]
+        if not cross_prev * cross_next >= -_TANGENT_EPS * (ux * ux + uy * uy):
+            continue
+        if not _segment_hits_any(x, y, nx_, ny_, boxes, radius, hints[k]):
+            return True
+    return False
+
+
+def _open_box_met(
+    px: float, py: float, dx: float, dy: float, cross: float, hx: float, hy: float
+) -> bool:
+    """:func:`_segment_meets_open_box` for one segment, on Python floats."""
+    qx = px + dx
+    qy = py + dy
+    if max(px, qx) <= -hx or min(px, qx) >= hx or max(py, qy) <= -hy or min(py, qy) >= hy:
+        return False
+    reach = abs(dy) * hx + abs(dx) * hy
+    return not (abs(cross) >= reach and reach > 0.0)
+
+
+def _segment_hits_any(
+    p0: float,
+    p1: float,
+    q0: float,
+    q1: float,
+    boxes: tuple[list[float], ...],
+    radius: float,
+    hint: list[int] | None = None,
+) -> bool:
+    """``segments_hit_any`` for the one segment ``p -> q``, on Python floats.
+
+    Every quantity is the elementwise expression of :func:`segments_hit_boxes` and
+    :func:`_segment_box_pairs_hit` for this segment, evaluated in the same order with
+    the same IEEE operations (no reduction reorders a sum), so the answer is identical;
+    for one segment against a few dozen boxes it is several times cheaper than the
+    array version's fixed costs. The boxes are tried from ``hint[0]`` on (the box that
+    blocked the caller's last segment; the answer does not depend on the order), and
+    ``hint[0]`` is set to the blocking box.
+    """
+    if hint is None:
+        hint = _LAST_HIT
+    bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
+    dx = q0 - p0
+    dy = q1 - p1
+    inv_dd = 1.0 / max(dx * dx + dy * dy, 1e-300)
+    r2 = radius * radius
+    n = len(bcx)
+    first = hint[0] if hint[0] < n else 0
+    # the box that blocked the last segment first: segments asked in a row are mostly
+    # blocked by the same wall (the answer does not depend on the order)
+    for k in itertools.chain(range(first, n), range(first)):
+        cx, cy = bcx[k], bcy[k]
+        ex = cx - p0
+        ey = cy - p1
+        t = min(max((ex * dx + ey * dy) * inv_dd, 0.0), 1.0)
+        ox = ex - t * dx
+        oy = ey - t * dy
+        lim = breach[k] + radius
+        if not ox * ox + oy * oy < lim * lim:
+            continue
+        # the exact test in the box frame
+        c, s = bcos[k], bsin[k]
+        hx, hy = bhx[k], bhy[k]
+        rx = p0 - cx
+        ry = p1 - cy
+        px = rx * c + ry * s
+        py = ry * c - rx * s
+        sdx = dx * c + dy * s
+        sdy = dy * c - dx * s
+        cross = px * sdy - py * sdx
+        if _open_box_met(px, py, sdx, sdy, cross, hx + radius, hy) or _open_box_met(
+            px, py, sdx, sdy, cross, hx, hy + radius
+        ):
+            hint[0] = k
+            return True
+        inv = 1.0 / max(sdx * sdx + sdy * sdy, 1e-300)
+        for sx, sy in ((1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)):
+            vx = sx * hx - px
+            vy = sy * hy - py
+            tc = min(max((vx * sdx + vy * sdy) * inv, 0.0), 1.0)
+            wx = vx - tc * sdx
+            wy = vy - tc * sdy
+            if wx * wx + wy * wy < r2:
+                hint[0] = k
+                return True
+    return False
+
+
+#: Index of the box that blocked the last segment of :func:`_segment_hits_any`.
+_LAST_HIT = [0]
+
+
 def segments_hit_any(p: FloatArray, q: FloatArray, boxes: BoxArrays, radius: float) -> BoolArray:
     """``(e,)`` mask: does segment ``k`` pass within ``radius`` of any box?"""
     p = np.asarray(p, dtype=np.float64).reshape(-1, 2)
@@ -614,6 +876,14 @@ class _Scene:
     movable: BoxArrays
     boxes: BoxArrays  # static then movable
     graph: _Graph | None = None
+    # for the no-path shortcut (BasePlanner._no_path): the graph's connected components,
+    # and per start point the nodes in the components the start sees
+    components: list[tuple[list[Any], ...]] | None = None
+    reach: OrderedDict[tuple[float, float], tuple[list[Any], ...]] = field(
+        default_factory=OrderedDict
+    )
+    # the boxes as Python lists, for the single-segment test
+    lists: tuple[list[float], ...] | None = None
 
 
 #: Lines through a vertex whose sines to both neighbours multiply to more than
@@ -720,6 +990,7 @@ class BasePlanner:
         self._static = BoxArrays.from_boxes(self.static_obstacles)
         self._template = self._make_template(config.corner_segments)
         self._static_cache: OrderedDict[float, _Graph] = OrderedDict()
+        self._static_lists: tuple[list[float], ...] | None = None
         self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
 
     # ----- public API -------------------------------------------------------------------
@@ -746,15 +1017,18 @@ class BasePlanner:
         g = Pose2D.coerce(goal, "goal")
         scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
         r_hit = scene.radius - self.config.contact_tolerance
+        if not (self._inside_xy(s.x, s.y, r_hit) and self._inside_xy(g.x, g.y, r_hit)):
+            return None
+        lists = _box_lists(scene)
+        if _point_hits_any(s.x, s.y, lists, r_hit) or _point_hits_any(g.x, g.y, lists, r_hit):
+            return None
         ends = np.array([[s.x, s.y], [g.x, g.y]])
-        if not np.all(self._inside(ends, r_hit)):
-            return None
-        if points_hit_boxes(ends, scene.boxes, r_hit).any():
-            return None
-        if not segments_hit_any(ends[:1], ends[1:], scene.boxes, r_hit)[0]:
+        if not _segment_hits_any(s.x, s.y, g.x, g.y, lists, r_hit):
             return self._make_path(s, g, ends)
         if scene.graph is None:
             scene.graph = self._build_graph(scene)
+        if self._no_path(scene, s.x, s.y, g.x, g.y, r_hit):
+            return None
         polyline = self._search(scene.graph, ends, scene.boxes, r_hit)
         if polyline is None:
             return None
@@ -780,14 +1054,42 @@ class BasePlanner:
         environment's "collision with what" diagnostics.
         """
         p = Pose2D.coerce(pose, "pose")
-        scene = self._scene(self._inflated_radius(robot_radius), self._movable(movable))
-        r_hit = scene.radius - self.config.contact_tolerance
-        pt = np.array([[p.x, p.y]])
-        hits = np.flatnonzero(points_hit_boxes(pt, scene.boxes, r_hit)[0])
-        names = [scene.boxes.names[k] for k in hits]
+        radius = self._inflated_radius(robot_radius)
+        mov = self._movable(movable)
+        r_hit = radius - self.config.contact_tolerance
+        # the point test of points_hit_boxes box by box on floats; a one-off radius (a
+        # carried object's disc) needs no scene in the graph cache
+        scene = self._graph_cache.get((radius, mov))
+        lists = _box_lists(scene) if scene is not None else self._box_lists_of(mov)
+        names = [*(b.name for b in self.static_obstacles), *(b.name for b in mov)]
+        out = [names[k] for k in _point_hit_indices(p.x, p.y, lists, r_hit)]
         if not self._inside_xy(p.x, p.y, r_hit):
-            names.insert(0, "workspace")
-        return names
+            out.insert(0, "workspace")
+        return out
+
+    def _box_lists_of(self, movable: tuple[Box2D, ...]) -> tuple[list[float], ...]:
+        """:func:`_box_lists` of the static boxes followed by ``movable``, without a scene.
+
+        Cosines and sines come from numpy over the movable yaws, as
+        :meth:`BoxArrays.from_boxes` computes them; the rest are the boxes' own fields.
+        """
+        if self._static_lists is None:
+            st = self._static
+            self._static_lists = (
+                st.center[:, 0].tolist(), st.center[:, 1].tolist(), st.cos.tolist(),
+                st.sin.tolist(), st.half[:, 0].tolist(), st.half[:, 1].tolist(),
+                st.reach.tolist(),
+            )  # fmt: skip
+        if not movable:
+            return self._static_lists
+        yaw = np.array([b.yaw for b in movable], dtype=np.float64)
+        half = np.array([[b.half_x, b.half_y] for b in movable], dtype=np.float64)
+        extra = (
+            [b.cx for b in movable], [b.cy for b in movable], np.cos(yaw).tolist(),
+            np.sin(yaw).tolist(), [b.half_x for b in movable], [b.half_y for b in movable],
+            np.hypot(half[:, 0], half[:, 1]).tolist(),
+        )  # fmt: skip
+        return tuple(a + b for a, b in zip(self._static_lists, extra, strict=True))
 
     def path_is_free(
         self, waypoints: ArrayLike, robot_radius: float, movable: Sequence[Box2D] = ()
@@ -969,6 +1271,59 @@ class BasePlanner:
         ib = np.concatenate([new_index[static.j[keep]], bj, mj2 + nb])
         return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, scene.boxes, r_hit))
 
+    @staticmethod
+    def _visible(nodes: _Nodes, point: FloatArray, boxes: BoxArrays, r_hit: float) -> IntArray:
+        """Indices of ``nodes`` that ``point`` connects to, as :meth:`_search` connects it.
+
+        The same elementwise tangency and segment tests as :meth:`_search` runs for each
+        end (each pair's answer depends on that pair alone), so the set is the same.
+        """
+        ux = nodes.pos[None, :, 0] - point[0]
+        uy = nodes.pos[None, :, 1] - point[1]
+        _, node_k = np.nonzero(_tangent_grid(nodes, ux, uy, 1))
+        if node_k.size == 0:
+            return node_k
+        ok = ~segments_hit_any(
+            np.broadcast_to(point, (node_k.size, 2)), nodes.pos[node_k], boxes, r_hit
+        )
+        visible: IntArray = node_k[ok]
+        return visible
+
+    def _no_path(
+        self, scene: _Scene, sx: float, sy: float, gx: float, gy: float, r_hit: float
+    ) -> bool:
+        """Is it certain that :meth:`_search` finds no path from ``(sx, sy)`` to ``(gx, gy)``?
+
+        :meth:`_search` fails iff no node the goal connects to is in a connected component
+        of the graph holding a node the start connects to. The components are computed
+        once per graph and, per start point, the nodes of the components the start
+        connects to (a planning session asks many goals from one start; one connected
+        node settles a component); the goal is then tested against those nodes only,
+        until one connects. A False answer runs :meth:`_search` as before, so every path
+        returned is the one it always was.
+        """
+        graph = scene.graph
+        assert graph is not None
+        nodes = graph.nodes
+        if len(nodes) == 0:
+            return True
+        key = (sx, sy)
+        reach = scene.reach.get(key)
+        if reach is None:
+            if scene.components is None:
+                scene.components = _component_lists(graph)
+            boxes = _box_lists(scene)
+            # the components the start connects to (one connected node is enough)
+            seen = [c for c in scene.components if _sees_any(c, sx, sy, boxes, r_hit)]
+            reach = tuple(
+                [v for c in seen for v in c[f]] if f < 6 else [[0] for c in seen for _ in c[0]]
+                for f in range(7)
+            )
+            scene.reach[key] = reach
+            if len(scene.reach) > 16:
+                scene.reach.popitem(last=False)
+        return not _sees_any(reach, gx, gy, _box_lists(scene), r_hit)
+
     def _search(
         self, graph: _Graph, ends: FloatArray, boxes: BoxArrays, r_hit: float
     ) -> FloatArray | None:
@@ -1003,6 +1358,11 @@ class BasePlanner:
 
     def _make_path(self, start: Pose2D, goal: Pose2D, polyline: FloatArray) -> BasePath:
         """Add headings turning linearly in travelled distance by the shortest way."""
+        if len(polyline) == 2:
+            # the two ends keep their own headings (the interpolation below is
+            # overwritten at both ends): the straight path needs no arithmetic
+            waypoints = np.array([[start.x, start.y, start.theta], [goal.x, goal.y, goal.theta]])
+            return BasePath.from_waypoints(waypoints, self.config.rotation_weight)
         xy = np.array(polyline, dtype=np.float64)
         xy[0] = (start.x, start.y)
         xy[-1] = (goal.x, goal.y)

@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
@@ -48,7 +48,8 @@ from voot.envs.robot import (
     base_footprint,
     carry_disc,
     compose2d,
-    inverse2d,
+    compose_inverse2d,
+    compose_inverse_tuple,
 )
 from voot.envs.scene import object_footprint, rect_inside
 from voot.envs.task_env import (
@@ -63,6 +64,7 @@ from voot.envs.task_env import (
     denormalize,
     pose_tuple,
     preset_config,
+    replace,
 )
 from voot.optim.base import Bounds
 
@@ -360,19 +362,22 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     # ----- stepping ------------------------------------------------------------------------
     def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:
         """The base pose placing box ``i`` at ``(x, y, theta)`` with its fixed grasp."""
-        return compose2d(np.asarray(obj_pose, dtype=np.float64), inverse2d(self.picks[i].rel))
+        return compose_inverse2d(obj_pose, self.picks[i].rel)
 
-    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """One step without its observation (see :meth:`ManipulationEnv.transition`)."""
         a, clipped = self._validate_action(action)
         cfg, t = self.config, self.task
         if t.done or t.steps >= cfg.horizon:
             raise ValueError("the episode has ended (terminated or truncated); call reset()")
         start_time = time.perf_counter()
         m = min(OBJECTS_PER_ACTION, self.n - t.placed)
-        params = np.stack([denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)])
+        params = denormalize(a[: 3 * m], cfg.place_ranges * m).reshape(m, 3)
         names = [self.objects[t.placed + k].name for k in range(m)]
-        placements = tuple(pose_tuple(p) for p in params)
-        bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
+        placements = tuple((x, y, th) for x, y, th in params.tolist())
+        bases = tuple(
+            compose_inverse_tuple(p, self.picks[t.placed + k].rel) for k, p in enumerate(placements)
+        )
         moved: dict[int, tuple[float, float, float, float]] = {}
         lengths: list[float] = []
         paths: list[FloatArray] = []
@@ -425,7 +430,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             "objects_placed": t.placed,
             "goal_bonus": 0.0,
         }
-        return self._observation(), float(reward), terminated, truncated, info
+        return float(reward), terminated, truncated, info
 
     def _check_place(
         self,

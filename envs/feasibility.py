@@ -20,6 +20,7 @@ Three building blocks, each deterministic (same inputs, same answer, in any proc
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -32,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from voot.envs.robot import (
     ARM_JOINTS,
     FINGER_JOINTS,
+    FINGER_OPEN,
     FOREARM,
     SHOULDER,
     TOOL,
@@ -133,36 +135,60 @@ def side_grasp(
         depth_fraction: Position across the face, in [0, 1].
         standoff: Distance of the tool point outside the face (metres).
     """
-    x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
+    # Plain floats instead of 2- and 3-vectors: every product, sum and cross product is
+    # the one numpy computed elementwise, in the same order, so the pose is bit-identical
+    # to the array version's, at a fifth of its cost.
+    if type(obj_pose) is np.ndarray and obj_pose.shape == (4,):
+        x, y, z, yaw = obj_pose.astype(np.float64, copy=False).tolist()
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
     c, s = math.cos(yaw), math.sin(yaw)
+    hx, hy = obj.half.tolist()
     # outward normals of the four faces, world frame, with the face's half extents
     faces = (
-        ("+x", np.array([c, s]), float(obj.half[0]), float(obj.half[1])),
-        ("-x", np.array([-c, -s]), float(obj.half[0]), float(obj.half[1])),
-        ("+y", np.array([-s, c]), float(obj.half[1]), float(obj.half[0])),
-        ("-y", np.array([s, -c]), float(obj.half[1]), float(obj.half[0])),
+        ("+x", c, s, hx, hy),
+        ("-x", -c, -s, hx, hy),
+        ("+y", -s, c, hy, hx),
+        ("-y", s, -c, hy, hx),
     )
-    heading = np.array([math.cos(base_heading), math.sin(base_heading)])
-    scores = [float(n @ heading) for _, n, _, _ in faces]
-    k = int(np.argmin(scores))  # most opposite to the heading; ties: first
-    face, n, half_normal, half_across = faces[k]
-    tangent = np.array([-n[1], n[0]])  # horizontal, along the face
-    cx = x + c * obj.center[0] - s * obj.center[1]
-    cy = y + s * obj.center[0] + c * obj.center[1]
-    p_xy = (
-        np.array([cx, cy])
-        + (half_normal + standoff) * n
-        + (2.0 * depth_fraction - 1.0) * half_across * tangent
-    )
-    p = np.array([p_xy[0], p_xy[1], z + height_fraction * obj.height])
-    approach = np.array([-n[0], -n[1], 0.0])
-    y0 = np.array([tangent[0], tangent[1], 0.0])
-    z0 = np.cross(approach, y0)
+    k = _facing_face(faces, base_heading)
+    face, n0, n1, half_normal, half_across = faces[k]
+    t0, t1 = -n1, n0  # horizontal, along the face
+    ox, oy = obj.center.tolist()
+    cx = x + c * ox - s * oy
+    cy = y + s * ox + c * oy
+    a = half_normal + standoff
+    b = float((2.0 * depth_fraction - 1.0) * half_across)
+    p = np.array([cx + a * n0 + b * t0, cy + a * n1 + b * t1, z + height_fraction * obj.height])
+    # approach = (-n0, -n1, 0), y0 = (t0, t1, 0); z0 = approach x y0 as np.cross computes it
+    a0, a1, a2 = -n0, -n1, 0.0
+    z00 = a1 * 0.0 - a2 * t1
+    z01 = a2 * t0 - a0 * 0.0
+    z02 = a0 * t1 - a1 * t0
     ca, sa = math.cos(grasp_angle), math.sin(grasp_angle)
-    y_axis = ca * y0 + sa * z0
-    z_axis = np.cross(approach, y_axis)
-    rot = np.column_stack([approach, y_axis, z_axis])
+    y00, y01, y02 = ca * t0 + sa * z00, ca * t1 + sa * z01, ca * 0.0 + sa * z02
+    z10 = a1 * y02 - a2 * y01
+    z11 = a2 * y00 - a0 * y02
+    z12 = a0 * y01 - a1 * y00
+    rot = np.array([[a0, y00, z10], [a1, y01, z11], [a2, y02, z12]])
     return GraspPose(p, rot, face)
+
+
+def _facing_face(faces: tuple[tuple[str, float, float, float, float], ...], heading: float) -> int:
+    """Index of the face whose normal is most opposite to ``heading`` (first on ties).
+
+    The scores are computed with plain floats; only when two of them are within 1e-12
+    (where the rounding of numpy's dot product could decide) are they recomputed with
+    numpy as before, so the choice is always numpy's.
+    """
+    hx, hy = math.cos(heading), math.sin(heading)
+    scores = [n0 * hx + n1 * hy for _, n0, n1, _, _ in faces]
+    k = min(range(len(scores)), key=scores.__getitem__)
+    if any(j != k and scores[j] - scores[k] < 1e-12 for j in range(len(scores))):
+        h = np.array([hx, hy])
+        exact = [float(np.array([n0, n1]) @ h) for _, n0, n1, _, _ in faces]
+        k = int(np.argmin(exact))
+    return k
 
 
 # ----------------------------------------------------------------------------------------
@@ -254,6 +280,8 @@ class ArmIK:
         self.limits = [mink.ConfigurationLimit(self.model)]
         self.lower = self.model.jnt_range[:, 0].copy()
         self.upper = self.model.jnt_range[:, 1].copy()
+        self._lower_l: list[float] = self.lower.tolist()
+        self._upper_l: list[float] = self.upper.tolist()
         self._site = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_SITE, "grasp")
 
     # ----- closed form ------------------------------------------------------------------
@@ -289,6 +317,31 @@ class ArmIK:
     def _violation(self, q: FloatArray) -> float:
         return float(np.sum(np.maximum(self.lower - q, 0) + np.maximum(q - self.upper, 0)))
 
+    def _closest_seed(self, seeds: list[FloatArray]) -> tuple[int, bool]:
+        """The seed :meth:`solve` refines (least limit violation, first on ties) and
+        whether it is inside the limits.
+
+        The violations are summed on floats; only when two nonzero ones come within 1e-9
+        (where numpy's summation order could decide) does :meth:`_violation` decide. A
+        zero violation is exact either way (every term is zero).
+        """
+        lower, upper = self._lower_l, self._upper_l
+        approx = []
+        for q in seeds:
+            v = 0.0
+            for qj, lo, hi in zip(q.tolist(), lower, upper, strict=True):
+                v += max(lo - qj, 0.0) + max(qj - hi, 0.0)
+            approx.append(v)
+        m = min(approx)
+        if m == 0.0:
+            return approx.index(0.0), True
+        close = [i for i, v in enumerate(approx) if v - m <= 1e-9]
+        if len(close) == 1:
+            return close[0], False
+        viol = [self._violation(q) for q in seeds]
+        k = min(range(len(seeds)), key=lambda i: (viol[i], i))
+        return k, viol[k] == 0.0
+
     def _errors(self, q: FloatArray) -> tuple[float, float]:
         self.configuration.update(q)
         err = self.task.compute_error(self.configuration)
@@ -308,11 +361,10 @@ class ArmIK:
         if not seeds:
             return IKResult(False, None, 0, reason="out of reach")
         # the seed closest to the limits (exact seeds inside them first), then in order
-        viol = [self._violation(q) for q in seeds]
-        order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
-        best = np.clip(seeds[order[0]], self.lower, self.upper)
+        first, inside = self._closest_seed(seeds)
+        best = np.clip(seeds[first], self.lower, self.upper)
         self.task.set_target(mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(r), p))
-        if viol[order[0]] == 0.0:
+        if inside:
             pe, oe = self._errors(best)
             if pe <= cfg.position_tolerance and oe <= cfg.orientation_tolerance:
                 return IKResult(True, best, 0, pe, oe)
@@ -377,8 +429,14 @@ class CollisionChecker:
     """
 
     def __init__(self, model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]) -> None:
-        self.model = model
-        self.data = mujoco.MjData(model)
+        self.model, self._held_affinity = _robot_pairs_model(model, robot, objects)
+        self.data = mujoco.MjData(self.model)
+        # views into the model's and data's buffers, fetched once (each attribute access
+        # builds a new array object)
+        self._affinity_view = self.model.geom_conaffinity
+        self._qpos_view = self.data.qpos
+        # (geom, geom, held) -> what the contact reports (a pure function of the three)
+        self._pair_hit: dict[tuple[int, int, int], str | None] = {}
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -389,6 +447,14 @@ class CollisionChecker:
         self._owner = np.full(n, -1, dtype=np.intp)  # object index, or -1
         for i, o in enumerate(objects):
             self._owner[list(o.geoms)] = i
+        # plain lists and slices for check(), whose contacts are few: indexing them from
+        # Python is cheaper than numpy masks over a handful of rows
+        self._robot_l: list[bool] = self._is_robot.tolist()
+        self._gripper_l: list[bool] = self._is_gripper.tolist()
+        self._owner_l: list[int] = self._owner.tolist()
+        self._base_sl = _as_slice(robot.base_qadr)
+        self._arm_sl = _as_slice(robot.arm_qadr)
+        self._finger_sl = _as_slice(robot.finger_qadr)
         self._names = []
         for g in range(n):
             owner = int(self._owner[g])
@@ -423,47 +489,143 @@ class CollisionChecker:
             without duplicates; prefixed ``"robot-"`` or ``"object-"`` by the party hit.
         """
         m, d = self.model, self.data
-        d.qpos[:] = qpos
-        self.robot.set_base(d, base_pose)
-        self.robot.set_arm(d, arm_q)
+        q = self._qpos_view
+        q[:] = qpos
+        base_sl, arm_sl, finger_sl = self._base_sl, self._arm_sl, self._finger_sl
+        if base_sl is not None and arm_sl is not None and finger_sl is not None:
+            q[base_sl] = base_pose
+            q[arm_sl] = arm_q
+            q[finger_sl] = FINGER_OPEN
+        else:  # pragma: no cover - robot.xml keeps each joint group contiguous
+            self.robot.set_base(d, base_pose)
+            self.robot.set_arm(d, arm_q)
         if object_poses:
+            objects = self.objects
             for i, pose in object_poses.items():
-                set_object_pose(d, self.objects[i], pose)
+                if type(pose) is tuple and len(pose) == 4:
+                    # set_object_pose's numbers, written straight into the qpos view
+                    x, y, z, yaw = pose
+                    adr = objects[i].qpos_adr
+                    q[adr : adr + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+                else:
+                    set_object_pose(d, objects[i], pose)
         mujoco.mj_kinematics(m, d)
-        mujoco.mj_collision(m, d)
+        restore = self._held_affinity.get(held) if held is not None else None
+        if restore is not None:
+            geoms, full, reduced = restore
+            affinity = self._affinity_view
+            affinity[geoms] = full
+            mujoco.mj_collision(m, d)
+            affinity[geoms] = reduced
+        else:
+            mujoco.mj_collision(m, d)
         ncon = d.ncon
         if ncon == 0:
             return CollisionReport()
-        geom = d.contact.geom[:ncon]
-        g1, g2 = geom[:, 0], geom[:, 1]
         held_i = -2 if held is None else held
-        own1, own2 = self._owner[g1], self._owner[g2]
-        rob1, rob2 = self._is_robot[g1], self._is_robot[g2]
-        hold1, hold2 = own1 == held_i, own2 == held_i
-        relevant = rob1 | rob2 | hold1 | hold2
-        grasp_contact = (self._is_gripper[g1] & hold2) | (self._is_gripper[g2] & hold1)
-        keep = np.flatnonzero(relevant & ~grasp_contact)
-        hits = set()
-        for k in keep:
-            a, b = int(g1[k]), int(g2[k])
-            if not (self._is_robot[a] or self._owner[a] == held_i):
-                a, b = b, a  # a is ours (robot or held), b the other party
-            who = "robot" if self._is_robot[a] else "object"
-            hits.add(f"{who}-{self._names[b]}" if not self._is_robot[b] else f"{who}-robot")
+        memo = self._pair_hit
+        hits: set[str] = set()
+        for a, b in d.contact.geom[:ncon].tolist():
+            key = (a, b, held_i)
+            if key in memo:
+                name = memo[key]
+            else:
+                name = memo[key] = self._hit_name(a, b, held_i)
+            if name is not None:
+                hits.add(name)
+        if len(memo) > 200_000:  # pragma: no cover - bounded by ngeom^2 x objects
+            memo.clear()
         return CollisionReport(sorted(hits))
+
+    def _hit_name(self, a: int, b: int, held_i: int) -> str | None:
+        """What a contact between geoms ``a`` and ``b`` reports (None: not reported)."""
+        robot, owner, gripper, names = self._robot_l, self._owner_l, self._gripper_l, self._names
+        hold_a, hold_b = owner[a] == held_i, owner[b] == held_i
+        if not (robot[a] or robot[b] or hold_a or hold_b):
+            return None  # between two other parties
+        if (gripper[a] and hold_b) or (gripper[b] and hold_a):
+            return None  # the grasp itself
+        if not (robot[a] or hold_a):
+            a, b = b, a  # a is ours (robot or held), b the other party
+        who = "robot" if robot[a] else "object"
+        return f"{who}-{names[b]}" if not robot[b] else f"{who}-robot"
+
+
+def _robot_pairs_model(
+    model: mujoco.MjModel, robot: Robot, objects: list[ObjectInfo]
+) -> tuple[
+    mujoco.MjModel, dict[int, tuple[slice | list[int], NDArray[np.int32], NDArray[np.int32]]]
+]:
+    """A copy of ``model`` whose collision filter keeps only the pairs a check reports.
+
+    :meth:`CollisionChecker.check` reports contacts of the robot and of the held object
+    only; MuJoCo would also compute every contact between two other parties (an object
+    resting against a wall). In the copy, every non-robot geom's ``conaffinity`` keeps
+    only the robot's ``contype`` bits, so such pairs are never tested, and the held
+    object's geoms get their own ``conaffinity`` back for the duration of a check. Pairs
+    with the robot keep their filter, and a pair of the held object and another geom is
+    kept exactly when it was (verified here for every object against every geom;
+    otherwise the original filter is used). Contacts are computed per pair, so the ones
+    reported are the same. Returns the model and, per object index, its geoms with
+    their original and reduced ``conaffinity``.
+    """
+    contype = model.geom_contype.astype(np.int64)
+    affinity = model.geom_conaffinity.astype(np.int64)
+    is_robot = np.zeros(model.ngeom, dtype=bool)
+    is_robot[list(robot.geoms)] = True
+    robot_bits = int(np.bitwise_or.reduce(contype[is_robot])) if is_robot.any() else 0
+    if np.any(contype[~is_robot] & robot_bits):  # pragma: no cover - not in the scenes
+        return model, {}
+    reduced = np.where(is_robot, affinity, affinity & robot_bits)
+
+    def pairs(ct: NDArray[np.int64], af: NDArray[np.int64]) -> NDArray[np.bool_]:
+        return ((ct[:, None] & af[None, :]) | (ct[None, :] & af[:, None])) != 0
+
+    original = pairs(contype, affinity)
+    held: dict[int, tuple[slice | list[int], NDArray[np.int32], NDArray[np.int32]]] = {}
+    for i, obj in enumerate(objects):
+        geoms = list(obj.geoms)
+        trial = reduced.copy()
+        trial[geoms] = affinity[geoms]
+        filtered = pairs(contype, trial)
+        ours = is_robot.copy()
+        ours[geoms] = True
+        # every pair with the robot or this object is filtered as before
+        if not np.array_equal(filtered[ours], original[ours]):  # pragma: no cover
+            return model, {}
+        run = _as_slice(np.asarray(geoms, dtype=np.intp))
+        held[i] = (
+            geoms if run is None else run,
+            model.geom_conaffinity[geoms].copy(),
+            reduced[geoms].astype(model.geom_conaffinity.dtype),
+        )
+    copy_ = copy.copy(model)
+    copy_.geom_conaffinity[:] = reduced.astype(model.geom_conaffinity.dtype)
+    return copy_, held
+
+
+def _as_slice(index: NDArray[np.intp]) -> slice | None:
+    """``index`` as an equivalent slice if it is a run of consecutive addresses."""
+    lo = int(index[0])
+    if index.tolist() == list(range(lo, lo + len(index))):
+        return slice(lo, lo + len(index))
+    return None
 
 
 def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:
     """Put ``obj``'s body at ``(x, y, z, yaw)`` (free joint qpos)."""
-    x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    if type(pose) is tuple and len(pose) == 4:
+        x, y, z, yaw = (float(v) for v in pose)
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
     a = obj.qpos_adr
-    data.qpos[a : a + 3] = (x, y, z)
-    data.qpos[a + 3 : a + 7] = (math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+    data.qpos[a : a + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
 
 
 def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:
     """``(x, y, z, yaw)`` of ``obj``'s body from its free joint."""
     a = obj.qpos_adr
-    q = data.qpos[a + 3 : a + 7]
-    yaw = math.atan2(2.0 * (q[0] * q[3] + q[1] * q[2]), 1.0 - 2.0 * (q[2] ** 2 + q[3] ** 2))
-    return np.array([data.qpos[a], data.qpos[a + 1], data.qpos[a + 2], yaw])
+    # floats: the same products and powers (C pow) as on numpy scalars, cheaper
+    x, y, z, q0, q1, q2, q3 = data.qpos[a : a + 7].tolist()
+    yaw = math.atan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2**2 + q3**2))
+    return np.array([x, y, z, yaw])

@@ -50,7 +50,7 @@ import itertools
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
@@ -88,6 +88,7 @@ from voot.envs.task_env import (
     denormalize,
     pose_tuple,
     preset_config,
+    replace,
 )
 from voot.optim.base import Bounds
 
@@ -473,7 +474,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         return Bounds.cube(-1.0, 1.0, dim)
 
     # ----- stepping ------------------------------------------------------------------------
-    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """One step without its observation (see :meth:`ManipulationEnv.transition`)."""
         a, clipped = self._validate_action(action)
         t = self.task
         if t.done or t.steps >= self.config.horizon:
@@ -498,7 +500,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             objects_left=len(t.on_path),
             goal_bonus=self.config.goal_bonus if terminated else 0.0,
         )
-        return self._observation(), float(reward), terminated, truncated, info
+        return float(reward), terminated, truncated, info
 
     def _infeasible(
         self,

@@ -31,7 +31,18 @@
   (:mod:`voot.envs.metrics`), for ``MCTSConfig.use_problem_metric``.
 
 It steps ``env.unwrapped`` directly (gymnasium's wrappers add nothing a planner needs;
-the envs truncate at their own horizon).
+the envs truncate at their own horizon), through
+:meth:`~voot.envs.task_env.ManipulationEnv.transition`: the same reward, info and next
+state as ``step``, without the observation that no planner reads.
+
+The check path is lean but exact: the problem remembers the snapshot the env is at
+(after ``restore``, a cached ``step`` or ``snapshot``), so a check does not take a new
+one first; an infeasible action changes nothing but the task record (the envs'
+:attr:`~voot.envs.task_env.ManipulationEnv.INFEASIBLE_CHANGES_TASK_ONLY` contract: it
+only counts the step), so it is undone by putting the task record back instead of a
+snapshot and a full ``set_state`` (a feasible action that happened to change nothing
+is detected and treated alike); the action boxes are built once per operator. Every
+result, snapshot and random number is the same as with the plain step-record-restore.
 """
 
 from __future__ import annotations
@@ -81,7 +92,10 @@ class EnvProblem:
         self.units = units
         self._dim = u.action_dim
         self._version = 0
-        self._cache: tuple[int, bytes, StepResult, EnvState[Any]] | None = None
+        self._cache: tuple[int, bytes, StepResult, EnvState[Any], EnvState[Any]] | None = None
+        # a snapshot equal to the env's current state, or None if unknown
+        self._here: EnvState[Any] | None = None
+        self._bounds: dict[str, Bounds] = {}
         #: The result of the last :meth:`is_feasible` call (None before the first).
         self.last_check: StepResult | None = None
         self._kinematic = u.config.precheck == "kinematic"
@@ -98,12 +112,22 @@ class EnvProblem:
         assert isinstance(u, ConveyorPackingEnv)
         return tuple(u.config.place_ranges) * OBJECTS_PER_ACTION
 
+    def _operator(self) -> str:
+        u = self.unwrapped
+        return u.task.operator if isinstance(u, KitchenClearingEnv) else "place"
+
     def action_bounds(self) -> Bounds:
-        """The current operator's action box."""
-        if self.units == "paper":
-            r = self._ranges()
-            return Bounds([lo for lo, _ in r], [hi for _, hi in r])
-        return self.unwrapped.action_bounds()
+        """The current operator's action box (built once per operator and shared)."""
+        key = self._operator()
+        box = self._bounds.get(key)
+        if box is None:
+            if self.units == "paper":
+                r = self._ranges()
+                box = Bounds([lo for lo, _ in r], [hi for _, hi in r])
+            else:
+                box = self.unwrapped.action_bounds()
+            self._bounds[key] = box
+        return box
 
     def to_env_action(self, action: ArrayLike) -> FloatArray:
         """The env's (normalised, full-length) action for a planner's action."""
@@ -114,48 +138,92 @@ class EnvProblem:
         if self.units == "paper":
             a = normalize(a, self._ranges())
         if dim < self._dim:
-            a = np.concatenate([a, np.zeros(self._dim - dim)])
+            padded = np.zeros(self._dim)
+            padded[:dim] = a
+            return padded
         return a
 
     # ----- protocol ------------------------------------------------------------------------
     def snapshot(self) -> EnvState[Any]:
-        return self.unwrapped.get_state()
+        here = self._here
+        # every step, reset or set_state gives the env a new task record, so an env moved
+        # behind the problem's back is noticed (and snapshotted afresh)
+        if here is None or here.task is not self.unwrapped.task:
+            here = self._here = self.unwrapped.get_state()
+        return here
 
     def restore(self, snapshot: EnvState[Any]) -> None:
         self.unwrapped.set_state(snapshot)
+        self._here = snapshot
         self._version += 1
 
     def _run(self, action: ArrayLike) -> StepResult:
-        _, reward, terminated, truncated, info = self.unwrapped.step(self.to_env_action(action))
+        reward, terminated, truncated, info = self.unwrapped.transition(self.to_env_action(action))
+        # reward, feasible, terminal, bonus, info
         return StepResult(
-            reward=float(reward),
-            feasible=bool(info["feasible"]),
-            terminal=bool(terminated or truncated),
-            bonus=float(info["goal_bonus"]),
-            info=info,
+            float(reward),
+            bool(info["feasible"]),
+            bool(terminated or truncated),
+            float(info["goal_bonus"]),
+            info,
         )
 
     def step(self, action: ArrayLike) -> StepResult:
         key = np.asarray(action, dtype=np.float64).tobytes()
         cache, self._cache = self._cache, None
         self._version += 1
-        if cache is not None and cache[0] == self._version - 1 and cache[1] == key:
-            self.unwrapped.set_state(cache[3])
+        if (
+            cache is not None
+            and cache[0] == self._version - 1
+            and cache[1] == key
+            and cache[3].task is self.unwrapped.task
+        ):
+            self._jump(cache[3], cache[4])
             return cache[2]
+        self._here = None
         return self._run(action)
+
+    def _jump(self, before: EnvState[Any], after: EnvState[Any]) -> None:
+        """Go from snapshot ``before`` (the current state) to ``after``.
+
+        When both share the physics and generator state (``is_feasible`` makes them share
+        when the step changed neither), only the task progress differs.
+        """
+        u = self.unwrapped
+        if after.physics is before.physics and after.rng_state is before.rng_state:
+            u.task = after.task
+        else:
+            u.set_state(after)
+        self._here = after
 
     def is_feasible(self, action: ArrayLike) -> bool:
         """Does ``action`` pass the env's pre-check now? (The state is left unchanged.)"""
+        u = self.unwrapped
         if self._kinematic:
-            ok, info = self.unwrapped.precheck(self.to_env_action(action))
-            reward = 0.0 if ok else float(self.unwrapped.config.infeasible_reward)
+            ok, info = u.precheck(self.to_env_action(action))
+            reward = 0.0 if ok else float(u.config.infeasible_reward)
             self.last_check = StepResult(reward=reward, feasible=ok, info=info)
             return ok
-        before = self.unwrapped.get_state()
+        before = self._here
+        if before is None or before.task is not u.task:
+            before = self.snapshot()
         res = self._run(action)
-        after = self.unwrapped.get_state()
-        self.unwrapped.set_state(before)
-        self._cache = (self._version, np.asarray(action, dtype=np.float64).tobytes(), res, after)
+        if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
+            # only the task record moved on (the step count): share the rest, and put
+            # the task record back (what _jump does for such a pair)
+            after = before.with_task(u.task)
+            u.task = before.task
+            self._here = before
+        else:
+            after = u.get_state()
+            if (
+                after.rng_state is before.rng_state
+                and after.physics.tobytes() == before.physics.tobytes()
+            ):
+                after = before.with_task(after.task)
+            self._jump(after, before)
+        key = np.asarray(action, dtype=np.float64).tobytes()
+        self._cache = (self._version, key, res, before, after)
         self.last_check = res
         return res.feasible
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -134,8 +135,8 @@ class Robot:
 
 def base_footprint(pose: ArrayLike, name: str = "robot") -> Box2D:
     """The base's square footprint at ``pose`` ``(x, y, theta)``."""
-    x, y, th = (float(v) for v in np.asarray(pose, dtype=np.float64))
-    return Box2D(x, y, BASE_HALF, BASE_HALF, th, name)
+    x, y, th = _xyt(pose)
+    return Box2D.fast(x, y, BASE_HALF, BASE_HALF, th, name)
 
 
 @dataclass(frozen=True)
@@ -153,8 +154,7 @@ class CarryDisc:
 
     def center(self, base_pose: ArrayLike) -> FloatArray:
         """The disc's centre pose ``(x, y, theta)`` for the base at ``base_pose``."""
-        b = np.asarray(base_pose, dtype=np.float64)
-        return compose2d(b, (self.offset[0], self.offset[1], 0.0))
+        return compose2d(base_pose, (float(self.offset[0]), float(self.offset[1]), 0.0))
 
     def base(self, center_poses: ArrayLike) -> FloatArray:
         """Base poses ``(k, 3)`` for disc-centre poses ``(k, 3)``."""
@@ -192,16 +192,83 @@ def carry_disc(held_corners_in_base: ArrayLike) -> CarryDisc:
     return CarryDisc((float(centre[0]), float(centre[1])), max(ROBOT_RADIUS, far + margin))
 
 
+_F64 = np.dtype(np.float64)
+
+
+def _xyt(pose: ArrayLike) -> list[float] | tuple[float, ...]:
+    """A pose's three numbers as Python floats (the same values numpy holds)."""
+    kind = type(pose)
+    if kind is np.ndarray and pose.dtype is _F64:  # type: ignore[union-attr]
+        if pose.ndim == 1:  # type: ignore[union-attr]
+            return pose.tolist()  # type: ignore[no-any-return,union-attr]
+        return pose.reshape(-1).tolist()  # type: ignore[no-any-return,union-attr]
+    if kind is tuple and all(type(v) is float for v in pose):  # type: ignore[union-attr]
+        return pose  # type: ignore[return-value]
+    return np.asarray(pose, dtype=np.float64).reshape(-1).tolist()  # type: ignore[no-any-return]
+
+
 def compose2d(a: ArrayLike, b: ArrayLike) -> FloatArray:
-    """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses."""
-    a = np.asarray(a, dtype=np.float64)
-    b = np.asarray(b, dtype=np.float64)
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return np.array([a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2]])
+    """SE(2) composition ``a * b`` of ``(x, y, theta)`` poses.
+
+    Computed on Python floats (the same IEEE operations, in the same order, as on numpy
+    scalars), which is several times cheaper for three numbers.
+    """
+    ax, ay, at = _xyt(a)
+    bx, by, bt = _xyt(b)
+    c, s = math.cos(at), math.sin(at)
+    return np.array([ax + c * bx - s * by, ay + s * bx + c * by, at + bt])
 
 
 def inverse2d(a: ArrayLike) -> FloatArray:
-    """SE(2) inverse of ``(x, y, theta)``."""
-    a = np.asarray(a, dtype=np.float64)
-    c, s = math.cos(a[2]), math.sin(a[2])
-    return np.array([-c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]])
+    """SE(2) inverse of ``(x, y, theta)`` (on Python floats, as :func:`compose2d`).
+
+    Inverses of tuples (the envs' grasp poses, asked for at every check) are remembered.
+    """
+    key = a if type(a) is tuple else None
+    hit = _INVERSES.get(key) if key is not None else None
+    if hit is None:
+        ax, ay, at = _xyt(a)
+        c, s = math.cos(at), math.sin(at)
+        hit = (-c * ax - s * ay, s * ax - c * ay, -at)
+        if key is not None and all(type(v) is float for v in key):
+            if len(_INVERSES) >= 4096:
+                _INVERSES.clear()
+            _INVERSES[key] = hit
+    return np.array(hit)
+
+
+_INVERSES: dict[Any, tuple[float, float, float]] = {}
+
+
+def compose_inverse2d(a: ArrayLike, b: tuple[float, float, float]) -> FloatArray:
+    """``compose2d(a, inverse2d(b))`` for a tuple ``b`` (a grasp pose), the same numbers.
+
+    The envs turn an object pose into the base pose holding it this way at every check;
+    ``b``'s inverse is remembered and nothing goes through a temporary array.
+    """
+    inv = _INVERSES.get(b)
+    if inv is None:
+        inv = tuple(inverse2d(b).tolist())  # type: ignore[assignment]
+        assert inv is not None
+    return np.array(_compose_inverse(_xyt(a), inv))
+
+
+def compose_inverse_tuple(
+    a: tuple[float, float, float] | list[float], b: tuple[float, float, float]
+) -> tuple[float, float, float]:
+    """:func:`compose_inverse2d` for a pose of floats, as a tuple (what ``pose_tuple`` of
+    the array gives)."""
+    inv = _INVERSES.get(b)
+    if inv is None:
+        inv = tuple(inverse2d(b).tolist())  # type: ignore[assignment]
+        assert inv is not None
+    return _compose_inverse(a, inv)
+
+
+def _compose_inverse(
+    a: tuple[float, ...] | list[float], inv: tuple[float, float, float]
+) -> tuple[float, float, float]:
+    bx, by, bt = inv
+    ax, ay, at = a
+    c, s = math.cos(at), math.sin(at)
+    return (ax + c * bx - s * by, ay + s * bx + c * by, at + bt)

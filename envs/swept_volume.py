@@ -18,6 +18,7 @@ circle and lie slightly inside the exact area.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Sequence
 
 import numpy as np
@@ -91,16 +92,41 @@ def path_hits(
     r = _radius(robot_radius)
     if not (np.isfinite(tolerance) and tolerance >= 0.0):
         raise ValueError(f"tolerance must be a finite number >= 0, got {tolerance!r}")
-    boxes = BoxArrays.from_boxes(list(objects))
+    objs = list(objects)
+    for i, b in enumerate(objs):
+        if not isinstance(b, Box2D):
+            raise ValueError(f"obstacle {i} must be a Box2D, got {type(b).__name__}")
+    # Each box's answer depends on the path and that box alone (a pair test per
+    # segment), so answers are remembered per path and box: the kitchen asks about its
+    # fixed path after every placement, and all but the moved object are known.
+    key = (xy.tobytes(), xy.shape, float(r + tolerance))
+    memo = _PATH_HITS.get(key)
+    if memo is None:
+        memo = _PATH_HITS[key] = {}
+        if len(_PATH_HITS) > 8:
+            _PATH_HITS.popitem(last=False)
+    missing = list(dict.fromkeys(b for b in objs if b not in memo))
+    if missing:
+        if len(memo) > 100_000:
+            memo.clear()
+        memo.update(zip(missing, _path_hits_arrays(xy, r + tolerance, missing), strict=True))
+    return np.array([memo[b] for b in objs], dtype=bool)
+
+
+#: Per path (waypoint bytes, shape, radius + tolerance): box -> does it meet the path?
+_PATH_HITS: OrderedDict[tuple[bytes, tuple[int, ...], float], dict[Box2D, bool]] = OrderedDict()
+
+
+def _path_hits_arrays(xy: np.ndarray, reach: float, objects: list[Box2D]) -> list[bool]:
+    """The segment-box test of :func:`path_hits` on arrays, for ``objects``."""
+    boxes = BoxArrays.from_boxes(objects)
     hit = np.zeros(len(boxes), dtype=bool)
-    if len(boxes) == 0:
-        return hit
     # a single waypoint is a degenerate segment (a point)
     p = xy[:-1] if xy.shape[0] > 1 else xy
     q = xy[1:] if xy.shape[0] > 1 else xy
-    _, box_j = segments_hit_boxes(p, q, boxes, r + tolerance)
+    _, box_j = segments_hit_boxes(p, q, boxes, reach)
     hit[box_j] = True
-    return hit
+    return hit.tolist()  # type: ignore[no-any-return]
 
 
 def obstacles_on_path(

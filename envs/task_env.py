@@ -23,6 +23,13 @@ immutable dataclass of the subclass, including the held object and its grasp) an
 state of the env's random generator. Restoring a snapshot and applying the same action
 gives bit-identical observation, reward and info, also in another process: every check
 (IK, collision, base planning) is a deterministic function of the state and the action.
+No step draws from the env's generator, so consecutive snapshots share one copy of its
+state (a plain dict that nobody may mutate) instead of deep-copying it every time.
+
+:meth:`ManipulationEnv.transition` is the step without its observation: reward,
+terminated, truncated and info, bit-identical to :meth:`~ManipulationEnv.step`'s. A
+planner's feasibility checks (:class:`voot.envs.planning.EnvProblem`) never read the
+observation, and building it (every object's pose) cost about a tenth of a check.
 """
 
 from __future__ import annotations
@@ -74,12 +81,72 @@ def ensure_headless_gl() -> None:
     gl_context.GLContext = GLContext  # type: ignore[attr-defined]
 
 
+_PLAIN_DATACLASSES: dict[type, tuple[str, ...] | None] = {}
+
+
+def replace(obj: Any, /, **changes: Any) -> Any:
+    """:func:`dataclasses.replace`, minus its generic cost for plain dataclasses.
+
+    A *plain* dataclass (every field an ``__init__`` argument, no ``__post_init__``, no
+    slots, such as the task-progress records and :class:`StepTiming`) is copied field
+    by field with the changes applied, which is what ``dataclasses.replace`` does through
+    ``__init__``; anything else, or an unknown field name, goes to
+    ``dataclasses.replace`` itself. The envs replace their task record at every step.
+    """
+    cls = type(obj)
+    names = _PLAIN_DATACLASSES.get(cls, ())
+    if names == ():
+        names = _plain_fields(cls)
+        _PLAIN_DATACLASSES[cls] = names
+    state = obj.__dict__
+    if names is None or len(state) != len(names) or not changes.keys() <= state.keys():
+        return dataclasses.replace(obj, **changes)
+    new = object.__new__(cls)
+    new.__dict__.update(state)  # exactly the fields (as many, every change one of them)
+    new.__dict__.update(changes)
+    return new
+
+
+def _plain_fields(cls: type) -> tuple[str, ...] | None:
+    """The field names of a plain dataclass (see :func:`replace`), or None."""
+    if not dataclasses.is_dataclass(cls) or hasattr(cls, "__post_init__"):
+        return None
+    if "__slots__" in cls.__dict__:
+        return None
+    fields = dataclasses.fields(cls)
+    if any(not f.init for f in fields) or len(fields) != len(cls.__dataclass_fields__):
+        return None
+    return tuple(f.name for f in fields)
+
+
 def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
     """Map ``a`` in ``[-1, 1]^d`` to the box ``ranges`` (``d`` pairs ``(low, high)``)."""
-    lo = np.array([r[0] for r in ranges], dtype=np.float64)
-    hi = np.array([r[1] for r in ranges], dtype=np.float64)
-    out: FloatArray = lo + 0.5 * (a + 1.0) * (hi - lo)
+    lo, width = _range_arrays(ranges)
+    out: FloatArray = lo + 0.5 * (a + 1.0) * width
     return out
+
+
+#: ``(low, high - low)`` arrays of the ranges :func:`denormalize` has seen.
+_RANGE_ARRAYS: dict[tuple[tuple[float, float], ...], tuple[FloatArray, FloatArray]] = {}
+
+
+def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, FloatArray]:
+    """The read-only ``low`` and ``high - low`` arrays of ``ranges`` (built once per ranges)."""
+    try:
+        hit = _RANGE_ARRAYS.get(ranges)  # type: ignore[call-overload]
+    except TypeError:  # not hashable (lists)
+        hit = None
+    if hit is None:
+        key = tuple((r[0], r[1]) for r in ranges)
+        lo = np.array([r[0] for r in key], dtype=np.float64)
+        hi = np.array([r[1] for r in key], dtype=np.float64)
+        width = hi - lo
+        lo.setflags(write=False)
+        width.setflags(write=False)
+        if len(_RANGE_ARRAYS) >= 64:
+            _RANGE_ARRAYS.clear()
+        hit = _RANGE_ARRAYS[key] = (lo, width)
+    return hit
 
 
 def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
@@ -90,12 +157,18 @@ def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray
     return out
 
 
+_F64 = np.dtype(np.float64)
+
+
 def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
 
     Tuples of floats are immutable, compare exactly and pickle small, which suits the
     step infos a tree search keeps for each of its nodes.
     """
+    if type(pose) is np.ndarray and pose.dtype is _F64 and pose.shape == (3,):
+        x, y, theta = pose.tolist()
+        return x, y, theta
     x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).reshape(3))
     return x, y, theta
 
@@ -196,6 +269,18 @@ class EnvState(Generic[TaskT]):
 
     __hash__ = None  # type: ignore[assignment]
 
+    def with_task(self, task: TaskT) -> EnvState[TaskT]:
+        """This snapshot with another task record, sharing the physics and generator state.
+
+        What an action that changed only the task progress leads to (an infeasible one);
+        built without the dataclass ``__init__`` (the other fields are this snapshot's).
+        """
+        out: EnvState[TaskT] = object.__new__(EnvState)
+        out.__dict__.update(
+            physics=self.physics, signature=self.signature, task=task, rng_state=self.rng_state
+        )
+        return out
+
 
 @dataclass(frozen=True)
 class StepTiming:
@@ -227,6 +312,12 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     metadata: dict[str, Any] = {"render_modes": list(RENDER_MODES), "render_fps": 2}  # noqa: RUF012
     #: The subclass's settings (a frozen dataclass with ``precheck`` and ``infeasible_reward``).
     config: Any
+    #: The envs' contract that :class:`voot.envs.planning.EnvProblem` relies on to undo
+    #: a rejected check cheaply: an infeasible action changes nothing but the task
+    #: record (its step count); the physics and the generator are untouched (the envs
+    #: move the robot and objects only once every check has passed). A subclass that
+    #: breaks it must set this to False.
+    INFEASIBLE_CHANGES_TASK_ONLY: ClassVar[bool] = True
     #: Signature of the physics part of snapshots.
     STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
 
@@ -269,6 +360,9 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
         self._renderer: mujoco.Renderer | None = None
         self._box_cache: dict[int, tuple[bytes, Box2D]] = {}
+        # the generator state of the last snapshot, shared by the snapshots after it while
+        # it does not change (see _rng_snapshot)
+        self._rng_shared: Mapping[str, Any] | None = None
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
 
@@ -302,6 +396,19 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
         return EnvProblem(self if env is None else env)
 
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """:meth:`step` without the observation: ``(reward, terminated, truncated, info)``.
+
+        The state changes exactly as by :meth:`step`; the observation of the new state is
+        ``self._observation()`` whenever it is wanted.
+        """
+        raise NotImplementedError
+
+    def step(self, action: ArrayLike) -> tuple[FloatArray, float, bool, bool, dict[str, Any]]:
+        """Gymnasium's step: :meth:`transition`, then the observation of the new state."""
+        reward, terminated, truncated, info = self.transition(action)
+        return self._observation(), reward, terminated, truncated, info
+
     # ----- actions -------------------------------------------------------------------------
     @property
     def action_dim(self) -> int:
@@ -324,6 +431,11 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
             raise ValueError(
                 f"action must have shape {space.shape} (normalised units in [-1, 1]), got shape {a.shape}"
             )
+        # fast path: every entry finite (a NaN or infinity makes the sum non-finite) and in
+        # [-1, 1], so clipping would return the same numbers
+        values = a.tolist()
+        if min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values)):
+            return a.copy(), False
         if not np.all(np.isfinite(a)):
             bad = np.flatnonzero(~np.isfinite(a)).tolist()
             raise ValueError(f"action has NaN or infinite entries at indices {bad}: {a.tolist()}")
@@ -362,12 +474,26 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         physics = np.empty(self._state_size)
         mujoco.mj_getState(self.model, self.data, physics, self.STATE_SIGNATURE)
         physics.setflags(write=False)
-        return EnvState(
-            physics,
-            self.STATE_SIGNATURE,
-            self.task,
-            copy.deepcopy(self.np_random.bit_generator.state),
-        )
+        return EnvState(physics, self.STATE_SIGNATURE, self.task, self._rng_snapshot())
+
+    def _rng_snapshot(self) -> Mapping[str, Any]:
+        """The generator's state for a snapshot, shared with the last one if unchanged.
+
+        ``bit_generator.state`` builds a fresh dict on every read; for the PCG64 family
+        (gymnasium's default) it holds only strings and ints, so equality is cheap and
+        exact, and one dict can stand for every snapshot taken while nobody draws from the
+        generator (no step does). Other bit generators (whose states hold arrays) get a
+        deep copy per snapshot, as before.
+        """
+        bg = self.np_random.bit_generator
+        state = bg.state
+        if not isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
+            return copy.deepcopy(state)
+        shared = self._rng_shared
+        if shared is not None and shared == state:
+            return shared
+        self._rng_shared = state
+        return state
 
     def set_state(self, state: EnvState[TaskT]) -> None:
         """Return to the snapshot ``state`` exactly."""
@@ -383,7 +509,12 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
             )
         mujoco.mj_setState(self.model, self.data, state.physics, self.STATE_SIGNATURE)
         self.task = state.task
-        self.np_random.bit_generator.state = copy.deepcopy(dict(state.rng_state))
+        bg = self.np_random.bit_generator
+        if isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
+            bg.state = dict(state.rng_state)  # type: ignore[assignment]  # read, not kept
+            self._rng_shared = state.rng_state
+        else:
+            bg.state = copy.deepcopy(dict(state.rng_state))
 
     # ----- gymnasium API -------------------------------------------------------------------
     def reset(

@@ -248,3 +248,15 @@ def test_config_and_seed() -> None:
         _Counter(box, config=OptimizerConfig())
     assert opt.rng.random() == np.random.default_rng(3).random()
     assert OptimizerConfig.paper_grid() == {}
+
+
+def test_cube_is_shared_and_width_is_read_only() -> None:
+    from voot.optim.base import Bounds
+
+    a, b = Bounds.cube(-1.0, 1.0, 6), Bounds.cube(-1, 1, 6)
+    assert a is b and a.dim == 6
+    assert Bounds.cube(-1.0, 1.0, 3) is not a
+    box = Bounds([0.0, -2.0], [1.0, 3.0])
+    assert box.width.tolist() == [1.0, 5.0] and box.dim == 2
+    with pytest.raises(ValueError):
+        box.width[0] = 2.0

@@ -538,3 +538,112 @@ def test_plan_speed_report() -> None:
     for name, ts in by_outcome.items():
         print(f"{name:>7}: {len(ts):4d} queries, median {np.median(ts) * 1e3:.2f} ms")
     assert np.median(r) < 5.0
+
+
+# ----------------------------------------------------------------------------------------
+# the float shortcuts and the no-path shortcut answer as the array code does
+# ----------------------------------------------------------------------------------------
+def _lists(boxes: list[Box2D]) -> tuple[list[float], ...]:
+    scene = bp._Scene(0.5, bp.BoxArrays.from_boxes([]), bp.BoxArrays.from_boxes(boxes))
+    return bp._box_lists(scene)
+
+
+def test_single_segment_and_point_tests_match_the_arrays() -> None:
+    boxes = house_static() + house_movable()
+    arrays = bp.BoxArrays.from_boxes(boxes)
+    lists = _lists(boxes)
+    rng = np.random.default_rng(11)
+    pts = rng.uniform((-2.5, -4.5), (6.5, 4.5), (4000, 2))
+    # and segments that graze a box corner at exactly the radius
+    for k in range(0, 4000, 4):
+        b = boxes[k % len(boxes)]
+        pts[k] = b.corners()[k % 4] + 0.5 * np.array([1.0, 0.0])
+    hint = [0]
+    for k in range(0, len(pts) - 1, 2):
+        p, q = pts[k], pts[k + 1]
+        r = [0.3, 0.48, 0.5, 0.9][k % 4]
+        ref = bool(bp.segments_hit_any(p[None], q[None], arrays, r)[0])
+        got = bp._segment_hits_any(
+            float(p[0]), float(p[1]), float(q[0]), float(q[1]), lists, r, hint
+        )
+        assert got == ref
+        ref_pt = bool(bp.points_hit_boxes(p[None], arrays, r).any())
+        assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r) == ref_pt
+
+
+def test_no_path_shortcut_agrees_with_the_search() -> None:
+    """_no_path says True only where _search finds nothing, and plans are unchanged."""
+    static, movable = house_static(), house_movable()
+    fast = BasePlanner(WORKSPACE, static)
+    for radius in (0.45, 0.52):
+        poses = random_free_poses(fast, radius, movable, 60, seed=4)
+        for k in range(0, len(poses) - 1, 2):
+            s, g = poses[k], poses[k + 1]
+            path = fast.plan(s, g, radius, movable)
+            scene = fast._scene(fast._inflated_radius(radius), tuple(movable))
+            if scene.graph is None:
+                continue  # the straight line was free: no search
+            ends = np.array([[s.x, s.y], [g.x, g.y]])
+            r_hit = scene.radius - fast.config.contact_tolerance
+            full = fast._search(scene.graph, ends, scene.boxes, r_hit)
+            assert fast._no_path(scene, s.x, s.y, g.x, g.y, r_hit) == (full is None)
+            assert (path is None) == (full is None)
+    # a door too narrow for the disc: start and goal in different components
+    blocked = fast.plan((0.0, 0.0, 0.0), (4.5, -1.5, 0.0), 0.55, movable)
+    assert blocked is None
+
+
+def test_box_fast_is_the_constructed_box() -> None:
+    a = Box2D(1.0, -2.0, 0.5, 0.25, 0.3, "x")
+    b = Box2D.fast(np.float64(1.0), -2.0, 0.5, 0.25, 0.3, "x")
+    assert a == b and hash(a) == hash(b) and vars(a) == vars(b)
+    assert pickle.loads(pickle.dumps(b)) == a
+    with pytest.raises(ValueError, match="half_x"):
+        Box2D.fast(0.0, 0.0, -1.0, 1.0, 0.0, "bad")
+    with pytest.raises(ValueError, match="finite"):
+        Box2D.fast(math.nan, 0.0, 1.0, 1.0, 0.0, "bad")
+
+
+def _path_length_arrays(w: np.ndarray, rw: float) -> float:
+    diff = np.diff(w, axis=0)
+    trans = np.hypot(diff[:, 0], diff[:, 1])
+    rot = np.abs(wrap_angle(diff[:, 2]))
+    return float(np.sum(trans) + rw * np.sum(rot))
+
+
+def test_straight_paths_are_the_array_version() -> None:
+    rng = np.random.default_rng(8)
+    for w in rng.uniform(-7, 7, (2000, 2, 3)):
+        for rw in (1.0, 0.3):
+            assert path_length(w, rw) == _path_length_arrays(w, rw)
+    w = np.array([[0.0, 0.0, math.pi], [1.0, 1.0, -math.pi]])  # a turn of exactly 2 pi
+    assert path_length(w, 1.0) == _path_length_arrays(w, 1.0)
+    planner = BasePlanner(WORKSPACE, [])
+    for s, g in rng.uniform(-1.0, 1.0, (200, 2, 3)):
+        path = planner.plan(s, g, 0.4)
+        assert path is not None and path.waypoints.shape == (2, 3)
+        # what _make_path computed for two points: the ends with their own headings
+        assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
+        assert path.length == _path_length_arrays(np.array([s, g]), 1.0)
+
+
+def test_colliding_names_as_the_array_test() -> None:
+    static, movable = house_static(), house_movable()
+    planner = BasePlanner(WORKSPACE, static)
+    boxes = bp.BoxArrays.from_boxes(static + movable)
+    rng = np.random.default_rng(9)
+    seen = 0
+    for x, y, r in rng.uniform((-2.5, -4.5, 0.3), (6.5, 4.5, 0.9), (1500, 3)):
+        got = planner.colliding((x, y, 0.0), r, movable)
+        r_hit = r - planner.config.contact_tolerance
+        hits = np.flatnonzero(bp.points_hit_boxes(np.array([[x, y]]), boxes, r_hit)[0])
+        ref = [boxes.names[k] for k in hits]
+        if not planner._inside_xy(x, y, r_hit):
+            ref.insert(0, "workspace")
+        assert got == ref
+        seen += bool(got)
+        # the same with the scene cached (a planning query made it)
+        planner.plan((0.0, 0.0, 0.0), (x, y, 0.0), r, movable)
+        assert planner.colliding((x, y, 0.0), r, movable) == ref
+    assert 100 < seen < 1400
+    assert planner.colliding((0.0, 0.0, 0.0), 0.4) == []

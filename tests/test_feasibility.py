@@ -171,3 +171,103 @@ def test_set_and_read_object_pose() -> None:
     obj = movable_objects(model)[0]
     set_object_pose(data, obj, (1.0, -2.0, 0.0, 2.5))
     np.testing.assert_allclose(object_pose(data, obj), [1.0, -2.0, 0.0, 2.5], atol=1e-12)
+
+
+# ----- float versions and the filtered collision model match the originals ----------------
+def _side_grasp_numpy(obj, obj_pose, base_heading, grasp_angle, hf, df, standoff=0.0):  # type: ignore[no-untyped-def]
+    """side_grasp as it was written with numpy vectors (the reference)."""
+    x, y, z, yaw = (float(v) for v in np.asarray(obj_pose, dtype=np.float64))
+    c, s = math.cos(yaw), math.sin(yaw)
+    faces = (
+        ("+x", np.array([c, s]), float(obj.half[0]), float(obj.half[1])),
+        ("-x", np.array([-c, -s]), float(obj.half[0]), float(obj.half[1])),
+        ("+y", np.array([-s, c]), float(obj.half[1]), float(obj.half[0])),
+        ("-y", np.array([s, -c]), float(obj.half[1]), float(obj.half[0])),
+    )
+    heading = np.array([math.cos(base_heading), math.sin(base_heading)])
+    k = int(np.argmin([float(n @ heading) for _, n, _, _ in faces]))
+    face, n, half_normal, half_across = faces[k]
+    tangent = np.array([-n[1], n[0]])
+    cx = x + c * obj.center[0] - s * obj.center[1]
+    cy = y + s * obj.center[0] + c * obj.center[1]
+    p_xy = (
+        np.array([cx, cy]) + (half_normal + standoff) * n + (2.0 * df - 1.0) * half_across * tangent
+    )
+    p = np.array([p_xy[0], p_xy[1], z + hf * obj.height])
+    approach = np.array([-n[0], -n[1], 0.0])
+    y0 = np.array([tangent[0], tangent[1], 0.0])
+    z0 = np.cross(approach, y0)
+    ca, sa = math.cos(grasp_angle), math.sin(grasp_angle)
+    y_axis = ca * y0 + sa * z0
+    z_axis = np.cross(approach, y_axis)
+    return p, np.column_stack([approach, y_axis, z_axis]), face
+
+
+def test_side_grasp_is_bit_identical_to_the_numpy_version() -> None:
+    model = load_model("kitchen")
+    objects = movable_objects(model)
+    rng = np.random.default_rng(5)
+    for k in range(800):
+        obj = objects[k % len(objects)]
+        yaw = float(rng.uniform(-4, 4))
+        pose = (*rng.uniform(-3, 3, 3).tolist(), yaw)
+        # every 4th heading at 45 degrees to the object: two faces tie
+        heading = (
+            yaw + math.pi / 4 + math.pi / 2 * int(rng.integers(4))
+            if k % 4 == 0
+            else float(rng.uniform(-4, 4))
+        )
+        args = (
+            np.float64(rng.uniform(0.7, 3.2)),
+            np.float64(rng.uniform(0.5, 1)),
+            np.float64(rng.uniform(0.1, 0.9)),
+        )
+        g = side_grasp(obj, pose, heading, *args, standoff=0.01 * (k % 2))
+        p, r, face = _side_grasp_numpy(obj, pose, heading, *args, standoff=0.01 * (k % 2))
+        assert g.face == face
+        assert g.position.tobytes() == p.tobytes() and g.rotation.tobytes() == r.tobytes()
+
+
+def test_collision_model_filter_reports_the_same_contacts() -> None:
+    """The checker's filtered copy reports what the full model reports (robot/held pairs)."""
+    model = load_model("kitchen")
+    robot = Robot(model)
+    objects = movable_objects(model)
+    checker = CollisionChecker(model, robot, objects)
+    assert checker.model is not model and checker._held_affinity  # the filter is in use
+    plain = CollisionChecker(model, robot, objects)
+    plain.model, plain._held_affinity = model, {}  # the unfiltered reference
+    plain.data = mujoco.MjData(model)
+    plain._affinity_view, plain._qpos_view = model.geom_conaffinity, plain.data.qpos
+    data = mujoco.MjData(model)
+    rng = np.random.default_rng(2)
+    seen_hits = 0
+    for k in range(600):
+        base = (float(rng.uniform(-2, 6)), float(rng.uniform(-4, 4)), float(rng.uniform(-3, 3)))
+        held = None if k % 3 == 0 else int(rng.integers(len(objects)))
+        arm = TUCK if k % 2 else rng.uniform(-1.5, 1.5, 7)
+        poses = None
+        if held is not None:
+            poses = {held: (base[0] + 0.6, base[1], 0.0, float(rng.uniform(-3, 3)))}
+        a = checker.check(data.qpos, base, arm, held=held, object_poses=poses)
+        b = plain.check(data.qpos, base, arm, held=held, object_poses=poses)
+        assert a.hits == b.hits
+        seen_hits += bool(a.hits)
+    assert 50 < seen_hits < 590  # both outcomes were exercised
+    assert np.array_equal(
+        checker.model.geom_conaffinity[list(objects[0].geoms)], [1] * len(objects[0].geoms)
+    )
+
+
+def test_closest_seed_is_the_sorted_violation_choice(ik: ArmIK) -> None:
+    """_closest_seed picks what sorting by (_violation, index) picked."""
+    rng = np.random.default_rng(4)
+    for k in range(400):
+        seeds = list(rng.uniform(-3.5, 3.5, (int(rng.integers(1, 9)), 7)))
+        if k % 3 == 0:  # inside the limits, and duplicates (exact ties)
+            seeds = [np.clip(q, ik.lower, ik.upper) for q in seeds] + [seeds[0]]
+        if k % 5 == 0 and len(seeds) > 1:
+            seeds[1] = seeds[0].copy()
+        viol = [ik._violation(q) for q in seeds]
+        order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
+        assert ik._closest_seed(seeds) == (order[0], viol[order[0]] == 0.0)

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
@@ -95,3 +97,155 @@ def test_conveyor_problem() -> None:
 def test_rejects_other_envs() -> None:
     with pytest.raises(ValueError, match="KitchenClearingEnv or ConveyorPackingEnv"):
         EnvProblem(gym.make("voot/ShekelChain-v0"))
+
+
+# ----- the lean check path ---------------------------------------------------------------
+def _plain_check(p: EnvProblem, action: np.ndarray) -> tuple[StepResult, object, object]:
+    """The check as it was: full step, snapshot, full restore (the reference)."""
+    u = p.unwrapped
+    before = u.get_state()
+    obs, reward, terminated, truncated, info = u.step(p.to_env_action(action))
+    after = u.get_state()
+    u.set_state(before)
+    res = StepResult(
+        float(reward),
+        bool(info["feasible"]),
+        bool(terminated or truncated),
+        float(info["goal_bonus"]),
+        info,
+    )
+    return res, after, obs
+
+
+def _same_info(a: dict, b: dict) -> bool:
+    if a.keys() != b.keys():
+        return False
+    for k in a:
+        x, y = a[k], b[k]
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            if not np.array_equal(np.asarray(x), np.asarray(y)):
+                return False
+        elif isinstance(x, list) and x and isinstance(x[0], np.ndarray):
+            if len(x) != len(y) or not all(np.array_equal(u, v) for u, v in zip(x, y, strict=True)):
+                return False
+        elif x != y:
+            return False
+    return True
+
+
+def _robot_env_ids() -> list[str]:
+    """Every registered id of the two robot domains (any version)."""
+    ids = []
+    for env_id, spec in gym.registry.items():
+        u = spec.entry_point if isinstance(spec.entry_point, str) else ""
+        if env_id.startswith("voot/") and ("kitchen" in u or "conveyor" in u):
+            ids.append(env_id)
+    return sorted(ids)
+
+
+@pytest.mark.parametrize("env_id", _robot_env_ids())
+def test_lean_check_matches_plain_step(env_id: str) -> None:
+    """is_feasible + step give what step-record-restore gave, feasible or not.
+
+    Also the check of the INFEASIBLE_CHANGES_TASK_ONLY contract of every registered
+    version: the plain path takes a full snapshot after each step.
+    """
+    env = gym.make(env_id).unwrapped
+    p = EnvProblem(env, seed=0)
+    kinematic = env.config.precheck == "kinematic"
+    scripted = (
+        kitchen_actions(env) if isinstance(env, KitchenClearingEnv) else conveyor_actions(env)
+    )
+    rng = np.random.default_rng(3)
+    for k, good in enumerate(scripted[:4]):
+        dim = p.action_bounds().dim
+        for action in [*rng.uniform(-1, 1, (25, dim)), np.asarray(good)[:dim]]:
+            ref, ref_after, _ = _plain_check(p, action)
+            before = p.snapshot()
+            ok = p.is_feasible(action)
+            check = p.last_check
+            assert p.unwrapped.get_state() == before  # the check left the state alone
+            if not ref.feasible:  # the contract: only the task record changed
+                assert np.array_equal(ref_after.physics, before.physics)
+                assert ref_after.rng_state == before.rng_state
+            if kinematic:  # v1: a narrower pre-check; failing it means failing the step
+                assert ok or not ref.feasible
+                continue
+            assert ok == ref.feasible
+            assert (
+                check is not None and check.reward == ref.reward and check.terminal == ref.terminal
+            )
+            assert _same_info(check.info, ref.info)
+        # execute the scripted action: the cached result and the next snapshot are exact
+        res = p.step(np.asarray(good)[:dim])
+        assert res.feasible and (kinematic or res is check)
+        assert p.snapshot() == ref_after == p.unwrapped.get_state(), k
+
+
+def test_infeasible_check_is_undone_by_the_task_alone(kitchen: KitchenClearingEnv) -> None:
+    """An infeasible step changes only the step count (what _jump relies on)."""
+    p = EnvProblem(kitchen, seed=0)
+    before = p.snapshot()
+    bad = np.full(6, 1.0)  # the far corner of the box: the robot leaves the house
+    assert not p.is_feasible(bad)
+    after = p._cache[4]  # type: ignore[index]
+    assert after.physics is before.physics and after.rng_state is before.rng_state
+    assert after.task.steps == before.task.steps + 1
+    res = p.step(bad)
+    assert not res.feasible and p.unwrapped.task.steps == before.task.steps + 1
+    assert np.array_equal(p.unwrapped.get_state().physics, before.physics)
+
+
+def test_gymnasium_step_is_transition_plus_observation() -> None:
+    env = gym.make("voot/KitchenClearing-v0").unwrapped
+    env.reset(seed=0)
+    s = env.get_state()
+    a = kitchen_actions(env)[0]
+    obs, reward, terminated, truncated, info = env.step(a)
+    env.set_state(s)
+    r2, t2, tr2, info2 = env.transition(a)
+    assert (reward, terminated, truncated) == (r2, t2, tr2) and _same_info(info, info2)
+    assert np.array_equal(obs, env._observation())
+
+
+# ----- the v0 curves, bit for bit ----------------------------------------------------------
+V0_CURVES = Path(__file__).parent / "data" / "v0_curves.json"
+
+
+def _v0_runs() -> list[dict]:
+    return json.loads(V0_CURVES.read_text())["runs"]
+
+
+@pytest.mark.parametrize("run", _v0_runs(), ids=lambda r: f"{r['env_id']}-{r['planner']}")
+def test_v0_curves_reproduce_bit_for_bit(run: dict) -> None:
+    """The curves of the code at 6af33b5 (tests/data/v0_curves.json) come out exactly.
+
+    They were generated by that commit's code (``voot.bench.speedup.run_workload`` on a
+    ``git archive`` of it), each with the domain options of voot.bench.problems.
+    """
+    from voot.bench.problems import domain_options
+    from voot.tree import plan
+
+    env = gym.make(run["env_id"], disable_env_checker=True)
+    p = EnvProblem(env.unwrapped, seed=run["seed"])
+    res = plan(
+        p, run["planner"], run["simulations"], seed=run["seed"],
+        **domain_options(run["env_id"], None, run["planner"]),
+    )  # fmt: skip
+    assert res.n_steps == run["n_steps"]
+    assert res.n_feasibility_checks == run["n_feasibility_checks"]
+    assert float(res.best_return).hex() == run["best_return"]
+    assert [float(v).hex() for v in res.best_return_curve] == run["curve"]
+
+
+def test_an_env_moved_behind_the_problem_is_noticed(kitchen: KitchenClearingEnv) -> None:
+    p = EnvProblem(kitchen, seed=0)
+    a = kitchen_actions(kitchen)[0]
+    s0 = p.snapshot()
+    assert p.is_feasible(a)
+    kitchen.step(a)  # not through the problem
+    assert p.snapshot() != s0 and p.snapshot() == kitchen.get_state()
+    with pytest.raises(ValueError, match="3 entries"):
+        p.step(a)  # not the check's cached result: stepped from the new state (a place)
+    kitchen.reset(seed=0)
+    assert p.snapshot() == s0

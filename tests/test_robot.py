@@ -17,6 +17,7 @@ from voot.envs.robot import (
     base_footprint,
     carry_disc,
     compose2d,
+    compose_inverse2d,
     inverse2d,
 )
 from voot.envs.scene import load_model
@@ -60,3 +61,34 @@ def test_se2_compose_inverse() -> None:
     ab = compose2d(a, b)
     np.testing.assert_allclose(compose2d(inverse2d(a), ab), b, atol=1e-12)
     np.testing.assert_allclose(compose2d(a, inverse2d(a))[:2], [0.0, 0.0], atol=1e-12)
+
+
+def test_float_se2_helpers_match_numpy() -> None:
+    """compose2d/inverse2d on floats give the numbers the numpy-scalar versions gave."""
+    rng = np.random.default_rng(0)
+    for a, b in rng.uniform(-7, 7, (500, 2, 3)):
+        c, s = math.cos(a[2]), math.sin(a[2])
+        ref = np.array([a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2]])
+        assert compose2d(a, b).tobytes() == ref.tobytes()
+        assert compose2d(tuple(a.tolist()), list(b)).tobytes() == ref.tobytes()
+        inv = np.array([-c * a[0] - s * a[1], s * a[0] - c * a[1], -a[2]])
+        assert inverse2d(a).tobytes() == inv.tobytes()
+        assert inverse2d(tuple(a.tolist())).tobytes() == inv.tobytes()  # remembered
+        assert inverse2d(tuple(a.tolist())).tobytes() == inv.tobytes()
+        rel = tuple(b.tolist())
+        assert compose_inverse2d(a, rel).tobytes() == compose2d(a, inverse2d(b)).tobytes()
+    out = inverse2d((1.0, 2.0, 0.5))
+    out[0] = 99.0  # a fresh array every time
+    assert inverse2d((1.0, 2.0, 0.5))[0] != 99.0
+
+
+def test_compose_inverse_tuple_is_pose_tuple_of_the_array() -> None:
+    from voot.envs.robot import compose_inverse_tuple
+    from voot.envs.task_env import pose_tuple
+
+    rng = np.random.default_rng(1)
+    for a, b in rng.uniform(-7, 7, (300, 2, 3)):
+        rel = tuple(b.tolist())
+        got = compose_inverse_tuple(tuple(a.tolist()), rel)
+        assert got == pose_tuple(compose_inverse2d(a, rel))
+        assert all(type(v) is float for v in got)

@@ -63,3 +63,49 @@ def test_rectangle_region_tests() -> None:
     assert not rect_overlaps(Box2D(5.0, 1.0, 0.5, 0.5), region)
     # a rotated box whose bounding box overlaps but which itself does not
     assert not rect_overlaps(Box2D(4.6, 2.6, 0.5, 0.1, -math.pi / 4), region)
+
+
+# ----- the float shortcuts decide as the corner arrays do ---------------------------------
+def _inside_corners(box: Box2D, b: tuple[float, float, float, float]) -> bool:
+    c = box.corners()
+    return bool(
+        (c[:, 0] >= b[0]).all() and (c[:, 0] <= b[1]).all() and (c[:, 1] >= b[2]).all()
+        and (c[:, 1] <= b[3]).all()
+    )  # fmt: skip
+
+
+def _random_boxes(n: int, bounds: tuple[float, float, float, float]) -> list[Box2D]:
+    """Random rectangles, half of them moved to touch an edge of ``bounds`` within 1e-12."""
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    out = []
+    for k in range(n):
+        hx, hy = rng.uniform(0.05, 0.6, 2)
+        yaw = float(rng.choice([0.0, math.pi / 2, math.pi / 4, rng.uniform(0, 2 * math.pi)]))
+        cx, cy = rng.uniform(bounds[0], bounds[1]), rng.uniform(bounds[2], bounds[3])
+        box = Box2D(float(cx), float(cy), float(hx), float(hy), yaw, "b")
+        if k % 2:  # shift so that the extreme corner lies (almost) on an edge
+            c = box.corners()
+            edge = int(rng.integers(4))
+            delta = float(rng.choice([0.0, 1e-12, -1e-12, 5e-10, -5e-10]))
+            if edge == 0:
+                cx += bounds[0] - c[:, 0].min() + delta
+            elif edge == 1:
+                cx += bounds[1] - c[:, 0].max() + delta
+            elif edge == 2:
+                cy += bounds[2] - c[:, 1].min() + delta
+            else:
+                cy += bounds[3] - c[:, 1].max() + delta
+            box = Box2D(float(cx), float(cy), float(hx), float(hy), yaw, "b")
+        out.append(box)
+    return out
+
+
+def test_rect_inside_and_overlaps_agree_with_the_corner_tests() -> None:
+    from voot.envs import scene
+
+    bounds = (-2.0, 6.0, -4.0, 4.0)
+    for box in _random_boxes(3000, bounds):
+        assert rect_inside(box, bounds) == _inside_corners(box, bounds)
+        assert rect_overlaps(box, bounds) == scene._rect_overlaps_sat(box, bounds)

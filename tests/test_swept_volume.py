@@ -148,3 +148,23 @@ def test_bad_input(call, match: str) -> None:
 def test_no_objects() -> None:
     assert obstacles_on_path(STRAIGHT, R, []) == []
     assert path_hits(STRAIGHT, R, []).shape == (0,)
+
+
+def test_path_hits_remembered_answers_are_the_fresh_ones() -> None:
+    from voot.envs import swept_volume as sv
+
+    rng = np.random.default_rng(6)
+    path = np.array([[-1.5, -1.5], [-1.0, 0.5], [0.0, 2.5]])
+    boxes = [
+        Box2D(float(x), float(y), 0.2, 0.3, float(t), f"b{k}")
+        for k, (x, y, t) in enumerate(rng.uniform((-3, -3, 0), (2, 4, 6), (300, 3)))
+    ]
+    fresh = sv._path_hits_arrays(path, 0.48 + 1e-9, boxes)
+    sv._PATH_HITS.clear()
+    first = path_hits(path, 0.48, boxes[:150])
+    again = path_hits(path, 0.48, boxes[::-1])  # half remembered, in another order
+    assert first.tolist() == fresh[:150]
+    assert again.tolist() == fresh[::-1]
+    assert 10 < sum(fresh) < 290
+    with pytest.raises(ValueError, match="must be a Box2D"):
+        path_hits(path, 0.48, [boxes[0], "nope"])  # type: ignore[list-item]

@@ -32,6 +32,10 @@ from numpy.typing import ArrayLike, NDArray
 FloatArray = NDArray[np.float64]
 
 
+#: The boxes :meth:`Bounds.cube` has built, by ``(class, low, high, dim)``.
+_CUBES: dict[tuple[type, float, float, int], Bounds] = {}
+
+
 @dataclass(frozen=True, eq=False)
 class Bounds:
     """A box ``[lower, upper]`` in R^d with finite, strictly ordered bounds.
@@ -62,15 +66,31 @@ class Bounds:
             )
         lo.setflags(write=False)
         hi.setflags(write=False)
+        width = hi - lo
+        width.setflags(write=False)
         object.__setattr__(self, "lower", lo)
         object.__setattr__(self, "upper", hi)
+        # derived once: tree search samples a node's box at every proposal
+        object.__setattr__(self, "_width", width)
+        object.__setattr__(self, "_dim", int(lo.size))
 
     @classmethod
     def cube(cls, low: float, high: float, dim: int) -> Bounds:
-        """The box ``[low, high]^dim``."""
+        """The box ``[low, high]^dim``.
+
+        Boxes are immutable, so one instance per ``(low, high, dim)`` is kept and handed
+        out again: environments ask for their operator's cube at every step.
+        """
         if dim < 1:
             raise ValueError(f"dim must be >= 1, got {dim}")
-        return cls(np.full(dim, low), np.full(dim, high))
+        key = (cls, float(low), float(high), int(dim))
+        box = _CUBES.get(key)
+        if box is None:
+            box = cls(np.full(dim, low), np.full(dim, high))
+            if len(_CUBES) >= 256:
+                _CUBES.clear()
+            _CUBES[key] = box
+        return box
 
     @classmethod
     def coerce(cls, bounds: Bounds | Sequence[Sequence[float]] | ArrayLike) -> Bounds:
@@ -92,11 +112,12 @@ class Bounds:
 
     @property
     def dim(self) -> int:
-        return int(self.lower.size)
+        return self._dim  # type: ignore[attr-defined,no-any-return]
 
     @property
     def width(self) -> FloatArray:
-        return self.upper - self.lower
+        """``upper - lower`` (read-only, computed once)."""
+        return self._width  # type: ignore[attr-defined,no-any-return]
 
     @property
     def center(self) -> FloatArray:

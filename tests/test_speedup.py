@@ -1,0 +1,98 @@
+"""``voot-bench speedup`` (voot.bench.speedup): baseline commit vs current code; no timing asserts."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from voot.bench import speedup
+from voot.bench.cli import main
+from voot.bench.speedup import SpeedupError, Workload
+
+
+def _checkout() -> Path:
+    try:
+        return speedup.repo_root()
+    except SpeedupError as exc:
+        pytest.skip(f"not in a git checkout: {exc}")
+
+
+def test_select_workloads() -> None:
+    names = [w.name for w in speedup.select_workloads(None)]
+    assert names == ["kitchen-voot", "conveyor-pwuct"]
+    ws = speedup.select_workloads(["conveyor-pwuct"], ["7"])
+    assert [(w.name, w.simulations, w.planner) for w in ws] == [("conveyor-pwuct", 7, "pw_uct")]
+    ws = speedup.select_workloads(None, ["kitchen-voot=9"])
+    assert [w.simulations for w in ws] == [9, 3000]
+    for bad, match in ((["x=3"], "unknown workload"), (["0"], ">= 1"), (["a"], "N or NAME=N")):
+        with pytest.raises(SpeedupError, match=match):
+            speedup.select_workloads(None, bad)
+    with pytest.raises(SpeedupError, match="unknown workload"):
+        speedup.select_workloads(["nope"])
+
+
+def test_outside_a_checkout_says_so(tmp_path: Path) -> None:
+    with pytest.raises(SpeedupError, match="git checkout"):
+        speedup.repo_root(tmp_path)
+    for d in ("voot", "envs", "models", "benchmarks"):
+        (tmp_path / d).mkdir()
+    if shutil.which("git") is not None:
+        with pytest.raises(SpeedupError, match="pip-installed wheel"):
+            speedup.repo_root(tmp_path)
+
+
+def test_unknown_commit() -> None:
+    root = _checkout()
+    with pytest.raises(SpeedupError, match="not in the repository"):
+        speedup.resolve_commit(root, "0" * 40)
+
+
+def test_import_root_lays_out_the_packages(tmp_path: Path) -> None:
+    root = _checkout()
+    dest = speedup.import_root(root, tmp_path / "current")
+    for name in ("envs", "models", "bench", "tree", "__init__.py"):
+        assert (dest / "voot" / name).exists(), name
+    code = "import voot.envs.kitchen, voot.bench.speedup as s; print(s.__file__)"
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=dest,
+        env={**os.environ, "PYTHONPATH": str(dest)},
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip().startswith(str(dest))
+
+
+def test_compare_tiny_workloads() -> None:
+    _checkout()
+    workloads = [
+        Workload("kitchen-voot", "voot/KitchenClearing-v0", "voot", 4),
+        Workload("conveyor-pwuct", "voot/ConveyorPacking-v0", "pw_uct", 1),
+    ]
+    full, current, comparisons = speedup.compare(workloads, "HEAD", curve=True)
+    assert len(full) == 40 and current
+    for c in comparisons:
+        assert c.identical and c.baseline.curve == c.current.curve
+        assert c.baseline.n_steps == c.current.n_steps > 0
+        assert c.ratio > 0 and c.current.split is not None
+        assert speedup.curve_digest([float.fromhex(v) for v in c.current.curve or ()]) == (
+            c.current.curve_sha256
+        )
+    text = speedup.format_report(full, current, comparisons)
+    assert (
+        "bit-identical: yes" in text and "ms wall per simulation" in text and "kitchen-voot" in text
+    )
+    data = speedup.report_json(full, current, comparisons)
+    assert [w["curve_identical"] for w in data["workloads"]] == [True, True]
+
+
+def test_cli_errors(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["speedup", "--workloads", "nope"]) == 2
+    assert "unknown workload" in capsys.readouterr().err

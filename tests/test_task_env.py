@@ -1,0 +1,86 @@
+"""What the two robot envs share (voot.envs.task_env): the helpers of the lean step path."""
+
+from __future__ import annotations
+
+import dataclasses
+import pickle
+
+import numpy as np
+import pytest
+
+from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig, KitchenTask
+from voot.envs.task_env import StepTiming, denormalize, normalize, pose_tuple, replace
+
+
+@pytest.fixture(scope="module")
+def kitchen() -> KitchenClearingEnv:
+    return KitchenClearingEnv()
+
+
+def test_replace_matches_dataclasses_replace() -> None:
+    t = KitchenTask(3, "pick", -1, (0.0, 0.0, 0.0), (), (1, 2), False, False)
+    for changes in ({"steps": 4}, {"operator": "place", "held": 2}, {}):
+        a, b = replace(t, **changes), dataclasses.replace(t, **changes)
+        assert a == b and hash(a) == hash(b) and vars(a) == vars(b) and type(a) is KitchenTask
+    assert replace(StepTiming(1.0), total=2.0) == StepTiming(1.0, 0.0, 0.0, 2.0)
+    with pytest.raises(TypeError):
+        replace(t, nope=1)
+    # a dataclass with __post_init__ still validates
+    with pytest.raises(ValueError, match="horizon"):
+        replace(KitchenConfig(), horizon=0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        replace(t, steps=1).steps = 2  # type: ignore[misc]
+
+
+def test_snapshots_share_the_unchanged_generator_state(kitchen: KitchenClearingEnv) -> None:
+    kitchen.reset(seed=1)
+    a, b = kitchen.get_state(), kitchen.get_state()
+    assert a.rng_state is b.rng_state and a == b
+    kitchen.np_random.random()  # someone draws: the next snapshot has its own state
+    c = kitchen.get_state()
+    assert c.rng_state is not a.rng_state and c.rng_state != a.rng_state
+    kitchen.set_state(a)
+    assert kitchen.np_random.bit_generator.state == a.rng_state
+    assert kitchen.get_state().rng_state is a.rng_state
+    # snapshots still pickle and compare by value
+    assert pickle.loads(pickle.dumps(a)) == a
+    # another bit generator: deep copies as before
+    kitchen.np_random = np.random.Generator(np.random.MT19937(3))
+    s1, s2 = kitchen.get_state(), kitchen.get_state()
+    assert s1.rng_state is not s2.rng_state
+    kitchen.np_random.random()
+    kitchen.set_state(s1)
+    assert kitchen.np_random.random() == np.random.Generator(np.random.MT19937(3)).random()
+    kitchen.reset(seed=0)
+
+
+def test_validate_action_fast_path(kitchen: KitchenClearingEnv) -> None:
+    a = np.array([0.5, -1.0, 1.0, 0.0, -0.25, 0.75])
+    out, clipped = kitchen._validate_action(a)
+    assert not clipped and out.tobytes() == a.tobytes() and out is not a
+    out, clipped = kitchen._validate_action(a * 1.5)
+    assert clipped and out.max() == 1.0 and out.min() == -1.0
+    for bad in (
+        np.full(6, np.nan),
+        np.array([0.5, np.nan, 0, 0, 0, 0]),
+        np.array([0, 0, 0, 0, 0, np.inf]),
+    ):
+        with pytest.raises(ValueError, match="NaN"):
+            kitchen._validate_action(bad)
+
+
+def test_denormalize_and_pose_tuple() -> None:
+    ranges = ((-2.0, 6.0), (-4.0, 4.0), (0.0, 6.283185307179586))
+    a = np.array([0.1, -0.7, 0.3])
+    lo = np.array([r[0] for r in ranges])
+    hi = np.array([r[1] for r in ranges])
+    ref = lo + 0.5 * (a + 1.0) * (hi - lo)
+    assert denormalize(a, ranges).tobytes() == ref.tobytes()
+    assert denormalize(a, list(ranges)).tobytes() == ref.tobytes()
+    assert np.allclose(normalize(ref, ranges), a)
+    out = denormalize(a, ranges)
+    out[0] = 9.0  # a fresh array: the cached ranges are not touched
+    assert denormalize(a, ranges).tobytes() == ref.tobytes()
+    assert pose_tuple(np.array([1.0, 2.0, 3.0])) == (1.0, 2.0, 3.0)
+    assert pose_tuple([1, 2, 3]) == (1.0, 2.0, 3.0)
+    assert all(type(v) is float for v in pose_tuple(np.array([1.0, 2.0, 3.0])))
