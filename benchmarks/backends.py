@@ -10,6 +10,7 @@ since it needs Ray). The same executors run the trees of root-parallel search.
 
 from __future__ import annotations
 
+from voot import validation as V
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 
 #: Where runs execute: any :class:`voot.parallel.Executor` (the sweep uses its
@@ -40,10 +41,8 @@ class ProcessBackend(ProcessExecutor):
         start_method: str = "spawn",
         max_pending: int | None = None,
     ) -> None:
-        if workers is not None and (
-            isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
-        ):
-            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+        if workers is not None:
+            V.integer(workers, "workers", 1)
         super().__init__(workers, start_method, max_pending=max_pending, keep_alive=False)
 
 

@@ -43,6 +43,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from voot import validation as V
 from voot.bench import problems as P
 from voot.bench.store import Row, make_row, make_run_id
 from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread, register_runner
@@ -246,11 +247,7 @@ def search_seed(spec: PlanSpec) -> np.random.SeedSequence:
 
 
 def _int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
-    out: list[int] = []
-    for v in values:
-        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < minimum:
-            raise ValueError(f"{what} must be integers >= {minimum}, got {v!r}")
-        out.append(int(v))
+    out = V.integers(values, what, minimum)
     if not out:
         raise ValueError(f"no {what} given")
     return list(dict.fromkeys(out))

@@ -107,10 +107,7 @@ class RayBackend:
         init_options: dict[str, Any] | None = None,
         on_lost: Callable[..., Row] = failed_row,
     ) -> None:
-        if workers is not None and (
-            isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
-        ):
-            raise ValueError(f"workers must be an integer >= 1 or None, got {workers!r}")
+        V.optional_integer(workers, "workers", 1)
         V.integer(max_tries, "max_tries", 1)
         if address is not None and (not isinstance(address, str) or not address.strip()):
             raise ValueError(f"address must be a Ray address such as 'auto', got {address!r}")

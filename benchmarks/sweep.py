@@ -48,6 +48,7 @@ from typing import Any, ClassVar, Protocol, TypeVar
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from voot import validation as V
 from voot.bench.backends import (  # re-exported: voot.bench.sweep.make_backend ...
     BACKENDS,  # noqa: F401
     Backend,
@@ -205,11 +206,7 @@ def method_grid(method: str, grid: str = "paper") -> list[dict[str, Any]]:
 
 
 def _check_int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
-    out: list[int] = []
-    for v in values:
-        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < minimum:
-            raise ValueError(f"{what} must be integers >= {minimum}, got {v!r}")
-        out.append(int(v))
+    out = V.integers(values, what, minimum)
     if not out:
         raise ValueError(f"no {what} given")
     return out
@@ -278,11 +275,7 @@ def build_specs(
         raise ValueError(f"budget_scale must be > 0, got {budget_scale!r}")
     if budget is not None:
         _check_int_list([budget], "budget", 1)
-    if isinstance(instance, bool) or not isinstance(instance, int | np.integer) or instance < 0:
-        raise ValueError(
-            f"instance must be an integer >= 0 (0 = the paper's functions), got {instance!r}"
-        )
-    instance = int(instance)
+    instance = V.integer(instance, "instance", 0, hint="0 = the paper's functions")
     extra = dict(fixed or {})
     grids = {m: method_grid(m, grid) for m in dict.fromkeys(method_list)}
     if extra:

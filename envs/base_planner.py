@@ -96,6 +96,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
+
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.intp]
 BoolArray = NDArray[np.bool_]
@@ -430,8 +432,7 @@ class BasePlannerConfig:
         object.__setattr__(self, "radius_step", rs)
         for name, low in (("static_cache_size", 1), ("graph_cache_size", 0)):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or value < low:
-                raise ValueError(f"BasePlannerConfig.{name} must be an int >= {low}, got {value!r}")
+            V.integer(value, f"BasePlannerConfig.{name}", low)
         object.__setattr__(self, "rotation_weight", rw)
         object.__setattr__(self, "clearance", cl)
         object.__setattr__(self, "vertex_margin", vm)

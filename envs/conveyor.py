@@ -39,6 +39,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.base_planner import BasePath, BasePlannerConfig
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
@@ -56,11 +57,6 @@ from voot.envs.task_env import (
     ManipulationEnv,
     StepTiming,
     add_marker_box,
-    check_bounds,
-    check_options,
-    check_pose,
-    check_positive,
-    check_range,
     denormalize,
     pose_tuple,
     preset_config,
@@ -128,23 +124,16 @@ class ConveyorConfig:
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "start", check_pose("ConveyorConfig.start", self.start))
+        object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
         for name in ("loading_region", "workspace"):
-            object.__setattr__(
-                self, name, check_bounds(f"ConveyorConfig.{name}", getattr(self, name))
-            )
+            object.__setattr__(self, name, V.region(f"ConveyorConfig.{name}", getattr(self, name)))
         object.__setattr__(
-            self, "place_theta", check_range("ConveyorConfig.place_theta", self.place_theta)
+            self, "place_theta", V.range_pair("ConveyorConfig.place_theta", self.place_theta)
         )
-        if isinstance(self.n_objects, bool) or not isinstance(self.n_objects, int):
-            raise ValueError(
-                f"ConveyorConfig.n_objects must be an int in [1, 20], got {self.n_objects!r}"
-            )
-        if not 1 <= self.n_objects <= 20:
-            raise ValueError(f"ConveyorConfig.n_objects must be in [1, 20], got {self.n_objects}")
+        V.integer(self.n_objects, "ConveyorConfig.n_objects", 1, 20)
         for name in ("grasp_angle", "present_gap", "length_scale"):
             object.__setattr__(
-                self, name, check_positive(f"ConveyorConfig.{name}", getattr(self, name))
+                self, name, V.positive_number(f"ConveyorConfig.{name}", getattr(self, name))
             )
         for name in ("height_fraction", "depth_fraction"):
             v = float(getattr(self, name))
@@ -157,8 +146,7 @@ class ConveyorConfig:
                 f"ConveyorConfig.infeasible_reward must be a finite number < 0, got {r}"
             )
         object.__setattr__(self, "infeasible_reward", r)
-        if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
-            raise ValueError(f"ConveyorConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        V.integer(self.horizon, "ConveyorConfig.horizon", 1)
         if self.precheck not in PRECHECKS:
             raise ValueError(
                 f"ConveyorConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
@@ -244,7 +232,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         if not isinstance(config, ConveyorConfig):
             raise ValueError(f"config must be a ConveyorConfig, got {type(config).__name__}")
         if options:
-            check_options(ConveyorConfig, options)
+            V.config_options(ConveyorConfig, options)
             config = replace(config, **options)
         self.config = config
         cfg = self.config

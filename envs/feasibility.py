@@ -30,6 +30,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.robot import (
     ARM_JOINTS,
     FINGER_JOINTS,
@@ -223,12 +224,7 @@ class IKConfig:
             raise ValueError(
                 f"IKConfig.orientation_cost must be > 0, got {self.orientation_cost!r}"
             )
-        if isinstance(self.max_iterations, bool) or not isinstance(self.max_iterations, int):
-            raise ValueError(
-                f"IKConfig.max_iterations must be an int >= 0, got {self.max_iterations!r}"
-            )
-        if self.max_iterations < 0:
-            raise ValueError(f"IKConfig.max_iterations must be >= 0, got {self.max_iterations}")
+        V.integer(self.max_iterations, "IKConfig.max_iterations", 0)
         if self.solver not in IK_SOLVERS:
             raise ValueError(
                 f"IKConfig.solver must be one of {', '.join(IK_SOLVERS)}; got {self.solver!r}"

@@ -59,6 +59,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
@@ -80,11 +81,6 @@ from voot.envs.task_env import (
     StepTiming,
     add_marker_box,
     add_marker_segment,
-    check_bounds,
-    check_options,
-    check_pose,
-    check_positive,
-    check_range,
     denormalize,
     pose_tuple,
     preset_config,
@@ -206,12 +202,10 @@ class KitchenConfig:
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "start", check_pose("KitchenConfig.start", self.start))
-        object.__setattr__(self, "goal", check_pose("KitchenConfig.goal", self.goal))
+        object.__setattr__(self, "start", V.pose("KitchenConfig.start", self.start))
+        object.__setattr__(self, "goal", V.pose("KitchenConfig.goal", self.goal))
         for name in ("house", "forbidden"):
-            object.__setattr__(
-                self, name, check_bounds(f"KitchenConfig.{name}", getattr(self, name))
-            )
+            object.__setattr__(self, name, V.region(f"KitchenConfig.{name}", getattr(self, name)))
         for name in (
             "grasp_angle",
             "height_fraction",
@@ -222,17 +216,17 @@ class KitchenConfig:
             "place_theta",
         ):
             object.__setattr__(
-                self, name, check_range(f"KitchenConfig.{name}", getattr(self, name))
+                self, name, V.range_pair(f"KitchenConfig.{name}", getattr(self, name))
             )
         for name in ("robot_radius", "max_place_reward", "max_place_penalty", "pick_path_radius"):
             object.__setattr__(
-                self, name, check_positive(f"KitchenConfig.{name}", getattr(self, name))
+                self, name, V.positive_number(f"KitchenConfig.{name}", getattr(self, name))
             )
         for name in ("grasp_standoff", "pick_reward", "goal_bonus"):
             object.__setattr__(
                 self,
                 name,
-                check_positive(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True),
+                V.positive_number(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True),
             )
         r = float(self.infeasible_reward)
         if not (math.isfinite(r) and r < 0):
@@ -240,8 +234,7 @@ class KitchenConfig:
                 f"KitchenConfig.infeasible_reward must be a finite number < 0, got {r}"
             )
         object.__setattr__(self, "infeasible_reward", r)
-        if isinstance(self.horizon, bool) or not isinstance(self.horizon, int) or self.horizon < 1:
-            raise ValueError(f"KitchenConfig.horizon must be an int >= 1, got {self.horizon!r}")
+        V.integer(self.horizon, "KitchenConfig.horizon", 1)
         if self.precheck not in PRECHECKS:
             raise ValueError(
                 f"KitchenConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
@@ -251,11 +244,7 @@ class KitchenConfig:
             "nonclearing_penalty_infeasible",
             "pick_base_path",
         ):
-            if not isinstance(getattr(self, name), bool):
-                raise ValueError(
-                    f"KitchenConfig.{name} must be a bool (True or False), "
-                    f"got {getattr(self, name)!r}"
-                )
+            V.flag(getattr(self, name), f"KitchenConfig.{name}")
         if not isinstance(self.ik, IKConfig):
             raise ValueError(f"KitchenConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
         if not isinstance(self.planner, BasePlannerConfig):
@@ -344,7 +333,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if not isinstance(config, KitchenConfig):
             raise ValueError(f"config must be a KitchenConfig, got {type(config).__name__}")
         if options:
-            check_options(KitchenConfig, options)
+            V.config_options(KitchenConfig, options)
             config = replace(config, **options)
         self.config = config
         cfg = self.config

@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.problem import StepResult
 
@@ -86,8 +87,7 @@ class DemoPickPlace:
     def __init__(self, horizon: int = 6) -> None:
         import mujoco
 
-        if isinstance(horizon, bool) or not isinstance(horizon, int) or horizon < 1:
-            raise ValueError(f"horizon must be an integer >= 1, got {horizon!r}")
+        V.integer(horizon, "horizon", 1)
         self._mj = mujoco
         self.model = mujoco.MjModel.from_xml_string(DEMO_XML)
         self.data = mujoco.MjData(self.model)

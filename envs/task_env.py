@@ -48,6 +48,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.feasibility import ArmIK, CollisionChecker, IKConfig, object_pose
 from voot.envs.robot import TUCK, Robot
@@ -173,69 +174,13 @@ def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     return x, y, theta
 
 
-def check_range(name: str, value: Any) -> tuple[float, float]:
-    """Validate a ``(low, high)`` pair of finite floats with ``low < high``."""
-    try:
-        lo, hi = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}") from None
-    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-        raise ValueError(f"{name} must be finite with low < high, got ({lo}, {hi})")
-    return lo, hi
-
-
-def check_bounds(name: str, value: Any) -> tuple[float, float, float, float]:
-    """Validate an axis-aligned region ``(xmin, xmax, ymin, ymax)``."""
-    try:
-        vals = tuple(float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
-    if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 4 finite numbers (xmin, xmax, ymin, ymax), got {value!r}")
-    if not (vals[0] < vals[1] and vals[2] < vals[3]):
-        raise ValueError(f"{name} needs xmin < xmax and ymin < ymax, got {vals}")
-    return vals[0], vals[1], vals[2], vals[3]
-
-
-def check_pose(name: str, value: Any) -> tuple[float, float, float]:
-    """Validate an ``(x, y, theta)`` pose."""
-    try:
-        vals = tuple(float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 3 finite numbers (x, y, theta), got {value!r}")
-    return vals[0], vals[1], vals[2]
-
-
-def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
-    """Validate a finite number > 0 (or >= 0)."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
-        raise ValueError(f"{name} must be a finite number {'>=' if allow_zero else '>'} 0, got {v}")
-    return v
-
-
-def check_options(config_class: Any, options: Mapping[str, Any]) -> None:
-    """Raise a ValueError naming the valid fields if ``options`` has an unknown one."""
-    valid = sorted(f.name for f in dataclasses.fields(config_class))
-    unknown = sorted(set(options) - set(valid))
-    if unknown:
-        raise ValueError(
-            f"unknown option(s) {unknown} for {config_class.__name__}; valid options are: {valid}"
-        )
-
-
 def preset_config(
     config_class: Any, presets: Mapping[str, Mapping[str, Any]], preset: str, **overrides: Any
 ) -> Any:
     """``config_class`` at a named preset (a domain version), some fields overridden."""
     if preset not in presets:
         raise ValueError(f"unknown preset {preset!r}; valid presets are: {', '.join(presets)}")
-    check_options(config_class, overrides)
+    V.config_options(config_class, overrides)
     return config_class(**{**presets[preset], **overrides})
 
 

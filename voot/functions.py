@@ -587,12 +587,9 @@ def _name_key(name: str) -> int:
 
 
 def _check_instance(instance: object, name: str) -> int:
-    if isinstance(instance, bool) or not isinstance(instance, int | np.integer) or instance < 0:
-        raise ValueError(
-            f"{name}: instance must be an integer >= 0 (0 = the paper's function,"
-            f" k >= 1 = shifted), got {instance!r}"
-        )
-    return int(instance)
+    return V.integer(
+        instance, f"{name}: instance", 0, hint="0 = the paper's function, k >= 1 = shifted"
+    )
 
 
 def _instance_offset(f: TestFunction, instance: int) -> FloatArray:

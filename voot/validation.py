@@ -9,8 +9,9 @@ integer and float scalars are accepted like Python's.
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from enum import Enum
 from typing import Any, TypeVar
 
@@ -37,11 +38,17 @@ def _as_int(value: object) -> int | None:
     return int(value) if is_integer(value) else None  # type: ignore[call-overload]
 
 
-def integer(value: object, name: str, low: int | None = None, high: int | None = None) -> int:
-    """``value`` as an ``int`` in ``[low, high]`` (either end may be open: None)."""
+def integer(
+    value: object, name: str, low: int | None = None, high: int | None = None, *, hint: str = ""
+) -> int:
+    """``value`` as an ``int`` in ``[low, high]`` (either end may be open: None).
+
+    ``hint`` is said in parentheses after the valid range (what the numbers mean).
+    """
     v = _as_int(value)
     if v is None or (low is not None and v < low) or (high is not None and v > high):
-        raise ValueError(f"{name} must be {_integer_range(low, high)}, got {value!r}")
+        more = f" ({hint})" if hint else ""
+        raise ValueError(f"{name} must be {_integer_range(low, high)}{more}, got {value!r}")
     return v
 
 
@@ -124,6 +131,63 @@ def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
             f"{name} must be one of {', '.join(str(v) for v in options)}, got {value!r}"
         )
     return value
+
+
+# ----- tuples and configs (the environments' settings) ----------------------------------
+def range_pair(name: str, value: Any) -> tuple[float, float]:
+    """A ``(low, high)`` pair of finite floats with ``low < high``."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise ValueError(f"{name} must be finite with low < high, got ({lo}, {hi})")
+    return lo, hi
+
+
+def region(name: str, value: Any) -> tuple[float, float, float, float]:
+    """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
+    try:
+        vals = tuple(float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
+    if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be 4 finite numbers (xmin, xmax, ymin, ymax), got {value!r}")
+    if not (vals[0] < vals[1] and vals[2] < vals[3]):
+        raise ValueError(f"{name} needs xmin < xmax and ymin < ymax, got {vals}")
+    return vals[0], vals[1], vals[2], vals[3]
+
+
+def pose(name: str, value: Any) -> tuple[float, float, float]:
+    """An ``(x, y, theta)`` pose of finite floats."""
+    try:
+        vals = tuple(float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be 3 finite numbers (x, y, theta), got {value!r}")
+    return vals[0], vals[1], vals[2]
+
+
+def positive_number(name: str, value: Any, allow_zero: bool = False) -> float:
+    """A finite number > 0 (or >= 0), from anything ``float()`` takes."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
+        raise ValueError(f"{name} must be a finite number {'>=' if allow_zero else '>'} 0, got {v}")
+    return v
+
+
+def config_options(config_class: Any, options: Mapping[str, Any]) -> None:
+    """Raise a ValueError naming the valid fields if ``options`` has an unknown one."""
+    valid = sorted(f.name for f in dataclasses.fields(config_class))
+    unknown = sorted(set(options) - set(valid))
+    if unknown:
+        raise ValueError(
+            f"unknown option(s) {unknown} for {config_class.__name__}; valid options are: {valid}"
+        )
 
 
 def _integer_range(low: int | None, high: int | None) -> str:

@@ -27,6 +27,7 @@ from enum import StrEnum
 import numpy as np
 from scipy.optimize import minimize
 
+from voot import validation as V
 from voot.optim.base import FloatArray, OptimizerConfig
 from voot.optim.gp import GaussianProcess, GPMean
 
@@ -47,7 +48,7 @@ class SubsetRule(StrEnum):
 
 def _is_int(value: object, low: int) -> bool:
     """``value`` is an integer (not a bool) and ``>= low``."""
-    return isinstance(value, int | np.integer) and not isinstance(value, bool) and int(value) >= low
+    return V.is_integer(value) and int(value) >= low  # type: ignore[call-overload]
 
 
 def _check_pair(name: str, value: object) -> tuple[float, float]:
@@ -107,8 +108,7 @@ class SurrogateConfig(OptimizerConfig):
     subset: SubsetRule | str = SubsetRule.BEST_RECENT
 
     def __post_init__(self) -> None:
-        if not isinstance(self.ard, bool | np.bool_):
-            raise ValueError(f"ard must be a bool, got {self.ard!r}")
+        V.flag(self.ard, "ard")
         try:
             object.__setattr__(self, "gp_mean", GPMean(self.gp_mean))
         except ValueError:
@@ -135,8 +135,7 @@ class SurrogateConfig(OptimizerConfig):
 
 def check_zeta(zeta: object, name: str = "zeta") -> None:
     """UCB exploration weights must be finite and >= 0."""
-    if isinstance(zeta, bool) or not isinstance(zeta, int | float) or not 0.0 <= zeta < math.inf:
-        raise ValueError(f"{name} must be a finite number >= 0, got {zeta!r}")
+    V.positive(zeta, name, allow_zero=True)
 
 
 class Surrogate:

@@ -50,6 +50,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim._generator import GeneratorOptimizer, Search
 from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int
 from voot.optim.base import FloatArray, OptimizerConfig
@@ -93,8 +94,7 @@ class BaMSOOConfig(SurrogateConfig):
     def __post_init__(self) -> None:
         super().__post_init__()
         e = self.eta
-        if isinstance(e, bool) or not isinstance(e, int | float) or not 0.0 < e < 1.0:
-            raise ValueError(f"eta must be a number in (0, 1), got {e!r}")
+        V.number(e, "eta", 0.0, 1.0, open_low=True, open_high=True)
         if not _is_int(self.branching, 2):
             raise ValueError(f"branching must be an integer >= 2, got {self.branching!r}")
         try:
@@ -107,17 +107,12 @@ class BaMSOOConfig(SurrogateConfig):
                 f"root_point='random' (the authors' partition) needs branching=2, got {self.branching}"
             )
         p = self.h_max_exponent
-        if isinstance(p, bool) or not isinstance(p, int | float) or not 0.0 < p <= 1.0:
-            raise ValueError(f"h_max_exponent must be a number in (0, 1], got {p!r}")
-        if not isinstance(self.bound_uses_variance, bool | np.bool_):
-            raise ValueError(
-                f"bound_uses_variance must be a bool, got {self.bound_uses_variance!r}"
-            )
+        V.number(p, "h_max_exponent", 0.0, 1.0, open_low=True)
+        V.flag(self.bound_uses_variance, "bound_uses_variance")
         if not _is_int(self.max_skips, 1):
             raise ValueError(f"max_skips must be an integer >= 1, got {self.max_skips!r}")
         w = self.min_width
-        if isinstance(w, bool) or not isinstance(w, int | float) or not 0.0 < w < 1.0:
-            raise ValueError(f"min_width must be a number in (0, 1), got {w!r}")
+        V.number(w, "min_width", 0.0, 1.0, open_low=True, open_high=True)
 
     @classmethod
     def paper_grid(cls) -> dict[str, list[Any]]:

@@ -39,6 +39,7 @@ from typing import Any, ClassVar
 import cma
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
@@ -167,18 +168,8 @@ class CMAESConfig(OptimizerConfig):
             and self.incpopsize >= 1.0
         ):
             raise ValueError(f"incpopsize must be a finite number >= 1, got {self.incpopsize!r}")
-        if self.popsize is not None and (
-            isinstance(self.popsize, bool) or not isinstance(self.popsize, int) or self.popsize < 2
-        ):
-            raise ValueError(f"popsize must be an integer >= 2 or None, got {self.popsize!r}")
-        if self.max_restarts is not None and (
-            isinstance(self.max_restarts, bool)
-            or not isinstance(self.max_restarts, int)
-            or self.max_restarts < 0
-        ):
-            raise ValueError(
-                f"max_restarts must be an integer >= 0 or None, got {self.max_restarts!r}"
-            )
+        V.optional_integer(self.popsize, "popsize", 2)
+        V.optional_integer(self.max_restarts, "max_restarts", 0)
         if self.pycma_options is not None:
             if not isinstance(self.pycma_options, Mapping):
                 raise ValueError("pycma_options must be a mapping of pycma option names to values")

@@ -54,6 +54,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim._partition import (
     CellTree,
     Scale,
@@ -127,10 +128,7 @@ class DOOConfig(OptimizerConfig):
                 f"unknown cell_size {self.cell_size!r}; valid choices are: {valid}"
             ) from None
         object.__setattr__(self, "scale", parse_scale(self.scale))
-        if not isinstance(self.split_at_initial_point, bool):
-            raise ValueError(
-                f"split_at_initial_point must be True or False, got {self.split_at_initial_point!r}"
-            )
+        V.flag(self.split_at_initial_point, "split_at_initial_point")
         if self.split_at_initial_point and self.split is not Split.BISECT:
             raise ValueError(
                 "split_at_initial_point=True needs split='bisect' (a trisection cuts at"
@@ -318,10 +316,7 @@ class RandDOOConfig(DOOConfig):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not isinstance(self.reuse_parent_point, bool):
-            raise ValueError(
-                f"reuse_parent_point must be True or False, got {self.reuse_parent_point!r}"
-            )
+        V.flag(self.reuse_parent_point, "reuse_parent_point")
 
 
 class RandDOO(DOO):

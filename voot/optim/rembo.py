@@ -37,6 +37,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot import validation as V
 from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int, check_zeta, maximize_ucb
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
@@ -73,10 +74,8 @@ class REMBOConfig(SurrogateConfig):
         if self.low_dim is not None and not _is_int(self.low_dim, 1):
             raise ValueError(f"low_dim must be None or an integer >= 1, got {self.low_dim!r}")
         b = self.box_half_width
-        if b is not None and (
-            isinstance(b, bool) or not isinstance(b, int | float) or not 0.0 < b < math.inf
-        ):
-            raise ValueError(f"box_half_width must be None or a finite number > 0, got {b!r}")
+        if b is not None:
+            V.positive(b, "box_half_width")
         check_zeta(self.zeta)
         for name in ("n_candidates", "n_local_starts", "n_initial"):
             if not _is_int(getattr(self, name), 1):

@@ -37,6 +37,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
+from voot import validation as V
 from voot.optim._generator import GeneratorOptimizer, Search
 from voot.optim._partition import CellTree, Scale, Split, parse_scale, parse_split, scale_weights
 from voot.optim.base import OptimizerConfig
@@ -62,11 +63,9 @@ class SOOConfig(OptimizerConfig):
     def __post_init__(self) -> None:
         object.__setattr__(self, "split", parse_split(self.split))
         c = self.depth_scale
-        if isinstance(c, bool) or not isinstance(c, int | float) or not (0 < c < math.inf):
-            raise ValueError(f"depth_scale must be a finite number > 0, got {c!r}")
+        V.positive(c, "depth_scale")
         p = self.depth_exponent
-        if isinstance(p, bool) or not isinstance(p, int | float) or not (0 < p <= 1):
-            raise ValueError(f"depth_exponent must be a number in (0, 1], got {p!r}")
+        V.number(p, "depth_exponent", 0.0, 1.0, open_low=True)
         object.__setattr__(self, "scale", parse_scale(self.scale))
 
 

@@ -32,6 +32,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Any, Generic, Protocol, TypeVar, runtime_checkable
 
+from voot import validation as V
 from voot._workers import single_threaded_children
 
 T = TypeVar("T")
@@ -179,17 +180,13 @@ class ProcessExecutor:
         keep_alive: bool = True,
     ) -> None:
         n = (os.cpu_count() or 1) if max_workers is None else max_workers
-        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-            raise ValueError(f"max_workers must be an integer >= 1, got {max_workers!r}")
+        n = V.integer(n, "max_workers", 1)
         valid = multiprocessing.get_all_start_methods()
         if start_method not in valid:
             raise ValueError(
                 f"unknown start method {start_method!r}; valid start methods are: {', '.join(valid)}"
             )
-        if max_pending is not None and (
-            isinstance(max_pending, bool) or not isinstance(max_pending, int) or max_pending < 1
-        ):
-            raise ValueError(f"max_pending must be an integer >= 1 or None, got {max_pending!r}")
+        V.optional_integer(max_pending, "max_pending", 1)
         self.max_workers = n
         self.start_method = start_method
         self.initializer = initializer

@@ -9,10 +9,10 @@ defaults keep a recording within 1.5x of the search time without one (see
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
+from voot import validation as V
 from voot.record.colors import INFEASIBLE_COLOR, check_color
 
 #: Watch entry meaning the tree's root.
@@ -21,28 +21,6 @@ ROOT = "root"
 #: Prefix of a watch entry meaning "the first node of the current best path whose
 #: operator is ...", e.g. ``"best:place"``.
 BEST_PREFIX = "best:"
-
-
-def _int(value: object, name: str, low: int, optional: bool = False) -> int | None:
-    if optional and value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        none = " or None" if optional else ""
-        raise ValueError(f"{name} must be an integer >= {low}{none}, got {value!r}")
-    return value
-
-
-def _positive(value: object, name: str, allow_zero: bool = False) -> float:
-    if (
-        isinstance(value, bool)
-        or not isinstance(value, int | float)
-        or not math.isfinite(value)
-        or value < 0
-        or (value == 0 and not allow_zero)
-    ):
-        cmp = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"{name} must be a finite number {cmp}, got {value!r}")
-    return float(value)
 
 
 @dataclass(frozen=True)
@@ -126,10 +104,10 @@ class RecorderConfig:
         object.__setattr__(self, "watch", watch)
         if not isinstance(self.operator_key, str) or not self.operator_key:
             raise ValueError(f"operator_key must be a non-empty string, got {self.operator_key!r}")
-        _int(self.samples_every, "samples_every", 1)
-        _int(self.tree_every, "tree_every", 1, optional=True)
-        _int(self.tree_max_nodes, "tree_max_nodes", 1)
-        _int(self.flush_every, "flush_every", 1)
+        V.integer(self.samples_every, "samples_every", 1)
+        V.optional_integer(self.tree_every, "tree_every", 1)
+        V.integer(self.tree_max_nodes, "tree_max_nodes", 1)
+        V.integer(self.flush_every, "flush_every", 1)
         for name in ("record_plan", "scene", "sample_labels"):
             if not isinstance(getattr(self, name), bool):
                 raise ValueError(f"{name} must be True or False, got {getattr(self, name)!r}")
@@ -143,10 +121,10 @@ class RecorderConfig:
                 )
             object.__setattr__(self, "geom_groups", tuple(groups))
         object.__setattr__(
-            self, "floor_height", _positive(self.floor_height, "floor_height", allow_zero=True)
+            self, "floor_height", V.positive(self.floor_height, "floor_height", allow_zero=True)
         )
-        object.__setattr__(self, "arrow_length", _positive(self.arrow_length, "arrow_length"))
-        object.__setattr__(self, "point_radius", _positive(self.point_radius, "point_radius"))
+        object.__setattr__(self, "arrow_length", V.positive(self.arrow_length, "arrow_length"))
+        object.__setattr__(self, "point_radius", V.positive(self.point_radius, "point_radius"))
         object.__setattr__(
             self, "infeasible_color", check_color(self.infeasible_color, "infeasible_color")
         )

@@ -281,8 +281,7 @@ def write_video(
         )
     if not frames:
         raise ValueError("no frames to write")
-    if isinstance(fps, bool) or not isinstance(fps, int | float) or not 0 < fps <= 120:
-        raise ValueError(f"fps must be a number in (0, 120], got {fps!r}")
+    V.number(fps, "fps", 0.0, 120.0, open_low=True)
     _check_positive_int(hold_last, "hold_last", low=0)
     shape = np.asarray(frames[0]).shape
     for k, f in enumerate(frames):

@@ -26,7 +26,6 @@ The authors ran 10,000 simulations, ``w = 100`` re-evaluations, VOO in
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -34,6 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.problem import StepResult
 
@@ -98,12 +98,8 @@ class SyntheticChain:
             ("bonus", bonus),
             ("infeasible_penalty", infeasible_penalty),
         ):
-            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-                raise ValueError(f"{name} must be a finite number, got {v!r}")
-        if horizon is not None and (
-            isinstance(horizon, bool) or not isinstance(horizon, int) or horizon < 1
-        ):
-            raise ValueError(f"horizon must be an integer >= 1 or None, got {horizon!r}")
+            V.number(v, name)
+        V.optional_integer(horizon, "horizon", 1)
         self.threshold = float(threshold)
         self.bonus = float(bonus)
         self.infeasible_penalty = float(infeasible_penalty)

@@ -33,6 +33,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 
 
@@ -65,20 +66,9 @@ class HOOConfig:
     def __post_init__(self) -> None:
         for name in ("v1", "exploration"):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int | float) or not v >= 0 or v == math.inf:
-                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
-        if (
-            isinstance(self.rho, bool)
-            or not isinstance(self.rho, int | float)
-            or not 0 < self.rho < 1
-        ):
-            raise ValueError(f"rho must be in (0, 1), got {self.rho!r}")
-        if (
-            isinstance(self.max_depth, bool)
-            or not isinstance(self.max_depth, int)
-            or self.max_depth < 1
-        ):
-            raise ValueError(f"max_depth must be an integer >= 1, got {self.max_depth!r}")
+            V.positive(v, name, allow_zero=True)
+        V.number(self.rho, "rho", 0.0, 1.0, open_low=True, open_high=True)
+        V.integer(self.max_depth, "max_depth", 1)
         try:
             object.__setattr__(self, "point", HOOPoint(self.point))
         except ValueError:

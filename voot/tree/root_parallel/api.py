@@ -17,6 +17,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from voot import validation as V
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 from voot.tree.config import MCTSConfig, planner_config
 from voot.tree.mcts import check_n_simulations
@@ -192,10 +193,7 @@ def _resolve_executor(
     if executor == "serial":
         return SerialExecutor(), None
     if executor == "process":
-        if max_workers is not None and (
-            isinstance(max_workers, bool) or not isinstance(max_workers, int) or max_workers < 1
-        ):
-            raise ValueError(f"max_workers must be an integer >= 1, got {max_workers!r}")
+        V.optional_integer(max_workers, "max_workers", 1)
         pool = ProcessExecutor(min(n_trees, max_workers or os.cpu_count() or 1))
         return pool, pool
     raise ValueError(

@@ -1,0 +1,63 @@
+"""Tests of voot.validation: the shared argument checks."""
+
+from __future__ import annotations
+
+import math
+from enum import StrEnum
+
+import numpy as np
+import pytest
+
+from voot import validation as V
+
+
+class Colour(StrEnum):
+    RED = "red"
+    BLUE = "blue"
+
+
+def test_integers() -> None:
+    assert V.integer(np.int64(3), "n", 1) == 3 and type(V.integer(3, "n")) is int
+    for bad in (True, 1.0, "2", 0, None):
+        with pytest.raises(ValueError, match=r"^n must be an integer >= 1, got"):
+            V.integer(bad, "n", 1)
+    with pytest.raises(ValueError, match=r"in \[1, 20\] \(boxes\), got 21"):
+        V.integer(21, "n", 1, 20, hint="boxes")
+    assert V.optional_integer(None, "h", 1) is None
+    with pytest.raises(ValueError, match="h must be an integer >= 1 or None"):
+        V.optional_integer(0, "h", 1)
+    assert V.integers([1, np.int32(2)], "dims", 1) == [1, 2]
+    with pytest.raises(ValueError, match="dims must be integers >= 1, got 0"):
+        V.integers([1, 0], "dims", 1)
+
+
+def test_numbers() -> None:
+    assert V.number(np.float32(0.5), "p", 0, 1) == 0.5
+    for bad in (math.nan, math.inf, True, "0.5"):
+        with pytest.raises(ValueError, match="p must be a finite number"):
+            V.number(bad, "p")
+    with pytest.raises(ValueError, match=r"eta must be a finite number in \(0, 1\), got 1"):
+        V.number(1, "eta", 0, 1, open_low=True, open_high=True)
+    with pytest.raises(ValueError, match="c must be a finite number > 0, got 0"):
+        V.positive(0, "c")
+    assert V.positive(0, "c", allow_zero=True) == 0.0
+    assert V.probability(1, "omega") == 1.0
+
+
+def test_flags_choices_and_tuples() -> None:
+    assert V.flag(np.bool_(True), "x") is True
+    with pytest.raises(ValueError, match="x must be True or False, got 1"):
+        V.flag(1, "x")
+    assert V.choice(Colour, "red", "colour") is Colour.RED
+    with pytest.raises(ValueError, match="unknown colour 'green'; valid choices are: red, blue"):
+        V.choice(Colour, "green", "colour")
+    with pytest.raises(ValueError, match="mode must be one of a, b, got 'c'"):
+        V.one_of("c", "mode", ("a", "b"))
+    assert V.range_pair("r", (0, 1)) == (0.0, 1.0)
+    with pytest.raises(ValueError, match="low < high"):
+        V.range_pair("r", (1, 0))
+    with pytest.raises(ValueError, match="4 finite numbers"):
+        V.region("house", (0, 1, 2))
+    with pytest.raises(ValueError, match="3 finite numbers"):
+        V.pose("start", (0, math.nan, 0))
+    assert V.positive_number("r", "0.5") == 0.5
