@@ -32,11 +32,10 @@ backend (only the timings differ).
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import json
 import time
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any, ClassVar
@@ -358,37 +357,6 @@ def record_paths(specs: Sequence[PlanSpec], template: str) -> list[str]:
     return out
 
 
-@contextlib.contextmanager
-def _count_env_steps(env: Any) -> Iterator[list[int]]:
-    """Count simulator calls of the unwrapped env during the block.
-
-    The robot envs' simulator call is ``transition`` (``step`` without the observation,
-    which ``step`` itself calls and :class:`voot.envs.planning.EnvProblem` calls
-    directly); other envs are counted at ``step``.
-    """
-    counter = [0]
-    if env is None:
-        yield counter
-        return
-    u = env.unwrapped
-    name = "transition" if callable(getattr(type(u), "transition", None)) else "step"
-    own = vars(u).get(name)
-    original = getattr(u, name)
-
-    def call(action: Any) -> Any:
-        counter[0] += 1
-        return original(action)
-
-    setattr(u, name, call)
-    try:
-        yield counter
-    finally:
-        if own is None:
-            delattr(u, name)
-        else:
-            setattr(u, name, own)
-
-
 def _jsonable(value: Any) -> Any:
     if isinstance(value, str | int | float | bool) or value is None:
         return value
@@ -425,16 +393,21 @@ def run_plan_spec(spec: PlanSpec) -> Row:
                 recorder(m, i)
             return False
 
-        with _count_env_steps(inst.env) as env_steps:
-            try:
-                res = mcts.search(spec.simulations, callback=callback, record_info=P.OBJECTS_KEY)
-            finally:
-                if recorder is not None:
-                    recorder.finish()
+        calls_before = getattr(inst.problem, "n_simulator_calls", None)
+        try:
+            res = mcts.search(spec.simulations, callback=callback, record_info=P.OBJECTS_KEY)
+        finally:
+            if recorder is not None:
+                recorder.finish()
         best = res.best_return_curve.tolist()
         left = list(res.info_curve or ())
         has_objects = any(v is not None for v in left)
-        sim_calls = env_steps[0] if inst.env is not None else res.n_steps + res.n_feasibility_checks
+        # the problem's own count (SimulatorCalls), else every step and pre-check
+        sim_calls = (
+            inst.problem.n_simulator_calls - calls_before
+            if calls_before is not None
+            else res.n_steps + res.n_feasibility_checks
+        )
         extra: dict[str, Any] = {
             "elapsed": [round(t, 6) for t in elapsed],
             "search_time": res.wall_time,

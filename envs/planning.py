@@ -99,6 +99,8 @@ class EnvProblem:
         #: The result of the last :meth:`is_feasible` call (None before the first).
         self.last_check: StepResult | None = None
         self._kinematic = u.config.precheck == "kinematic"
+        #: Runs of the env's simulator (``transition``), pre-checks that step included.
+        self.n_simulator_calls = 0
         self._metrics: dict[str, ActionDistance] = {}
         if seed is not None:
             u.reset(seed=seed)
@@ -159,6 +161,7 @@ class EnvProblem:
 
     def _run(self, action: ArrayLike) -> StepResult:
         reward, terminated, truncated, info = self.unwrapped.transition(self.to_env_action(action))
+        self.n_simulator_calls += 1
         # reward, feasible, terminal, bonus, info
         return StepResult(
             float(reward),

@@ -249,3 +249,21 @@ def test_an_env_moved_behind_the_problem_is_noticed(kitchen: KitchenClearingEnv)
         p.step(a)  # not the check's cached result: stepped from the new state (a place)
     kitchen.reset(seed=0)
     assert p.snapshot() == s0
+
+
+def test_simulator_calls_count_every_transition(kitchen: KitchenClearingEnv) -> None:
+    """n_simulator_calls (the SimulatorCalls protocol): v0 checks step, a cached step does not."""
+    from voot.tree.problem import SimulatorCalls
+
+    p = EnvProblem(kitchen, seed=0)
+    assert isinstance(p, SimulatorCalls) and p.n_simulator_calls == 0
+    pick = kitchen_actions(kitchen)[0]
+    assert p.is_feasible(pick)
+    p.step(pick)  # reuses the check's result
+    assert p.n_simulator_calls == 1
+    p.step(np.full(3, 1.0))  # not checked first: runs the simulator
+    assert p.n_simulator_calls == 2
+    v1 = EnvProblem(gym.make("voot/KitchenClearing-v1").unwrapped, seed=0)
+    assert v1.is_feasible(pick) and v1.n_simulator_calls == 0  # the kinematic pre-check
+    v1.step(pick)
+    assert v1.n_simulator_calls == 1

@@ -35,7 +35,13 @@ from voot.tree.gym_adapters import GymProblem, MujocoGymProblem
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.mcts import MCTS, PlanResult, plan
 from voot.tree.node import Node
-from voot.tree.problem import ActionMetric, FeasibilityCheck, PlanningProblem, StepResult
+from voot.tree.problem import (
+    ActionMetric,
+    FeasibilityCheck,
+    PlanningProblem,
+    SimulatorCalls,
+    StepResult,
+)
 from voot.tree.root_parallel import (
     LocalProcessExecutor,
     MergeRule,
@@ -73,6 +79,7 @@ __all__ = [
     "RootParallelResult",
     "Selection",
     "SerialExecutor",
+    "SimulatorCalls",
     "StepResult",
     "SyntheticChain",
     "TreeExecutor",

@@ -83,6 +83,8 @@ class GymProblem:
     ) -> None:
         self.env = env
         self.unwrapped = env.unwrapped
+        #: Calls of the env's ``step`` (the simulator) through this problem.
+        self.n_simulator_calls = 0
         self._check_state_api()
         self.bonus_key = bonus_key
         self.feasible_key = feasible_key
@@ -141,6 +143,7 @@ class GymProblem:
 
     def step(self, action: FloatArray) -> StepResult:
         obs, reward, terminated, truncated, info = self.env.step(action)
+        self.n_simulator_calls += 1
         self.last_observation = obs
         bonus = float(info.get(self.bonus_key, 0.0))
         return StepResult(

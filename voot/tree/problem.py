@@ -26,6 +26,10 @@ the forbidden rooms to execution (``voot/KitchenClearing-v1``); a problem may al
 the pre-check the whole step (``voot/KitchenClearing-v0``), which filters every
 infeasible draw before it costs a simulation.
 
+Optionally, ``n_simulator_calls`` (:class:`SimulatorCalls`) counts the runs of the
+underlying simulator, which a pre-check may also make (v0's full-step pre-check does):
+the benchmark's cost measure next to the search's own counts of steps and pre-checks.
+
 Optionally, ``action_metric()`` (:class:`ActionMetric`) gives the distance between
 actions *in the current state* that a Voronoi sampler should use (e.g. the authors'
 per-operator distance: places compare x, y only), used with
@@ -105,3 +109,10 @@ class ActionMetric(Protocol):
     """
 
     def action_metric(self) -> ActionDistance | None: ...
+
+
+@runtime_checkable
+class SimulatorCalls(Protocol):
+    """Optional: how many times the problem ran its simulator (pre-checks included)."""
+
+    n_simulator_calls: int
