@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
+from voot.tree.step_info import StepInfo
 
 #: Domain versions reported by default.
 DEFAULT_ENVS: tuple[str, ...] = (
@@ -153,7 +154,7 @@ def node_stats(env_id: str, samples: int, seed: int = 0) -> list[NodeStats]:
             if res.feasible:
                 executed += 1
             else:
-                failures[_short_reason(str(res.info.get("reason", "")))] += 1
+                failures[_short_reason(StepInfo.of(res.info).reason)] += 1
         problem.restore(snapshot)
         out.append(NodeStats(env_id, name, samples, passed, executed, dict(failures)))
     return out
@@ -204,7 +205,7 @@ def scripted_stats(env_id: str) -> ScriptedStats:
         total += discount * res.reward
         discount *= gamma
         if not res.feasible:
-            failure = f"action {n}: {res.info.get('reason', '')}"
+            failure = f"action {n}: {StepInfo.of(res.info).reason}"
             break
     solved = not failure and int(u.objects_left) == 0
     return ScriptedStats(env_id, solved, n, total, failure)

@@ -27,6 +27,7 @@ from voot.bench.problems import domain_options
 from voot.record.kitchen_animation import plan_animation
 from voot.tree.config import normalize_planner
 from voot.tree.mcts import MCTS, PlanResult, check_n_simulations
+from voot.tree.step_info import StepInfo
 
 #: The first release's kitchen (Figure 5 of :func:`figure5` and the v0 results).
 KITCHEN_ID = "voot/KitchenClearing-v0"
@@ -232,7 +233,7 @@ def run(
 
 def _objects_left(result: PlanResult, obstacles: int) -> int:
     """Obstacles left at the end of the best plan (all of them for an empty plan)."""
-    left = result.best_leaf_info.get("objects_left") if result.actions else None
+    left = StepInfo.of(result.best_leaf_info).objects_left if result.actions else None
     if left is None:
         return obstacles
     # An infeasible last action reports the count of the state it was tried from.
@@ -250,7 +251,8 @@ class _Progress:
         self._t0 = time.perf_counter()
 
     def __call__(self, mcts: MCTS, i: int) -> bool:
-        left = mcts.best_node().info.get("objects_left", self.obstacles)
+        left = StepInfo.of(mcts.best_node().info).objects_left
+        left = self.obstacles if left is None else left
         if left == 0 and self.first_all_cleared is None:
             self.first_all_cleared = i + 1
         if self.verbose and (i + 1) % self.every == 0:

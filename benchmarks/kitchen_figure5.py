@@ -21,6 +21,7 @@ from voot import validation as V
 from voot.bench.kitchen_demo import DEFAULT_SEED, KITCHEN_ID, _check_dir, make_problem, options_for
 from voot.tree.config import normalize_planner
 from voot.tree.mcts import MCTS, check_n_simulations, plan
+from voot.tree.step_info import StepInfo
 
 #: Visits of the first object's place node at which Figure 5 is drawn (the paper's 50).
 FIGURE5_VISITS = 50
@@ -118,7 +119,7 @@ class ProposalLog:
 def _first_place_node(mcts: MCTS, visits: int) -> int | None:
     """Id of a child of the root (a place node of the first object) with ``visits`` visits."""
     for child in mcts.root.children:
-        if child.visits >= visits and child.info.get("next_operator") == "place":
+        if child.visits >= visits and StepInfo.of(child.info).next_operator == "place":
             return child.id
     return None
 

@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.tree.step_info import StepInfo
+
 #: Free camera of the GIF: the kitchen and the hall seen from the west (the sink on the
 #: left, the start on the right), the house's big rooms behind them.
 KITCHEN_VIEW: dict[str, Any] = {
@@ -120,17 +122,15 @@ def plan_animation(
             task = env.task
             base0 = robot.base_pose(data)
             res = problem.step(np.asarray(a, dtype=np.float64))
-            info = res.info
+            info = StepInfo.of(res.info)
             if not res.feasible:
                 continue
             after = env.get_state()
-            obj_name = str(info["object"]).removeprefix("obj_")
-            text = caption(
-                f"step {t}/{n}: {info['operator']} {obj_name}, {info['objects_left']} left"
-            )
+            obj_name = str(info.object).removeprefix("obj_")
+            text = caption(f"step {t}/{n}: {info.operator} {obj_name}, {info.objects_left} left")
             env.set_state(before)
-            if info["operator"] == "pick":
-                goal = np.asarray(info["base_pose"])
+            if info.operator == "pick":
+                goal = np.asarray(info.base_pose)
                 for w in _resample(_drive(env, base0, goal), spacing, max_motion_frames):
                     robot.set_base(data, w)
                     frames.append(text())
@@ -142,7 +142,7 @@ def plan_animation(
             else:
                 obj = env.objects[task.held]
                 z = float(env.object_pose(task.held)[2])
-                for w in _resample(info["base_path"], spacing, max_motion_frames):
+                for w in _resample(info.base_path, spacing, max_motion_frames):
                     robot.set_base(data, w)
                     x, y, yaw = compose2d(w, task.held_rel)
                     set_object_pose(data, obj, (x, y, z, yaw))

@@ -30,24 +30,19 @@ from numpy.typing import NDArray
 
 from voot.record.colors import value_colors
 from voot.tree.node import Node
+from voot.tree.step_info import StepInfo, pose
 
-#: Step-info keys read for drawing (the environments' contract with this module).
+#: Step-info keys read for drawing (fields of :class:`voot.tree.step_info.StepInfo`, the
+#: environments' contract with this module).
 BASE_POSE_KEY = "base_pose"
 PLACEMENT_KEY = "placement"
 
 
 def pose_of(info: Mapping[str, Any], key: str) -> NDArray[np.float64] | None:
-    """``info[key]`` as a finite ``(x, y, theta)`` array, or None if absent or malformed."""
-    v = info.get(key)
-    if v is None:
-        return None
-    try:
-        a = np.asarray(v, dtype=np.float64).reshape(-1)
-    except (TypeError, ValueError):
-        return None
-    if a.size != 3 or not np.all(np.isfinite(a)):
-        return None
-    return a
+    """``info[key]`` as a finite ``(x, y, theta)`` array, or None if absent or malformed
+    (the parsing of :class:`~voot.tree.step_info.StepInfo`'s poses)."""
+    p = pose(info.get(key))
+    return None if p is None else np.array(p, dtype=np.float64)
 
 
 class NodeSamples:
@@ -79,12 +74,11 @@ class NodeSamples:
         for j, i in enumerate(new):
             info = node.children[i].info
             if info:
-                p = pose_of(info, BASE_POSE_KEY)
-                if p is not None:
-                    base[j] = p
-                p = pose_of(info, PLACEMENT_KEY)
-                if p is not None:
-                    place[j] = p
+                step = StepInfo.of(info)
+                if step.base_pose is not None:
+                    base[j] = step.base_pose
+                if step.placement is not None:
+                    place[j] = step.placement
         self._actions = acts if self.n == 0 else np.concatenate([self._actions, acts])
         self._base = np.concatenate([self._base, base])
         self._place = np.concatenate([self._place, place])
