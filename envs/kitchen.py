@@ -622,11 +622,15 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             "placement": None,
         }
 
-    def _place_kinematics(
-        self, params: FloatArray
-    ) -> tuple[str, FloatArray, tuple[float, float, float]]:
-        """The place's kinematic checks (its pre-check, without the forbidden rooms and
-        the base path): why it fails ('' if it passes), the base pose and the placement.
+    def _place_checks(
+        self, params: FloatArray, forbidden_rooms: bool
+    ) -> tuple[str, FloatArray, tuple[float, float, float], float, float]:
+        """The place's checks before its base path: why it fails ('' if it passes).
+
+        In the step's order: object in the house, (with ``forbidden_rooms``) not in the
+        rooms behind the door, robot in the house, no collision. Without the forbidden
+        rooms they are the place's pre-check. Also returns the base pose, the placement,
+        the object's height and the seconds spent checking collisions. Changes nothing.
         """
         cfg, t = self.config, self.task
         obj = t.held
@@ -634,17 +638,22 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         new_box = object_footprint(self.objects[obj], x, y, theta)
         base = compose2d((x, y, theta), inverse2d(t.held_rel))
         placement = (x, y, theta)
-        if not rect_inside(new_box, cfg.house):
-            return "outside region: the object leaves the house", base, placement
-        if not rect_inside(base_footprint(base), cfg.house):
-            return "outside region: the robot leaves the house", base, placement
         z = float(self.object_pose(obj)[2])
+        if not rect_inside(new_box, cfg.house):
+            return "outside region: the object leaves the house", base, placement, z, 0.0
+        if forbidden_rooms and rect_overlaps(new_box, cfg.forbidden):
+            reason = "forbidden room: the object is in the rooms behind the door"
+            return reason, base, placement, z, 0.0
+        if not rect_inside(base_footprint(base), cfg.house):
+            return "outside region: the robot leaves the house", base, placement, z, 0.0
+        t0 = time.perf_counter()
         report = self.collision.check(
             self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
         )
+        col_time = time.perf_counter() - t0
         if not report.free:
-            return "collision: " + ", ".join(report.hits), base, placement
-        return "", base, placement
+            return "collision: " + ", ".join(report.hits), base, placement, z, col_time
+        return "", base, placement, z, col_time
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
         """The cheap kinematic check of ``action`` in the current state (changes nothing).
@@ -667,8 +676,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             reason, base, _, _ = self._pick_kinematics(denormalize(a, self.config.pick_ranges))
         else:
             obj = t.held
-            reason, base, placement = self._place_kinematics(
-                denormalize(a[:3], self.config.place_ranges)
+            reason, base, placement, _, _ = self._place_checks(
+                denormalize(a[:3], self.config.place_ranges), forbidden_rooms=False
             )
         return not reason, {
             "operator": t.operator,
@@ -729,40 +738,11 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     def _place(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task
         obj = t.held
-        x, y, theta = (float(v) for v in params)
-        z = float(self.object_pose(obj)[2])
-        new_box = object_footprint(self.objects[obj], x, y, theta)
-        base = compose2d((x, y, theta), inverse2d(t.held_rel))
-        placement = (x, y, theta)
-        if not rect_inside(new_box, cfg.house):
-            self.last_timing = StepTiming()
-            return self._infeasible(
-                "place", obj, "outside region: the object leaves the house", base, placement
-            )
-        if rect_overlaps(new_box, cfg.forbidden):
-            self.last_timing = StepTiming()
-            return self._infeasible(
-                "place",
-                obj,
-                "forbidden room: the object is in the rooms behind the door",
-                base,
-                placement,
-            )
-        if not rect_inside(base_footprint(base), cfg.house):
-            self.last_timing = StepTiming()
-            return self._infeasible(
-                "place", obj, "outside region: the robot leaves the house", base, placement
-            )
-        t0 = time.perf_counter()
-        report = self.collision.check(
-            self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
-        )
-        col_time = time.perf_counter() - t0
-        if not report.free:
-            self.last_timing = StepTiming(collision=col_time)
-            return self._infeasible(
-                "place", obj, "collision: " + ", ".join(report.hits), base, placement
-            )
+        reason, base, placement, z, col_time = self._place_checks(params, forbidden_rooms=True)
+        self.last_timing = StepTiming(collision=col_time)
+        if reason:
+            return self._infeasible("place", obj, reason, base, placement)
+        x, y, theta = placement
         t0 = time.perf_counter()
         disc = self.held_disc()
         path = self.planner.plan(
