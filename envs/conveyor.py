@@ -58,6 +58,7 @@ from voot.envs.task_env import (
     StepTiming,
     add_marker_box,
     denormalize,
+    env_config,
     pose_tuple,
     preset_config,
     replace,
@@ -227,14 +228,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         preset: str = "v0",
         **options: Any,
     ) -> None:
-        if config is None:
-            config = conveyor_config(preset)
-        if not isinstance(config, ConveyorConfig):
-            raise ValueError(f"config must be a ConveyorConfig, got {type(config).__name__}")
-        if options:
-            V.config_options(ConveyorConfig, options)
-            config = replace(config, **options)
-        self.config = config
+        self.config = env_config(ConveyorConfig, CONVEYOR_PRESETS, config, preset, options)
         cfg = self.config
         super().__init__(
             "conveyor", cfg.workspace, cfg.ik, cfg.planner, render_mode, render_camera, render_size

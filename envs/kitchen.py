@@ -82,6 +82,7 @@ from voot.envs.task_env import (
     add_marker_box,
     add_marker_segment,
     denormalize,
+    env_config,
     pose_tuple,
     preset_config,
     replace,
@@ -328,14 +329,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         preset: str = "v0",
         **options: Any,
     ) -> None:
-        if config is None:
-            config = kitchen_config(preset)
-        if not isinstance(config, KitchenConfig):
-            raise ValueError(f"config must be a KitchenConfig, got {type(config).__name__}")
-        if options:
-            V.config_options(KitchenConfig, options)
-            config = replace(config, **options)
-        self.config = config
+        self.config = env_config(KitchenConfig, KITCHEN_PRESETS, config, preset, options)
         cfg = self.config
         # the fixed path and handling order are needed by _initial_task (called by super)
         self._path: BasePath | None = None

@@ -184,6 +184,27 @@ def preset_config(
     return config_class(**{**presets[preset], **overrides})
 
 
+def env_config(
+    config_class: Any,
+    presets: Mapping[str, Mapping[str, Any]],
+    config: Any,
+    preset: str,
+    options: Mapping[str, Any],
+) -> Any:
+    """An env constructor's config: ``config`` (default: the ``preset``'s), ``options`` applied.
+
+    Raises ValueError for a config of the wrong class, an unknown preset or option.
+    """
+    if config is None:
+        config = preset_config(config_class, presets, preset)
+    if not isinstance(config, config_class):
+        raise ValueError(f"config must be a {config_class.__name__}, got {type(config).__name__}")
+    if options:
+        V.config_options(config_class, options)
+        config = replace(config, **options)
+    return config
+
+
 TaskT = TypeVar("TaskT")
 
 
