@@ -6,5 +6,9 @@
 * :mod:`voot.bench.ray_backend`: sweeps on a Ray cluster;
 * :mod:`voot.bench.select`: the paper's hyperparameter selection (best mean final value);
 * :mod:`voot.bench.plot`, :mod:`voot.bench.plan_plot`: figures and tables;
-* :mod:`voot.bench.cli`: ``voot-bench demo | bbfo | plan | select | plot | speed``.
+* :mod:`voot.bench.kitchen_demo`, :mod:`voot.bench.kitchen_figure5`: the kitchen demo and
+  Figure 5; :mod:`voot.bench.difficulty`: planner-agnostic difficulty of the domains;
+* :mod:`voot.bench.overhead`, :mod:`voot.bench.env_speed`, :mod:`voot.bench.speedup`,
+  :mod:`voot.bench.root_parallel_bench`, :mod:`voot.bench.record_demo`: measurements;
+* :mod:`voot.bench.cli`: ``voot-bench`` and every subcommand (``voot-bench --help``).
 """

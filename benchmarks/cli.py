@@ -15,6 +15,9 @@ Subcommands::
 Errors in the input (unknown function or method, inverted ranges, a corrupt or foreign
 result directory) print one line ``voot-bench: error: ...`` and exit with status 2.
 Progress bars go to stderr, results and tables to stdout.
+
+Size: one parser with one small handler per ``voot-bench`` subcommand; the work is in
+the modules they call.
 """
 
 from __future__ import annotations

@@ -81,6 +81,10 @@ place actions: it runs to its time limit), and its path length, which is the rew
 varies with the seed. The visibility graph is exact for the disc model, complete,
 answers "no path" as fast as "a path", gives the shortest path (so the reward's path
 length is a property of the state, not of a random seed) and needs only numpy.
+
+Size: one planner (a visibility graph over inflated boxes with its caches), plus exact
+float fast paths of its geometric tests that keep a simulation cheap; splitting them
+from the tests they shortcut would separate each shortcut from its reference.
 """
 
 from __future__ import annotations

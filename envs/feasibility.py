@@ -16,6 +16,9 @@ Three building blocks, each deterministic (same inputs, same answer, in any proc
   of the scene and runs MuJoCo's collision detection (``mj_kinematics`` +
   ``mj_collision``), reporting which scene geoms or objects are hit. Contacts between the
   gripper and the object being grasped are allowed (the grasp touches it).
+
+Size: the three kinematic checks an action needs (grasp, IK, collisions), with their
+float fast paths.
 """
 
 from __future__ import annotations

@@ -42,6 +42,9 @@ The action space is one ``Box(-1, 1, (6,))`` in normalised units for both operat
 fixed space keeps gymnasium's checkers and vectorised wrappers happy); at a place step
 only the first three entries are read and the rest is ignored. ``info["next_operator"]``
 and :meth:`KitchenClearingEnv.action_bounds` (6-D at a pick, 3-D at a place) tell which.
+
+Size: one environment, its config with the v0/v1 presets, the pick and place checks
+that the step and the pre-check share, and its rendering overlays.
 """
 
 from __future__ import annotations

@@ -78,6 +78,9 @@ for **Schwefel**, whose formula grows beyond :math:`[-500, 500]` (a shifted Schw
 have a higher, different optimum): Schwefel is left unshifted in every instance, which is
 harmless since its optimum (420.97, ...) is near a corner, far from the centre.
 :func:`shifted` shifts any other function by a given offset.
+
+Size: one registry of test functions with the paper's instances and their optima; each
+function is a few lines, the Shekel instances and their documented optima most of it.
 """
 
 from __future__ import annotations

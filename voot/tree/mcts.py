@@ -20,6 +20,9 @@ through the nodes the root was committed past):
 
 After every simulation the search records the best discounted sum of rewards (goal bonus
 excluded) over the paths from the original root: the paper's curve.
+
+Size: one concept, the search (its loop, new actions, backup, commitment, result); the
+selection rules live in :mod:`voot.tree.selection`.
 """
 
 from __future__ import annotations
