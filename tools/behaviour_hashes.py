@@ -3,8 +3,9 @@
     python tools/behaviour_hashes.py record tools/behaviour_hashes.json   # before
     python tools/behaviour_hashes.py compare tools/behaviour_hashes.json  # after
 
-Covers: black-box sweep runs (VOO, DOO, CMA-ES), plan-sweep runs on a chain and on both
-kitchen versions, a root-parallel search, the kitchen demo's JSON (timings dropped) and
+Covers: black-box sweep runs (VOO, DOO, CMA-ES) and a whole bbfo sweep through the store,
+plan-sweep runs on a chain and on both kitchen versions and a whole plan sweep, a
+root-parallel search, the kitchen demo's JSON (timings dropped) and
 its recording's entity list. Every output is deterministic; timings are left out.
 """
 
@@ -106,7 +107,31 @@ def _demo() -> dict[str, str]:
     return out
 
 
+def _sweeps() -> dict[str, str]:
+    """Whole sweeps through the store (bbfo and plan), rows hashed without timings."""
+    from voot.bench.plan_sweep import build_plan_specs
+    from voot.bench.store import ResultStore
+    from voot.bench.sweep import build_specs, run_sweep
+
+    out = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        cases = {
+            "sweep/bbfo": build_specs(["shekel"], [3], ["voo", "doo"], range(2), budget=80),
+            "sweep/plan": build_plan_specs(
+                ["shekel_chain", "kitchen_v1"], [3], ["voot", "pw_uct"], range(2), simulations=40
+            ),
+        }
+        for name, specs in cases.items():
+            store = ResultStore(Path(tmp) / name.replace("/", "_"), create=True)
+            run_sweep(specs, store, progress=False)
+            rows = sorted(store.load(), key=lambda r: r["run_id"])
+            keep = ("run_id", "status", "best_so_far", "objects_left", "n_steps", "simulator_calls")
+            out[name] = _digest([{k: r.get(k) for k in keep} for r in rows])
+    return out
+
+
 PARTS: dict[str, Callable[[], dict[str, str]]] = {
+    "sweeps": _sweeps,
     "bbfo": _bbfo,
     "plan": _plan_rows,
     "root_parallel": _root_parallel,
