@@ -450,6 +450,14 @@ def cmd_speedup(args: argparse.Namespace) -> int:
     """The baseline commit's code and the current code on the same workloads (see speedup)."""
     from voot.bench import speedup
 
+    if args.v1:
+        try:
+            sims = int(args.simulations[0]) if args.simulations else None
+            runs = speedup.v1_cost(sims, timeout=args.timeout, log=sys.stderr)
+        except (speedup.SpeedupError, ValueError) as exc:
+            raise CLIError(str(exc)) from exc
+        print(speedup.format_v1(runs), end="", flush=True)
+        return 0
     try:
         workloads = speedup.select_workloads(split_list(args.workloads), args.simulations)
         baseline, current, comparisons = speedup.compare(
@@ -829,6 +837,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="scale down: N simulations for every workload, or NAME=N for one",
     )
     p.add_argument("--json", metavar="PATH", help="also write the numbers as JSON")
+    p.add_argument(
+        "--v1",
+        action="store_true",
+        help="instead: the v1 domains' cost per simulation and its split (current code only)",
+    )
     p.add_argument("--no-split", action="store_true", help="skip the per-simulation time split")
     p.add_argument(
         "--timeout", type=float, default=None, help="seconds allowed per run (default: none)"

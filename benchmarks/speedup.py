@@ -60,6 +60,15 @@ class Workload:
     seed: int = 0
 
 
+#: The v1 domains' workloads (current code only: v1 did not exist at the baseline).
+V1_WORKLOADS: dict[str, Workload] = {
+    w.name: w
+    for w in (
+        Workload("kitchen-v1-voot", "voot/KitchenClearing-v1", "voot", 2000),
+        Workload("conveyor-v1-pwuct", "voot/ConveyorPacking-v1", "pw_uct", 3000),
+    )
+}
+
 #: The issue's workloads, by name.
 WORKLOADS: dict[str, Workload] = {
     w.name: w
@@ -82,7 +91,7 @@ from voot.tree import plan
 env = gym.make(spec["env_id"], disable_env_checker=True)
 problem = EnvProblem(env.unwrapped, seed=spec["seed"])
 u = problem.unwrapped
-split = [0.0, 0.0, 0.0, 0.0]
+split = [0.0, 0.0, 0.0, 0.0, 0.0]
 if spec["split"]:
     name = "transition" if hasattr(type(u), "transition") else "step"
     inner = getattr(u, name)
@@ -97,6 +106,16 @@ if spec["split"]:
         return out
 
     setattr(u, name, timed)
+    if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
+        check = u.precheck
+
+        def timed_check(action, check=check):
+            t0 = time.perf_counter()
+            out = check(action)
+            split[4] += time.perf_counter() - t0
+            return out
+
+        u.precheck = timed_check
 options = domain_options(spec["env_id"], None, spec["planner"])
 wall, cpu = time.perf_counter(), time.process_time()
 res = plan(problem, spec["planner"], spec["simulations"], seed=spec["seed"], **options)
@@ -111,7 +130,13 @@ out = {
     "best_return": float(res.best_return),
     "curve_sha256": hashlib.sha256(curve.astype("<f8").tobytes()).hexdigest(),
     "curve": [float(v).hex() for v in curve] if spec["curve"] else None,
-    "split": {"ik": split[0], "collision": split[1], "planning": split[2], "steps": split[3]}
+    "split": {
+        "ik": split[0],
+        "collision": split[1],
+        "planning": split[2],
+        "steps": split[3],
+        "precheck": split[4],
+    }
     if spec["split"]
     else None,
 }
@@ -391,7 +416,10 @@ def split_line(run: RunResult) -> str:
     }
     env_python = max(run.split["steps"] - sum(parts.values()), 0.0)
     parts["other env Python"] = env_python
-    parts["tree search + adapter"] = max(run.wall - run.split["steps"], 0.0)
+    precheck = float(run.split.get("precheck", 0.0))
+    if precheck > 0:
+        parts["kinematic pre-checks"] = precheck
+    parts["tree search + adapter"] = max(run.wall - run.split["steps"] - precheck, 0.0)
     total = run.wall
     cells = ", ".join(
         f"{name} {1e3 * sec / sims:.2f} ({100 * sec / total:.0f}%)" for name, sec in parts.items()
@@ -468,3 +496,41 @@ def curve_digest(values: Sequence[float]) -> str:
     import numpy as np
 
     return hashlib.sha256(np.asarray(values, dtype="<f8").tobytes()).hexdigest()
+
+
+def v1_cost(
+    simulations: int | None = None,
+    *,
+    repo: Path | None = None,
+    timeout: float | None = None,
+    log: Any = None,
+) -> list[RunResult]:
+    """The v1 domains' cost per simulation with the current code (:data:`V1_WORKLOADS`)."""
+    root = repo_root(repo)
+    out = []
+    with tempfile.TemporaryDirectory(prefix="voot-speedup-") as tmp:
+        cur_root = import_root(root, Path(tmp) / "current")
+        for w in V1_WORKLOADS.values():
+            if simulations is not None:
+                w = replace(w, simulations=simulations)
+            if log is not None:
+                print(f"{w.name}: {w.simulations} simulations, current code ...", file=log)
+            out.append(run_workload(cur_root, w, "current", split=True, timeout=timeout))
+    return out
+
+
+def format_v1(runs: Sequence[RunResult]) -> str:
+    """The table of :func:`v1_cost`."""
+    lines = [
+        "v1 domains, current code: CPU seconds of the search and where a simulation's time goes",
+        "",
+        f"{'workload':<18} {'sims':>6} {'cpu s':>8} {'ms/sim':>8} {'steps':>7} {'pre-checks':>10}",
+    ]
+    for run in runs:
+        w = run.workload
+        lines.append(
+            f"{w.name:<18} {w.simulations:>6} {run.cpu:>8.2f} {1e3 * run.cpu / w.simulations:>8.2f}"
+            f" {run.n_steps:>7} {run.n_feasibility_checks:>10}"
+        )
+        lines.append("  " + split_line(run).strip())
+    return "\n".join(lines) + "\n"

@@ -18,7 +18,9 @@ Euclidean distance in the parameter box; it measures, per operator:
 
 Every distance here is vectorised from many points to one,
 ``metric(points (n, d), y (d,)) -> (n,)`` (:data:`voot.tree.problem.ActionDistance`),
-in the paper's units; :func:`to_action_units` makes one for affinely scaled actions.
+and from many points to many, ``metric.pairwise(points, ys) -> (m, n)``, which VOO uses
+to test a batch of proposals at once; both in the paper's units, and
+:func:`to_action_units` makes one for affinely scaled actions.
 """
 
 from __future__ import annotations
@@ -33,7 +35,32 @@ from voot.envs.robot import ARM_REACH
 FloatArray = NDArray[np.float64]
 
 
-class PlaceDistance:
+class _Distance:
+    """A distance from many points to one, computed as one row of :meth:`pairwise`.
+
+    ``pairwise(points (n, d), ys (m, d)) -> (m, n)`` is what VOO uses to test a batch of
+    proposals at once; a single call is its first row, so both give the same bits.
+    """
+
+    def pairwise(self, points: FloatArray, ys: FloatArray) -> FloatArray:
+        raise NotImplementedError
+
+    def __call__(self, points: FloatArray, y: FloatArray) -> FloatArray:
+        out: FloatArray = self.pairwise(points, np.asarray(y, dtype=np.float64)[None, :])[0]
+        return out
+
+
+def _norm(diff: FloatArray) -> FloatArray:
+    """Euclidean norm over the last axis, summing the squares left to right."""
+    sq = diff * diff
+    total = sq[..., 0].copy()
+    for k in range(1, sq.shape[-1]):
+        total += sq[..., k]
+    out: FloatArray = np.sqrt(total)
+    return out
+
+
+class PlaceDistance(_Distance):
     """Distance of the placed objects' (x, y), ignoring their headings.
 
     Args:
@@ -43,14 +70,14 @@ class PlaceDistance:
     def __init__(self, n_placements: int = 1) -> None:
         self.columns = np.array([3 * k + j for k in range(n_placements) for j in (0, 1)])
 
-    def __call__(self, points: FloatArray, y: FloatArray) -> FloatArray:
+    def pairwise(self, points: FloatArray, ys: FloatArray) -> FloatArray:
         c = self.columns
-        diff = np.asarray(points)[:, c] - np.asarray(y)[c]
-        out: FloatArray = np.sqrt(np.einsum("ij,ij->i", diff, diff))
-        return out
+        p = np.asarray(points, dtype=np.float64)[:, c]
+        q = np.asarray(ys, dtype=np.float64)[:, c]
+        return _norm(p[None, :, :] - q[:, None, :])
 
 
-class PickDistance:
+class PickDistance(_Distance):
     """Weighted SE(2) distance of the pick base poses plus the grasp parameters' norm.
 
     Args:
@@ -64,20 +91,20 @@ class PickDistance:
         self.rotation_weight = float(rotation_weight)
         self.reach = float(reach)
 
-    def __call__(self, points: FloatArray, y: FloatArray) -> FloatArray:
+    def pairwise(self, points: FloatArray, ys: FloatArray) -> FloatArray:
         p = np.asarray(points, dtype=np.float64)
-        q = np.asarray(y, dtype=np.float64)
-        rp, rq = p[:, 3] * self.reach, q[3] * self.reach
-        dx = rp * np.cos(p[:, 4]) - rq * math.cos(q[4])
-        dy = rp * np.sin(p[:, 4]) - rq * math.sin(q[4])
-        dtheta = (p[:, 4] + p[:, 5]) - (q[4] + q[5])
+        q = np.asarray(ys, dtype=np.float64)
+        rp, rq = p[:, 3] * self.reach, q[:, 3] * self.reach
+        bx = rp * np.cos(p[:, 4])
+        by = rp * np.sin(p[:, 4])
+        qx = rq * np.cos(q[:, 4])
+        qy = rq * np.sin(q[:, 4])
+        dx = bx[None, :] - qx[:, None]
+        dy = by[None, :] - qy[:, None]
+        dtheta = (p[:, 4] + p[:, 5])[None, :] - (q[:, 4] + q[:, 5])[:, None]
         wrapped = np.abs((dtheta + math.pi) % (2.0 * math.pi) - math.pi)
-        grasp = p[:, :3] - q[:3]
-        out: FloatArray = (
-            np.hypot(dx, dy)
-            + self.rotation_weight * wrapped
-            + np.sqrt(np.einsum("ij,ij->i", grasp, grasp))
-        )
+        grasp = p[None, :, :3] - q[:, None, :3]
+        out: FloatArray = np.hypot(dx, dy) + self.rotation_weight * wrapped + _norm(grasp)
         return out
 
 
@@ -91,21 +118,19 @@ def pick_distance(rotation_weight: float = 1.0) -> PickDistance:
     return PickDistance(rotation_weight)
 
 
-class ScaledDistance:
+class ScaledDistance(_Distance):
     """``metric`` applied to actions mapped to the paper's units by ``a * scale + offset``."""
 
-    def __init__(self, metric: PlaceDistance | PickDistance, scale: FloatArray, offset: FloatArray):
+    def __init__(self, metric: _Distance, scale: FloatArray, offset: FloatArray):
         self.metric = metric
         self.scale = np.asarray(scale, dtype=np.float64)
         self.offset = np.asarray(offset, dtype=np.float64)
 
-    def __call__(self, points: FloatArray, y: FloatArray) -> FloatArray:
+    def pairwise(self, points: FloatArray, ys: FloatArray) -> FloatArray:
         s, o = self.scale, self.offset
-        return self.metric(np.asarray(points) * s + o, np.asarray(y) * s + o)
+        return self.metric.pairwise(np.asarray(points) * s + o, np.asarray(ys) * s + o)
 
 
-def to_action_units(
-    metric: PlaceDistance | PickDistance, scale: FloatArray, offset: FloatArray
-) -> ScaledDistance:
+def to_action_units(metric: _Distance, scale: FloatArray, offset: FloatArray) -> ScaledDistance:
     """``metric`` for actions ``a`` whose paper-unit value is ``a * scale + offset``."""
     return ScaledDistance(metric, scale, offset)

@@ -43,3 +43,15 @@ def test_action_units() -> None:
     d = to_action_units(place_distance(), np.array([4.0, 4.0, 3.0]), np.array([2.0, 0.0, 3.0]))
     pts = np.array([[0.5, 0.0, -1.0]])
     assert d(pts, np.array([0.0, 0.0, 1.0]))[0] == pytest.approx(2.0)
+
+
+def test_pairwise_rows_are_the_single_calls() -> None:
+    rng = np.random.default_rng(0)
+    for metric, dim in ((pick_distance(0.7), 6), (place_distance(), 3), (place_distance(3), 9)):
+        scaled = to_action_units(metric, np.full(dim, 2.0), np.full(dim, 0.5))
+        points, ys = rng.uniform(-1, 1, (40, dim)), rng.uniform(-1, 1, (5, dim))
+        for m in (metric, scaled):
+            table = m.pairwise(points, ys)
+            assert table.shape == (5, 40)
+            for k in range(5):
+                assert table[k].tobytes() == m(points, ys[k]).tobytes()

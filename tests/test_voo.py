@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
+from voot.functions import get_function
 from voot.optim import Bounds, make_optimizer, maximize
 from voot.optim.voo import NEIGHBOURS, VOO, BestCellSampler, VOOConfig
 
@@ -354,3 +355,29 @@ def test_config_defaults_and_grid() -> None:
     opt = make_optimizer("voo", Bounds.cube(0.0, 1.0, 2), sampler="uniform")
     assert isinstance(opt, VOO) and opt.sampler is BestCellSampler.UNIFORM
     assert VOO.supports_revalue
+
+
+def test_a_pairwise_metric_gives_the_same_points_as_its_single_calls() -> None:
+    """A metric's ``pairwise`` only batches the best-cell test: the same draws result."""
+
+    class Manhattan:
+        def __call__(self, points: np.ndarray, y: np.ndarray) -> np.ndarray:
+            return np.abs(points - y).sum(axis=1)
+
+        def pairwise(self, points: np.ndarray, ys: np.ndarray) -> np.ndarray:
+            return np.stack([self(points, y) for y in ys])
+
+    def single(points: np.ndarray, y: np.ndarray) -> np.ndarray:
+        return Manhattan()(points, y)
+
+    f = get_function("shekel", 3)
+    runs = []
+    for metric in (Manhattan(), single):
+        opt = VOO(f.bounds, VOOConfig(omega=0.1, sampler="uniform", metric=metric), seed=3)
+        xs = []
+        for _ in range(40):
+            x = opt.ask()
+            opt.tell(x, f(x))
+            xs.append(x)
+        runs.append(np.array(xs))
+    assert runs[0].tobytes() == runs[1].tobytes()

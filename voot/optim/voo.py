@@ -81,6 +81,8 @@ class VOOConfig(OptimizerConfig):
         uniform_switch_to_gaussian: after a failed ``uniform`` search, switch to
             ``gaussian`` for good (the original's behaviour).
         metric: optional semi-metric ``metric(points, y) -> distances``; Euclidean if None.
+            A metric with a ``pairwise(points, ys) -> (m, n)`` method has a batch of
+            proposals tested at once (speed only; it must agree with the single calls).
         batch_size: minimum number of tries drawn and tested together (speed only;
             changes the random stream, not the distribution). The first batch of an ask
             grows to cover the try accepted at the previous ask; later batches double,
@@ -334,6 +336,11 @@ class VOO(Optimizer):
         b = self._best_index
         metric = self.config.metric
         if metric is not None:
+            pairwise = getattr(metric, "pairwise", None)
+            if pairwise is not None:  # the whole batch at once
+                dist = np.asarray(pairwise(xs, props), dtype=np.float64)
+                mask_all: np.ndarray = dist[:, b] <= dist.min(axis=1)
+                return mask_all
             mask = np.empty(props.shape[0], dtype=bool)
             for k, p in enumerate(props):
                 d = np.asarray(metric(xs, p), dtype=np.float64)
