@@ -32,7 +32,7 @@ import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from voot.bench.store import Row, StoreError
+from voot.bench.store import ResultStore, Row, StoreError
 
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -131,7 +131,6 @@ def _add_filters(p: argparse.ArgumentParser, defaults: bool) -> None:
 
 
 def cmd_bbfo(args: argparse.Namespace) -> int:
-    from voot.bench.store import ResultStore
     from voot.bench.sweep import (
         PAPER_DIMS,
         PAPER_FUNCTIONS,
@@ -165,7 +164,7 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_specs(specs))
         return 0
-    store = ResultStore(args.out)
+    store = _open_store(args.out)
     backend = make_backend(args.backend, args.workers)
     print(f"results: {store.path}", file=sys.stderr)
     with _sigterm_as_interrupt():
@@ -201,7 +200,6 @@ def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, obje
 def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.plan_sweep import build_plan_specs, summarize_plan_specs
     from voot.bench.problems import DEFAULT_PROBLEMS
-    from voot.bench.store import ResultStore
     from voot.bench.sweep import make_backend, run_sweep
 
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
@@ -236,7 +234,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
-    store = ResultStore(args.out)
+    store = _open_store(args.out)
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
     )
@@ -340,6 +338,13 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     at = parse_int_list(args.at, "--at") or None
     if at is not None and min(at) < 1:
         raise CLIError("--at: simulation counts must be >= 1")
+    longest = max(d.simulations for d in data)
+    if at is not None and max(at) > longest:
+        beyond = sorted(k for k in at if k > longest)
+        raise CLIError(
+            f"--at {' '.join(map(str, beyond))}: beyond the runs' budget (the longest has"
+            f" {longest} simulations)"
+        )
     report = plan_report(data, at)
     print(report)
     if args.png:
@@ -487,12 +492,9 @@ def cmd_demo(args: argparse.Namespace) -> int:
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
     try:
         env_id = normalize_problem(args.env)
-        summary = kitchen_demo.run(
-            args.out, sims, seed, args.planner, video=not args.no_video, env_id=env_id
-        )
+        kitchen_demo.run(args.out, sims, seed, args.planner, video=not args.no_video, env_id=env_id)
     except ValueError as exc:
         raise CLIError(str(exc)) from exc
-    print(f"open the recording with: rerun {summary.recording}")
     return 0
 
 
@@ -550,6 +552,18 @@ def cmd_demo_voo(args: argparse.Namespace) -> int:
         if k < budget:
             print(f"  best after {k:>5}  {float(row['best_so_far'][k - 1]):.6g}")
     return 0
+
+
+def _open_store(path: str) -> ResultStore:
+    """The result store at ``path`` (created if missing), or a CLIError saying why not."""
+    try:
+        return ResultStore(path)
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise CLIError(
+            f"--out {path}: cannot create the result store there ({reason}: {exc.filename});"
+            " give a folder that exists or can be created"
+        ) from None
 
 
 # ----- difficulty ----------------------------------------------------------------------
@@ -724,7 +738,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--set",
         nargs="+",
         metavar="NAME=VALUE",
-        help="a planner parameter for every run (e.g. depth_limit=5 omega=0.3)",
+        help="a planner parameter for every run (e.g. depth_limit=5 omega=0.3; VOO's best-cell"
+        " sampler: sampler=gaussian, or sampler.sampler=uniform to name it explicitly)",
     )
     p.add_argument(
         "--env-kwargs",

@@ -195,7 +195,10 @@ def run(
         from voot.record.video import write_video
 
         gif = write_video(out / f"kitchen_{key}.gif", frames, fps=fps, hold_last=int(2 * fps))
-        n_frames = len(frames)
+        from PIL import Image
+
+        with Image.open(gif) as image:  # the writer merges repeated frames: count the file's
+            n_frames = int(getattr(image, "n_frames", 1))
     summary = DemoSummary(
         planner=key,
         seed=seed,

@@ -131,6 +131,11 @@ def _config_fields() -> set[str]:
     return {f.name for f in fields(MCTSConfig)}
 
 
+#: ``--set sampler.NAME=VALUE`` sets the per-node sampler's option NAME (e.g. VOO's own
+#: ``sampler``, which the tree's ``sampler`` field would otherwise take).
+SAMPLER_PREFIX = "sampler."
+
+
 def mcts_config(
     problem: str,
     dim: int | None,
@@ -139,15 +144,22 @@ def mcts_config(
     env_kwargs: Mapping[str, Any] | None = None,
 ) -> Any:
     """The :class:`~voot.tree.MCTSConfig` of a run: planner, problem settings, ``params``."""
-    from voot.tree.config import planner_config
+    from voot.tree.config import available_samplers, planner_config
 
     options = P.domain_options(problem, dim, planner, env_kwargs)
     sampler_options = dict(options.pop("sampler_options", {}))
     config_fields = _config_fields()
+    tree_samplers = set(available_samplers())
     for name, value in params.items():
         if name == "sampler_options":
             raise ValueError("set sampler options by name (e.g. omega=0.3), not sampler_options=")
-        if name in config_fields:
+        if name.startswith(SAMPLER_PREFIX):  # sampler.sampler=gaussian: VOO's own option
+            sampler_options[name[len(SAMPLER_PREFIX) :]] = value
+        elif name == "sampler" and value not in tree_samplers:
+            # not a per-node sampler (voo, doo, uniform ...): the sampler's own option of
+            # that name, e.g. VOO's best-cell sampler (gaussian, centered_uniform)
+            sampler_options[name] = value
+        elif name in config_fields:
             options[name] = value
         else:
             sampler_options[name] = value
@@ -311,6 +323,12 @@ def build_plan_specs(
         fam = P.family(problem)
         chain = P.is_chain(problem)
         problem_dims: list[int | None] = list(dim_list) if chain else [None]
+        if chain and kwargs:
+            raise ValueError(
+                f"--env-kwargs {sorted(kwargs)} apply to gymnasium environments; the"
+                f" {problem} takes its dimension from --dims (or use its gymnasium id,"
+                f" e.g. voot/ShekelChain-v0 with --env-kwargs dim=5)"
+            )
         env = () if chain else tuple(sorted(kwargs.items()))
         n_sims = simulations if simulations is not None else setup.simulations
         seeds_here = seed_list if seed_list is not None else list(range(setup.seeds))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -317,3 +318,47 @@ def test_demo_plans_on_the_kitchen_and_writes_a_recording(
     assert main(["demo", "--simulations", "5", "--seed", "0", "--no-video", "--out", str(out)]) == 0
     assert (out / "kitchen_voot.rrd").stat().st_size > 0
     assert "rerun " in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["bbfo", "--budget-scale", "inf", "--dry-run"], "budget_scale must be > 0 and finite"),
+        (
+            ["plan", "--problems", "shekel_chain", "--env-kwargs", "dim=5", "--dry-run"],
+            "--env-kwargs \\['dim'\\] apply to gymnasium environments",
+        ),
+    ],
+)
+def test_cli_errors_that_were_tracebacks_or_silence(
+    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(argv) == 2
+    assert re.search(message, capsys.readouterr().err)
+
+
+def test_out_under_a_file_is_a_clear_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "file").write_text("x")
+    out = str(tmp_path / "file" / "store")
+    args = ["bbfo", "--out", out, "--functions", "shekel", "--dims", "3", "--methods", "voo"]
+    assert main([*args, "--seeds", "1", "--budget", "5", "--no-progress"]) == 2
+    assert "cannot create the result store there" in capsys.readouterr().err
+
+
+def test_plan_set_sampler_reaches_voo_and_plot_at_beyond_budget(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import json
+
+    out = tmp_path / "p"
+    base = ["plan", "--out", str(out), "--problems", "shekel_chain", "--dims", "3"]
+    base += ["--planners", "voot", "--seeds", "1", "--simulations", "5", "--grid", "default"]
+    assert main([*base, "--set", "sampler=gaussian", "--no-progress"]) == 0
+    row = json.loads(next((out / "runs").glob("*.json")).read_text())
+    assert row["planner_config"]["sampler"] == "voo"
+    assert row["planner_config"]["sampler_options"]["sampler"] == "gaussian"
+    capsys.readouterr()
+    assert main(["plot", str(out), "--at", "50"]) == 2
+    assert "beyond the runs' budget" in capsys.readouterr().err
