@@ -33,6 +33,7 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from voot.bench.store import ResultStore, Row, StoreError
+from voot.bench.sweep import Spec
 
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -158,7 +159,8 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
     evaluations = sum(s.budget for s in specs)
     instance = f", instance {args.instance}" if args.instance else ""
     print(
-        f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}{instance}",
+        f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}{instance}"
+        f"{_stored_note(args.out, specs)}",
         file=sys.stderr,
     )
     if args.dry_run:
@@ -230,7 +232,10 @@ def cmd_plan(args: argparse.Namespace) -> int:
         record=args.record,
     )
     simulations = sum(s.simulations for s in specs)
-    print(f"{len(specs)} runs, {simulations} simulations", file=sys.stderr)
+    print(
+        f"{len(specs)} runs, {simulations} simulations{_stored_note(args.out, specs)}",
+        file=sys.stderr,
+    )
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
@@ -552,6 +557,19 @@ def cmd_demo_voo(args: argparse.Namespace) -> int:
         if k < budget:
             print(f"  best after {k:>5}  {float(row['best_so_far'][k - 1]):.6g}")
     return 0
+
+
+def _stored_note(path: str, specs: Sequence[Spec]) -> str:
+    """``"; N already in the store"`` if the store at ``path`` exists and holds some."""
+    from voot.bench.sweep import pending_specs
+
+    try:
+        store = ResultStore(path, create=False)
+    except (OSError, StoreError):
+        return ""
+    unique = {s.run_id for s in specs}
+    done = len(unique) - len({s.run_id for s in pending_specs(specs, store)})
+    return f"; {done} already in the store" if done else ""
 
 
 def _open_store(path: str) -> ResultStore:

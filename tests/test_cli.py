@@ -362,3 +362,15 @@ def test_plan_set_sampler_reaches_voo_and_plot_at_beyond_budget(
     capsys.readouterr()
     assert main(["plot", str(out), "--at", "50"]) == 2
     assert "beyond the runs' budget" in capsys.readouterr().err
+
+
+def test_a_resumed_sweep_says_how_many_runs_are_stored(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = str(tmp_path / "p")
+    base = ["plan", "--out", out, "--problems", "shekel_chain", "--dims", "3"]
+    base += ["--planners", "voot", "--simulations", "5", "--grid", "default", "--no-progress"]
+    assert main([*base, "--seeds", "1"]) == 0
+    capsys.readouterr()
+    assert main([*base, "--seeds", "2", "--dry-run"]) == 0
+    assert "2 runs, 10 simulations; 1 already in the store" in capsys.readouterr().err
