@@ -339,3 +339,27 @@ def _relative(base: np.ndarray, obj: tuple[float, float, float]) -> np.ndarray:
     c, s = math.cos(obj[2]), math.sin(obj[2])
     d = np.array([base[0] - obj[0], base[1] - obj[1]])
     return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
+
+
+def test_place_rewards_reach_their_caps() -> None:
+    """min(1/L, cap) for a clearing place and max(-L, -cap) otherwise, with the caps hit."""
+    tight = KitchenClearingEnv(KitchenConfig(max_place_reward=0.05, max_place_penalty=0.05))
+    loose = KitchenClearingEnv()
+    for env in (tight, loose):
+        env.reset(seed=0)
+        acts = kitchen_actions(env)
+        env.step(acts[0])
+        state = env.get_state()
+        _, r_clear, _, _, info = env.step(acts[1])  # the scripted place clears box1
+        assert info["objects_left"] == 6
+        length = info["base_path_length"]
+        assert r_clear == pytest.approx(min(1.0 / length, env.config.max_place_reward))
+        env.set_state(state)
+        x, y, _, yaw = env.object_pose(env.task.held)
+        _, r_stay, _, _, info = env.step(_place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
+        assert info["feasible"] and info["objects_left"] == 7
+        assert r_stay == pytest.approx(
+            max(-info["base_path_length"], -env.config.max_place_penalty)
+        )
+    # the caps bind in the tight config and not in the default one
+    assert 1.0 / length > 0.05

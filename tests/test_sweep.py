@@ -356,3 +356,27 @@ def test_sweep_does_not_import_the_plan_sweep() -> None:
     code = "import sys, voot.bench.sweep; print('voot.bench.plan_sweep' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_duplicate_specs_run_once(tmp_path: Path) -> None:
+    """The same run listed twice (e.g. overlapping grids) is run and stored once."""
+    from voot.bench.store import ResultStore
+    from voot.bench.sweep import build_specs, run_sweep
+
+    specs = build_specs(["shekel"], [3], ["voo"], range(2), budget=10, grid="default")
+    doubled = [*specs, *specs[::-1]]
+    calls: list[str] = []
+
+    def run(spec: Any) -> Any:
+        calls.append(spec.run_id)
+        from voot.bench.sweep import run_spec
+
+        return run_spec(spec)
+
+    store = ResultStore(tmp_path / "s")
+    summary = run_sweep(doubled, store, progress=False, run=run)
+    assert summary.total == len(specs) == summary.ran and summary.skipped == 0
+    assert sorted(calls) == sorted(s.run_id for s in specs)
+    assert len(store.load()) == len(specs)
+    again = run_sweep(doubled, store, progress=False, run=run)
+    assert again.skipped == len(specs) and again.ran == 0 and len(calls) == len(specs)

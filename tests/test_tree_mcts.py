@@ -574,3 +574,31 @@ def test_problem_metric_reaches_the_voo_nodes() -> None:
         WithMetric(dim=2, goal_depth=3), planner_config("doot", use_problem_metric=True), seed=0
     )
     doot.search(10)
+
+
+def test_commitment_moves_to_the_best_q_feasible_child_at_that_moment() -> None:
+    """The committed child is the argmax of Q-hat over the root's feasible, expandable
+    children *when the threshold is met* (first on ties), not whatever is best later."""
+    problem = SignedReward()
+    mcts = MCTS(problem, planner_config("uniform_t", root_commitment=4, depth_limit=5), seed=3)
+    history: list[tuple[list[float], list[bool]]] = []
+    moved_to: list[tuple[int, object]] = []
+
+    def watch(m: MCTS, i: int) -> None:
+        root = m.root
+        if m.current_root is not root and not moved_to:
+            moved_to.append((i, m.current_root))
+        history.append(
+            (
+                list(root.q),
+                [f and c.expandable for f, c in zip(root.feasible, root.children, strict=True)],
+            )
+        )
+
+    mcts.search(200, callback=watch)
+    assert moved_to, "the root never committed"
+    i, child = moved_to[0]
+    q, ok = history[i - 1]  # the root as it was when simulation i started
+    best = max((k for k in range(len(q)) if ok[k]), key=lambda k: (q[k], -k))
+    assert child is mcts.root.children[best]
+    assert sum(ok) == 4  # exactly at the threshold

@@ -381,3 +381,69 @@ def test_a_pairwise_metric_gives_the_same_points_as_its_single_calls() -> None:
             xs.append(x)
         runs.append(np.array(xs))
     assert runs[0].tobytes() == runs[1].tobytes()
+
+
+# ----- what a planted bug would change (issue: tests that catch real bugs) -----------------
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_the_best_cell_stays_exact_as_it_outgrows_the_neighbour_cache(sampler: str) -> None:
+    """Exploit one fixed best point: its cell fills with more than NEIGHBOURS told points,
+    and every ask must still land in the brute-force best cell."""
+    box = Bounds.cube(-1.0, 1.0, 3)
+    opt = VOO(box, VOOConfig(omega=0.0, sampler=sampler), seed=2)
+    opt.tell(np.full(3, 0.1), 10.0)  # the best, for good
+    opt.tell(np.full(3, -0.9), 0.0)
+    checked = 0
+    for _ in range(3 * NEIGHBOURS):
+        fallbacks = opt.n_fallbacks
+        x = opt.ask()
+        # not the try cap's closest-proposal fallback, and far enough from x* for
+        # absolute distances (the brute force) to resolve the cell's faces
+        near = np.linalg.norm(x - opt.xs[opt.best_index]) < 1e-9
+        if opt.n_fallbacks == fallbacks and not near:
+            assert brute_in_cell(opt.xs, opt.best_index, x), x
+            checked += 1
+        opt.tell(x, -1.0)
+    cell = opt._best_cell()
+    assert cell.count == NEIGHBOURS and opt.n_told > 2 * NEIGHBOURS
+    assert checked > NEIGHBOURS // 2  # enough asks were real best-cell draws
+
+
+def test_centered_uniform_first_try_is_uniform_in_the_shrunk_box() -> None:
+    """Try 1 draws uniformly in [x* + (lb - x*)/e, x* + (ub - x*)/e] (the authors' schedule)."""
+    box = Bounds.cube(-1.0, 1.0, 2)
+    best, far = np.array([0.5, -0.2]), np.array([-1.0, 1.0])
+    draws = []
+    for seed in range(400):
+        opt = told(np.stack([best, far]), np.array([1.0, 0.0]), box, seed=seed, omega=0.0)
+        draws.append(opt.sample_best_cell())
+    d = np.array(draws)
+    lo = best + (box.lower - best) / np.e
+    hi = best + (box.upper - best) / np.e
+    assert np.all(d >= lo - 1e-12) and np.all(d <= hi + 1e-12)
+    # uniform over [lo, hi] per axis (most first tries are accepted: the other point is far)
+    for k in range(2):
+        u = (d[:, k] - lo[k]) / (hi[k] - lo[k])
+        assert stats.kstest(u, "uniform").pvalue > 1e-3
+        assert u.min() < 0.05 and u.max() > 0.95
+
+
+def test_gaussian_first_try_has_the_documented_scale() -> None:
+    """Try 1 draws N(x*, s_1^2), s_1 = max(|ub - x*|, |lb - x*|) / e, clipped to the box."""
+    box = Bounds.cube(-10.0, 10.0, 1)
+    best, far = np.array([0.0]), np.array([-10.0])
+    draws = []
+    for seed in range(600):
+        opt = told(
+            np.stack([best, far]),
+            np.array([1.0, 0.0]),
+            box,
+            seed=seed,
+            omega=0.0,
+            sampler="gaussian",
+        )
+        draws.append(float(opt.sample_best_cell()[0]))
+    d = np.array(draws)
+    s1 = 10.0 / np.e
+    # accepted draws lie right of -5 (the cell's edge); above x* nothing is rejected
+    right = d[d > 0]
+    assert stats.kstest(right / s1, stats.halfnorm.cdf).pvalue > 1e-3
