@@ -62,3 +62,27 @@ def test_rst_roles_are_rewritten() -> None:
     assert "The loop is:\n" in out and "::" not in out
     assert "$$\nR_n = f^* - f(x_n)\n$$" in out
     assert out.endswith("End.")
+
+
+def test_the_built_site_loads_no_remote_script(tmp_path: Path) -> None:
+    """Offline readers get rendered maths: MathJax ships with the docs, nothing is fetched."""
+    import re
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parent.parent
+    site = tmp_path / "site"
+    subprocess.run(
+        [sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
+        cwd=root,
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
+    pages = list(site.rglob("*.html"))
+    assert pages
+    remote = re.compile(r"<script[^>]+src=\"(https?:)?//", re.I)
+    offenders = [p.name for p in pages if remote.search(p.read_text(errors="replace"))]
+    assert not offenders, offenders
+    assert (site / "javascripts" / "mathjax" / "tex-svg.js").stat().st_size > 1_000_000
+    assert "tex-svg.js" in (site / "voo" / "index.html").read_text()
