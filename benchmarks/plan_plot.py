@@ -6,7 +6,9 @@ return from the root (goal bonus excluded) in the left panel and, when the probl
 reports it, the objects still to handle at the best leaf in the right panel; one line per
 planner with its selected hyperparameters (:mod:`voot.bench.select`, best mean final
 return), the mean over seeds and a shaded 95% t-interval (:func:`mean_ci`, seeds whose
-value is unknown at a point left out there). The x axis is the number of simulations
+value is unknown at a point left out there; the objects' band is clipped to the count's
+range, 0 to the objects at the start; with fewer than
+:data:`~voot.bench.plot.MIN_SEEDS_FOR_BAND` seeds the mean is dashed and has no band). The x axis is the number of simulations
 (:func:`plot_plan_figure`) or the wall-clock seconds since the search started
 (``x="seconds"``): each run's curve is read as a step function of its own clock
 (``elapsed``), on a grid up to the time by which every seed of the planner had finished.
@@ -29,7 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from voot.bench.plan_sweep import PLAN_PLANNERS
-from voot.bench.plot import CONFIDENCE
+from voot.bench.plot import CONFIDENCE, curve_style
 from voot.bench.select import (
     cell_of,
     function_order,
@@ -205,6 +207,14 @@ def plan_data(
     return out
 
 
+def _objects_top(d: PlannerRuns) -> float:
+    """The most objects a run of ``d`` had at the start (inf if unknown): the band's top."""
+    initial = d.objects_initial
+    if initial is None or not np.any(np.isfinite(initial)):
+        return float("inf")
+    return float(np.nanmax(initial))
+
+
 def _cells(data: Sequence[PlannerRuns]) -> list[tuple[str, int]]:
     problems = function_order(d.problem for d in data)
     cells = sorted({d.cell for d in data}, key=lambda c: (problems.index(c[0]), c[1]))
@@ -310,11 +320,14 @@ def plot_plan_figure(
                 else:
                     xs, samples = np.arange(1, values.shape[1] + 1), values
                 mean, half, _ = mean_ci(samples)
-                (line,) = ax.plot(xs, mean, color=colors[d.planner], lw=1.4, label=d.planner)
-                if np.any(np.isfinite(half)):
-                    ax.fill_between(
-                        xs, mean - half, mean + half, color=colors[d.planner], alpha=0.2, lw=0
-                    )
+                style, band = curve_style(samples.shape[0])
+                (line,) = ax.plot(xs, mean, style, color=colors[d.planner], lw=1.4, label=d.planner)
+                if band and np.any(np.isfinite(half)):
+                    low, high = mean - half, mean + half
+                    if attr == "objects_left":  # a count in [0, objects at the start]
+                        top = _objects_top(d)
+                        low, high = np.clip(low, 0.0, top), np.clip(high, 0.0, top)
+                    ax.fill_between(xs, low, high, color=colors[d.planner], alpha=0.2, lw=0)
                 handles.setdefault(d.planner, line)
                 drawn = True
             if not drawn:

@@ -187,3 +187,40 @@ def test_figures(tmp_path: Path) -> None:
         plot_plan_figure([], tmp_path / "empty.png")
     with pytest.raises(ValueError, match="'simulations' or 'seconds'"):
         plot_plan_figure(data, tmp_path / "bad.png", x="hours")
+
+
+def test_objects_band_stays_in_the_count_and_few_seeds_get_no_band(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With 2 seeds a t-band on 'objects left' ran from -20 to +40 for a count in [0, 7]."""
+    from matplotlib.collections import PolyCollection
+    from matplotlib.figure import Figure
+
+    from voot.bench import plan_plot
+
+    rng = np.random.default_rng(0)
+    few = [
+        plan_row(rng.uniform(-2, 0, 30).tolist(), planner="voot", seed=s, left=[7.0, 3.0] * 15)
+        for s in range(2)
+    ]
+    many = [
+        plan_row(
+            rng.uniform(-2, 0, 30).tolist(), planner="pw_uct", seed=s, left=[7.0 * (s % 2)] * 30
+        )
+        for s in range(4)
+    ]
+    data = plan_plot.plan_data(few + many)
+    captured = {}
+    original = Figure.savefig
+
+    def spy(self: Figure, *args: object, **kwargs: object) -> object:
+        captured["fig"] = self
+        return original(self, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(Figure, "savefig", spy)
+    plan_plot.plot_plan_figure(data, tmp_path / "f.png")
+    ax_objects = captured["fig"].axes[1]
+    bands = [c for c in ax_objects.collections if isinstance(c, PolyCollection)]
+    assert len(bands) == 1  # only the 4-seed planner has a band
+    ys = np.concatenate([p.vertices[:, 1] for p in bands[0].get_paths()])
+    assert ys.min() >= 0.0 and ys.max() <= 7.0
