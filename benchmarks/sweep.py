@@ -495,7 +495,7 @@ def pending_specs(specs: Sequence[S], store: ResultStore, *, retry_failed: bool 
 
 
 def _progress_bar(total: int, enabled: bool, desc: str) -> Any:
-    if not enabled:
+    if not enabled or total == 0:  # nothing to run: no bar (tqdm would draw it twice)
         return None
     try:
         from tqdm import tqdm
