@@ -329,7 +329,7 @@ def _plan_filter(names: Sequence[str] | None) -> list[str] | None:
 
 def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     from voot.bench.plan_plot import plan_data, plan_report, plot_plan_figure
-    from voot.tree.config import normalize_planner
+    from voot.tree.shooting import normalize_any_planner as normalize_planner
 
     if args.regret or args.log or args.functions or args.dims or args.methods:
         raise CLIError(
@@ -741,7 +741,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--planners",
         nargs="+",
         metavar="NAME",
-        help="voot doot rand_doot pw_uct voronoi_pw hoot uniform_t (default: the paper's)",
+        help="voot doot rand_doot pw_uct voronoi_pw hoot uniform_t, or the sampling-based"
+        " cem mppi predictive_sampling random_shooting (default: the paper's)",
     )
     p.add_argument(
         "--seeds", default=None, help="N (seeds 0..N-1) or START:STOP (default: the paper's)"

@@ -3,7 +3,9 @@ r"""The planning sweep of ``voot-bench plan``: planners x problems x seeds (pape
 A sweep is a grid of problems (:mod:`voot.bench.problems`) x planners (each with its
 hyperparameter grid, :func:`planner_grid`) x seeds, every run with a budget of
 simulations. :func:`build_plan_specs` turns the grid into :class:`PlanSpec` values and
-:func:`run_plan_spec` runs one with :class:`voot.tree.MCTS`, returning a result row of
+:func:`run_plan_spec` runs one with :class:`voot.tree.MCTS` (or, for the sampling-based
+planners ``cem``, ``mppi``, ``predictive_sampling`` and ``random_shooting``, with
+:class:`voot.tree.shooting.ShootingPlanner`: the same row), returning a result row of
 kind ``"plan"`` for the same store, backends and resume logic as the black-box sweep
 (:func:`voot.bench.sweep.run_sweep`).
 
@@ -16,7 +18,9 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   settings (:func:`voot.bench.problems.domain_options`) and the grid's ``params``.
   A parameter that is an :class:`~voot.tree.MCTSConfig` field (``reevaluations``,
   ``pw_k``, ``ucb_c`` ...) sets that field; any other one (``omega``, ``epsilon``,
-  ``v1`` ...) is an option of the per-node sampler.
+  ``v1`` ...) is an option of the per-node sampler. A sampling-based planner takes the
+  problem's discount and its own options (:func:`shooting_run_config`); its row has the
+  same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0).
 * **Search seed**: ``SeedSequence([seed, key(problem), dim, key(env keywords),
   key(planner)])``; the hyperparameters are deliberately not in it (common random
   numbers across a planner's grid, as in :mod:`voot.bench.sweep`).
@@ -58,6 +62,10 @@ PLAN_PLANNERS: tuple[str, ...] = (
     "voronoi_pw",
     "hoot",
     "uniform_t",
+    "cem",
+    "mppi",
+    "predictive_sampling",
+    "random_shooting",
 )
 #: Re-evaluation counts ``w`` (the paper's :math:`N_r = 1 + w`) searched per family; the
 #: authors used 100 on the chains and 5 on the robot domains.
@@ -73,6 +81,12 @@ PW_KS: tuple[float, ...] = (1.0, 3.0)
 UCB_CS: tuple[float, ...] = (0.1, 1.0, 10.0)
 #: HOO smoothness scales :math:`\nu_1` searched for HOOT.
 HOO_V1S: tuple[float, ...] = (0.1, 1.0, 10.0)
+#: CEM's initial standard deviations searched (normalised units; 0.5 is PETS's).
+CEM_INIT_STDS: tuple[float, ...] = (0.25, 0.5)
+#: Perturbation scales searched for MPPI and predictive sampling (0.1 is MuJoCo MPC's).
+SAMPLING_NOISES: tuple[float, ...] = (0.1, 0.3)
+#: MPPI temperatures searched (0.01 is MuJoCo MPC's).
+MPPI_TEMPERATURES: tuple[float, ...] = (0.01, 0.1)
 #: Most runs one sweep may record (one ``.rrd`` file each).
 MAX_RECORDINGS = 50
 #: Row keys that hold timings (they differ between two runs of the same spec).
@@ -97,11 +111,15 @@ def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[st
     pw_uct      pw_k x ucb_c
     voronoi_pw  omega x pw_k
     hoot        v1
+    cem         init_std
+    mppi        noise x temperature
+    predictive_sampling  noise
+    random_shooting      (none)
     ==========  ==================================================
     """
-    from voot.tree.config import normalize_planner
+    from voot.tree.shooting import normalize_any_planner
 
-    key = normalize_planner(planner)
+    key = normalize_any_planner(planner)
     if grid not in GRIDS:
         raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
     if family not in REEVALUATIONS:
@@ -117,6 +135,9 @@ def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[st
         "pw_uct": {"pw_k": PW_KS, "ucb_c": UCB_CS},
         "voronoi_pw": {"omega": OMEGAS, "pw_k": PW_KS},
         "hoot": {"v1": HOO_V1S},
+        "cem": {"init_std": CEM_INIT_STDS},
+        "mppi": {"noise": SAMPLING_NOISES, "temperature": MPPI_TEMPERATURES},
+        "predictive_sampling": {"noise": SAMPLING_NOISES},
     }.get(key, {})  # type: ignore[assignment]
     names = sorted(axes)
     return [
@@ -182,6 +203,41 @@ def mcts_config(
         raise ValueError(f"{exc}; or a planner parameter (an MCTSConfig field): {names}") from None
 
 
+def shooting_run_config(
+    problem: str,
+    dim: int | None,
+    planner: str,
+    params: Mapping[str, Any],
+    env_kwargs: Mapping[str, Any] | None = None,
+) -> Any:
+    """The :class:`~voot.tree.shooting.ShootingConfig` of a sampling-based run: the
+    planner's defaults, the problem's discount (the one the tree planners get), ``params``."""
+    from voot.tree.shooting import shooting_config
+
+    options: dict[str, Any] = {}
+    domain = P.domain_options(problem, dim, planner, env_kwargs)
+    if "gamma" in domain:
+        options["gamma"] = domain["gamma"]
+    options.update(params)
+    return shooting_config(planner, **options)
+
+
+def run_config(
+    problem: str,
+    dim: int | None,
+    planner: str,
+    params: Mapping[str, Any],
+    env_kwargs: Mapping[str, Any] | None = None,
+) -> Any:
+    """The config of a run: :func:`shooting_run_config` for a sampling-based planner,
+    else :func:`mcts_config`."""
+    from voot.tree.shooting import is_shooting_planner
+
+    if is_shooting_planner(planner):
+        return shooting_run_config(problem, dim, planner, params, env_kwargs)
+    return mcts_config(problem, dim, planner, params, env_kwargs)
+
+
 @dataclass(frozen=True)
 class PlanSpec:
     """One planning run: ``planner`` with ``params`` on ``problem`` (``dim`` for a chain,
@@ -242,6 +298,12 @@ class PlanSpec:
             self.problem, self.dim, self.planner, self.params_dict, self.env_kwargs_dict
         )
 
+    def run_config(self) -> Any:
+        """The planner's config: an MCTSConfig, or a ShootingConfig (:func:`run_config`)."""
+        return run_config(
+            self.problem, self.dim, self.planner, self.params_dict, self.env_kwargs_dict
+        )
+
 
 def search_seed(spec: PlanSpec) -> np.random.SeedSequence:
     """Seed of the search of a run (the same for every hyperparameter of the planner)."""
@@ -294,14 +356,14 @@ def build_plan_specs(
         ValueError: unknown problem, planner, parameter or grid; bad numbers; a chain
             dimension without a reference threshold. Messages list the valid choices.
     """
-    from voot.tree.config import normalize_planner
+    from voot.tree.shooting import is_shooting_planner, normalize_any_planner
 
     names = [P.normalize_problem(p) for p in problems]
     if not names:
         raise ValueError("no problems given")
     dim_list = _int_list(dims, "dims", 1) if dims is not None else list(P.DEFAULT_CHAIN_DIMS)
     seed_list = _int_list(seeds, "seeds", 0) if seeds is not None else None
-    planner_list = [normalize_planner(p) for p in planners] if planners is not None else None
+    planner_list = [normalize_any_planner(p) for p in planners] if planners is not None else None
     if planner_list is not None and not planner_list:
         raise ValueError("no planners given")
     if simulations is not None:
@@ -340,12 +402,18 @@ def build_plan_specs(
                     params = {**setting, **extra}
                     key = (problem, dim, planner, json.dumps(params, sort_keys=True))
                     if key not in checked:
-                        mcts_config(problem, dim, planner, params, kwargs)  # fail early
+                        run_config(problem, dim, planner, params, kwargs)  # fail early
                         checked.add(key)
                     items = tuple(sorted(params.items()))
                     for seed in seeds_here:
                         specs.append(PlanSpec(problem, dim, env, planner, items, int(n_sims), seed))
     if record is not None:
+        shooting = sorted({s.planner for s in specs if is_shooting_planner(s.planner)})
+        if shooting:
+            raise ValueError(
+                f"recording draws a search tree; the sampling-based planners {shooting}"
+                " keep none (record tree planners only)"
+            )
         if len(specs) > MAX_RECORDINGS:
             raise ValueError(
                 f"recording would write {len(specs)} files (one per run, at most"
@@ -392,10 +460,15 @@ def run_plan_spec(spec: PlanSpec) -> Row:
     best: list[float] = []
     try:
         from voot.tree.mcts import MCTS
+        from voot.tree.shooting import ShootingConfig, ShootingPlanner
 
-        config = spec.mcts_config()
+        config = spec.run_config()
         inst = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed)
-        mcts = MCTS(inst.problem, config, seed=search_seed(spec))
+        mcts: Any = (
+            ShootingPlanner(inst.problem, config, seed=search_seed(spec))
+            if isinstance(config, ShootingConfig)
+            else MCTS(inst.problem, config, seed=search_seed(spec))
+        )
         recorder: Any = None
         if spec.record is not None:
             from voot.record import SearchRecorder

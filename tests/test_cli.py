@@ -202,6 +202,26 @@ def test_plan_plot_select_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert "| rastrigin | 3 | 5 | random |" in capsys.readouterr().out
 
 
+def test_plan_and_plot_sampling_based_planners(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "mpc"
+    argv = ["plan", "--out", str(out), *PLAN_TINY]
+    i = argv.index("voot")
+    argv[i : i + 2] = ["cem", "voot"]  # a sampling-based planner next to a tree planner
+    assert main(argv) == 0
+    rows = ResultStore(out).load(kind="plan")
+    assert {r["config"]["planner"] for r in rows} == {"cem", "voot"}
+    png = tmp_path / "mpc.png"
+    assert main(["plot", str(out), "--png", str(png)]) == 0
+    printed = capsys.readouterr().out
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert "| problem | simulations | voot | cem |" in printed
+    assert "| shekel_chain 3-D | cem |" in printed  # the cost table
+    assert main(["plot", str(out), "--planners", "CEM"]) == 0
+    assert "| problem | simulations | cem |\n" in capsys.readouterr().out
+
+
 def test_plan_records_a_run(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     rrd = tmp_path / "run.rrd"
     argv = ["plan", "--out", str(tmp_path / "r"), *PLAN_TINY, "--record", str(rrd)]

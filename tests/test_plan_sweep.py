@@ -77,7 +77,7 @@ def test_grids() -> None:
     ("kwargs", "match"),
     [
         ({"problems": ["nope"]}, "unknown problem 'nope'; valid problems"),
-        ({"planners": ["vooot"]}, "unknown planner 'vooot'; valid planners are: doot"),
+        ({"planners": ["vooot"]}, "unknown planner 'vooot'; valid planners are: cem, doot"),
         ({"dims": [5]}, "no reference threshold for the shekel chain in 5-D"),
         ({"dims": [0]}, "dims must be integers >= 1"),
         ({"seeds": [-1]}, "seeds must be integers >= 0"),
@@ -89,6 +89,9 @@ def test_grids() -> None:
         ({"record": "run.txt"}, "must end in .rrd"),
         ({"record": "r.rrd", "seeds": range(60)}, "narrow the sweep"),
         ({"env_kwargs": {"x": object()}}, "JSON"),
+        ({"planners": ["cem"], "fixed": {"omega": 0.1}}, r"unknown option\(s\) \['omega'\]"),
+        ({"planners": ["mppi"], "fixed": {"noise": -1}}, "noise must be"),
+        ({"planners": ["cem"], "record": "r.rrd"}, "keep none"),
     ],
 )
 def test_bad_plan_arguments(kwargs: dict[str, Any], match: str) -> None:
@@ -277,3 +280,40 @@ def test_plan_specs_are_registered_with_run_any() -> None:
     assert RUNNERS["plan"] is run_plan_spec
     spec = PlanSpec("shekel_chain", 3, (), "voot", (), 10, 0)
     assert run_any(spec)["best_so_far"] == run_plan_spec(spec)["best_so_far"]
+
+
+def test_sampling_based_planners_in_the_sweep() -> None:
+    assert planner_grid("random_shooting", "robot") == [{}]
+    assert {g["init_std"] for g in planner_grid("CEM", "chain")} == {0.25, 0.5}
+    assert set(planner_grid("mppi", "robot")[0]) == {"noise", "temperature"}
+    assert len(planner_grid("predictive-sampling", "robot")) == 2
+    specs = build_plan_specs(
+        ["shekel_chain"], [3], ["cem", "RANDOM_SHOOTING"], [0], simulations=30, grid="default"
+    )
+    assert [s.planner for s in specs] == ["cem", "random_shooting"]
+    for spec in specs:
+        r = run_plan_spec(spec)
+        assert r["status"] == "ok", r.get("error")
+        assert len(r["best_so_far"]) == len(r["elapsed"]) == 30
+        assert r["best_so_far"][-1] == r["best_return"]
+        assert r["n_nodes"] == 0 and r["n_feasibility_checks"] == 0
+        assert r["simulator_calls"] == r["n_steps"] >= 30
+        assert r["planner_config"]["planner"] == spec.planner
+        assert r["planner_config"]["gamma"] == 0.9  # the chain's discount
+        assert r["plan_length"] == len(r["best_actions"]) >= 1
+    # the same spec gives the same row
+    again = run_plan_spec(specs[0])
+    assert strip_timings(again) == strip_timings(run_plan_spec(specs[0]))
+
+
+@pytest.mark.skipif(
+    not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
+)
+def test_kitchen_v1_run_with_a_sampling_based_planner() -> None:
+    (spec,) = build_plan_specs(["kitchen_v1"], None, ["mppi"], [0], simulations=6, grid="default")
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    assert len(r["objects_left"]) == 6 and r["objects_initial"] >= max(r["objects_left"])
+    assert r["simulator_calls"] >= r["n_steps"] >= 6
+    assert r["planner_config"] == {**r["planner_config"], "planner": "mppi", "gamma": 0.9}
+    assert min(r["best_rewards"]) >= -2.0

@@ -3,7 +3,9 @@
 The paper's Algorithms 1-2 over a small planning-problem protocol
 (:mod:`voot.tree.problem`). Every planner (VOOT, DOOT, RAND-DOOT, PW-UCT, Voronoi
 progressive widening, HOOT) is the same :class:`MCTS` with a different
-:class:`MCTSConfig`::
+:class:`MCTSConfig`; the sampling-based MPC planners (CEM, MPPI, predictive sampling,
+random shooting: :mod:`voot.tree.shooting`) search open-loop sequences over the same
+protocol and return the same :class:`PlanResult`::
 
     from voot.tree import plan, make_chain
     result = plan(make_chain("shekel", 10), "voot", n_simulations=1000, seed=0)
@@ -52,16 +54,30 @@ from voot.tree.root_parallel import (
     plan_root_parallel,
 )
 from voot.tree.samplers import ActionSampler, OptimizerSampler, UniformSampler
+from voot.tree.shooting import (
+    SHOOTING_PLANNERS,
+    CEMConfig,
+    MPPIConfig,
+    PredictiveSamplingConfig,
+    RandomShootingConfig,
+    ShootingConfig,
+    ShootingPlanner,
+    available_shooting_planners,
+    plan_shooting,
+    shooting_config,
+)
 
 __all__ = [
     "CHAIN_SPECS",
     "HOO",
     "MCTS",
     "PLANNERS",
+    "SHOOTING_PLANNERS",
     "ActionMetric",
     "ActionSampler",
     "Backup",
     "BestReturnOver",
+    "CEMConfig",
     "EpisodeResult",
     "FeasibilityCheck",
     "FinalAction",
@@ -69,16 +85,21 @@ __all__ = [
     "HOOConfig",
     "LocalProcessExecutor",
     "MCTSConfig",
+    "MPPIConfig",
     "MergeRule",
     "MujocoGymProblem",
     "Node",
     "OptimizerSampler",
     "PlanResult",
     "PlanningProblem",
+    "PredictiveSamplingConfig",
+    "RandomShootingConfig",
     "RootParallelConfig",
     "RootParallelResult",
     "Selection",
     "SerialExecutor",
+    "ShootingConfig",
+    "ShootingPlanner",
     "SimulatorCalls",
     "StepResult",
     "SyntheticChain",
@@ -86,10 +107,13 @@ __all__ = [
     "UniformSampler",
     "available_planners",
     "available_samplers",
+    "available_shooting_planners",
     "chain_planner_options",
     "make_chain",
     "plan",
     "plan_root_parallel",
+    "plan_shooting",
     "planner_config",
     "run_episode",
+    "shooting_config",
 ]

@@ -33,7 +33,7 @@ import math
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -50,6 +50,9 @@ from voot.tree.node import Node
 from voot.tree.problem import PlanningProblem, StepResult
 from voot.tree.samplers import UniformSampler, make_optimizer_sampler
 from voot.tree.selection import SelectionRule, make_selection
+
+if TYPE_CHECKING:
+    from voot.tree.shooting import ShootingConfig
 
 #: ``callback(mcts, simulation_index)`` after every simulation; return True to stop early.
 Callback = Callable[["MCTS", int], Any]
@@ -594,7 +597,7 @@ class MCTS:
 
 def plan(
     problem: PlanningProblem,
-    planner: str | MCTSConfig = "voot",
+    planner: str | MCTSConfig | ShootingConfig = "voot",
     n_simulations: int = 1000,
     seed: int | None = 0,
     *,
@@ -606,12 +609,15 @@ def plan(
 
     Args:
         problem: the planning problem (its current state is the root).
-        planner: a planner name (see :func:`voot.tree.available_planners`) or a config.
+        planner: a planner name (see :func:`voot.tree.available_planners`) or a config;
+            a sampling-based planner's name or config
+            (:func:`voot.tree.shooting.available_shooting_planners`) runs
+            :func:`voot.tree.shooting.plan_shooting` instead.
         n_simulations: number of simulations.
         seed: seed of the search.
         callback: see :meth:`MCTS.search`.
         record_info: see :meth:`MCTS.search`.
-        **options: :class:`MCTSConfig` fields overriding the planner's.
+        **options: config fields overriding the planner's.
 
     >>> from voot.tree.null_problem import NullProblem
     >>> res = plan(NullProblem(dim=2), "voot", n_simulations=50, seed=0, depth_limit=3)
@@ -619,6 +625,18 @@ def plan(
     (50,)
     """
     check_n_simulations(n_simulations)
+    from voot.tree import shooting
+
+    if isinstance(planner, shooting.ShootingConfig) or shooting.is_shooting_planner(planner):
+        return shooting.plan_shooting(
+            problem,
+            planner,  # type: ignore[arg-type]
+            n_simulations,
+            seed,
+            callback=callback,  # type: ignore[arg-type]
+            record_info=record_info,
+            **options,
+        )
     if isinstance(planner, MCTSConfig):
         config = planner.replace(**options) if options else planner
     else:
