@@ -230,6 +230,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
         env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
         fixed=parse_assignments(args.set, "--set"),
         record=args.record,
+        horizon=args.horizon,
     )
     simulations = sum(s.simulations for s in specs)
     print(
@@ -759,6 +760,14 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="NAME=VALUE",
         help="a planner parameter for every run (e.g. depth_limit=5 omega=0.3; VOO's best-cell"
         " sampler: sampler=gaussian, or sampler.sampler=uniform to name it explicitly)",
+    )
+    p.add_argument(
+        "--horizon",
+        type=int,
+        default=None,
+        help="one planning horizon H from the root for every planner: a tree's depth_limit"
+        " (no root commitment), a sampling-based planner's horizon (for control tasks that do"
+        " not end by themselves)",
     )
     p.add_argument(
         "--env-kwargs",

@@ -326,6 +326,20 @@ def _int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
     return list(dict.fromkeys(out))
 
 
+def _horizon_param(planner: str, horizon: int | None) -> dict[str, int | None]:
+    """``horizon`` as the planner's own parameters (empty if None): a sampling-based
+    planner's sequence length, or a tree's depth limit :math:`H` counted from the root,
+    without root commitment (which would let the horizon recede past ``H``)."""
+    if horizon is None:
+        return {}
+    from voot.tree.shooting import is_shooting_planner
+
+    h = V.integer(horizon, "horizon", 1)
+    if is_shooting_planner(planner):
+        return {"horizon": h}
+    return {"depth_limit": h, "root_commitment": None}
+
+
 def build_plan_specs(
     problems: Sequence[str] = P.DEFAULT_PROBLEMS,
     dims: Sequence[int] | None = None,
@@ -337,6 +351,7 @@ def build_plan_specs(
     env_kwargs: Mapping[str, Any] | None = None,
     fixed: Mapping[str, Any] | None = None,
     record: str | None = None,
+    horizon: int | None = None,
 ) -> list[PlanSpec]:
     """Every run of a planning sweep, in grid order (problem, dim, planner, params, seed).
 
@@ -351,6 +366,10 @@ def build_plan_specs(
         fixed: parameters set in every run (e.g. ``{"depth_limit": 5}``); they join
             every setting's ``params`` (and so its label and run id).
         record: a ``.rrd`` path: record every run's search (see :func:`record_path`).
+        horizon: one planning horizon for every planner, counted from the root: a tree
+            planner's ``depth_limit`` (with no root commitment, which would let it recede)
+            or a sampling-based planner's ``horizon`` (e.g. for gymnasium's control tasks,
+            which do not end by themselves).
 
     Raises:
         ValueError: unknown problem, planner, parameter or grid; bad numbers; a chain
@@ -399,7 +418,7 @@ def build_plan_specs(
                 make_chain(P.CHAINS[problem], int(dim))
             for planner in dict.fromkeys(planner_list or setup.planners):
                 for setting in planner_grid(planner, fam, grid):
-                    params = {**setting, **extra}
+                    params = {**setting, **extra, **_horizon_param(planner, horizon)}
                     key = (problem, dim, planner, json.dumps(params, sort_keys=True))
                     if key not in checked:
                         run_config(problem, dim, planner, params, kwargs)  # fail early

@@ -317,3 +317,20 @@ def test_kitchen_v1_run_with_a_sampling_based_planner() -> None:
     assert r["simulator_calls"] >= r["n_steps"] >= 6
     assert r["planner_config"] == {**r["planner_config"], "planner": "mppi", "gamma": 0.9}
     assert min(r["best_rewards"]) >= -2.0
+
+
+def test_one_horizon_for_tree_and_sampling_planners() -> None:
+    """--horizon H: a tree's depth limit from the root (no commitment), a sequence length."""
+    from voot.bench.plan_sweep import build_plan_specs, run_config
+
+    specs = build_plan_specs(
+        ["shekel_chain"], [3], ["voot", "cem"], [0], simulations=5, grid="default", horizon=7
+    )
+    by = {s.planner: s for s in specs}
+    assert by["voot"].params_dict == {"depth_limit": 7, "root_commitment": None}
+    assert by["cem"].params_dict == {"horizon": 7}
+    tree = run_config("shekel_chain", 3, "voot", by["voot"].params_dict)
+    assert tree.depth_limit == 7 and tree.root_commitment is None
+    assert run_config("shekel_chain", 3, "cem", by["cem"].params_dict).horizon == 7
+    with pytest.raises(ValueError, match="horizon must be an integer >= 1"):
+        build_plan_specs(["shekel_chain"], [3], ["voot"], [0], simulations=5, horizon=0)
