@@ -225,13 +225,19 @@ def planner_colors(planners: Iterable[str]) -> dict[str, tuple[float, float, flo
     """A fixed colour per planner (the same in every figure)."""
     from matplotlib import colormaps
 
-    cmap = colormaps["tab10"]
     rank = {p: i for i, p in enumerate(PLAN_PLANNERS)}
     names = list(planners)
     extra = [p for p in method_order(names) if p not in rank]
     for i, p in enumerate(extra):
         rank[p] = len(PLAN_PLANNERS) + i
-    return {p: cmap(rank[p] % 10) for p in names}
+    # tab10 for the first ten (the colours the published figures have), then tab20's
+    # light shades: every planner of PLAN_PLANNERS gets its own colour
+    first, more = colormaps["tab10"], colormaps["tab20"]
+
+    def colour(k: int) -> tuple[float, float, float, float]:
+        return first(k) if k < 10 else more((2 * (k - 10) + 1) % 20)
+
+    return {p: colour(rank[p]) for p in names}
 
 
 def on_time_grid(
@@ -351,7 +357,7 @@ def plot_plan_figure(
         [handles[p] for p in order],
         order,
         loc="outside lower center",
-        ncols=min(len(order), 4 * ncols),  # a one-column figure is narrow
+        ncols=min(len(order), 3 * ncols),  # a one-column figure is narrow
         frameon=False,
     )
     path = Path(path)
