@@ -70,6 +70,29 @@ def check_n_simulations(n_simulations: object) -> int:
     return int(n_simulations)
 
 
+def non_finite_step_error(
+    problem: PlanningProblem, action: FloatArray, reward: float, bonus: float
+) -> ValueError:
+    """The error for a step whose reward or goal bonus is not a finite number.
+
+    Rewards and bonuses must be finite. NaN has no order, so a NaN return would
+    silently poison every :math:`\\hat Q` above it and the best-return curve (PW-UCT and
+    HOOT reported ``best_return=nan``). An infinite reward is refused as well: one
+    ``+inf`` makes every path through it the best whatever else it earns, one ``-inf``
+    makes every backed-up mean ``-inf`` (and NaN once mixed with a ``+inf``), and
+    neither can be told to an action optimiser. A failed action is reported as
+    ``feasible=False`` with a finite penalty (the chains and the environments use -2).
+    """
+    name = "reward" if not math.isfinite(reward) else "goal bonus"
+    value = reward if name == "reward" else bonus
+    return ValueError(
+        f"{type(problem).__name__}.step(action={np.asarray(action).tolist()}) returned"
+        f" {name}={value!r} (reward={reward!r}, bonus={bonus!r}); rewards and goal bonuses"
+        " must be finite numbers (report a failed action as feasible=False with a finite"
+        " penalty)"
+    )
+
+
 def problem_bounds(problem: PlanningProblem) -> Bounds:
     """``problem.action_bounds()`` as a :class:`Bounds`, or a ValueError saying what is wrong."""
     raw = problem.action_bounds()
@@ -511,6 +534,10 @@ class MCTS:
                 f"{type(self.problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
             )
         reward = float(res.reward)
+        bonus = float(res.bonus)
+        if not (math.isfinite(reward) and math.isfinite(bonus)):
+            self._at = None  # the problem has moved, no child records where to
+            raise non_finite_step_error(self.problem, x, reward, bonus)
         feasible = bool(res.feasible)
         terminal = bool(res.terminal)
         expandable = feasible and not terminal
@@ -530,7 +557,7 @@ class MCTS:
         self.nodes.append(child)
         node.actions.append(x)
         node.rewards.append(reward)
-        node.bonuses.append(float(res.bonus))
+        node.bonuses.append(bonus)
         node.feasible.append(feasible)
         node.children.append(child)
         node.q.append(-math.inf)
