@@ -260,3 +260,70 @@ def test_cube_is_shared_and_width_is_read_only() -> None:
     assert box.width.tolist() == [1.0, 5.0] and box.dim == 2
     with pytest.raises(ValueError):
         box.width[0] = 2.0
+
+
+# ----- every registered method: what a tell accepts, and that a refused one changes nothing
+def _every_method(method: str) -> Optimizer:
+    from voot.optim import make_optimizer
+
+    options: dict[str, object] = {}
+    if method == "rembo":
+        options["low_dim"] = 1
+    if method in ("gp_ucb", "rembo"):
+        options["n_candidates"] = 100
+    return make_optimizer(method, [[-1.0, 1.0]] * 2, seed=3, **options)
+
+
+def _methods() -> list[str]:
+    from voot.optim import available_methods
+
+    return available_methods()
+
+
+def _run(opt: Optimizer, n: int, fail_every: int = 0) -> list[list[float]]:
+    asked = []
+    for i in range(n):
+        x = opt.ask()
+        asked.append(x.tolist())
+        failed = fail_every and i % fail_every == fail_every - 1
+        opt.tell(x, -math.inf if failed else -float(np.sum((x - 0.3) ** 2)))
+    return asked
+
+
+@pytest.mark.parametrize("method", _methods())
+def test_tell_outside_the_box_is_refused_by_every_method(method: str) -> None:
+    opt = _every_method(method)
+    _run(opt, 3)
+    with pytest.raises(ValueError, match=r"x = \[5\.0, 5\.0\] lies outside the box"):
+        opt.tell(np.array([5.0, 5.0]), 1.0)
+    with pytest.raises(ValueError, match=r"dimension 1: -1\.5 not in \[-1\.0, 1\.0\]"):
+        opt.tell(np.array([0.0, -1.5]), 1.0)
+    assert opt.n_told == 3
+    assert opt.best_x is not None and opt.bounds.contains(opt.best_x)
+    opt.tell(np.array([-1.0, 1.0]), -5.0)  # the faces belong to the box
+    assert opt.n_told == 4
+
+
+@pytest.mark.parametrize("method", _methods())
+@pytest.mark.parametrize(
+    ("x", "value", "match"),
+    [
+        ([5.0, 5.0], 1.0, "outside the box"),
+        ([0.0, math.nan], 1.0, "must be finite"),
+        ([0.0, 0.0, 0.0], 1.0, "shape"),
+        ([0.1, 0.1], math.nan, "NaN"),
+        ([0.1, 0.1], math.inf, r"\+inf"),
+    ],
+)
+def test_a_refused_tell_leaves_every_method_unchanged(
+    method: str, x: list[float], value: float, match: str
+) -> None:
+    a, b = _every_method(method), _every_method(method)
+    _run(a, 4)
+    _run(b, 4)
+    a.ask()
+    with pytest.raises(ValueError, match=match):
+        a.tell(np.array(x), value)
+    assert a.n_told == 4 and a.best_index == b.best_index
+    b.ask()
+    assert _run(a, 4) == _run(b, 4)  # same asks after the refusal as without it

@@ -150,6 +150,26 @@ class Bounds:
             raise ValueError(f"{name} must be finite, got {arr.tolist()}")
         return arr
 
+    def check_inside(self, x: ArrayLike, name: str = "x") -> FloatArray:
+        """:meth:`check_point`, and ``x`` must lie in the box (its faces included).
+
+        One pair of comparisons checks both (NaN fails them), so the common case costs
+        no more than the finiteness check alone.
+        """
+        arr = np.asarray(x, dtype=np.float64)
+        if arr.shape != (self.dim,):
+            raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
+        if (arr >= self.lower).all() and (arr <= self.upper).all():
+            return arr
+        if not np.isfinite(arr).all():
+            raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        i = int(np.flatnonzero((arr < self.lower) | (arr > self.upper))[0])
+        raise ValueError(
+            f"{name} = {arr.tolist()} lies outside the box {self!r} (dimension {i}:"
+            f" {float(arr[i])!r} not in [{float(self.lower[i])!r}, {float(self.upper[i])!r}]);"
+            " tell points inside the bounds (e.g. bounds.clip(x), with its own value)"
+        )
+
     def __eq__(self, other: object) -> bool:
         return (
             isinstance(other, Bounds)
@@ -264,8 +284,25 @@ class Optimizer(ABC):
         return x
 
     def tell(self, x: ArrayLike, value: float) -> None:
-        """Report ``f(x) = value``. ``x`` is normally the point just asked."""
-        xa = self.bounds.check_point(x)
+        """Report ``f(x) = value``. ``x`` is normally the point just asked.
+
+        ``x`` must be a finite point of the box (faces included) and ``value`` a real
+        number other than NaN and ``+inf``; anything else is a ValueError and leaves the
+        optimiser unchanged (both are checked before anything is stored). A point
+        outside the box is rejected, not clipped: its value belongs to that point, and
+        storing it at the clipped one would mislead the method; clip it yourself and
+        evaluate the clipped point.
+
+        ``-inf`` is a valid value meaning "failed evaluation", worse than every finite
+        value: it stays in :attr:`values` and is never :attr:`best_value` while a finite
+        value exists. Each method reads it so: VOO, DOO, RAND-DOO, SOO and random search
+        compare values only (a ``-inf`` cell is never the best); CMA-ES ranks it below
+        every finite value of its population; GP-UCB, REMBO and BaMSOO condition their
+        GP on it as the worst finite value told so far (0 while there is none), since a
+        GP needs finite targets. The tree search never tells ``-inf`` (an infeasible
+        action is worth its finite penalty, e.g. -2).
+        """
+        xa = self.bounds.check_inside(x)
         v = check_value(value)
         self._append(xa, v)
         self._tell(xa, v)
