@@ -327,3 +327,18 @@ def test_a_refused_tell_leaves_every_method_unchanged(
     assert a.n_told == 4 and a.best_index == b.best_index
     b.ask()
     assert _run(a, 4) == _run(b, 4)  # same asks after the refusal as without it
+
+
+@pytest.mark.parametrize("method", _methods())
+def test_minus_inf_is_a_failed_evaluation_for_every_method(method: str) -> None:
+    opt = _every_method(method)
+    asked = _run(opt, 12, fail_every=3)  # every later ask and tell works
+    values = opt.values
+    assert np.isneginf(values).sum() == 4
+    assert math.isfinite(opt.best_value) and opt.best_value == values[np.isfinite(values)].max()
+    assert all(opt.bounds.contains(x) for x in asked)
+    only_failed = _every_method(method)
+    _run(only_failed, 1, fail_every=1)
+    assert only_failed.best_value == -math.inf
+    _run(only_failed, 3)
+    assert math.isfinite(only_failed.best_value)
