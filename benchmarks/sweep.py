@@ -39,6 +39,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import itertools
+import math
 import sys
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -271,8 +272,8 @@ def build_specs(
     method_list = [normalize_method(m) for m in methods]
     if not method_list:
         raise ValueError("no methods given")
-    if not (isinstance(budget_scale, int | float) and budget_scale > 0):
-        raise ValueError(f"budget_scale must be > 0, got {budget_scale!r}")
+    if not (V.is_number(budget_scale) and 0 < budget_scale < math.inf):
+        raise ValueError(f"budget_scale must be > 0 (a finite number), got {budget_scale!r}")
     if budget is not None:
         _check_int_list([budget], "budget", 1)
     instance = V.integer(instance, "instance", 0, hint="0 = the paper's functions")

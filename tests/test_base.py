@@ -342,3 +342,52 @@ def test_minus_inf_is_a_failed_evaluation_for_every_method(method: str) -> None:
     assert only_failed.best_value == -math.inf
     _run(only_failed, 3)
     assert math.isfinite(only_failed.best_value)
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        [[0.0, 1.0], [0.0]],  # ragged rows
+        [[0.0, 1.0], [0.0, 1.0, 2.0]],
+        [["a", "b"], [1.0, 2.0]],  # strings
+        [[0.0, "1"], [0.0, "1"]],
+        [[True, False], [False, True]],  # booleans
+        "abc",
+    ],
+)
+def test_coerce_names_the_bounds_for_ragged_string_or_boolean_input(bad: object) -> None:
+    with pytest.raises(ValueError, match=r"^bounds must be numbers: a Bounds, a \(lower, upper\)"):
+        Bounds.coerce(bad)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("lower", "upper", "match"),
+    [
+        ([0.0, "x"], [1.0, 2.0], "bounds: lower must be a vector of numbers"),
+        ([0.0, 0.0], [[1.0], [2.0, 3.0]], "bounds: upper must be a vector of numbers"),
+        ([True], [2.0], "bounds: lower must be a vector of numbers"),
+    ],
+)
+def test_bounds_names_the_bad_side(lower: object, upper: object, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        Bounds(lower, upper)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [
+        ((0.0, 1.0, True), "dim must be >= 1"),
+        ((0.0, 1.0, 2.5), "dim must be >= 1"),
+        (("0", 1.0, 2), "low must be a finite number"),
+        ((0.0, True, 2), "high must be a finite number"),
+    ],
+)
+def test_cube_checks_its_arguments(args: tuple, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        Bounds.cube(*args)
+
+
+@pytest.mark.parametrize("seed", [-1, True, 1.5, "0"])
+def test_seed_is_checked_by_the_constructor(seed: object) -> None:
+    with pytest.raises(ValueError, match="seed must be None, an integer >= 0 or a numpy"):
+        _Counter(Bounds([0.0], [1.0]), seed=seed)  # type: ignore[arg-type]

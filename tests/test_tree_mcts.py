@@ -619,3 +619,19 @@ def test_non_finite_reward_or_bonus_stops_every_planner(
         mcts.search(1)
     assert len(mcts.nodes) == n_nodes
     assert all(math.isfinite(v) for v in mcts.best_return_curve)
+
+
+@pytest.mark.parametrize("seed", [-1, True, 0.5, "7"])
+def test_plan_mcts_and_episodes_check_the_seed(seed: object) -> None:
+    from voot.tree import run_episode
+    from voot.tree.root_parallel import tree_seeds
+
+    match = "seed must be None, an integer >= 0"
+    with pytest.raises(ValueError, match=match):
+        plan(NullProblem(2), "voot", 2, seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        MCTS(NullProblem(2), seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        run_episode(NullProblem(2), "voot", 2, seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        tree_seeds(seed, 2)  # type: ignore[arg-type]

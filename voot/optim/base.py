@@ -29,7 +29,31 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
+
 FloatArray = NDArray[np.float64]
+
+
+def _as_float_array(value: object, name: str, what: str) -> FloatArray:
+    """``value`` as a float64 array, or a ValueError that names ``name`` and says ``what``.
+
+    Numbers only: strings, booleans and ragged nestings are refused with a word about
+    the argument, rather than numpy's "could not convert" or "inhomogeneous shape".
+    """
+    try:
+        arr = value if isinstance(value, np.ndarray) else np.asarray(value)
+        ok = arr.dtype.kind in "iuf"
+    except (TypeError, ValueError):  # ragged
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be {what}, got {value!r}")
+    return np.asarray(arr, dtype=np.float64)
+
+
+def _bound_vector(value: ArrayLike, name: str) -> FloatArray:
+    """A bound (``lower`` or ``upper``) as a fresh, flat float64 vector."""
+    arr = _as_float_array(value, f"bounds: {name}", "a vector of numbers")
+    return np.array(arr, dtype=np.float64, copy=True).reshape(-1)
 
 
 #: The boxes :meth:`Bounds.cube` has built, by ``(class, low, high, dim)``.
@@ -47,8 +71,8 @@ class Bounds:
     upper: FloatArray
 
     def __init__(self, lower: ArrayLike, upper: ArrayLike) -> None:
-        lo = np.array(lower, dtype=np.float64, copy=True).reshape(-1)
-        hi = np.array(upper, dtype=np.float64, copy=True).reshape(-1)
+        lo = _bound_vector(lower, "lower")
+        hi = _bound_vector(upper, "upper")
         if lo.shape != hi.shape:
             raise ValueError(
                 f"bounds: lower has {lo.size} entries but upper has {hi.size}; they must match"
@@ -81,9 +105,13 @@ class Bounds:
         Boxes are immutable, so one instance per ``(low, high, dim)`` is kept and handed
         out again: environments ask for their operator's cube at every step.
         """
-        if dim < 1:
-            raise ValueError(f"dim must be >= 1, got {dim}")
-        key = (cls, float(low), float(high), int(dim))
+        if not (type(low) is float and type(high) is float and type(dim) is int and dim >= 1):
+            # the environments' hot path passes Python floats and ints: check the rest
+            low, high = V.number(low, "low"), V.number(high, "high")
+            if not (V.is_integer(dim) and dim >= 1):
+                raise ValueError(f"dim must be >= 1 (an integer), got {dim!r}")
+            dim = int(dim)
+        key = (cls, low, high, dim)
         box = _CUBES.get(key)
         if box is None:
             box = cls(np.full(dim, low), np.full(dim, high))
@@ -98,7 +126,12 @@ class Bounds:
         ``(lower, upper)`` pair of vectors (d != 2; a (2, 2) array is read as rows)."""
         if isinstance(bounds, Bounds):
             return bounds
-        arr = np.asarray(bounds, dtype=np.float64)
+        arr = _as_float_array(
+            bounds,
+            "bounds",
+            "numbers: a Bounds, a (lower, upper) pair of equal-length vectors or (d, 2) rows"
+            " of [low, high]",
+        )
         if arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2:
             return cls(arr[0], arr[1])
         if arr.ndim == 2 and arr.shape[1] == 2:
@@ -251,7 +284,7 @@ class Optimizer(ABC):
                 f"{type(self).__name__} needs a {self.config_class.__name__}, got {type(config).__name__}"
             )
         self.config = config
-        self.rng = np.random.default_rng(seed)
+        self.rng = np.random.default_rng(V.seed(seed))
         self.initial_point: FloatArray | None = None
         if initial_point is not None:
             x0 = self.bounds.check_point(initial_point, "initial_point")

@@ -87,7 +87,7 @@ def run_episode(
         config = planner.replace(**options) if options else planner
     else:
         config = planner_config(planner, **options)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(V.seed(seed))
     t0 = time.perf_counter()
     actions: list[FloatArray] = []
     steps: list[StepResult] = []

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.config import (
     Backup,
@@ -195,7 +196,7 @@ class MCTS:
                 )
         self.problem = problem
         self.config = cfg
-        self.rng = np.random.default_rng(seed)
+        self.rng = np.random.default_rng(V.seed(seed))
         # A problem may offer is_feasible (FeasibilityCheck) or set it to None per instance.
         check = getattr(problem, "is_feasible", None)
         self._check: Callable[[FloatArray], bool] | None = check if callable(check) else None
@@ -646,6 +647,7 @@ def plan(
     (50,)
     """
     check_n_simulations(n_simulations)
+    V.seed(seed)
     if isinstance(planner, MCTSConfig):
         config = planner.replace(**options) if options else planner
     else:
