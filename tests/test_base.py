@@ -391,3 +391,13 @@ def test_cube_checks_its_arguments(args: tuple, match: str) -> None:
 def test_seed_is_checked_by_the_constructor(seed: object) -> None:
     with pytest.raises(ValueError, match="seed must be None, an integer >= 0 or a numpy"):
         _Counter(Bounds([0.0], [1.0]), seed=seed)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("x", [["a", "b"], [[0.0], [0.1, 0.2]], [True, False]])
+def test_told_and_initial_points_must_be_numbers(x: object) -> None:
+    opt = _Counter(Bounds([0.0, 0.0], [1.0, 1.0]))
+    with pytest.raises(ValueError, match="x must be a vector of numbers"):
+        opt.tell(x, 0.0)  # type: ignore[arg-type]
+    assert opt.n_told == 0
+    with pytest.raises(ValueError, match="initial_point must be a vector of numbers"):
+        _Counter(Bounds([0.0, 0.0], [1.0, 1.0]), initial_point=x)  # type: ignore[arg-type]

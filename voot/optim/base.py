@@ -50,6 +50,13 @@ def _as_float_array(value: object, name: str, what: str) -> FloatArray:
     return np.asarray(arr, dtype=np.float64)
 
 
+def _as_point(x: object, name: str) -> FloatArray:
+    """A point as a float64 array: float arrays pass as they are (the asked points)."""
+    if type(x) is np.ndarray and x.dtype == np.float64:
+        return x
+    return _as_float_array(x, name, "a vector of numbers")
+
+
 def _bound_vector(value: ArrayLike, name: str) -> FloatArray:
     """A bound (``lower`` or ``upper``) as a fresh, flat float64 vector."""
     arr = _as_float_array(value, f"bounds: {name}", "a vector of numbers")
@@ -176,7 +183,7 @@ class Bounds:
 
     def check_point(self, x: ArrayLike, name: str = "x") -> FloatArray:
         """Return ``x`` as a float vector of this box's dimension, or raise ValueError."""
-        arr = np.asarray(x, dtype=np.float64)
+        arr = _as_point(x, name)
         if arr.shape != (self.dim,):
             raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
         if not np.isfinite(arr).all():
@@ -189,7 +196,7 @@ class Bounds:
         One pair of comparisons checks both (NaN fails them), so the common case costs
         no more than the finiteness check alone.
         """
-        arr = np.asarray(x, dtype=np.float64)
+        arr = _as_point(x, name)
         if arr.shape != (self.dim,):
             raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
         if (arr >= self.lower).all() and (arr <= self.upper).all():
