@@ -401,3 +401,14 @@ def test_told_and_initial_points_must_be_numbers(x: object) -> None:
     assert opt.n_told == 0
     with pytest.raises(ValueError, match="initial_point must be a vector of numbers"):
         _Counter(Bounds([0.0, 0.0], [1.0, 1.0]), initial_point=x)  # type: ignore[arg-type]
+
+
+def test_a_point_past_a_face_by_rounding_is_clipped_onto_it() -> None:
+    box = Bounds([0.1, -1.0], [0.7, 1.0])
+    opt = _Counter(box)
+    x = np.array([np.nextafter(0.7, 1.0), -1.0 - 1e-13])
+    opt.tell(x, 1.0)
+    assert opt.best_x is not None and box.contains(opt.best_x)
+    assert opt.best_x.tolist() == [0.7, -1.0]
+    with pytest.raises(ValueError, match="outside the box"):
+        opt.tell(np.array([0.7 + 1e-9, 0.0]), 1.0)

@@ -63,6 +63,10 @@ def _bound_vector(value: ArrayLike, name: str) -> FloatArray:
     return np.array(arr, dtype=np.float64, copy=True).reshape(-1)
 
 
+#: How far (a fraction of the box's width) a told point may lie outside the box and be
+#: taken as rounding: it is clipped onto the face (see :meth:`Bounds.check_inside`).
+FACE_TOLERANCE = 1e-12
+
 #: The boxes :meth:`Bounds.cube` has built, by ``(class, low, high, dim)``.
 _CUBES: dict[tuple[type, float, float, int], Bounds] = {}
 
@@ -194,7 +198,10 @@ class Bounds:
         """:meth:`check_point`, and ``x`` must lie in the box (its faces included).
 
         One pair of comparisons checks both (NaN fails them), so the common case costs
-        no more than the finiteness check alone.
+        no more than the finiteness check alone. A point outside the box by no more than
+        rounding (:data:`FACE_TOLERANCE` of the box's width per coordinate, e.g. an
+        optimiser's ``lower + u * width`` one ulp past ``upper``) is returned clipped
+        onto the face, not refused; anything farther out is a ValueError.
         """
         arr = _as_point(x, name)
         if arr.shape != (self.dim,):
@@ -203,6 +210,9 @@ class Bounds:
             return arr
         if not np.isfinite(arr).all():
             raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        slack = FACE_TOLERANCE * self.width
+        if (arr >= self.lower - slack).all() and (arr <= self.upper + slack).all():
+            return np.clip(arr, self.lower, self.upper)
         i = int(np.flatnonzero((arr < self.lower) | (arr > self.upper))[0])
         raise ValueError(
             f"{name} = {arr.tolist()} lies outside the box {self!r} (dimension {i}:"
@@ -331,7 +341,8 @@ class Optimizer(ABC):
         optimiser unchanged (both are checked before anything is stored). A point
         outside the box is rejected, not clipped: its value belongs to that point, and
         storing it at the clipped one would mislead the method; clip it yourself and
-        evaluate the clipped point.
+        evaluate the clipped point. Only a point within rounding of a face
+        (:data:`FACE_TOLERANCE` of the width) is stored clipped onto it.
 
         ``-inf`` is a valid value meaning "failed evaluation", worse than every finite
         value: it stays in :attr:`values` and is never :attr:`best_value` while a finite
