@@ -337,6 +337,10 @@ def test_minus_inf_is_a_failed_evaluation_for_every_method(method: str) -> None:
     assert np.isneginf(values).sum() == 4
     assert math.isfinite(opt.best_value) and opt.best_value == values[np.isfinite(values)].max()
     assert all(opt.bounds.contains(x) for x in asked)
+    if opt.supports_revalue:  # a tried point's value may become -inf too (tree search)
+        opt.revalue(opt.best_index, -math.inf)
+        _run(opt, 3)
+        assert math.isfinite(opt.best_value)
     only_failed = _every_method(method)
     _run(only_failed, 1, fail_every=1)
     assert only_failed.best_value == -math.inf
