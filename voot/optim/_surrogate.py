@@ -54,6 +54,8 @@ def _is_int(value: object, low: int) -> bool:
 def _check_pair(name: str, value: object) -> tuple[float, float]:
     if not isinstance(value, tuple | list) or len(value) != 2:
         raise ValueError(f"{name} must be a (low, high) pair, got {value!r}")
+    if not (V.is_number(value[0]) and V.is_number(value[1])):
+        raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}")
     lo, hi = float(value[0]), float(value[1])
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
         raise ValueError(f"{name} must satisfy 0 < low <= high < inf, got {value!r}")
