@@ -127,6 +127,8 @@ def wrap_angle(angle: ArrayLike) -> Any:
 
 
 def _finite(value: float, name: str) -> float:
+    if not V.is_number(value):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
     v = float(value)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be a finite number, got {value!r}")

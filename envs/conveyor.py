@@ -137,15 +137,11 @@ class ConveyorConfig:
                 self, name, V.positive_number(f"ConveyorConfig.{name}", getattr(self, name))
             )
         for name in ("height_fraction", "depth_fraction"):
-            v = float(getattr(self, name))
-            if not 0.0 <= v <= 1.0:
-                raise ValueError(f"ConveyorConfig.{name} must be in [0, 1], got {v}")
+            v = V.number(getattr(self, name), f"ConveyorConfig.{name}", 0.0, 1.0)
             object.__setattr__(self, name, v)
-        r = float(self.infeasible_reward)
-        if not (math.isfinite(r) and r < 0):
-            raise ValueError(
-                f"ConveyorConfig.infeasible_reward must be a finite number < 0, got {r}"
-            )
+        r = V.number(
+            self.infeasible_reward, "ConveyorConfig.infeasible_reward", high=0.0, open_high=True
+        )
         object.__setattr__(self, "infeasible_reward", r)
         V.integer(self.horizon, "ConveyorConfig.horizon", 1)
         if self.precheck not in PRECHECKS:

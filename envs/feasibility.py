@@ -220,13 +220,8 @@ class IKConfig:
 
     def __post_init__(self) -> None:
         for name in ("position_tolerance", "orientation_tolerance", "damping"):
-            v = getattr(self, name)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise ValueError(f"IKConfig.{name} must be a finite number > 0, got {v!r}")
-        if not (isinstance(self.orientation_cost, int | float) and self.orientation_cost > 0):
-            raise ValueError(
-                f"IKConfig.orientation_cost must be > 0, got {self.orientation_cost!r}"
-            )
+            V.positive(getattr(self, name), f"IKConfig.{name}")
+        V.positive(self.orientation_cost, "IKConfig.orientation_cost")
         V.integer(self.max_iterations, "IKConfig.max_iterations", 0)
         if self.solver not in IK_SOLVERS:
             raise ValueError(

@@ -232,11 +232,9 @@ class KitchenConfig:
                 name,
                 V.positive_number(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True),
             )
-        r = float(self.infeasible_reward)
-        if not (math.isfinite(r) and r < 0):
-            raise ValueError(
-                f"KitchenConfig.infeasible_reward must be a finite number < 0, got {r}"
-            )
+        r = V.number(
+            self.infeasible_reward, "KitchenConfig.infeasible_reward", high=0.0, open_high=True
+        )
         object.__setattr__(self, "infeasible_reward", r)
         V.integer(self.horizon, "KitchenConfig.horizon", 1)
         if self.precheck not in PRECHECKS:

@@ -331,6 +331,8 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self._rng_shared: Mapping[str, Any] | None = None
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
+        #: The class of this env's task record: what a snapshot's ``task`` must be.
+        self._task_type: type = type(self.task)
 
     # ----- to implement --------------------------------------------------------------------
     def _initial_task(self) -> TaskT:
@@ -462,25 +464,60 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         return state
 
     def set_state(self, state: EnvState[TaskT]) -> None:
-        """Return to the snapshot ``state`` exactly."""
+        """Return to the snapshot ``state`` exactly, or raise and change nothing.
+
+        The whole snapshot is checked before anything is applied: an :class:`EnvState`,
+        physics of this env's signature and size, all finite (a NaN would otherwise
+        surface deep in the base planner, or as a NaN observation), a task record of this
+        env's class (not None, not the other environment's), and a generator state that
+        this env's bit generator takes. The generator is set first, since only numpy can
+        refuse a state (it reads a whole state before it sets one); the physics and the
+        task, already checked, follow and cannot fail. A bad snapshot is a ValueError
+        naming the field and leaves the env as it was. The checks cost about two
+        microseconds (the search restores a snapshot at every new action).
+        """
         if not isinstance(state, EnvState):
             raise ValueError(
                 f"state must be an EnvState from get_state(), got {type(state).__name__}"
             )
-        if state.signature != self.STATE_SIGNATURE or state.physics.shape != (self._state_size,):
+        physics = state.physics
+        if (
+            type(physics) is not np.ndarray
+            or physics.dtype != np.float64
+            or state.signature != self.STATE_SIGNATURE
+            or physics.shape != (self._state_size,)
+        ):
+            size = getattr(physics, "size", None)
             raise ValueError(
                 f"state does not fit this environment: signature {state.signature} and "
-                f"{state.physics.size} numbers, expected signature {self.STATE_SIGNATURE} and "
-                f"{self._state_size} numbers"
+                f"{size} numbers ({type(physics).__name__}), expected signature"
+                f" {self.STATE_SIGNATURE} and {self._state_size} numbers (a float64 array)"
             )
-        mujoco.mj_setState(self.model, self.data, state.physics, self.STATE_SIGNATURE)
-        self.task = state.task
+        if not np.isfinite(physics).all():
+            bad = np.flatnonzero(~np.isfinite(physics))
+            raise ValueError(
+                f"state.physics must be finite, got {float(physics[bad[0]])!r} at {bad.size} of its"
+                f" {physics.size} entries (first: index {int(bad[0])})"
+            )
+        if type(state.task) is not self._task_type:
+            raise ValueError(
+                f"state.task must be a {self._task_type.__name__} (this environment's task"
+                f" record), got {type(state.task).__name__}"
+            )
         bg = self.np_random.bit_generator
-        if isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM):
-            bg.state = dict(state.rng_state)  # type: ignore[assignment]  # read, not kept
+        shared = isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM)
+        try:
+            rng_state = dict(state.rng_state) if shared else copy.deepcopy(dict(state.rng_state))
+            bg.state = rng_state  # type: ignore[assignment]  # read, not kept
+        except (TypeError, ValueError, KeyError, OverflowError) as exc:
+            raise ValueError(
+                f"state.rng_state is not a state of this env's {type(bg).__name__} generator"
+                f" ({type(exc).__name__}: {exc}); the env is unchanged"
+            ) from None
+        if shared:
             self._rng_shared = state.rng_state
-        else:
-            bg.state = copy.deepcopy(dict(state.rng_state))
+        mujoco.mj_setState(self.model, self.data, physics, self.STATE_SIGNATURE)
+        self.task = state.task
 
     # ----- gymnasium API -------------------------------------------------------------------
     def reset(

@@ -260,3 +260,159 @@ def test_cube_is_shared_and_width_is_read_only() -> None:
     assert box.width.tolist() == [1.0, 5.0] and box.dim == 2
     with pytest.raises(ValueError):
         box.width[0] = 2.0
+
+
+# ----- every registered method: what a tell accepts, and that a refused one changes nothing
+def _every_method(method: str) -> Optimizer:
+    from voot.optim import make_optimizer
+
+    options: dict[str, object] = {}
+    if method == "rembo":
+        options["low_dim"] = 1
+    if method in ("gp_ucb", "rembo"):
+        options["n_candidates"] = 100
+    return make_optimizer(method, [[-1.0, 1.0]] * 2, seed=3, **options)
+
+
+def _methods() -> list[str]:
+    from voot.optim import available_methods
+
+    return available_methods()
+
+
+def _run(opt: Optimizer, n: int, fail_every: int = 0) -> list[list[float]]:
+    asked = []
+    for i in range(n):
+        x = opt.ask()
+        asked.append(x.tolist())
+        failed = fail_every and i % fail_every == fail_every - 1
+        opt.tell(x, -math.inf if failed else -float(np.sum((x - 0.3) ** 2)))
+    return asked
+
+
+@pytest.mark.parametrize("method", _methods())
+def test_tell_outside_the_box_is_refused_by_every_method(method: str) -> None:
+    opt = _every_method(method)
+    _run(opt, 3)
+    with pytest.raises(ValueError, match=r"x = \[5\.0, 5\.0\] lies outside the box"):
+        opt.tell(np.array([5.0, 5.0]), 1.0)
+    with pytest.raises(ValueError, match=r"dimension 1: -1\.5 not in \[-1\.0, 1\.0\]"):
+        opt.tell(np.array([0.0, -1.5]), 1.0)
+    assert opt.n_told == 3
+    assert opt.best_x is not None and opt.bounds.contains(opt.best_x)
+    opt.tell(np.array([-1.0, 1.0]), -5.0)  # the faces belong to the box
+    assert opt.n_told == 4
+
+
+@pytest.mark.parametrize("method", _methods())
+@pytest.mark.parametrize(
+    ("x", "value", "match"),
+    [
+        ([5.0, 5.0], 1.0, "outside the box"),
+        ([0.0, math.nan], 1.0, "must be finite"),
+        ([0.0, 0.0, 0.0], 1.0, "shape"),
+        ([0.1, 0.1], math.nan, "NaN"),
+        ([0.1, 0.1], math.inf, r"\+inf"),
+    ],
+)
+def test_a_refused_tell_leaves_every_method_unchanged(
+    method: str, x: list[float], value: float, match: str
+) -> None:
+    a, b = _every_method(method), _every_method(method)
+    _run(a, 4)
+    _run(b, 4)
+    a.ask()
+    with pytest.raises(ValueError, match=match):
+        a.tell(np.array(x), value)
+    assert a.n_told == 4 and a.best_index == b.best_index
+    b.ask()
+    assert _run(a, 4) == _run(b, 4)  # same asks after the refusal as without it
+
+
+@pytest.mark.parametrize("method", _methods())
+def test_minus_inf_is_a_failed_evaluation_for_every_method(method: str) -> None:
+    opt = _every_method(method)
+    asked = _run(opt, 12, fail_every=3)  # every later ask and tell works
+    values = opt.values
+    assert np.isneginf(values).sum() == 4
+    assert math.isfinite(opt.best_value) and opt.best_value == values[np.isfinite(values)].max()
+    assert all(opt.bounds.contains(x) for x in asked)
+    if opt.supports_revalue:  # a tried point's value may become -inf too (tree search)
+        opt.revalue(opt.best_index, -math.inf)
+        _run(opt, 3)
+        assert math.isfinite(opt.best_value)
+    only_failed = _every_method(method)
+    _run(only_failed, 1, fail_every=1)
+    assert only_failed.best_value == -math.inf
+    _run(only_failed, 3)
+    assert math.isfinite(only_failed.best_value)
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        [[0.0, 1.0], [0.0]],  # ragged rows
+        [[0.0, 1.0], [0.0, 1.0, 2.0]],
+        [["a", "b"], [1.0, 2.0]],  # strings
+        [[0.0, "1"], [0.0, "1"]],
+        [[True, False], [False, True]],  # booleans
+        "abc",
+    ],
+)
+def test_coerce_names_the_bounds_for_ragged_string_or_boolean_input(bad: object) -> None:
+    with pytest.raises(ValueError, match=r"^bounds must be numbers: a Bounds, a \(lower, upper\)"):
+        Bounds.coerce(bad)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("lower", "upper", "match"),
+    [
+        ([0.0, "x"], [1.0, 2.0], "bounds: lower must be a vector of numbers"),
+        ([0.0, 0.0], [[1.0], [2.0, 3.0]], "bounds: upper must be a vector of numbers"),
+        ([True], [2.0], "bounds: lower must be a vector of numbers"),
+    ],
+)
+def test_bounds_names_the_bad_side(lower: object, upper: object, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        Bounds(lower, upper)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [
+        ((0.0, 1.0, True), "dim must be >= 1"),
+        ((0.0, 1.0, 2.5), "dim must be >= 1"),
+        (("0", 1.0, 2), "low must be a finite number"),
+        ((0.0, True, 2), "high must be a finite number"),
+    ],
+)
+def test_cube_checks_its_arguments(args: tuple, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        Bounds.cube(*args)
+
+
+@pytest.mark.parametrize("seed", [-1, True, 1.5, "0"])
+def test_seed_is_checked_by_the_constructor(seed: object) -> None:
+    with pytest.raises(ValueError, match="seed must be None, an integer >= 0 or a numpy"):
+        _Counter(Bounds([0.0], [1.0]), seed=seed)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("x", [["a", "b"], [[0.0], [0.1, 0.2]], [True, False]])
+def test_told_and_initial_points_must_be_numbers(x: object) -> None:
+    opt = _Counter(Bounds([0.0, 0.0], [1.0, 1.0]))
+    with pytest.raises(ValueError, match="x must be a vector of numbers"):
+        opt.tell(x, 0.0)  # type: ignore[arg-type]
+    assert opt.n_told == 0
+    with pytest.raises(ValueError, match="initial_point must be a vector of numbers"):
+        _Counter(Bounds([0.0, 0.0], [1.0, 1.0]), initial_point=x)  # type: ignore[arg-type]
+
+
+def test_a_point_past_a_face_by_rounding_is_clipped_onto_it() -> None:
+    box = Bounds([0.1, -1.0], [0.7, 1.0])
+    opt = _Counter(box)
+    x = np.array([np.nextafter(0.7, 1.0), -1.0 - 1e-13])
+    opt.tell(x, 1.0)
+    assert opt.best_x is not None and box.contains(opt.best_x)
+    assert opt.best_x.tolist() == [0.7, -1.0]
+    with pytest.raises(ValueError, match="outside the box"):
+        opt.tell(np.array([0.7 + 1e-9, 0.0]), 1.0)

@@ -146,6 +146,8 @@ def test_box_hash_and_equality() -> None:
     [
         ({"rotation_weight": -1.0}, "rotation_weight"),
         ({"clearance": -0.1}, "clearance"),
+        ({"clearance": True}, "clearance must be a finite number, got True"),
+        ({"rotation_weight": "1"}, "rotation_weight must be a finite number"),
         ({"corner_segments": 0}, "corner_segments"),
         ({"corner_segments": 2.0}, "corner_segments"),
         ({"vertex_margin": 0.0}, "vertex_margin"),

@@ -81,6 +81,7 @@ def test_dry_run_lists_cells(capsys: pytest.CaptureFixture[str]) -> None:
         (["bbfo", "--seeds", "0"], "--seeds: need at least 1"),
         (["bbfo", "--dims", "x"], "--dims: 'x' is not an integer"),
         (["bbfo", "--budget-scale", "-1"], "budget_scale must be > 0"),
+        (["bbfo", "--budget-scale", "inf"], "budget_scale must be > 0"),
         (["bbfo", "--methods", "rembo", "--dims", "3"], "the grid is empty"),
         (["plot", "/nonexistent/store"], "no voot result store here"),
         (["plot", "x", "--log"], "--log needs --regret"),
@@ -394,3 +395,15 @@ def test_a_resumed_sweep_says_how_many_runs_are_stored(
     capsys.readouterr()
     assert main([*base, "--seeds", "2", "--dry-run"]) == 0
     assert "2 runs, 10 simulations; 1 already in the store" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["demo-voo", "speed", "demo", "figure5", "difficulty"])
+@pytest.mark.parametrize("seed", ["-1", "1.5", "x"])
+def test_every_seed_option_is_checked_by_the_parser(
+    command: str, seed: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main([command, "--seed", seed])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert f"argument --seed: must be an integer >= 0, got '{seed}'" in err

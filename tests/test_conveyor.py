@@ -185,6 +185,12 @@ def test_config_validation() -> None:
         ConveyorConfig(n_objects=21)
     with pytest.raises(ValueError, match="height_fraction"):
         ConveyorConfig(height_fraction=1.5)
+    with pytest.raises(ValueError, match=r"ConveyorConfig\.depth_fraction must be a finite number"):
+        ConveyorConfig(depth_fraction=True)
+    with pytest.raises(
+        ValueError, match=r"ConveyorConfig\.height_fraction must be a finite number"
+    ):
+        ConveyorConfig(height_fraction="half")
     with pytest.raises(ValueError, match="loading_region"):
         ConveyorConfig(loading_region=(1.0, 0.0, 0.0, 1.0))
 

@@ -101,6 +101,8 @@ def test_refinement_uses_mink_when_the_seed_violates_limits(ik: ArmIK) -> None:
         ({"max_iterations": -1}, "max_iterations"),
         ({"position_tolerance": 0.0}, "position_tolerance"),
         ({"orientation_cost": -1.0}, "orientation_cost"),
+        ({"damping": True}, "IKConfig.damping must be a finite number > 0, got True"),
+        ({"orientation_cost": True}, "IKConfig.orientation_cost"),
     ],
 )
 def test_ik_config_validation(kwargs: dict[str, object], match: str) -> None:

@@ -113,6 +113,8 @@ def test_revalue_changes_the_model() -> None:
         ({"gp_mean": "linear"}, "gp_mean"),
         ({"lengthscale_bounds": (1.0,)}, "lengthscale_bounds"),
         ({"noise_variance_bounds": (1.0, 1e-3)}, "noise_variance_bounds"),
+        ({"lengthscale_bounds": (True, True)}, "lengthscale_bounds must be a .* of numbers"),
+        ({"signal_variance_bounds": ("0.1", "1")}, "signal_variance_bounds must be a .* of num"),
         ({"fit_restarts": -1}, "fit_restarts"),
         ({"ard": "yes"}, "ard"),
         ({"zetta": 1.0}, "unknown option"),

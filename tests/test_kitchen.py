@@ -243,6 +243,10 @@ def test_truncation_at_the_horizon() -> None:
         ({"house": (0, 1, 2)}, "house"),
         ({"infeasible_reward": 1.0}, "infeasible_reward"),
         ({"pick_requires_free_carry": "yes"}, "pick_requires_free_carry"),
+        ({"pick_reward": True}, "pick_reward must be a number, got True"),
+        ({"infeasible_reward": True}, "infeasible_reward must be a finite number < 0, got True"),
+        ({"infeasible_reward": "x"}, "infeasible_reward must be a finite number < 0"),
+        ({"house": (0, 1, True, 2)}, "house"),
     ],
 )
 def test_config_validation(kwargs: dict[str, object], match: str) -> None:

@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import subprocess
+import sys
 import time
 from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -144,3 +149,96 @@ def test_terminate_workers_of_a_pool_that_never_started() -> None:
 def test_bad_options(kwargs: dict[str, Any], message: str) -> None:
     with pytest.raises(ValueError, match=message):
         ProcessExecutor(**kwargs)
+
+
+# ----- workers exit when their driver dies ---------------------------------------------
+def _children(pid: int) -> list[int]:
+    """The pids of ``pid``'s child processes (psutil if installed, else /proc)."""
+    try:
+        import psutil
+    except ImportError:
+        out = []
+        for entry in Path("/proc").iterdir():
+            if entry.name.isdigit():
+                try:
+                    stat = (entry / "stat").read_text()
+                except OSError:
+                    continue
+                if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+                    out.append(int(entry.name))
+        return out
+    try:
+        return [c.pid for c in psutil.Process(pid).children()]
+    except psutil.NoSuchProcess:
+        return []
+
+
+def _alive(pid: int) -> bool:
+    try:
+        import psutil
+    except ImportError:
+        stat = Path(f"/proc/{pid}/stat")
+        try:
+            return stat.read_text().rsplit(")", 1)[1].split()[0] != "Z"
+        except OSError:
+            return False
+    try:
+        return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir() and sys.platform != "darwin", reason="POSIX")
+def test_workers_exit_when_the_driver_is_killed(tmp_path: Path) -> None:
+    """kill -KILL of a ``voot-bench plan --workers 2`` leaves no worker (nor tracker) behind."""
+    argv = [
+        *(sys.executable, "-c", "from voot.bench.cli import main; raise SystemExit(main())"),
+        *("plan", "--out", str(tmp_path / "store"), "--problems", "shekel_chain"),
+        *("--dims", "10", "--planners", "uniform_t", "--grid", "default", "--seeds", "50"),
+        *("--simulations", "200000", "--workers", "2", "--no-progress"),
+    ]
+    driver = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    children: list[int] = []
+    try:
+        deadline = time.monotonic() + 120.0
+        while time.monotonic() < deadline:  # the two workers (and the tracker) are up
+            children = _children(driver.pid)
+            if len(children) >= 3 or driver.poll() is not None:
+                break
+            time.sleep(0.2)
+        assert driver.poll() is None, "the sweep ended before it could be killed"
+        assert len(children) >= 2, f"expected the two workers, found {children}"
+        time.sleep(1.0)  # the workers are running their first items
+        os.kill(driver.pid, signal.SIGKILL)
+        driver.wait(timeout=10)
+        deadline = time.monotonic() + 8.0
+        while time.monotonic() < deadline and any(_alive(p) for p in children):
+            time.sleep(0.2)
+        survivors = [p for p in children if _alive(p)]
+        assert not survivors, f"processes {survivors} outlived their killed driver"
+    finally:
+        if driver.poll() is None:
+            driver.kill()
+            driver.wait()
+        for pid in children:  # only the driver's own children, by pid
+            if _alive(pid):
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(pid, signal.SIGKILL)
+
+
+def test_watch_parent_exits_an_orphan_and_only_an_orphan() -> None:
+    """A child watching a pid that is not its parent exits at once; its real parent lives."""
+    code = (
+        "import os, time\n"
+        "from voot.parallel.executors import watch_parent\n"
+        "watch_parent(int(os.environ['WATCHED']), interval=0.05)\n"
+        "time.sleep(float(os.environ['SLEEP']))\n"
+        "raise SystemExit(0)\n"
+    )
+    start = time.monotonic()
+    env = {**os.environ, "WATCHED": "1" if os.getpid() != 1 else "2", "SLEEP": "5"}
+    orphan = subprocess.run([sys.executable, "-c", code], env=env, timeout=30)
+    assert orphan.returncode == 1 and time.monotonic() - start < 4.0
+    env.update(WATCHED=str(os.getpid()), SLEEP="0.3")
+    child = subprocess.run([sys.executable, "-c", code], env=env, timeout=30)
+    assert child.returncode == 0

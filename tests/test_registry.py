@@ -123,3 +123,11 @@ def test_options_reach_the_optimizer() -> None:
     assert isinstance(opt.config, VOOConfig) and opt.config.omega == 0.3
     with pytest.raises(ValueError, match="omega"):
         maximize(quadratic, BOX, method="voo", omega=2.0)
+
+
+@pytest.mark.parametrize("seed", [-1, True, 2.0, "1"])
+def test_make_optimizer_and_maximize_check_the_seed(seed: object) -> None:
+    with pytest.raises(ValueError, match="seed must be None, an integer >= 0"):
+        make_optimizer("voo", [[0.0, 1.0]], seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="seed must be None, an integer >= 0"):
+        maximize(lambda x: 0.0, [[0.0, 1.0]], budget=2, seed=seed)  # type: ignore[arg-type]

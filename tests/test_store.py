@@ -6,6 +6,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -259,3 +260,92 @@ def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
         assert as_lists["objects_left"] == [None, 6.0, 4.0]  # as in the row file
         assert as_lists == s.get(r["run_id"])
     assert store_mod.CURVE_KEYS[0] == "best_so_far"
+
+
+# ----- rows changed in place: the checksum -----------------------------------------------
+def _tamper_in_place(path: Path, old: bytes, new: bytes) -> None:
+    """Overwrite ``old`` with ``new`` (same size) inside ``path``, then restore its mtime."""
+    assert len(old) == len(new)
+    st = path.stat()
+    data = path.read_bytes()
+    at = data.index(old)
+    with open(path, "r+b") as fh:  # same file, same inode, same size
+        fh.seek(at)
+        fh.write(new)
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns))
+    after = path.stat()
+    assert (after.st_size, after.st_mtime_ns, after.st_ino) == (
+        st.st_size,
+        st.st_mtime_ns,
+        st.st_ino,
+    )
+
+
+@pytest.mark.parametrize("wait_out_racy_window", [False, True])
+def test_a_row_changed_in_place_with_its_mtime_restored_is_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, wait_out_racy_window: bool
+) -> None:
+    s = ResultStore(tmp_path)
+    r = row(3)
+    path = s.write(r)
+    s.write(row(4))
+    assert len(s.load()) == 2  # the index now holds both rows
+    if wait_out_racy_window:  # the row is "at rest": only its ctime can tell the change
+        monkeypatch.setattr(store_mod, "RACY_NS", 0)
+        time.sleep(0.05)  # longer than a tick of the coarsest Linux timestamps
+    _tamper_in_place(path, b'"best_so_far":[3.0,', b'"best_so_far":[9.0,')
+    with pytest.raises(StoreError, match=rf"{r['run_id']}\.json: result row changed since"):
+        s.load()
+    with pytest.raises(StoreError, match="changed since it was written"):
+        ResultStore(tmp_path).get(r["run_id"])
+    with pytest.raises(StoreError, match="changed since it was written"):
+        s.verify()
+    assert b"[9.0," in path.read_bytes()  # reported, never rewritten
+
+
+def test_row_files_carry_a_checksum_that_is_dropped_on_read(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    r = row(1)
+    path = s.write(r)
+    data = path.read_bytes()
+    assert json.loads(data)["checksum"].startswith("sha256:")
+    assert data == store_mod.row_bytes(r) and store_mod.verify_row_bytes(data)
+    assert s.get(r["run_id"]) == r and s.load() == [r]
+    assert json.loads((tmp_path / HEADER_NAME).read_text())["row_checksum"] == "sha256"
+    assert s.verify() == 1
+
+
+def test_a_row_without_its_checksum_is_refused_in_a_checksummed_store(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    r = row(2)
+    path = s.write(r)
+    path.write_bytes(json.dumps(r, separators=(",", ":")).encode() + b"\n")  # stripped
+    with pytest.raises(StoreError, match="without its checksum"):
+        s.load()
+
+
+def test_an_old_store_without_checksums_still_loads(tmp_path: Path) -> None:
+    """A store written before checksums: header without row_checksum, plain JSON rows."""
+    s = ResultStore(tmp_path)
+    header = json.loads((tmp_path / HEADER_NAME).read_text())
+    del header["row_checksum"]
+    (tmp_path / HEADER_NAME).write_text(json.dumps(header))
+    old = [row(i) for i in range(3)]
+    for r in old:
+        (tmp_path / "runs" / f"{r['run_id']}.json").write_bytes(
+            json.dumps(r, separators=(",", ":")).encode() + b"\n"
+        )
+    s = ResultStore(tmp_path)
+    assert not s.checksums_required
+    by_id = sorted(old, key=lambda r: r["run_id"])
+    assert s.load() == by_id
+    new = row(5)
+    assert b'"checksum":"sha256:' in s.write(new).read_bytes()  # new rows carry one
+    assert len(s.load()) == 4 and s.verify() == 4
+
+
+def test_time_load_measures_a_small_store(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(store_mod, "RACY_NS", 0)
+    out = store_mod.time_load(5, 10, repeats=1, path=str(tmp_path / "bench"))
+    assert set(out) == {"write", "cold", "warm", "verify", "mb"}
+    assert all(v >= 0 for v in out.values())

@@ -91,6 +91,7 @@ def test_default_sweep_is_the_papers() -> None:
         ({"seeds": []}, "no seeds"),
         ({"grid": "huge"}, "unknown grid 'huge'; valid grids are: paper, default"),
         ({"budget_scale": 0.0}, "budget_scale must be > 0"),
+        ({"budget_scale": True}, "budget_scale must be > 0"),
         ({"budget": 0}, "budget must be integers >= 1"),
         ({"functions": ["shekel"], "dims": [5]}, "shekel"),
     ],

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import pickle
+from typing import Any
 
 import numpy as np
 import pytest
@@ -84,3 +85,55 @@ def test_denormalize_and_pose_tuple() -> None:
     assert pose_tuple(np.array([1.0, 2.0, 3.0])) == (1.0, 2.0, 3.0)
     assert pose_tuple([1, 2, 3]) == (1.0, 2.0, 3.0)
     assert all(type(v) is float for v in pose_tuple(np.array([1.0, 2.0, 3.0])))
+
+
+# ----- set_state: the whole snapshot is checked, then applied (all or nothing) ----------
+def _bad_snapshots(env: Any, other: Any) -> list[tuple[Any, str]]:
+    from voot.envs.task_env import EnvState
+
+    s = env.get_state()
+    nan_physics = s.physics.copy()
+    nan_physics[3] = np.nan
+    inf_physics = s.physics.copy()
+    inf_physics[-1] = -np.inf
+    rng_missing = {k: v for k, v in s.rng_state.items() if k != "uinteger"}
+    rng_overflow = {**s.rng_state, "state": {"state": -1, "inc": 5}}
+
+    def with_(**fields: Any) -> Any:
+        return EnvState(**{**vars(s), **fields})
+
+    return [
+        (with_(physics=nan_physics), r"state\.physics must be finite, got nan"),
+        (with_(physics=inf_physics), r"state\.physics must be finite, got -inf"),
+        (with_(physics=list(s.physics)), "state does not fit this environment"),
+        (with_(task=other.get_state().task), rf"state\.task must be a {type(s.task).__name__}"),
+        (with_(task=None), "got NoneType"),
+        (with_(rng_state={"bit_generator": "MT19937"}), r"state\.rng_state is not a state"),
+        (with_(rng_state=None), r"state\.rng_state is not a state"),
+        (with_(rng_state=rng_missing), r"state\.rng_state is not a state"),
+        (with_(rng_state=rng_overflow), r"state\.rng_state is not a state"),
+    ]
+
+
+@pytest.mark.parametrize("which", ["kitchen", "conveyor"])
+def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> None:
+    from voot.envs.conveyor import ConveyorPackingEnv
+
+    kitchen, conveyor = KitchenClearingEnv(), ConveyorPackingEnv()
+    env, other = (kitchen, conveyor) if which == "kitchen" else (conveyor, kitchen)
+    env.reset(seed=5)
+    other.reset(seed=5)
+    start = env.get_state()
+    action = np.zeros(env.action_space.shape)
+    env.step(action)  # the env is elsewhere, so that a half restore would show
+    here = env.get_state()
+    obs_here = env._observation()
+    rng_here = env.np_random.bit_generator.state
+    for bad, match in _bad_snapshots(env, other):
+        with pytest.raises(ValueError, match=match):
+            env.set_state(bad)
+        assert env.get_state() == here
+        assert env.np_random.bit_generator.state == rng_here
+        assert np.array_equal(env._observation(), obs_here)
+    env.set_state(start)  # a good snapshot still restores exactly
+    assert env.get_state() == start

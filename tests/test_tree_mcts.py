@@ -602,3 +602,64 @@ def test_commitment_moves_to_the_best_q_feasible_child_at_that_moment() -> None:
     best = max((k for k in range(len(q)) if ok[k]), key=lambda k: (q[k], -k))
     assert child is mcts.root.children[best]
     assert sum(ok) == 4  # exactly at the threshold
+
+
+class BadReward(NullProblem):
+    """A problem whose step earns ``reward`` (and ``bonus``) once ``after`` steps are done."""
+
+    def __init__(self, reward: float, bonus: float = 0.0, after: int = 0) -> None:
+        super().__init__(2)
+        self.bad_reward, self.bad_bonus, self.after, self.calls = reward, bonus, after, 0
+
+    def step(self, action: np.ndarray) -> StepResult:
+        self.calls += 1
+        if self.calls > self.after:
+            return StepResult(self.bad_reward, bonus=self.bad_bonus)
+        return super().step(action)
+
+
+@pytest.mark.parametrize(
+    "planner", ["voot", "pw_uct", "uniform_t", "hoot", "doot", "rand_doot", "voronoi_pw"]
+)
+@pytest.mark.parametrize(
+    ("reward", "bonus", "what"),
+    [
+        (math.nan, 0.0, "reward=nan"),
+        (math.inf, 0.0, "reward=inf"),
+        (-math.inf, 0.0, "reward=-inf"),
+        (0.5, math.nan, "goal bonus=nan"),
+        (0.5, -math.inf, "goal bonus=-inf"),
+    ],
+)
+def test_non_finite_reward_or_bonus_stops_every_planner(
+    planner: str, reward: float, bonus: float, what: str
+) -> None:
+    problem = BadReward(reward, bonus, after=3)
+    mcts = MCTS(problem, planner_config(planner, depth_limit=3), seed=0)
+    with pytest.raises(
+        ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}"
+    ) as err:
+        mcts.search(20)
+    assert "must be finite" in str(err.value)
+    n_nodes = len(mcts.nodes)
+    # The tree is unchanged by the failed step, and the next search restores the state.
+    with pytest.raises(ValueError, match="must be finite"):
+        mcts.search(1)
+    assert len(mcts.nodes) == n_nodes
+    assert all(math.isfinite(v) for v in mcts.best_return_curve)
+
+
+@pytest.mark.parametrize("seed", [-1, True, 0.5, "7"])
+def test_plan_mcts_and_episodes_check_the_seed(seed: object) -> None:
+    from voot.tree import run_episode
+    from voot.tree.root_parallel import tree_seeds
+
+    match = "seed must be None, an integer >= 0"
+    with pytest.raises(ValueError, match=match):
+        plan(NullProblem(2), "voot", 2, seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        MCTS(NullProblem(2), seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        run_episode(NullProblem(2), "voot", 2, seed=seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=match):
+        tree_seeds(seed, 2)  # type: ignore[arg-type]

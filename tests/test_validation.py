@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 from enum import StrEnum
 
@@ -61,3 +62,33 @@ def test_flags_choices_and_tuples() -> None:
     with pytest.raises(ValueError, match="3 finite numbers"):
         V.pose("start", (0, math.nan, 0))
     assert V.positive_number("r", "0.5") == 0.5
+
+
+def test_seed() -> None:
+    seq = np.random.SeedSequence(4)
+    gen = np.random.default_rng(1)
+    assert V.seed(None) is None and V.seed(seq) is seq and V.seed(gen) is gen
+    assert V.seed(np.int64(7)) == 7 and type(V.seed(np.int64(7))) is int
+    for bad in (-1, True, 1.5, "3", np.bool_(True)):
+        with pytest.raises(ValueError, match="seed must be None, an integer >= 0"):
+            V.seed(bad)
+    with pytest.raises(ValueError, match=r"^n_seed must be"):
+        V.seed(-2, "n_seed")
+
+
+def test_seed_argument() -> None:
+    assert V.seed_argument("12") == 12
+    for bad in ("-1", "1.5", "x", ""):
+        with pytest.raises(argparse.ArgumentTypeError, match="must be an integer >= 0"):
+            V.seed_argument(bad)
+
+
+def test_tuples_and_positive_numbers_refuse_booleans() -> None:
+    with pytest.raises(ValueError, match="must be a number"):
+        V.positive_number("r", True)
+    with pytest.raises(ValueError, match="pair of numbers"):
+        V.range_pair("r", (False, 2.0))
+    with pytest.raises(ValueError, match=r"\(xmin, xmax, ymin, ymax\)"):
+        V.region("house", (0, True, 0, 1))
+    with pytest.raises(ValueError, match=r"\(x, y, theta\)"):
+        V.pose("start", (0, 0, np.bool_(True)))

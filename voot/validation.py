@@ -9,6 +9,7 @@ integer and float scalars are accepted like Python's.
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import math
 from collections.abc import Iterable, Mapping
@@ -114,6 +115,39 @@ def flag(value: object, name: str) -> bool:
     return bool(value)
 
 
+def seed(value: object, name: str = "seed") -> Any:
+    """A random seed: None, an integer >= 0, or a numpy ``SeedSequence`` / ``Generator``.
+
+    Returned unchanged (an integer as a Python ``int``), ready for
+    ``np.random.default_rng``. Booleans, negative integers, floats and strings are a
+    ValueError naming ``name`` (numpy's own message names no argument). A ``Generator``
+    is passed through as is: the tree search hands its one generator to every node.
+    """
+    if value is None or isinstance(value, np.random.Generator | np.random.SeedSequence):
+        return value
+    v = _as_int(value)
+    if v is None or v < 0:
+        raise ValueError(
+            f"{name} must be None, an integer >= 0 or a numpy SeedSequence, got {value!r}"
+        )
+    return v
+
+
+def seed_argument(text: str) -> int:
+    """An argparse ``type=`` for every ``--seed`` option: an integer >= 0.
+
+    argparse then reports ``argument --seed: must be an integer >= 0, got '-1'``, the
+    same for every command, instead of numpy's message from deep inside a run.
+    """
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text!r}")
+    return value
+
+
 def choice(enum: type[E], value: object, name: str) -> E:
     """``value`` as a member of ``enum`` (by value), or an error listing the valid ones."""
     try:
@@ -134,10 +168,20 @@ def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
 
 
 # ----- tuples and configs (the environments' settings) ----------------------------------
+def _floats(value: Any) -> tuple[float, ...]:
+    """The items of ``value`` as floats (anything ``float()`` takes but a bool)."""
+    if isinstance(value, str | bytes):
+        raise TypeError
+    items = tuple(value)
+    if any(isinstance(v, bool | np.bool_) for v in items):
+        raise TypeError
+    return tuple(float(v) for v in items)
+
+
 def range_pair(name: str, value: Any) -> tuple[float, float]:
     """A ``(low, high)`` pair of finite floats with ``low < high``."""
     try:
-        lo, hi = (float(v) for v in value)
+        lo, hi = _floats(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}") from None
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
@@ -148,7 +192,7 @@ def range_pair(name: str, value: Any) -> tuple[float, float]:
 def region(name: str, value: Any) -> tuple[float, float, float, float]:
     """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
     try:
-        vals = tuple(float(v) for v in value)
+        vals = _floats(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
     if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
@@ -161,7 +205,7 @@ def region(name: str, value: Any) -> tuple[float, float, float, float]:
 def pose(name: str, value: Any) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose of finite floats."""
     try:
-        vals = tuple(float(v) for v in value)
+        vals = _floats(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
@@ -170,7 +214,9 @@ def pose(name: str, value: Any) -> tuple[float, float, float]:
 
 
 def positive_number(name: str, value: Any, allow_zero: bool = False) -> float:
-    """A finite number > 0 (or >= 0), from anything ``float()`` takes."""
+    """A finite number > 0 (or >= 0), from anything ``float()`` takes but a bool."""
+    if isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be a number, got {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):

@@ -54,6 +54,8 @@ def _is_int(value: object, low: int) -> bool:
 def _check_pair(name: str, value: object) -> tuple[float, float]:
     if not isinstance(value, tuple | list) or len(value) != 2:
         raise ValueError(f"{name} must be a (low, high) pair, got {value!r}")
+    if not (V.is_number(value[0]) and V.is_number(value[1])):
+        raise ValueError(f"{name} must be a (low, high) pair of numbers, got {value!r}")
     lo, hi = float(value[0]), float(value[1])
     if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo <= hi):
         raise ValueError(f"{name} must satisfy 0 < low <= high < inf, got {value!r}")
@@ -138,6 +140,20 @@ def check_zeta(zeta: object, name: str = "zeta") -> None:
     V.positive(zeta, name, allow_zero=True)
 
 
+def finite_targets(y: FloatArray) -> FloatArray:
+    """``y`` with every ``-inf`` (a failed evaluation) replaced by the worst finite value.
+
+    A GP needs finite targets; the worst value seen tells it the region is bad without
+    an outlier that would dominate the standardised targets. 0 if no value is finite.
+    """
+    out = np.array(y, dtype=np.float64, copy=True)
+    bad = ~np.isfinite(out)
+    if bad.any():
+        finite = out[~bad]
+        out[bad] = float(finite.min()) if finite.size else 0.0
+    return out
+
+
 class Surrogate:
     """A GP on the unit cube kept in sync with a growing data set.
 
@@ -206,6 +222,9 @@ class Surrogate:
             return self.gp
         if self.is_synced(n):
             return self.gp
+        failed = not np.isfinite(y).all()
+        if failed:
+            y = finite_targets(y)
         idx = self._subset(y)
         Xs, ys = (X, y) if idx is None else (X[idx], y[idx])
         if self._due_for_fit(n):
@@ -217,7 +236,13 @@ class Surrogate:
             )
             self._last_fit_n = n
             self.n_fits += 1
-        elif idx is None and self._prefix and not self._dirty and self.gp.n == self._n_synced:
+        elif (
+            idx is None
+            and self._prefix
+            and not self._dirty
+            and not failed  # the stand-in of a -inf moves with the worst value: refactor
+            and self.gp.n == self._n_synced
+        ):
             for i in range(self._n_synced, n):
                 self.gp.add_point(X[i], float(y[i]))
         else:

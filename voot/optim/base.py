@@ -29,8 +29,43 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
+
 FloatArray = NDArray[np.float64]
 
+
+def _as_float_array(value: object, name: str, what: str) -> FloatArray:
+    """``value`` as a float64 array, or a ValueError that names ``name`` and says ``what``.
+
+    Numbers only: strings, booleans and ragged nestings are refused with a word about
+    the argument, rather than numpy's "could not convert" or "inhomogeneous shape".
+    """
+    try:
+        arr = value if isinstance(value, np.ndarray) else np.asarray(value)
+        ok = arr.dtype.kind in "iuf"
+    except (TypeError, ValueError):  # ragged
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be {what}, got {value!r}")
+    return np.asarray(arr, dtype=np.float64)
+
+
+def _as_point(x: object, name: str) -> FloatArray:
+    """A point as a float64 array: float arrays pass as they are (the asked points)."""
+    if type(x) is np.ndarray and x.dtype == np.float64:
+        return x
+    return _as_float_array(x, name, "a vector of numbers")
+
+
+def _bound_vector(value: ArrayLike, name: str) -> FloatArray:
+    """A bound (``lower`` or ``upper``) as a fresh, flat float64 vector."""
+    arr = _as_float_array(value, f"bounds: {name}", "a vector of numbers")
+    return np.array(arr, dtype=np.float64, copy=True).reshape(-1)
+
+
+#: How far (a fraction of the box's width) a told point may lie outside the box and be
+#: taken as rounding: it is clipped onto the face (see :meth:`Bounds.check_inside`).
+FACE_TOLERANCE = 1e-12
 
 #: The boxes :meth:`Bounds.cube` has built, by ``(class, low, high, dim)``.
 _CUBES: dict[tuple[type, float, float, int], Bounds] = {}
@@ -47,8 +82,8 @@ class Bounds:
     upper: FloatArray
 
     def __init__(self, lower: ArrayLike, upper: ArrayLike) -> None:
-        lo = np.array(lower, dtype=np.float64, copy=True).reshape(-1)
-        hi = np.array(upper, dtype=np.float64, copy=True).reshape(-1)
+        lo = _bound_vector(lower, "lower")
+        hi = _bound_vector(upper, "upper")
         if lo.shape != hi.shape:
             raise ValueError(
                 f"bounds: lower has {lo.size} entries but upper has {hi.size}; they must match"
@@ -81,9 +116,13 @@ class Bounds:
         Boxes are immutable, so one instance per ``(low, high, dim)`` is kept and handed
         out again: environments ask for their operator's cube at every step.
         """
-        if dim < 1:
-            raise ValueError(f"dim must be >= 1, got {dim}")
-        key = (cls, float(low), float(high), int(dim))
+        if not (type(low) is float and type(high) is float and type(dim) is int and dim >= 1):
+            # the environments' hot path passes Python floats and ints: check the rest
+            low, high = V.number(low, "low"), V.number(high, "high")
+            if not (V.is_integer(dim) and dim >= 1):
+                raise ValueError(f"dim must be >= 1 (an integer), got {dim!r}")
+            dim = int(dim)
+        key = (cls, low, high, dim)
         box = _CUBES.get(key)
         if box is None:
             box = cls(np.full(dim, low), np.full(dim, high))
@@ -98,7 +137,12 @@ class Bounds:
         ``(lower, upper)`` pair of vectors (d != 2; a (2, 2) array is read as rows)."""
         if isinstance(bounds, Bounds):
             return bounds
-        arr = np.asarray(bounds, dtype=np.float64)
+        arr = _as_float_array(
+            bounds,
+            "bounds",
+            "numbers: a Bounds, a (lower, upper) pair of equal-length vectors or (d, 2) rows"
+            " of [low, high]",
+        )
         if arr.ndim == 2 and arr.shape[0] == 2 and arr.shape[1] != 2:
             return cls(arr[0], arr[1])
         if arr.ndim == 2 and arr.shape[1] == 2:
@@ -143,12 +187,38 @@ class Bounds:
 
     def check_point(self, x: ArrayLike, name: str = "x") -> FloatArray:
         """Return ``x`` as a float vector of this box's dimension, or raise ValueError."""
-        arr = np.asarray(x, dtype=np.float64)
+        arr = _as_point(x, name)
         if arr.shape != (self.dim,):
             raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
         if not np.isfinite(arr).all():
             raise ValueError(f"{name} must be finite, got {arr.tolist()}")
         return arr
+
+    def check_inside(self, x: ArrayLike, name: str = "x") -> FloatArray:
+        """:meth:`check_point`, and ``x`` must lie in the box (its faces included).
+
+        One pair of comparisons checks both (NaN fails them), so the common case costs
+        no more than the finiteness check alone. A point outside the box by no more than
+        rounding (:data:`FACE_TOLERANCE` of the box's width per coordinate, e.g. an
+        optimiser's ``lower + u * width`` one ulp past ``upper``) is returned clipped
+        onto the face, not refused; anything farther out is a ValueError.
+        """
+        arr = _as_point(x, name)
+        if arr.shape != (self.dim,):
+            raise ValueError(f"{name} must have shape ({self.dim},), got {arr.shape}")
+        if (arr >= self.lower).all() and (arr <= self.upper).all():
+            return arr
+        if not np.isfinite(arr).all():
+            raise ValueError(f"{name} must be finite, got {arr.tolist()}")
+        slack = FACE_TOLERANCE * self.width
+        if (arr >= self.lower - slack).all() and (arr <= self.upper + slack).all():
+            return np.clip(arr, self.lower, self.upper)
+        i = int(np.flatnonzero((arr < self.lower) | (arr > self.upper))[0])
+        raise ValueError(
+            f"{name} = {arr.tolist()} lies outside the box {self!r} (dimension {i}:"
+            f" {float(arr[i])!r} not in [{float(self.lower[i])!r}, {float(self.upper[i])!r}]);"
+            " tell points inside the bounds (e.g. bounds.clip(x), with its own value)"
+        )
 
     def __eq__(self, other: object) -> bool:
         return (
@@ -231,7 +301,7 @@ class Optimizer(ABC):
                 f"{type(self).__name__} needs a {self.config_class.__name__}, got {type(config).__name__}"
             )
         self.config = config
-        self.rng = np.random.default_rng(seed)
+        self.rng = np.random.default_rng(V.seed(seed))
         self.initial_point: FloatArray | None = None
         if initial_point is not None:
             x0 = self.bounds.check_point(initial_point, "initial_point")
@@ -264,8 +334,26 @@ class Optimizer(ABC):
         return x
 
     def tell(self, x: ArrayLike, value: float) -> None:
-        """Report ``f(x) = value``. ``x`` is normally the point just asked."""
-        xa = self.bounds.check_point(x)
+        """Report ``f(x) = value``. ``x`` is normally the point just asked.
+
+        ``x`` must be a finite point of the box (faces included) and ``value`` a real
+        number other than NaN and ``+inf``; anything else is a ValueError and leaves the
+        optimiser unchanged (both are checked before anything is stored). A point
+        outside the box is rejected, not clipped: its value belongs to that point, and
+        storing it at the clipped one would mislead the method; clip it yourself and
+        evaluate the clipped point. Only a point within rounding of a face
+        (:data:`FACE_TOLERANCE` of the width) is stored clipped onto it.
+
+        ``-inf`` is a valid value meaning "failed evaluation", worse than every finite
+        value: it stays in :attr:`values` and is never :attr:`best_value` while a finite
+        value exists. Each method reads it so: VOO, DOO, RAND-DOO, SOO and random search
+        compare values only (a ``-inf`` cell is never the best); CMA-ES ranks it below
+        every finite value of its population; GP-UCB, REMBO and BaMSOO condition their
+        GP on it as the worst finite value told so far (0 while there is none), since a
+        GP needs finite targets. The tree search never tells ``-inf`` (an infeasible
+        action is worth its finite penalty, e.g. -2).
+        """
+        xa = self.bounds.check_inside(x)
         v = check_value(value)
         self._append(xa, v)
         self._tell(xa, v)

@@ -120,6 +120,7 @@ def maximize(
     """
     key = normalize_method(method)
     V.integer(budget, "budget", 1)
+    V.seed(seed)
     opt = make_optimizer(key, bounds, seed=seed, initial_point=initial_point, **options)
     for _ in range(int(budget)):
         x = opt.ask()

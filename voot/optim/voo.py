@@ -98,7 +98,7 @@ class VOOConfig(OptimizerConfig):
     batch_size: int = 8
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.omega, int | float) and 0.0 <= float(self.omega) <= 1.0):
+        if not (V.is_number(self.omega) and 0.0 <= float(self.omega) <= 1.0):
             raise ValueError(f"omega must be a probability in [0, 1], got {self.omega!r}")
         try:
             object.__setattr__(self, "sampler", BestCellSampler(self.sampler))

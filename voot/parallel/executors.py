@@ -16,6 +16,12 @@ benchmark sweep (``voot.bench.sweep.run_sweep``) and the trees of a root-paralle
 (``in_process`` is False). Stopping the iteration early (an exception, ``close()`` of
 the generator, Ctrl-C) cancels the items that have not started.
 
+Worker processes never outlive their driver: every worker of a :class:`ProcessExecutor`
+watches the process that started it and exits as soon as that process is gone, even
+when it was killed with SIGKILL and could not shut its pool down (without this, spawned
+workers blocked for ever on their task queue, adopted by PID 1, and kept the
+multiprocessing resource tracker alive with them). See :func:`watch_parent`.
+
 Implementations: :class:`SerialExecutor` (this process, one item after the other),
 :class:`ProcessExecutor` (a pool of local processes) and, in ``voot.bench.ray_backend``,
 ``RayBackend`` (actors on a Ray cluster; it needs Ray, so it lives with the benchmarks).
@@ -27,6 +33,7 @@ import contextlib
 import itertools
 import multiprocessing
 import os
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -139,6 +146,55 @@ def terminate_workers(pool: ProcessPoolExecutor) -> None:
             process.terminate()
 
 
+#: Seconds between two looks of a worker at its parent (see :func:`watch_parent`).
+PARENT_POLL_SECONDS = 0.25
+
+
+def watch_parent(parent_pid: int, interval: float = PARENT_POLL_SECONDS) -> threading.Thread:
+    """Exit this process (``os._exit``) soon after the process ``parent_pid`` is gone.
+
+    A daemon thread compares ``os.getppid()`` with ``parent_pid`` every ``interval``
+    seconds: when the parent dies its children are re-parented (to PID 1 or a
+    subreaper), so the two differ. Portable where ``getppid`` reports the current
+    parent (POSIX); on Windows, where it keeps the original pid, the thread also asks
+    whether that process still exists. ``prctl(PR_SET_PDEATHSIG)`` was not used: Linux
+    sends that signal when the parent *thread* that started the worker ends, and pool
+    workers may be started from a short-lived thread. The cost is one system call per
+    interval; the work of an item is not interrupted while the parent lives.
+    ``os._exit`` skips ``atexit`` handlers and the queue feeder threads, which would
+    block on a parent that is no longer there.
+    """
+
+    def gone() -> bool:
+        if os.getppid() != parent_pid:
+            return True
+        if os.name == "nt":  # pragma: no cover - getppid keeps the original pid there
+            try:
+                os.kill(parent_pid, 0)
+            except OSError:
+                return True
+        return False
+
+    def watch() -> None:
+        while True:
+            time.sleep(interval)
+            if gone():
+                os._exit(1)
+
+    thread = threading.Thread(target=watch, name="voot-watch-parent", daemon=True)
+    thread.start()
+    return thread
+
+
+def _init_worker(
+    parent_pid: int, initializer: Callable[..., object] | None, *initargs: object
+) -> None:
+    """Every pool worker's initializer: watch the parent, then the user's initializer."""
+    watch_parent(parent_pid)
+    if initializer is not None:
+        initializer(*initargs)
+
+
 _END = object()
 
 
@@ -159,8 +215,9 @@ class ProcessExecutor:
             the next until :meth:`close` (default). False: every ``map`` starts a pool
             and shuts it down when it ends.
 
-    Worker processes start on demand and get one BLAS/OpenMP thread each
-    (:func:`voot._workers.single_threaded_children`). When an item raises or the
+    Worker processes start on demand, get one BLAS/OpenMP thread each
+    (:func:`voot._workers.single_threaded_children`) and exit by themselves when this
+    process dies (:func:`watch_parent`). When an item raises or the
     caller stops early, the items not started are cancelled; a per-call pool
     (``keep_alive=False``) is then terminated at once, a kept pool lives on until
     :meth:`close` (``with`` blocks close it with ``kill=True`` on an exception).
@@ -207,8 +264,8 @@ class ProcessExecutor:
                 self._pool = ProcessPoolExecutor(
                     max_workers=self.max_workers,
                     mp_context=multiprocessing.get_context(self.start_method),
-                    initializer=self.initializer,
-                    initargs=self.initargs,
+                    initializer=_init_worker,
+                    initargs=(os.getpid(), self.initializer, *self.initargs),
                 )
             return self._pool.submit(fn, item)
 

@@ -9,6 +9,7 @@ the executed action's subtree instead of an empty tree.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -18,7 +19,13 @@ import numpy as np
 from voot import validation as V
 from voot.optim.base import FloatArray
 from voot.tree.config import MCTSConfig, planner_config
-from voot.tree.mcts import MCTS, Callback, PlanResult, check_n_simulations
+from voot.tree.mcts import (
+    MCTS,
+    Callback,
+    PlanResult,
+    check_n_simulations,
+    non_finite_step_error,
+)
 from voot.tree.problem import PlanningProblem, StepResult
 
 
@@ -80,7 +87,7 @@ def run_episode(
         config = planner.replace(**options) if options else planner
     else:
         config = planner_config(planner, **options)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(V.seed(seed))
     t0 = time.perf_counter()
     actions: list[FloatArray] = []
     steps: list[StepResult] = []
@@ -100,6 +107,8 @@ def run_episode(
         action = mcts.root.actions[edge].copy()
         problem.restore(mcts.root.snapshot)
         step = problem.step(action)
+        if not (math.isfinite(float(step.reward)) and math.isfinite(float(step.bonus))):
+            raise non_finite_step_error(problem, action, float(step.reward), float(step.bonus))
         actions.append(action)
         steps.append(step)
         total += discount * float(step.reward)

@@ -37,6 +37,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from voot import validation as V
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.config import (
     Backup,
@@ -71,6 +72,29 @@ def check_n_simulations(n_simulations: object) -> int:
     ):
         raise ValueError(f"n_simulations must be an integer >= 1, got {n_simulations!r}")
     return int(n_simulations)
+
+
+def non_finite_step_error(
+    problem: PlanningProblem, action: FloatArray, reward: float, bonus: float
+) -> ValueError:
+    """The error for a step whose reward or goal bonus is not a finite number.
+
+    Rewards and bonuses must be finite. NaN has no order, so a NaN return would
+    silently poison every :math:`\\hat Q` above it and the best-return curve (PW-UCT and
+    HOOT reported ``best_return=nan``). An infinite reward is refused as well: one
+    ``+inf`` makes every path through it the best whatever else it earns, one ``-inf``
+    makes every backed-up mean ``-inf`` (and NaN once mixed with a ``+inf``), and
+    neither can be told to an action optimiser. A failed action is reported as
+    ``feasible=False`` with a finite penalty (the chains and the environments use -2).
+    """
+    name = "reward" if not math.isfinite(reward) else "goal bonus"
+    value = reward if name == "reward" else bonus
+    return ValueError(
+        f"{type(problem).__name__}.step(action={np.asarray(action).tolist()}) returned"
+        f" {name}={value!r} (reward={reward!r}, bonus={bonus!r}); rewards and goal bonuses"
+        " must be finite numbers (report a failed action as feasible=False with a finite"
+        " penalty)"
+    )
 
 
 def problem_bounds(problem: PlanningProblem) -> Bounds:
@@ -175,7 +199,7 @@ class MCTS:
                 )
         self.problem = problem
         self.config = cfg
-        self.rng = np.random.default_rng(seed)
+        self.rng = np.random.default_rng(V.seed(seed))
         # A problem may offer is_feasible (FeasibilityCheck) or set it to None per instance.
         check = getattr(problem, "is_feasible", None)
         self._check: Callable[[FloatArray], bool] | None = check if callable(check) else None
@@ -514,6 +538,10 @@ class MCTS:
                 f"{type(self.problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
             )
         reward = float(res.reward)
+        bonus = float(res.bonus)
+        if not (math.isfinite(reward) and math.isfinite(bonus)):
+            self._at = None  # the problem has moved, no child records where to
+            raise non_finite_step_error(self.problem, x, reward, bonus)
         feasible = bool(res.feasible)
         terminal = bool(res.terminal)
         expandable = feasible and not terminal
@@ -533,7 +561,7 @@ class MCTS:
         self.nodes.append(child)
         node.actions.append(x)
         node.rewards.append(reward)
-        node.bonuses.append(float(res.bonus))
+        node.bonuses.append(bonus)
         node.feasible.append(feasible)
         node.children.append(child)
         node.q.append(-math.inf)
@@ -625,6 +653,7 @@ def plan(
     (50,)
     """
     check_n_simulations(n_simulations)
+    V.seed(seed)
     from voot.tree import shooting
 
     if isinstance(planner, shooting.ShootingConfig) or shooting.is_shooting_planner(planner):

@@ -58,7 +58,8 @@ class StepResult:
 
     Attributes:
         reward: the step's reward, *excluding* any goal bonus (the paper's curves plot
-            this sum); infeasible actions carry their penalty here (e.g. -2).
+            this sum); infeasible actions carry their penalty here (e.g. -2). It must be
+            finite, like ``bonus``: the search raises a ValueError on NaN or +-inf.
         feasible: False if the action was infeasible; the rollout stops there.
         terminal: True if the episode ended (goal reached or a horizon hit).
         bonus: a goal bonus added to the search's value but reported separately.

@@ -92,6 +92,8 @@ def tree_seeds(
         base = np.random.SeedSequence(
             seed.entropy, spawn_key=seed.spawn_key, pool_size=seed.pool_size
         )
+    elif isinstance(seed, Sequence) and not isinstance(seed, str | bytes):
+        base = np.random.SeedSequence(V.integers(seed, "seed", 0))
     else:
-        base = np.random.SeedSequence(seed)
+        base = np.random.SeedSequence(V.seed(seed))
     return base.spawn(int(n_trees))
