@@ -30,3 +30,10 @@ def test_layout(scene: bool, plot: bool) -> None:
     assert {"/search/best_return", "/search/n_nodes", "/tree"} <= origins
     no_plan = default_blueprint(has_scene=scene, has_plot=plot, has_plan=False)
     assert [type(v).__name__ for v in _views(no_plan.root_container)].count("TimeSeriesView") == 2
+
+
+def test_plan_rewards_show_on_the_search_timeline() -> None:
+    """The layout opens on the search timeline: the plan's rewards are a static bar chart."""
+    views = _views(default_blueprint(has_scene=True, has_plot=False).root_container)
+    bars = [v for v in views if type(v).__name__ == "BarChartView"]
+    assert [str(v.origin) for v in bars] == ["/plan/rewards"]  # type: ignore[attr-defined]

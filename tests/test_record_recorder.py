@@ -148,6 +148,9 @@ def test_scene_samples_and_plan_poses_of_the_mujoco_demo(tmp_path: Path) -> None
     assert not np.any(colors[feasible] == grey)
     # The executed poses along the plan.
     assert rec.entity("scene/plan/base_pose").rows["plan"] == sum(1 for a in res.actions[::2])
+    # The plan's rewards as one static bar chart (shown on the search timeline too).
+    assert "/plan/rewards" in rec.entities
+    assert not rec.entity("plan/rewards").rows  # static: on no timeline
 
 
 def test_watch_entries_and_names(tmp_path: Path) -> None:

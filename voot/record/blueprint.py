@@ -4,8 +4,9 @@ Left, large: the 3-D scene (geometry, the robot along the best plan on the ``pla
 timeline, the watched nodes' sampled base poses and placements on the ``search``
 timeline) or, for problems without a scene, the 2-D plot of sampled actions. Right, top
 to bottom: the best return over simulations, the tree size, the search tree as a graph,
-the plan's rewards, and the 2-D sample plot when it is not already the main view. The
-time panel opens on the ``search`` timeline.
+the plan's rewards (a static bar chart, one bar per action, so that it shows on any
+timeline) and its return on the ``plan`` timeline, and the 2-D sample plot when it is not already the main view. The time panel
+opens on the ``search`` timeline.
 """
 
 from __future__ import annotations
@@ -33,11 +34,14 @@ def default_blueprint(*, has_scene: bool, has_plot: bool, has_plan: bool = True)
         rrb.GraphView(origin=f"/{TREE}", name="Search tree"),
     ]
     if has_plan:
+        # a static bar chart, not empty on the search timeline the viewer opens on, and the
+        # rewards and return step by step on the plan timeline
+        side.append(rrb.BarChartView(origin=f"/{PLAN}/rewards", name="Plan rewards"))
         side.append(
             rrb.TimeSeriesView(
                 origin=f"/{PLAN}",
                 contents=[f"/{PLAN}/reward", f"/{PLAN}/return"],
-                name="Plan rewards",
+                name="Plan return (plan timeline)",
             )
         )
     if has_scene:

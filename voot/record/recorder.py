@@ -397,6 +397,9 @@ class SearchRecorder:
         gamma = mcts.config.gamma
         ret, disc = 0.0, 1.0
         rec.reset_time()
+        # the plan's rewards as one static bar chart: shown on whatever timeline is open
+        rewards = np.array([float(node.rewards[e]) for node, e in path], dtype=np.float64)
+        rec.log(f"{PLAN}/rewards", rr.BarChart(rewards), static=True)
         rec.set_time(PLAN_TIMELINE, sequence=0)
         rec.log(f"{PLAN}/return", rr.Scalars(0.0))
         for t, (node, e) in enumerate(path, start=1):
