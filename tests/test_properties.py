@@ -130,3 +130,41 @@ def test_cli_arguments_give_an_error_message_not_a_traceback(
     err = capsys.readouterr().err
     assert "Traceback" not in err
     assert code in (0, 2), (argv, code, err)
+
+
+@settings(
+    max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(
+    corrupt=st.sampled_from(["physics_nan", "physics_length", "task", "rng", "signature"]),
+    where=st.integers(min_value=0, max_value=10**6),
+    junk=ANYTHING,
+)
+def test_a_corrupted_snapshot_is_refused_and_changes_nothing(
+    kitchen: object, corrupt: str, where: int, junk: object
+) -> None:
+    import dataclasses
+
+    env = kitchen
+    env.reset(seed=0)  # type: ignore[attr-defined]
+    good = env.get_state()  # type: ignore[attr-defined]
+    physics = np.array(good.physics)
+    changes: dict[str, object] = {}
+    if corrupt == "physics_nan":
+        physics[where % physics.size] = np.nan
+        changes["physics"] = physics
+    elif corrupt == "physics_length":
+        changes["physics"] = physics[: where % physics.size]
+    elif corrupt == "task":
+        changes["task"] = junk
+    elif corrupt == "rng":
+        changes["rng_state"] = {"bit_generator": "PCG64", "state": junk}
+    else:
+        changes["signature"] = int(where)
+    bad = dataclasses.replace(good, **changes)
+    if corrupt == "signature" and int(where) == good.signature:
+        return
+    before = env.get_state()  # type: ignore[attr-defined]
+    with pytest.raises(ValueError):
+        env.set_state(bad)  # type: ignore[attr-defined]
+    assert env.get_state() == before  # type: ignore[attr-defined]
