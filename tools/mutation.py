@@ -152,7 +152,7 @@ class _Collector(ast.NodeVisitor):
             self.visit(node.value)
 
     def visit_Raise(self, node: ast.Raise) -> None:
-        # The exception raised is behaviour; its message text is not mutated.
+        # raise statements (the exception and its message) are not mutated
         return
 
     def visit_JoinedStr(self, node: ast.JoinedStr) -> None:
