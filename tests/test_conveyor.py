@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import time
 
 import gymnasium as gym
 import numpy as np
@@ -65,6 +66,10 @@ def test_scripted_solution_packs_every_box(env: ConveyorPackingEnv) -> None:
         assert not truncated
     assert terminated and info["objects_placed"] == 20 and info["objects_left"] == 0
     assert info["goal_bonus"] == 0.0
+    with pytest.raises(ValueError, match="ended"):
+        env.step(np.zeros(9))
+    with pytest.raises(ValueError, match="ended"):
+        env.precheck(np.zeros(9))
     assert total > 5.0
     # every box is where the solution put it
     for i, (x, y, th) in enumerate(CONVEYOR_SOLUTION):
@@ -211,3 +216,62 @@ def test_render_rgb_array() -> None:
     img = env.render()
     assert img is not None and img.shape == (120, 160, 3) and img.std() > 5
     env.close()
+
+
+def test_truncation_at_the_horizon_and_step_timings() -> None:
+    """A truncated episode has ended; ``last_timing``'s parts are >= 0 and sum to <= total."""
+    env = ConveyorPackingEnv(ConveyorConfig(horizon=3))
+    env.reset(seed=0)
+
+    def step(action: np.ndarray) -> tuple:  # type: ignore[type-arg]
+        began = time.perf_counter()
+        out = env.step(action)
+        elapsed = time.perf_counter() - began
+        tm = env.last_timing
+        assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
+        assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
+        return out
+
+    # the third box on top of the first: infeasible after two feasible checks
+    bad = _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-3.5, 2.1, 180)])
+    _, _, term, trunc, info = step(bad)
+    assert not info["feasible"] and not term and not trunc
+    # boxes 1 and 2 passed before box 3 failed: no path is reported for a void action
+    assert info["base_path_length"] == 0.0
+    assert info["base_path_lengths"] == [] and info["base_paths"] == []
+    _, _, term, trunc, info = step(
+        _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    )
+    assert info["reason"].startswith("box 1/3 (obj_00): outside region")
+    assert not term and not trunc
+    s = env.get_state()
+    _, _, term, trunc, info = step(conveyor_actions(env)[0])
+    assert info["feasible"] and not term and trunc
+    env.set_state(s)
+    _, _, term, trunc, info = step(bad)
+    assert not term and trunc
+    with pytest.raises(ValueError, match="ended"):
+        env.step(bad)
+    with pytest.raises(ValueError, match="ended"):
+        env.precheck(bad)
+
+
+def test_precheck_agrees_with_the_step(env: ConveyorPackingEnv) -> None:
+    """The pre-check's verdict, reason, placements and base poses are the step's."""
+    env.reset(seed=0)
+    actions = [
+        conveyor_actions(env)[0],  # feasible
+        _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-3.5, 2.1, 180)]),  # box 3 on 1
+        _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)]),  # box 1 outside
+    ]
+    s = env.get_state()
+    for a in actions:
+        ok, pre = env.precheck(a)
+        _, _, _, _, info = env.step(a)
+        env.set_state(s)
+        assert ok == pre["feasible"] == info["feasible"]
+        assert pre["reason"] == info["reason"]
+        assert pre["placements"] == info["placements"] and pre["placement"] == info["placement"]
+        np.testing.assert_allclose(pre["base_poses"], info["base_poses"], atol=1e-12)
+        np.testing.assert_allclose(pre["base_pose"], info["base_pose"], atol=1e-12)
+    assert pre["placement"] != pre["placements"][1]

@@ -7,6 +7,7 @@ import pickle
 import subprocess
 import sys
 import textwrap
+import time
 
 import gymnasium as gym
 import numpy as np
@@ -70,6 +71,8 @@ def test_scripted_solution_clears_every_obstacle(env: KitchenClearingEnv) -> Non
     assert [i["objects_left"] for i in infos[1::2]] == [6, 5, 4, 3, 2, 1, 0]
     with pytest.raises(ValueError, match="ended"):
         env.step(np.zeros(6))
+    with pytest.raises(ValueError, match="ended"):
+        env.precheck(np.zeros(6))
 
 
 def test_infos_carry_base_poses_and_placements(env: KitchenClearingEnv) -> None:
@@ -83,6 +86,8 @@ def test_infos_carry_base_poses_and_placements(env: KitchenClearingEnv) -> None:
         np.testing.assert_allclose(base, env.robot.base_pose(env.data), atol=1e-12)
         if info["operator"] == "pick":
             assert info["placement"] is None
+            # no base path for picks by default: none reported
+            assert info["base_path_length"] == 0.0 and info["base_path"] is None
         else:
             x, y, _, yaw = env.object_pose(env.object_index[info["object"]])
             px, py, pth = info["placement"]
@@ -232,6 +237,11 @@ def test_truncation_at_the_horizon() -> None:
     assert not term and not trunc
     _, _, term, trunc, _ = env.step(bad)
     assert not term and trunc
+    # a truncated episode has ended too: neither a step nor a pre-check is allowed
+    with pytest.raises(ValueError, match="ended"):
+        env.step(bad)
+    with pytest.raises(ValueError, match="ended"):
+        env.precheck(bad)
 
 
 @pytest.mark.parametrize(
@@ -367,3 +377,61 @@ def test_place_rewards_reach_their_caps() -> None:
         )
     # the caps bind in the tight config and not in the default one
     assert 1.0 / length > 0.05
+
+
+def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
+    """``last_timing`` (read by ``voot.bench.env_speed``): parts >= 0 that sum to <= total.
+
+    Over feasible picks and places and over infeasible ones stopped at each check.
+    """
+    env.reset(seed=0)
+    acts = kitchen_actions(env)
+    rng = np.random.default_rng(3)
+
+    def step(action: np.ndarray) -> tuple:  # type: ignore[type-arg]
+        began = time.perf_counter()
+        out = env.step(action)
+        elapsed = time.perf_counter() - began
+        tm = env.last_timing
+        assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
+        assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
+        return out
+
+    s = env.get_state()
+    for _ in range(40):  # infeasible and feasible picks
+        step(rng.uniform(-1, 1, 6))
+        env.set_state(s)
+    step(acts[0])
+    s = env.get_state()
+    # places: outside the house, in a forbidden room, feasible
+    for x, y in ((-1.95, 0.0), (4.0, 2.0)):
+        step(_place_action(env, x, y, 0.5))
+        env.set_state(s)
+    step(acts[1])
+    # a pick with its base path planned (pick_base_path): the planning time is counted
+    env = KitchenClearingEnv(KitchenConfig(pick_base_path=True))
+    env.reset(seed=0)
+    _, _, _, _, info = step(kitchen_actions(env)[0])
+    assert info["feasible"] and env.last_timing.planning > 0.0
+
+
+def test_precheck_infos_and_the_state_after_a_place(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    acts = kitchen_actions(env)
+    ok, info = env.precheck(acts[0])
+    assert ok and info["feasible"] and info["reason"] == ""
+    assert info["operator"] == "pick" and info["object"] == "obj_box1"
+    bad = np.ones(6)
+    ok, info = env.precheck(bad)
+    assert not ok and not info["feasible"] and info["reason"]
+    env.step(acts[0])
+    ok, info = env.precheck(_place_action(env, -1.95, 0.0, 0.5))  # half outside the house
+    assert not ok and not info["feasible"] and info["reason"].startswith("outside region")
+    assert info["operator"] == "place" and info["object"] == "obj_box1"
+    ok, info = env.precheck(acts[1])
+    assert ok and info["feasible"] and info["object"] == "obj_box1"
+    env.step(acts[1])
+    # after a place the robot holds nothing
+    t = env.task
+    assert t.operator == "pick" and t.held == -1
+    assert t.held_rel == (0.0, 0.0, 0.0) and t.grasp_q == ()

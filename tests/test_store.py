@@ -349,3 +349,169 @@ def test_time_load_measures_a_small_store(tmp_path: Path, monkeypatch: pytest.Mo
     out = store_mod.time_load(5, 10, repeats=1, path=str(tmp_path / "bench"))
     assert set(out) == {"write", "cold", "warm", "verify", "mb"}
     assert all(v >= 0 for v in out.values())
+    assert 0 < out["mb"] < 0.01  # five rows of ten steps: a few kB
+    assert (tmp_path / "bench" / "store").is_dir()  # a given path is kept
+
+
+# ----- failed rows, checksum edge cases, file modes ---------------------------------------
+class _Spec:
+    kind = "bbfo"
+
+    def config(self) -> dict:
+        return {"function": "f", "dim": 2, "seed": 7}
+
+
+def test_failed_and_exception_rows() -> None:
+    spec = _Spec()
+    r = store_mod.failed_row(spec, "RuntimeError: no", note=1)
+    check_row(r)
+    assert (r["status"], r["error"], r["wall_time"], r["best_so_far"], r["note"]) == (
+        "failed",
+        "RuntimeError: no",
+        0.0,
+        [],
+        1,
+    )
+    assert r["run_id"] == make_run_id("bbfo", spec.config())
+    start = time.perf_counter()
+    try:
+        raise ValueError("boom")
+    except ValueError as exc:
+        r = store_mod.exception_row(spec, exc, start, [1.0, 2.0], extra="x")
+    elapsed = time.perf_counter() - start
+    assert r["status"] == "failed" and r["error"] == "ValueError: boom"
+    assert 0.0 <= r["wall_time"] <= elapsed
+    assert r["best_so_far"] == [1.0, 2.0] and r["extra"] == "x"
+    assert "ValueError: boom" in r["traceback"]
+
+
+def test_run_ids_refuse_non_json_numbers() -> None:
+    with pytest.raises(ValueError):
+        make_run_id("bbfo", {"x": float("nan")})
+
+
+def test_check_row_returns_the_row_and_checks_both_types() -> None:
+    r = row(1)
+    assert check_row(r) is r
+    for bad in (dict(r, config=[1]), dict(r, best_so_far=(1.0,))):
+        with pytest.raises(StoreError, match="'config' must be an object"):
+            check_row(bad)
+
+
+def test_verify_row_bytes_edge_cases() -> None:
+    verify = store_mod.verify_row_bytes
+    good = store_mod.row_bytes(row(1))
+    assert verify(good) is True
+    plain = json.dumps(row(1)).encode() + b"\n"
+    with pytest.raises(StoreError, match="without its checksum"):
+        verify(plain)  # required by default
+    assert verify(plain, required=False) is False
+    zeros = b"0" * 64
+    only = store_mod._CHECKSUM_HEAD + zeros + store_mod._CHECKSUM_TAIL  # nothing before it
+    assert verify(only, required=False) is False
+    with pytest.raises(StoreError, match="changed since"):
+        verify(b"{" + only, required=False)  # one byte of body: a (wrong) checksum
+
+
+def test_row_files_are_ordinary_files(tmp_path: Path) -> None:
+    path = ResultStore(tmp_path).write(row(1))
+    assert path.stat().st_mode & 0o777 == 0o666 & ~store_mod._UMASK
+    assert ResultStore(tmp_path).write(row(1)) == path  # kept, and its path returned
+
+
+def test_nan_in_best_so_far_stays_nan(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    s.write(make_row("bbfo", {"seed": 0}, status="ok", wall_time=0.0, best_so_far=[np.nan, 1.0]))
+    for _ in range(2):
+        (r,) = s.load()
+        assert np.isnan(r["best_so_far"][0]) and r["best_so_far"][1] == 1.0
+
+
+def test_header_run_id_paths_and_a_missing_runs_folder(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path / "r")
+    assert s.header["format"] == "voot-results" and s.checksums_required
+    assert s.row_path("abc") == s.runs_path / "abc.json"
+    for bad in ("", "a/b", "a\\b", "a.b", " abc", "abc\n"):
+        with pytest.raises(ValueError, match="invalid run id"):
+            s.row_path(bad)
+    s.runs_path.rmdir()
+    assert s.row_files() == []
+
+
+# ----- the index: used for files at rest, validated, read-only arrays ----------------------
+def _plan_row() -> dict:
+    return make_row(
+        "plan",
+        {"problem": "kitchen", "seed": 0},
+        status="ok",
+        wall_time=1.0,
+        best_so_far=[0.0, 1.0, 1.5],
+        elapsed=[0.1, 0.25, 0.5],
+        objects_left=[None, 6, 4],
+    )
+
+
+def _count_reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    reads: list[str] = []
+    read_row = ResultStore._read_row
+
+    def counting(self: ResultStore, path: Path) -> dict:
+        reads.append(path.name)
+        return read_row(self, path)
+
+    monkeypatch.setattr(ResultStore, "_read_row", counting)
+    return reads
+
+
+def test_the_index_serves_files_at_rest_and_rereads_racy_ones(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    s = ResultStore(tmp_path)
+    for r in [row(0), row(1, status="failed"), _plan_row(), row(2)]:
+        s.write(r)
+    reads = _count_reads(monkeypatch)
+    first = s.load(status=None)
+    assert len(reads) == 4
+    # written just now (within RACY_NS of the scan): read again at the next load
+    assert s.load(status=None) == first and len(reads) == 8
+    monkeypatch.setattr(store_mod, "RACY_NS", 0)  # now every file is at rest
+    s.load(status=None)  # rebuilds the index with a later scan time
+    del reads[:]
+    for arrays in (False, True):
+        again = s.load(status=None, arrays=arrays)
+        assert reads == []  # all from the index
+        if not arrays:
+            assert again == first
+    plan = next(r for r in again if r["kind"] == "plan")
+    assert plan["elapsed"].tolist() == [0.1, 0.25, 0.5]
+    for r in again:
+        assert not r["best_so_far"].flags.writeable
+    # an index whose curve values do not match its offsets is rebuilt, not trusted
+    with np.load(tmp_path / INDEX_NAME) as data:
+        cols = dict(data)
+    cols["values_best_so_far"] = cols["values_best_so_far"][:-1]
+    np.savez(tmp_path / INDEX_NAME, **cols)
+    assert s.load(status=None) == first and len(reads) == 4
+    # curves parsed from the files are read-only too
+    (tmp_path / INDEX_NAME).unlink()
+    assert all(not r["best_so_far"].flags.writeable for r in s.load(arrays=True))
+
+
+def test_repr_curves_of_equal_length_and_an_empty_runs_folder(tmp_path: Path) -> None:
+    s = ResultStore(tmp_path)
+    assert repr(s) == f"ResultStore({str(tmp_path)!r})"
+    c = curves([{"best_so_far": [1.0, 2.0]}, {"best_so_far": [3.0, 4.0]}])
+    assert c.tolist() == [[1.0, 2.0], [3.0, 4.0]]
+    s.runs_path.rmdir()
+    assert s.load() == []
+
+
+def test_time_load_arguments_and_timings(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(store_mod, "RACY_NS", 1_000_000)  # waits 1 ms
+    for bad in ((0, 1, 1), (1, 0, 1), (1, 1, 0)):
+        with pytest.raises(ValueError, match=">= 1"):
+            store_mod.time_load(*bad)
+    began = time.perf_counter()
+    out = store_mod.time_load(1, 1, repeats=1)  # in a temporary directory
+    elapsed = time.perf_counter() - began
+    assert all(0 <= out[k] <= elapsed for k in ("write", "cold", "warm", "verify"))

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import gc
 import math
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -663,3 +665,30 @@ def test_plan_mcts_and_episodes_check_the_seed(seed: object) -> None:
         run_episode(NullProblem(2), "voot", 2, seed=seed)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match=match):
         tree_seeds(seed, 2)  # type: ignore[arg-type]
+
+
+def test_search_times_itself_and_restores_the_garbage_collector() -> None:
+    """``wall_time`` adds up the searches' seconds; gc is paused only during a search."""
+    mcts = MCTS(Counter(), planner_config("voot", depth_limit=3), seed=0)
+    was = gc.isenabled()
+    try:
+        for enabled in (True, False):
+            (gc.enable if enabled else gc.disable)()
+            before = mcts.wall_time
+            began = time.perf_counter()
+            mcts.search(5)
+            elapsed = time.perf_counter() - began
+            assert 0.0 < mcts.wall_time - before <= elapsed
+            assert gc.isenabled() is enabled
+    finally:
+        (gc.enable if was else gc.disable)()
+
+
+def test_result_of_a_root_with_one_action() -> None:
+    mcts = MCTS(Counter(), planner_config("voot", depth_limit=3), seed=0)
+    res = mcts.search(1)
+    assert len(mcts.root.children) == 1 and mcts.recommended_edge() == 0
+    assert res.best_action is not None
+    np.testing.assert_array_equal(res.best_action, mcts.root.actions[0])
+    assert mcts.result().info_curve is None  # only with_info_curve=True records it
+    assert mcts.result(True).info_curve == ()  # nothing recorded by this search

@@ -52,11 +52,15 @@ def test_samples_lie_in_best_cell(sampler: str) -> None:
     n = 30 if sampler == "uniform" else 300  # the uniform sampler must succeed in 1000 tries
     opt = random_state(n, 4, seed=1, sampler=sampler)
     xs, b = opt.xs.copy(), opt.best_index
+    rejected = [opt.n_rejected]
     for _ in range(200):
         p = opt.sample_best_cell()
         assert opt.bounds.contains(p)
         assert brute_in_cell(xs, b, p, rtol=1e-12)
+        rejected.append(opt.n_rejected)
     assert opt.n_fallbacks == 0
+    # a count of the tries rejected: it never goes down, and some were
+    assert np.all(np.diff(rejected) >= 0) and rejected[-1] > 0
     assert opt.sampler.value == sampler
 
 
@@ -118,20 +122,83 @@ def test_fast_test_matches_brute_force(make) -> None:  # type: ignore[no-untyped
         assert any(sorted_used)
 
 
-def test_rejection_by_a_point_beyond_the_neighbour_tiers() -> None:
-    # x* = 0 with 400 close points on its +e1 side and one far point at -e1: a proposal
+@pytest.mark.parametrize(("n_close", "far_first"), [(400, False), (100, True)])
+def test_rejection_by_a_point_beyond_the_neighbour_tiers(n_close: int, far_first: bool) -> None:
+    # x* = 0 with close points on its +e1 side and one far point at -e1: a proposal
     # towards -e1 passes every cached-neighbour filter and only the far point rejects it
+    # (told last, or first: the exact check must see the first told point too)
     d = 3
     box = Bounds.cube(-2.0, 2.0, d)
     rng = np.random.default_rng(0)
-    close = 1e-3 * np.abs(rng.standard_normal((400, d)))
+    close = 1e-3 * np.abs(rng.standard_normal((n_close, d)))
     close[:, 0] += 1e-3
     far = -np.eye(d)[0]
-    pts = np.vstack([np.zeros(d), close, far])
-    opt = told(pts, np.r_[1.0, np.zeros(401)], box)
+    if far_first:
+        pts = np.vstack([far, np.zeros(d), close])
+        values = np.r_[0.0, 1.0, np.zeros(n_close)]
+    else:
+        pts = np.vstack([np.zeros(d), close, far])
+        values = np.r_[1.0, np.zeros(n_close + 1)]
+    opt = told(pts, values, box)
+    b = opt.best_index
     cell = opt._best_cell()
     q = np.array([[-0.6, 0.0, 0.0], [-0.4, 0.0, 0.0]])
+    assert [brute_in_cell(opt.xs, b, x) for x in q] == [False, True]
+    assert opt._first_inside(cell, q[:1]) == -1
+    assert opt._first_inside(cell, q) == 1
+
+
+def test_a_far_proposal_is_checked_against_the_nearest_point_outside_the_cache() -> None:
+    # x* = 0, NEIGHBOURS close points (the cache) and one point at -e1, the nearest outside
+    # the cache (out2 = 1): a proposal 2.5 away towards it is closer to it than to x*
+    d = 3
+    rng = np.random.default_rng(2)
+    close = 1e-3 * np.abs(rng.standard_normal((NEIGHBOURS, d)))
+    close[:, 0] += 1e-3
+    pts = np.vstack([np.zeros(d), close, -np.eye(d)[0]])
+    opt = told(pts, np.r_[1.0, np.zeros(NEIGHBOURS + 1)], Bounds.cube(-3.0, 3.0, d))
+    cell = opt._best_cell()
+    assert cell.out2 == 1.0
+    q = np.array([[-2.5, 0.0, 0.0]])
+    assert not brute_in_cell(opt.xs, 0, q[0])
+    assert opt._first_inside(cell, q) == -1
+
+
+def test_rejection_by_a_point_told_after_the_sort() -> None:
+    # x* = 0, 100 close points on its +e1 side (they fill the neighbour cache), then, after
+    # the exact check sorted them, one far point at -2 e1: only the unsorted tail of the
+    # exact check sees it, and it must reject -1.2 e1 (closer to it) but not -0.9 e1
+    d = 3
+    box = Bounds.cube(-3.0, 3.0, d)
+    rng = np.random.default_rng(1)
+    close = 1e-3 * np.abs(rng.standard_normal((100, d)))
+    close[:, 0] += 1e-3
+    opt = told(np.vstack([np.zeros(d), close]), np.r_[1.0, np.zeros(100)], box)
+    cell = opt._best_cell()
+    assert opt._first_inside(cell, np.array([[-0.5, 0.0, 0.0]])) == 0
+    assert cell.sorted_n == opt.n_told  # the exact check sorted the points
+    opt.tell(-2.0 * np.eye(d)[0], 0.0)
+    cell = opt._best_cell()
+    assert cell.sorted_n < cell.n == opt.n_told
+    q = np.array([[-1.2, 0.0, 0.0], [-0.9, 0.0, 0.0]])
     assert [brute_in_cell(opt.xs, 0, x) for x in q] == [False, True]
+    assert opt._first_inside(cell, q[:1]) == -1
+    assert opt._first_inside(cell, q[1:]) == 0
+    assert opt._first_inside(cell, q) == 1
+
+
+def test_a_copy_of_the_best_told_with_a_rejecting_point() -> None:
+    # few points (cache not full): a copy of x* and, in the same update of the cache, a
+    # point at +e1 that must enter it and reject +0.6 e1
+    d = 2
+    box = Bounds.cube(-2.0, 2.0, d)
+    opt = told(np.array([[0.0, 0.0], [0.0, -1.0]]), np.array([1.0, 0.0]), box)
+    cell = opt._best_cell()
+    opt.tell(np.zeros(d), 0.5)  # a copy of x*
+    opt.tell(np.array([1.0, 0.0]), 0.0)
+    cell = opt._best_cell()
+    assert cell.count == 2
+    q = np.array([[0.6, 0.0], [0.4, 0.0]])
     assert opt._first_inside(cell, q[:1]) == -1
     assert opt._first_inside(cell, q) == 1
 
@@ -214,6 +281,16 @@ def test_first_two_asks_are_uniform() -> None:
     np.testing.assert_array_equal(x1, rng.random(2))
 
 
+def test_the_third_ask_exploits() -> None:
+    # with omega = 0 every ask after the first two samples the best cell; here it is the
+    # 0.75 % of the box left of -0.985, so uniform asks would miss it
+    for seed in range(20):
+        opt = VOO(Bounds([-1.0], [1.0]), VOOConfig(omega=0.0), seed=seed)
+        opt.tell(np.array([-0.99]), 1.0)
+        opt.tell(np.array([-0.98]), 0.0)
+        assert opt.ask()[0] <= -0.985
+
+
 def test_sample_best_cell_needs_a_point() -> None:
     with pytest.raises(ValueError, match="at least one told point"):
         VOO(Bounds.cube(0.0, 1.0, 2)).sample_best_cell()
@@ -234,6 +311,11 @@ def test_uniform_fallback_switches_to_gaussian() -> None:
     )
     keep.sample_best_cell()
     assert keep.n_fallbacks == 1 and keep.sampler is BestCellSampler.UNIFORM
+    # a cap that is not a whole number of batches (8 + 2 tries): exactly the cap is tried
+    ten = random_state(2000, 6, seed=0, sampler="uniform", uniform_max_tries=10)
+    before = ten.n_rejected
+    ten.sample_best_cell()
+    assert ten.n_fallbacks == 1 and ten.n_rejected - before == 10
 
 
 @pytest.mark.parametrize("sampler", ["centered_uniform", "gaussian"])
@@ -269,6 +351,10 @@ def test_custom_metric() -> None:
     for x, v in zip(xs, opt.values, strict=True):
         euclid.tell(x, float(v))
     assert np.any(opt.in_best_cell(q) != euclid.in_best_cell(q))
+    # a batch with no proposal inside the L1 cell: none is accepted
+    cell = opt._best_cell()
+    outside = q[~opt.in_best_cell(q)][:5] - cell.best
+    assert len(outside) == 5 and opt._first_inside(cell, outside) == -1
 
 
 def test_semi_metric_ignoring_a_coordinate() -> None:
@@ -354,6 +440,7 @@ def test_config_defaults_and_grid() -> None:
     cfg = VOOConfig(sampler="gaussian")
     assert cfg.sampler is BestCellSampler.GAUSSIAN
     assert VOOConfig().omega == 0.001 and VOOConfig().sampler is BestCellSampler.CENTERED_UNIFORM
+    assert VOOConfig().max_tries == VOOConfig().uniform_max_tries == 1000
     assert VOOConfig.paper_grid() == {"omega": [0.001, 0.01, 0.05, 0.1, 0.3, 0.5]}
     opt = make_optimizer("voo", Bounds.cube(0.0, 1.0, 2), sampler="uniform")
     assert isinstance(opt, VOO) and opt.sampler is BestCellSampler.UNIFORM
@@ -450,3 +537,20 @@ def test_gaussian_first_try_has_the_documented_scale() -> None:
     # accepted draws lie right of -5 (the cell's edge); above x* nothing is rejected
     right = d[d > 0]
     assert stats.kstest(right / s1, stats.halfnorm.cdf).pvalue > 1e-3
+
+
+def test_gaussian_scale_uses_the_larger_side_of_an_asymmetric_box() -> None:
+    """In [0, 10] with x* = 8: s_1 = max(10 - 8, 8 - 0) / e (the lower side).
+
+    The other point told is a copy of x*, so the cell is the whole box and every first
+    try is accepted: the draws are N(8, s_1^2) clipped to the box.
+    """
+    box = Bounds([0.0], [10.0])
+    best = np.array([8.0])
+    draws = []
+    for seed in range(400):
+        opt = told(np.stack([best, best]), np.array([1.0, 0.0]), box, seed=seed, sampler="gaussian")
+        draws.append(float(opt.sample_best_cell()[0]))
+    d = np.array(draws)
+    left = (8.0 - d[d < 8.0]) / (8.0 / np.e)
+    assert stats.kstest(left, stats.halfnorm.cdf).pvalue > 1e-3
