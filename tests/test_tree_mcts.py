@@ -692,3 +692,35 @@ def test_result_of_a_root_with_one_action() -> None:
     np.testing.assert_array_equal(res.best_action, mcts.root.actions[0])
     assert mcts.result().info_curve is None  # only with_info_curve=True records it
     assert mcts.result(True).info_curve == ()  # nothing recorded by this search
+
+
+def test_final_action_rules_pick_different_edges_when_they_disagree() -> None:
+    """max_q recommends the best Q-hat, most_visited the most visited root edge."""
+    for rule in ("max_q", "most_visited"):
+        mcts = MCTS(OneStep(dim=1), planner_config("uniform_t", depth_limit=1, final_action=rule))
+        root = mcts.root
+        mcts.goto(root)
+        for a in (0.0, 0.5):
+            mcts._execute(root, np.array([a]))
+        root.q[:] = [0.9, 0.1]  # edge 0 is best ...
+        root.n[:] = [1, 5]  # ... edge 1 most visited
+        assert mcts.recommended_edge() == (0 if rule == "max_q" else 1)
+        assert (
+            mcts.result().best_action.tobytes() == root.actions[mcts.recommended_edge()].tobytes()
+        )
+
+
+@pytest.mark.parametrize("backup", ["mean", "jump_max_else_mean"])
+def test_the_voo_sampler_sees_every_q_hat_change(backup: str) -> None:
+    """Mean and jump backups change Q-hat on later visits: the node's VOO must see them."""
+    mcts = MCTS(
+        Counter(dim=2, goal_depth=3),
+        planner_config("voot", backup=backup, root_commitment=None),
+        seed=1,
+    )
+    mcts.search(120)
+    for node in mcts.nodes:
+        if node.sampler is None or not node.actions:
+            continue
+        told = node.sampler.optimizer.values
+        assert np.array_equal(told, np.array(node.q)), (backup, node.id)
