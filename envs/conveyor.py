@@ -427,11 +427,11 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         cfg = self.config
         plan_time = 0.0
         x, y, theta = (float(v) for v in xyt)
-        reason, col_time = self._place_kinematics(i, xyt, moved)
+        reason, col_time, base = self._place_kinematics(i, xyt, moved)
         if reason:
             return reason, col_time, plan_time
+        assert base is not None  # passed the region checks
         pick = self.picks[i]
-        base = self.place_base_pose(i, (x, y, theta))
         t0 = time.perf_counter()
         movable = [self.object_box(j) for j in range(self.task.placed)] + [
             object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
@@ -452,20 +452,21 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         i: int,
         xyt: FloatArray,
         moved: dict[int, tuple[float, float, float, float]],
-    ) -> tuple[str, float]:
+    ) -> tuple[str, float, FloatArray | None]:
         """Region and collision checks of placing box ``i`` at ``xyt`` after ``moved``.
 
-        Returns why it fails (``""`` if it passes) and the seconds spent in collision
-        checks. Changes nothing.
+        Returns why it fails (``""`` if it passes), the seconds spent in collision checks
+        and the base pose placing the box (None if the box left the region first).
+        Changes nothing.
         """
         cfg = self.config
         x, y, theta = (float(v) for v in xyt)
         box = object_footprint(self.objects[i], x, y, theta)
         if not rect_inside(box, cfg.loading_region):
-            return "outside region: the box leaves the loading region", 0.0
+            return "outside region: the box leaves the loading region", 0.0, None
         base = self.place_base_pose(i, (x, y, theta))
         if not rect_inside(base_footprint(base), cfg.workspace):
-            return "outside region: the robot leaves the workspace", 0.0
+            return "outside region: the robot leaves the workspace", 0.0, base
         t0 = time.perf_counter()
         poses = dict(moved)
         poses[i] = (x, y, 0.0, theta)
@@ -474,8 +475,8 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         )
         col_time = time.perf_counter() - t0
         if not report.free:
-            return "collision: " + ", ".join(report.hits), col_time
-        return "", col_time
+            return "collision: " + ", ".join(report.hits), col_time, base
+        return "", col_time, base
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
         """The cheap kinematic check of ``action`` in the current state (changes nothing).
@@ -498,7 +499,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         reason = ""
         for k in range(m):
             i = t.placed + k
-            reason, _ = self._place_kinematics(i, params[k], moved)
+            reason, _, _ = self._place_kinematics(i, params[k], moved)
             if reason:
                 reason = f"box {k + 1}/{m} ({self.objects[i].name}): {reason}"
                 break
