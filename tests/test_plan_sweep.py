@@ -334,3 +334,21 @@ def test_one_horizon_for_tree_and_sampling_planners() -> None:
     assert run_config("shekel_chain", 3, "cem", by["cem"].params_dict).horizon == 7
     with pytest.raises(ValueError, match="horizon must be an integer >= 1"):
         build_plan_specs(["shekel_chain"], [3], ["voot"], [0], simulations=5, horizon=0)
+
+
+@pytest.mark.skipif(
+    not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
+)
+@pytest.mark.parametrize("planner", ["voot", "cem"])
+def test_rows_carry_per_simulation_cost_curves(planner: str) -> None:
+    (spec,) = build_plan_specs(["kitchen_v1"], None, [planner], [0], simulations=25, grid="default")
+    r = run_plan_spec(spec)
+    assert r["status"] == "ok", r.get("error")
+    calls, cpu = r["calls_curve"], r["cpu_elapsed"]
+    assert len(calls) == len(cpu) == len(r["best_so_far"]) == 25
+    assert calls == sorted(calls) and calls[0] >= 1
+    assert calls[-1] == r["n_steps"] + r["n_feasibility_checks"]
+    assert cpu == sorted(cpu) and cpu[0] >= 0.0
+    if planner == "voot":  # the kinematic pre-checks are calls too
+        assert r["n_feasibility_checks"] > 0 and calls[-1] > r["simulator_calls"]
+    assert "cpu_elapsed" not in strip_timings(r) and "calls_curve" in strip_timings(r)
