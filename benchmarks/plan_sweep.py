@@ -25,13 +25,22 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   key(planner)])``; the hyperparameters are deliberately not in it (common random
   numbers across a planner's grid, as in :mod:`voot.bench.sweep`).
 * **Record** after every simulation: the best discounted return from the root, goal
-  bonus excluded (``best_so_far``), the seconds since the search started (``elapsed``)
-  and, when the problem reports it in its step info, the objects still to handle at the
-  best leaf (``objects_left``); at the end the simulator calls, tree size, best plan
-  and the resolved planner configuration.
+  bonus excluded (``best_so_far``), the wall-clock seconds since the search started
+  (``elapsed``), the CPU seconds of the process since the search started
+  (``cpu_elapsed``, :func:`time.process_time`), the cumulative simulator calls
+  (``calls_curve``: executed steps plus kinematic pre-checks, so ``calls_curve[-1] ==
+  n_steps + n_feasibility_checks``) and, when the problem reports it in its step info,
+  the objects still to handle at the best leaf (``objects_left``); at the end the
+  simulator calls, tree size, best plan and the resolved planner configuration.
 
-Same spec -> bit-identical ``best_so_far`` and ``objects_left``, in any process, on any
-backend (only the timings differ).
+Two call counts, on purpose: ``simulator_calls`` is the problem's own count when it
+keeps one (the v1 robot domains count executed steps only, their pre-checks are cheap
+kinematic tests), else steps plus pre-checks; ``calls_curve`` always counts both, the
+x axis "simulator calls" of :mod:`voot.bench.axes` (a sampling-based planner makes no
+pre-checks, so its curve counts rollout steps).
+
+Same spec -> bit-identical ``best_so_far``, ``objects_left`` and ``calls_curve``, in any
+process, on any backend (only the timings differ: ``elapsed``, ``cpu_elapsed`` ...).
 """
 
 from __future__ import annotations
@@ -90,7 +99,7 @@ MPPI_TEMPERATURES: tuple[float, ...] = (0.01, 0.1)
 #: Most runs one sweep may record (one ``.rrd`` file each).
 MAX_RECORDINGS = 50
 #: Row keys that hold timings (they differ between two runs of the same spec).
-TIMING_KEYS = ("wall_time", "elapsed", "search_time", "finished_at")
+TIMING_KEYS = ("wall_time", "elapsed", "cpu_elapsed", "search_time", "finished_at")
 
 
 def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[str, Any]]:
@@ -494,11 +503,16 @@ def run_plan_spec(spec: PlanSpec) -> Row:
 
             recorder = SearchRecorder(spec.record, inst.problem)
         elapsed: list[float] = []
-        clock = time.perf_counter
-        t0 = clock()
+        cpu_elapsed: list[float] = []
+        calls: list[int] = []
+        clock, cpu_clock = time.perf_counter, time.process_time
+        t0, c0 = clock(), cpu_clock()
 
         def callback(m: Any, i: int) -> bool:
             elapsed.append(clock() - t0)
+            cpu_elapsed.append(cpu_clock() - c0)
+            # a sampling-based planner makes no pre-checks (no such counter)
+            calls.append(int(m.n_steps) + int(getattr(m, "n_feasibility_checks", 0)))
             if recorder is not None:
                 recorder(m, i)
             return False
@@ -520,6 +534,8 @@ def run_plan_spec(spec: PlanSpec) -> Row:
         )
         extra: dict[str, Any] = {
             "elapsed": [round(t, 6) for t in elapsed],
+            "cpu_elapsed": [round(t, 6) for t in cpu_elapsed],
+            "calls_curve": calls,
             "search_time": res.wall_time,
             "best_return": res.best_return,
             "simulator_calls": int(sim_calls),
