@@ -339,8 +339,19 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             " for plan runs filter with --problems and --planners"
         )
     planners = [normalize_planner(p) for p in split_list(args.planners)] or None
-    data = plan_data(rows, problems=_plan_filter(split_list(args.problems)), planners=planners)
+    tuning = _tuning_seeds(args.tuning_seeds)
+    data = plan_data(
+        rows,
+        problems=_plan_filter(split_list(args.problems)),
+        planners=planners,
+        tuning_seeds=tuning,
+    )
     if not data:
+        if tuning is not None:
+            raise CLIError(
+                "no evaluation runs (seeds other than --tuning-seeds) of a setting selected"
+                " on the tuning seeds match --problems/--planners"
+            )
         raise CLIError("no finished plan runs match --problems/--planners")
     at = parse_int_list(args.at, "--at") or None
     if at is not None and min(at) < 1:
@@ -353,6 +364,19 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             f" {longest} simulations)"
         )
     report = plan_report(data, at)
+    if args.axes_dir:
+        from voot.bench.axes import AXES
+        from voot.bench.plan_plot import figure_caption
+
+        lines = ["### Figures", ""]
+        for name, axis in AXES.items():
+            path = plot_plan_figure(
+                data, Path(args.axes_dir) / axis.png, x=name, note=_tuning_title(tuning)
+            )
+            print(f"figure: {path}", file=sys.stderr)
+            lines.append(f"`{axis.png}`: {figure_caption(data, name)}")
+            lines.append("")
+        report = report + "\n" + "\n".join(lines)
     print(report)
     if args.png:
         path = plot_plan_figure(data, args.png, x="simulations")
@@ -368,6 +392,17 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     return 0
 
 
+def _tuning_seeds(text: str | None) -> list[int] | None:
+    """``--tuning-seeds`` as a list (None without the option)."""
+    return None if text is None else parse_range(text, "--tuning-seeds")
+
+
+def _tuning_title(tuning: Sequence[int] | None) -> str | None:
+    from voot.bench.tuning import tuning_note
+
+    return None if tuning is None else tuning_note(tuning)
+
+
 def cmd_plot(args: argparse.Namespace) -> int:
     from voot.bench.plot import figure_data, final_table, plot_figure3, settings_table
     from voot.optim.registry import normalize_method
@@ -378,9 +413,17 @@ def cmd_plot(args: argparse.Namespace) -> int:
     rows = _one_instance(rows, kind, args.instance)
     if kind == "plan":
         return cmd_plot_plan(args, rows)
-    if args.png_seconds or args.problems or args.planners or args.at:
+    if (
+        args.png_seconds
+        or args.problems
+        or args.planners
+        or args.at
+        or args.axes_dir
+        or args.tuning_seeds
+    ):
         raise CLIError(
-            "--png-seconds, --problems, --planners and --at apply to plan runs;"
+            "--png-seconds, --axes-dir, --tuning-seeds, --problems, --planners and --at"
+            " apply to plan runs;"
             " for bbfo runs filter with --functions, --dims and --methods"
         )
     functions = [f.lower() for f in split_list(args.functions)] or None
@@ -809,6 +852,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--kind", choices=KINDS, help="bbfo or plan runs (default: what the store has)")
     p.add_argument("--png", help="write the figure here")
     p.add_argument("--png-seconds", help="plan runs: the figure against wall-clock seconds")
+    p.add_argument(
+        "--axes-dir",
+        metavar="DIR",
+        help="plan runs: one figure per x axis in DIR: plan-simulations.png (simulations, the"
+        " paper's), plan-calls.png (simulator calls: executed steps + pre-checks) and"
+        " plan-cpu-seconds.png (CPU seconds); their captions go into the tables' markdown",
+    )
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="plan runs: select each planner's setting on these seeds (best mean final"
+        " return) and draw every other seed (the evaluation seeds) with it (default: select"
+        " on the drawn seeds, the paper's rule)",
+    )
     p.add_argument("--markdown", help="write the tables here as markdown")
     p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
     p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
