@@ -31,10 +31,14 @@ import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from voot import validation as V
 from voot.bench.store import ResultStore, Row, StoreError
 from voot.bench.sweep import Spec
+
+if TYPE_CHECKING:
+    from voot.bench.plan_sweep import PlanSpec
 
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -221,18 +225,34 @@ def cmd_plan(args: argparse.Namespace) -> int:
                 " extra (pip install 'voot[record]')"
             ) from None
     seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
-    specs = build_plan_specs(
-        split_list(args.problems) or DEFAULT_PROBLEMS,
-        parse_int_list(args.dims, "--dims") or None,
-        split_list(args.planners) or None,
-        seeds,
-        simulations=args.simulations,
-        grid=args.grid,
-        env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
-        fixed=parse_assignments(args.set, "--set"),
-        record=args.record,
-        horizon=args.horizon,
-    )
+    if args.probe_simulations < 1:
+        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+
+    def specs_of(seed_list: list[int] | None) -> list[PlanSpec]:
+        return list(
+            build_plan_specs(
+                split_list(args.problems) or DEFAULT_PROBLEMS,
+                parse_int_list(args.dims, "--dims") or None,
+                split_list(args.planners) or None,
+                seed_list,
+                simulations=args.simulations,
+                grid=args.grid,
+                env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
+                fixed=parse_assignments(args.set, "--set"),
+                record=args.record,
+                horizon=args.horizon,
+            )
+        )
+
+    if args.tuning_seeds is not None:
+        if args.record is not None:
+            raise CLIError("--record records single runs; it does not go with --tuning-seeds")
+        return _plan_tuned(
+            args, specs_of(parse_range(args.tuning_seeds, "--tuning-seeds")), specs_of(seeds)
+        )
+    specs = specs_of(seeds)
+    if args.estimate:
+        return _print_estimate(args, specs)
     simulations = sum(s.simulations for s in specs)
     print(
         f"{len(specs)} runs, {simulations} simulations{_stored_note(args.out, specs)}",
@@ -258,6 +278,119 @@ def cmd_plan(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     return 1 if summary.failed else 0
+
+
+def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
+    """Print the estimated CPU-hours of ``specs`` (:mod:`voot.bench.estimate`); run nothing."""
+    from voot.bench.estimate import estimate, format_estimate
+    from voot.bench.sweep import pending_specs
+
+    try:
+        store: ResultStore | None = ResultStore(args.out, create=False)
+    except (OSError, StoreError):
+        store = None
+    rows = store.load(status="ok") if store is not None else []
+    pending = pending_specs(specs, store) if store is not None else list(specs)
+    lines = estimate(
+        specs, rows, {s.run_id for s in pending}, probe_simulations=args.probe_simulations
+    )
+    print(format_estimate(lines, args.workers or os.cpu_count() or 1))
+    return 0
+
+
+def _run_plan_specs(args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore) -> int:
+    """Run ``specs`` into ``store``; the exit status (1 if a run failed)."""
+    from voot.bench.sweep import make_backend, run_sweep
+
+    backend = make_backend(
+        args.backend, args.workers, address=args.address, max_tries=args.max_tries
+    )
+    print(f"results: {store.path} (backend: {backend.name})", file=sys.stderr)
+    with _sigterm_as_interrupt():
+        summary = run_sweep(
+            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
+        )
+    print(summary)
+    return 1 if summary.failed else 0
+
+
+def _plan_tuned(
+    args: argparse.Namespace, tuning: Sequence[PlanSpec], candidates: Sequence[PlanSpec]
+) -> int:
+    """``voot-bench plan --tuning-seeds``: the grid on the tuning seeds, the selection on
+    them, the selected setting on the evaluation seeds (:mod:`voot.bench.tuning`)."""
+    from voot.bench.plan_sweep import summarize_plan_specs
+    from voot.bench.select import selection_table
+    from voot.bench.tuning import (
+        check_disjoint,
+        seeds_text,
+        selected_specs,
+        tuning_note,
+        tuning_selections,
+    )
+
+    tuning_seeds = sorted({s.seed for s in tuning})
+    check_disjoint(tuning_seeds, {s.seed for s in candidates})
+    try:
+        existing: ResultStore | None = ResultStore(args.out, create=False)
+    except (OSError, StoreError):
+        existing = None
+    rows = existing.load(kind="plan", status="ok") if existing is not None else []
+    selections = tuning_selections(tuning, rows)
+    complete = existing is not None and not _pending(tuning, existing)
+    if complete:
+        evaluation = selected_specs(candidates, selections)
+    else:  # the selection is not known yet: one setting per pair stands in for it
+        evaluation = _one_setting_each(candidates)
+    n_eval_seeds = len({s.seed for s in candidates})
+    print(
+        f"tuning: {len(tuning)} runs (every setting) on seeds {seeds_text(tuning_seeds)};"
+        f" evaluation: {len(evaluation)} runs (the selected setting) on {n_eval_seeds} seeds"
+        f"{'' if complete else ', after the tuning runs'}{_stored_note(args.out, tuning)}",
+        file=sys.stderr,
+    )
+    if args.estimate:
+        return _print_estimate(args, [*tuning, *evaluation])
+    if args.dry_run:
+        print("tuning runs:")
+        print(summarize_plan_specs(tuning))
+        print("evaluation runs (one setting per problem and planner):")
+        print(summarize_plan_specs(evaluation))
+        return 0
+    store = _open_store(args.out)
+    status = _run_plan_specs(args, tuning, store)
+    if status or _pending(tuning, store):
+        print(
+            "voot-bench: tuning runs failed or are missing; the evaluation waits for every"
+            " tuning run (a selection on part of them would not be the protocol's)",
+            file=sys.stderr,
+        )
+        return 1
+    selections = tuning_selections(tuning, store.load(kind="plan", status="ok"))
+    print(selection_table(selections, kind="plan"), file=sys.stderr)
+    print(f"({tuning_note(tuning_seeds)})", file=sys.stderr)
+    evaluation = selected_specs(candidates, selections)
+    return _run_plan_specs(args, evaluation, store)
+
+
+def _pending(specs: Sequence[PlanSpec], store: ResultStore) -> list[PlanSpec]:
+    from voot.bench.sweep import pending_specs
+
+    return list(pending_specs(specs, store))
+
+
+def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
+    """The specs of the first setting of every (problem, planner): stand-ins for the
+    evaluation runs before the tuning selected their setting."""
+    from voot.bench.estimate import pair_of
+
+    first: dict[object, object] = {}
+    out = []
+    for s in specs:
+        key = pair_of(s)
+        if first.setdefault(key, s.params) == s.params:
+            out.append(s)
+    return out
 
 
 # ----- select / plot -------------------------------------------------------------------
@@ -835,6 +968,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", metavar="RUN.rrd", help="record each run's search with rerun")
     p.add_argument(
         "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="tune first: run every setting of the grid on these seeds, select per problem"
+        " and planner the best mean final return, then run only that setting on --seeds"
+        " (which must be disjoint); resumable at any point",
+    )
+    p.add_argument(
+        "--estimate",
+        action="store_true",
+        help="print the estimated CPU-hours of the runs not yet in --out (cost per"
+        " simulation from the store's rows, else a short probe run) and exit",
+    )
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
     )
     p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
