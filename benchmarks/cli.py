@@ -8,6 +8,7 @@ Subcommands::
     voot-bench bbfo --instance 1 ...      the same on test functions with shifted optima
     voot-bench plan --out results/plan    planners x problems x seeds (Figure 4; Ray too)
     voot-bench select results/bbfo        the selected hyperparameters per method
+    voot-bench claims results/plan        the paper's claims: ours, 95% interval, verdict
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
     voot-bench speedup                    tree search on the robot domains: 6af33b5 vs now
@@ -588,6 +589,31 @@ def cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
+# ----- claims --------------------------------------------------------------------------
+def cmd_claims(args: argparse.Namespace) -> int:
+    """The paper's claims against the store (:mod:`voot.bench.claims`)."""
+    from voot.bench.claims import claims_table, evaluate
+    from voot.bench.plan_plot import plan_data
+    from voot.bench.tuning import tuning_sentence
+
+    _, rows = _load_rows(args.results, "plan")
+    tuning = _tuning_seeds(args.tuning_seeds)
+    data = plan_data(rows, tuning_seeds=tuning)
+    note = (
+        "Settings selected on the same seeds (the paper's rule)."
+        if tuning is None
+        else tuning_sentence(tuning) + " The claims are judged on the evaluation seeds."
+    )
+    text = claims_table(evaluate(data), note)
+    print(text)
+    if args.markdown:
+        md = Path(args.markdown)
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(text + "\n")
+        print(f"markdown: {md}", file=sys.stderr)
+    return 0
+
+
 # ----- speed ---------------------------------------------------------------------------
 def parse_cases(values: Sequence[str] | None) -> list[tuple[str, int]]:
     """``["voo:1000", "cmaes:5000"]`` -> ``[("voo", 1000), ("cmaes", 5000)]``."""
@@ -1036,6 +1062,21 @@ def build_parser() -> argparse.ArgumentParser:
         help="plan runs: simulation counts of the tables (default: 1000 3000 10000 and the budget)",
     )
     p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser(
+        "claims",
+        help="the paper's claims about Figure 4 against a plan store: ours with a 95% interval"
+        " and a verdict (reproduced, not reproduced, reversed, no data)",
+    )
+    p.add_argument("results", help="result store directory (plan runs)")
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="select each planner's setting on these seeds and judge the claims on every"
+        " other seed (as plot --tuning-seeds; default: the paper's same-seed selection)",
+    )
+    p.add_argument("--markdown", help="also write the table here")
+    p.set_defaults(func=cmd_claims)
 
     p = sub.add_parser("speed", help="cost per ask of VOO, CMA-ES and GP-UCB")
     p.add_argument(

@@ -57,6 +57,12 @@ def tuning_note(tuning_seeds: Iterable[int]) -> str:
     )
 
 
+def tuning_sentence(tuning_seeds: Iterable[int]) -> str:
+    """:func:`tuning_note` as a sentence (capital letter, full stop)."""
+    note = tuning_note(tuning_seeds)
+    return note[:1].upper() + note[1:] + "."
+
+
 def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int]) -> None:
     """Raise ValueError if a seed is both a tuning and an evaluation seed, or none is tuned."""
     tuning = set(int(s) for s in tuning_seeds)
