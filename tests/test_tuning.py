@@ -70,9 +70,7 @@ def test_selection_on_tuning_seeds_differs_from_the_same_seed_rule() -> None:
     assert outcome.untuned == ()
     # a planner with evaluation rows but no tuning rows is reported, not silently tuned
     extra = [*rows(), row(1.0, seed=0, omega=0.1, planner="voronoi_pw")]
-    assert select_on_tuning(extra, [1000, 1001]).untuned == (
-        ("shekel_chain", 3, 2, "voronoi_pw"),
-    )
+    assert select_on_tuning(extra, [1000, 1001]).untuned == (("shekel_chain", 3, 2, "voronoi_pw"),)
 
 
 def test_selected_specs_are_the_specs_one_would_run_by_hand() -> None:
