@@ -343,10 +343,10 @@ def _plan_tuned(
         evaluation = selected_specs(candidates, selections)
     else:  # the selection is not known yet: one setting per pair stands in for it
         evaluation = _one_setting_each(candidates)
-    n_eval_seeds = len({s.seed for s in candidates})
+    eval_seeds = seeds_text({s.seed for s in candidates})
     print(
         f"tuning: {len(tuning)} runs (every setting) on seeds {seeds_text(tuning_seeds)};"
-        f" evaluation: {len(evaluation)} runs (the selected setting) on {n_eval_seeds} seeds"
+        f" evaluation: {len(evaluation)} runs (the selected setting) on seeds {eval_seeds}"
         f"{'' if complete else ', after the tuning runs'}{_stored_note(args.out, tuning)}",
         file=sys.stderr,
     )
@@ -1065,7 +1065,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "claims",
-        help="the paper's claims about Figure 4 against a plan store: ours with a 95% interval"
+        help="the paper's claims about Figure 4 against a plan store: ours with a 95%% interval"
         " and a verdict (reproduced, not reproduced, reversed, no data)",
     )
     p.add_argument("results", help="result store directory (plan runs)")

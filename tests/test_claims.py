@@ -131,7 +131,7 @@ def test_every_verdict_from_synthetic_rows() -> None:
 
 
 def test_object_metrics_and_the_median() -> None:
-    rows = [row(1.0, planner="voot", seed=s, left=l) for s, l in enumerate([5.0, 4.0, 6.0])]
+    rows = [row(1.0, planner="voot", seed=s, left=n) for s, n in enumerate([5.0, 4.0, 6.0])]
     data = plan_data(rows)
     (handled,) = evaluate(
         data, [claim(("voot",), metric="objects_handled", threshold=14.5, side="above")]

@@ -433,7 +433,8 @@ def test_plan_with_tuning_seeds_end_to_end(
     printed = capsys.readouterr()
     assert "tuning: 12 runs (every setting) on seeds 1000-1001" in printed.err
     assert (
-        "evaluation: 2 runs (the selected setting) on 2 seeds, after the tuning runs" in printed.err
+        "evaluation: 2 runs (the selected setting) on seeds 0-1, after the tuning runs"
+        in printed.err
     )
     assert main([*tuned, "--estimate", "--probe-simulations", "3"]) == 0
     printed = capsys.readouterr().out
@@ -503,3 +504,21 @@ def test_plan_tuning_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert "apply to plan runs" in capsys.readouterr().err
     assert main(["claims", out]) == 2
     assert "no finished plan runs" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("command", "option"),
+    [
+        ("plan", "--tuning-seeds"),
+        ("plan", "--estimate"),
+        ("plot", "plan-cpu-seconds.png"),
+        ("claims", "--markdown"),
+    ],
+)
+def test_protocol_options_in_the_help(
+    command: str, option: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as done:
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split()).replace("- ", "-")  # undo the wrapping
+    assert done.value.code == 0 and option in text

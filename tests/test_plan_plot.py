@@ -9,17 +9,17 @@ import numpy as np
 import pytest
 
 from voot.bench.plan_plot import (
+    calls_table,
     completion_table,
     cost_table,
     default_checkpoints,
+    figure_caption,
     first_reach,
     mean_ci,
     median_ci,
     objects_table,
     on_time_grid,
     plan_data,
-    calls_table,
-    figure_caption,
     plan_report,
     plan_settings_table,
     plot_plan_figure,
