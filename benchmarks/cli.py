@@ -40,6 +40,7 @@ from voot.bench.sweep import Spec
 
 if TYPE_CHECKING:
     from voot.bench.plan_sweep import PlanSpec
+    from voot.bench.sweep import SweepSummary
 
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -208,7 +209,6 @@ def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, obje
 def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.plan_sweep import build_plan_specs, summarize_plan_specs
     from voot.bench.problems import DEFAULT_PROBLEMS
-    from voot.bench.sweep import make_backend, run_sweep
 
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
         raise CLIError("--address and --max-tries go with --backend ray")
@@ -262,16 +262,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
-    store = _open_store(args.out)
-    backend = make_backend(
-        args.backend, args.workers, address=args.address, max_tries=args.max_tries
-    )
-    print(f"results: {store.path} (backend: {backend.name})", file=sys.stderr)
-    with _sigterm_as_interrupt():
-        summary = run_sweep(
-            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
-        )
-    print(summary)
+    summary = _run_plan_specs(args, specs, _open_store(args.out))
     if args.record is not None and summary.skipped:
         print(
             f"note: {summary.skipped} runs were already in the store and were not recorded"
@@ -286,10 +277,7 @@ def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
     from voot.bench.estimate import estimate, format_estimate
     from voot.bench.sweep import pending_specs
 
-    try:
-        store: ResultStore | None = ResultStore(args.out, create=False)
-    except (OSError, StoreError):
-        store = None
+    store = _existing_store(args.out)
     rows = store.load(status="ok") if store is not None else []
     pending = pending_specs(specs, store) if store is not None else list(specs)
     lines = estimate(
@@ -299,8 +287,10 @@ def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
     return 0
 
 
-def _run_plan_specs(args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore) -> int:
-    """Run ``specs`` into ``store``; the exit status (1 if a run failed)."""
+def _run_plan_specs(
+    args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore
+) -> SweepSummary:
+    """Run ``specs`` into ``store`` with the backend of ``args``; the sweep's summary."""
     from voot.bench.sweep import make_backend, run_sweep
 
     backend = make_backend(
@@ -312,7 +302,15 @@ def _run_plan_specs(args: argparse.Namespace, specs: Sequence[PlanSpec], store: 
             specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
         )
     print(summary)
-    return 1 if summary.failed else 0
+    return summary
+
+
+def _existing_store(path: str) -> ResultStore | None:
+    """The result store at ``path`` if there is one (None: none, or not a store)."""
+    try:
+        return ResultStore(path, create=False)
+    except (OSError, StoreError):
+        return None
 
 
 def _plan_tuned(
@@ -332,10 +330,7 @@ def _plan_tuned(
 
     tuning_seeds = sorted({s.seed for s in tuning})
     check_disjoint(tuning_seeds, {s.seed for s in candidates})
-    try:
-        existing: ResultStore | None = ResultStore(args.out, create=False)
-    except (OSError, StoreError):
-        existing = None
+    existing = _existing_store(args.out)
     rows = existing.load(kind="plan", status="ok") if existing is not None else []
     selections = tuning_selections(tuning, rows)
     complete = existing is not None and not _pending(tuning, existing)
@@ -359,8 +354,8 @@ def _plan_tuned(
         print(summarize_plan_specs(evaluation))
         return 0
     store = _open_store(args.out)
-    status = _run_plan_specs(args, tuning, store)
-    if status or _pending(tuning, store):
+    summary = _run_plan_specs(args, tuning, store)
+    if summary.failed or _pending(tuning, store):
         print(
             "voot-bench: tuning runs failed or are missing; the evaluation waits for every"
             " tuning run (a selection on part of them would not be the protocol's)",
@@ -371,7 +366,7 @@ def _plan_tuned(
     print(selection_table(selections, kind="plan"), file=sys.stderr)
     print(f"({tuning_note(tuning_seeds)})", file=sys.stderr)
     evaluation = selected_specs(candidates, selections)
-    return _run_plan_specs(args, evaluation, store)
+    return 1 if _run_plan_specs(args, evaluation, store).failed else 0
 
 
 def _pending(specs: Sequence[PlanSpec], store: ResultStore) -> list[PlanSpec]:
@@ -767,9 +762,8 @@ def _stored_note(path: str, specs: Sequence[Spec]) -> str:
     """``"; N already in the store"`` if the store at ``path`` exists and holds some."""
     from voot.bench.sweep import pending_specs
 
-    try:
-        store = ResultStore(path, create=False)
-    except (OSError, StoreError):
+    store = _existing_store(path)
+    if store is None:
         return ""
     unique = {s.run_id for s in specs}
     done = len(unique) - len({s.run_id for s in pending_specs(specs, store)})

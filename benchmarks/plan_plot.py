@@ -9,15 +9,20 @@ return), the mean over seeds and a shaded 95% t-interval (:func:`mean_ci`, seeds
 value is unknown at a point left out there; the objects' band is clipped to the count's
 range, 0 to the objects at the start; with fewer than
 :data:`~voot.bench.plot.MIN_SEEDS_FOR_BAND` seeds the mean is dashed and has no band). The x axis is the number of simulations
-(:func:`plot_plan_figure`) or the wall-clock seconds since the search started
-(``x="seconds"``): each run's curve is read as a step function of its own clock
-(``elapsed``), on a grid up to the time by which every seed of the planner had finished.
+(:func:`plot_plan_figure`), the wall-clock seconds since the search started
+(``x="seconds"``: each run's curve is read as a step function of its own clock
+(``elapsed``), on a grid up to the time by which every seed of the planner had finished),
+or a cost axis of :mod:`voot.bench.axes` (``x="calls"``: steps + pre-checks; ``x="cpu"``:
+CPU seconds), one figure each, captioned by :func:`figure_caption`. With tuning seeds
+(:func:`plan_data`'s ``tuning_seeds``) the settings are selected on those seeds and the
+other seeds are drawn (:mod:`voot.bench.tuning`).
 
 Tables (markdown): the best return at given simulation counts (default 1,000 / 3,000 /
 10,000 and the budget); objects handled (objects at the start minus objects left) at
 those counts; the simulations needed to handle every object (kitchen: clear the path),
 median with a distribution-free 95% interval and the fraction of seeds that got there;
-and the cost of a simulation (milliseconds, simulator calls).
+the cost of a simulation (milliseconds, simulator calls); and the executed steps against
+the pre-checks per simulation (:func:`calls_table`).
 """
 
 from __future__ import annotations
@@ -689,6 +694,16 @@ def figure_caption(data: Sequence[PlannerRuns], x: str) -> str:
             " forward and never extrapolated past the seed's end; no mean is drawn where"
             f" fewer than {MIN_SEED_SHARE:.0%} of the seeds still contribute."
         )
+        total = sum(d.n_seeds for d in data)
+        lacking = sum(
+            d.n_seeds if (v := d.axis_values(axis.key)) is None else int((~has_axis_data(v)).sum())
+            for d in data
+        )
+        if lacking:
+            parts.append(
+                f"{lacking} of {total} runs lack {axis.key} (written before it was recorded)"
+                " and are left out of this figure."
+            )
     tuned = {d.tuning_seeds for d in data}
     if tuned == {()}:
         parts.append("Settings selected on the same seeds (the paper's rule).")
