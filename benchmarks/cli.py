@@ -8,6 +8,7 @@ Subcommands::
     voot-bench bbfo --instance 1 ...      the same on test functions with shifted optima
     voot-bench plan --out results/plan    planners x problems x seeds (Figure 4; Ray too)
     voot-bench select results/bbfo        the selected hyperparameters per method
+    voot-bench claims results/plan        the paper's claims: ours, 95% interval, verdict
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
     voot-bench speedup                    tree search on the robot domains: 6af33b5 vs now
@@ -31,10 +32,15 @@ import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from voot import validation as V
 from voot.bench.store import ResultStore, Row, StoreError
 from voot.bench.sweep import Spec
+
+if TYPE_CHECKING:
+    from voot.bench.plan_sweep import PlanSpec
+    from voot.bench.sweep import SweepSummary
 
 EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
@@ -203,7 +209,6 @@ def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, obje
 def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.plan_sweep import build_plan_specs, summarize_plan_specs
     from voot.bench.problems import DEFAULT_PROBLEMS
-    from voot.bench.sweep import make_backend, run_sweep
 
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
         raise CLIError("--address and --max-tries go with --backend ray")
@@ -221,18 +226,34 @@ def cmd_plan(args: argparse.Namespace) -> int:
                 " extra (pip install 'voot[record]')"
             ) from None
     seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
-    specs = build_plan_specs(
-        split_list(args.problems) or DEFAULT_PROBLEMS,
-        parse_int_list(args.dims, "--dims") or None,
-        split_list(args.planners) or None,
-        seeds,
-        simulations=args.simulations,
-        grid=args.grid,
-        env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
-        fixed=parse_assignments(args.set, "--set"),
-        record=args.record,
-        horizon=args.horizon,
-    )
+    if args.probe_simulations < 1:
+        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+
+    def specs_of(seed_list: list[int] | None) -> list[PlanSpec]:
+        return list(
+            build_plan_specs(
+                split_list(args.problems) or DEFAULT_PROBLEMS,
+                parse_int_list(args.dims, "--dims") or None,
+                split_list(args.planners) or None,
+                seed_list,
+                simulations=args.simulations,
+                grid=args.grid,
+                env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
+                fixed=parse_assignments(args.set, "--set"),
+                record=args.record,
+                horizon=args.horizon,
+            )
+        )
+
+    if args.tuning_seeds is not None:
+        if args.record is not None:
+            raise CLIError("--record records single runs; it does not go with --tuning-seeds")
+        return _plan_tuned(
+            args, specs_of(parse_range(args.tuning_seeds, "--tuning-seeds")), specs_of(seeds)
+        )
+    specs = specs_of(seeds)
+    if args.estimate:
+        return _print_estimate(args, specs)
     simulations = sum(s.simulations for s in specs)
     print(
         f"{len(specs)} runs, {simulations} simulations{_stored_note(args.out, specs)}",
@@ -241,7 +262,37 @@ def cmd_plan(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
-    store = _open_store(args.out)
+    summary = _run_plan_specs(args, specs, _open_store(args.out))
+    if args.record is not None and summary.skipped:
+        print(
+            f"note: {summary.skipped} runs were already in the store and were not recorded"
+            " again (use a new --out to record them)",
+            file=sys.stderr,
+        )
+    return 1 if summary.failed else 0
+
+
+def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
+    """Print the estimated CPU-hours of ``specs`` (:mod:`voot.bench.estimate`); run nothing."""
+    from voot.bench.estimate import estimate, format_estimate
+    from voot.bench.sweep import pending_specs
+
+    store = _existing_store(args.out)
+    rows = store.load(status="ok") if store is not None else []
+    pending = pending_specs(specs, store) if store is not None else list(specs)
+    lines = estimate(
+        specs, rows, {s.run_id for s in pending}, probe_simulations=args.probe_simulations
+    )
+    print(format_estimate(lines, args.workers or os.cpu_count() or 1))
+    return 0
+
+
+def _run_plan_specs(
+    args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore
+) -> SweepSummary:
+    """Run ``specs`` into ``store`` with the backend of ``args``; the sweep's summary."""
+    from voot.bench.sweep import make_backend, run_sweep
+
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
     )
@@ -251,13 +302,91 @@ def cmd_plan(args: argparse.Namespace) -> int:
             specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
         )
     print(summary)
-    if args.record is not None and summary.skipped:
+    return summary
+
+
+def _existing_store(path: str) -> ResultStore | None:
+    """The result store at ``path`` if there is one (None: none, or not a store)."""
+    try:
+        return ResultStore(path, create=False)
+    except (OSError, StoreError):
+        return None
+
+
+def _plan_tuned(
+    args: argparse.Namespace, tuning: Sequence[PlanSpec], candidates: Sequence[PlanSpec]
+) -> int:
+    """``voot-bench plan --tuning-seeds``: the grid on the tuning seeds, the selection on
+    them, the selected setting on the evaluation seeds (:mod:`voot.bench.tuning`)."""
+    from voot.bench.plan_sweep import summarize_plan_specs
+    from voot.bench.select import selection_table
+    from voot.bench.tuning import (
+        check_disjoint,
+        seeds_text,
+        selected_specs,
+        tuning_note,
+        tuning_selections,
+    )
+
+    tuning_seeds = sorted({s.seed for s in tuning})
+    check_disjoint(tuning_seeds, {s.seed for s in candidates})
+    existing = _existing_store(args.out)
+    rows = existing.load(kind="plan", status="ok") if existing is not None else []
+    selections = tuning_selections(tuning, rows)
+    complete = existing is not None and not _pending(tuning, existing)
+    if complete:
+        evaluation = selected_specs(candidates, selections)
+    else:  # the selection is not known yet: one setting per pair stands in for it
+        evaluation = _one_setting_each(candidates)
+    eval_seeds = seeds_text({s.seed for s in candidates})
+    print(
+        f"tuning: {len(tuning)} runs (every setting) on seeds {seeds_text(tuning_seeds)};"
+        f" evaluation: {len(evaluation)} runs (the selected setting) on seeds {eval_seeds}"
+        f"{'' if complete else ', after the tuning runs'}{_stored_note(args.out, tuning)}",
+        file=sys.stderr,
+    )
+    if args.estimate:
+        return _print_estimate(args, [*tuning, *evaluation])
+    if args.dry_run:
+        print("tuning runs:")
+        print(summarize_plan_specs(tuning))
+        print("evaluation runs (one setting per problem and planner):")
+        print(summarize_plan_specs(evaluation))
+        return 0
+    store = _open_store(args.out)
+    summary = _run_plan_specs(args, tuning, store)
+    if summary.failed or _pending(tuning, store):
         print(
-            f"note: {summary.skipped} runs were already in the store and were not recorded"
-            " again (use a new --out to record them)",
+            "voot-bench: tuning runs failed or are missing; the evaluation waits for every"
+            " tuning run (a selection on part of them would not be the protocol's)",
             file=sys.stderr,
         )
-    return 1 if summary.failed else 0
+        return 1
+    selections = tuning_selections(tuning, store.load(kind="plan", status="ok"))
+    print(selection_table(selections, kind="plan"), file=sys.stderr)
+    print(f"({tuning_note(tuning_seeds)})", file=sys.stderr)
+    evaluation = selected_specs(candidates, selections)
+    return 1 if _run_plan_specs(args, evaluation, store).failed else 0
+
+
+def _pending(specs: Sequence[PlanSpec], store: ResultStore) -> list[PlanSpec]:
+    from voot.bench.sweep import pending_specs
+
+    return list(pending_specs(specs, store))
+
+
+def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
+    """The specs of the first setting of every (problem, planner): stand-ins for the
+    evaluation runs before the tuning selected their setting."""
+    from voot.bench.estimate import pair_of
+
+    first: dict[object, object] = {}
+    out = []
+    for s in specs:
+        key = pair_of(s)
+        if first.setdefault(key, s.params) == s.params:
+            out.append(s)
+    return out
 
 
 # ----- select / plot -------------------------------------------------------------------
@@ -339,8 +468,19 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             " for plan runs filter with --problems and --planners"
         )
     planners = [normalize_planner(p) for p in split_list(args.planners)] or None
-    data = plan_data(rows, problems=_plan_filter(split_list(args.problems)), planners=planners)
+    tuning = _tuning_seeds(args.tuning_seeds)
+    data = plan_data(
+        rows,
+        problems=_plan_filter(split_list(args.problems)),
+        planners=planners,
+        tuning_seeds=tuning,
+    )
     if not data:
+        if tuning is not None:
+            raise CLIError(
+                "no evaluation runs (seeds other than --tuning-seeds) of a setting selected"
+                " on the tuning seeds match --problems/--planners"
+            )
         raise CLIError("no finished plan runs match --problems/--planners")
     at = parse_int_list(args.at, "--at") or None
     if at is not None and min(at) < 1:
@@ -353,6 +493,19 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             f" {longest} simulations)"
         )
     report = plan_report(data, at)
+    if args.axes_dir:
+        from voot.bench.axes import AXES
+        from voot.bench.plan_plot import figure_caption
+
+        lines = ["### Figures", ""]
+        for name, axis in AXES.items():
+            path = plot_plan_figure(
+                data, Path(args.axes_dir) / axis.png, x=name, note=_tuning_title(tuning)
+            )
+            print(f"figure: {path}", file=sys.stderr)
+            lines.append(f"`{axis.png}`: {figure_caption(data, name)}")
+            lines.append("")
+        report = report + "\n" + "\n".join(lines)
     print(report)
     if args.png:
         path = plot_plan_figure(data, args.png, x="simulations")
@@ -368,6 +521,17 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     return 0
 
 
+def _tuning_seeds(text: str | None) -> list[int] | None:
+    """``--tuning-seeds`` as a list (None without the option)."""
+    return None if text is None else parse_range(text, "--tuning-seeds")
+
+
+def _tuning_title(tuning: Sequence[int] | None) -> str | None:
+    from voot.bench.tuning import tuning_note
+
+    return None if tuning is None else tuning_note(tuning)
+
+
 def cmd_plot(args: argparse.Namespace) -> int:
     from voot.bench.plot import figure_data, final_table, plot_figure3, settings_table
     from voot.optim.registry import normalize_method
@@ -378,9 +542,17 @@ def cmd_plot(args: argparse.Namespace) -> int:
     rows = _one_instance(rows, kind, args.instance)
     if kind == "plan":
         return cmd_plot_plan(args, rows)
-    if args.png_seconds or args.problems or args.planners or args.at:
+    if (
+        args.png_seconds
+        or args.problems
+        or args.planners
+        or args.at
+        or args.axes_dir
+        or args.tuning_seeds
+    ):
         raise CLIError(
-            "--png-seconds, --problems, --planners and --at apply to plan runs;"
+            "--png-seconds, --axes-dir, --tuning-seeds, --problems, --planners and --at"
+            " apply to plan runs;"
             " for bbfo runs filter with --functions, --dims and --methods"
         )
     functions = [f.lower() for f in split_list(args.functions)] or None
@@ -408,6 +580,31 @@ def cmd_plot(args: argparse.Namespace) -> int:
         md = Path(args.markdown)
         md.parent.mkdir(parents=True, exist_ok=True)
         md.write_text(f"{table}\n\nSelected hyperparameters:\n\n{settings}\n")
+        print(f"markdown: {md}", file=sys.stderr)
+    return 0
+
+
+# ----- claims --------------------------------------------------------------------------
+def cmd_claims(args: argparse.Namespace) -> int:
+    """The paper's claims against the store (:mod:`voot.bench.claims`)."""
+    from voot.bench.claims import claims_table, evaluate
+    from voot.bench.plan_plot import plan_data
+    from voot.bench.tuning import tuning_sentence
+
+    _, rows = _load_rows(args.results, "plan")
+    tuning = _tuning_seeds(args.tuning_seeds)
+    data = plan_data(rows, tuning_seeds=tuning)
+    note = (
+        "Settings selected on the same seeds (the paper's rule)."
+        if tuning is None
+        else tuning_sentence(tuning) + " The claims are judged on the evaluation seeds."
+    )
+    text = claims_table(evaluate(data), note)
+    print(text)
+    if args.markdown:
+        md = Path(args.markdown)
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(text + "\n")
         print(f"markdown: {md}", file=sys.stderr)
     return 0
 
@@ -565,9 +762,8 @@ def _stored_note(path: str, specs: Sequence[Spec]) -> str:
     """``"; N already in the store"`` if the store at ``path`` exists and holds some."""
     from voot.bench.sweep import pending_specs
 
-    try:
-        store = ResultStore(path, create=False)
-    except (OSError, StoreError):
+    store = _existing_store(path)
+    if store is None:
         return ""
     unique = {s.run_id for s in specs}
     done = len(unique) - len({s.run_id for s in pending_specs(specs, store)})
@@ -793,6 +989,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--skip-failed", action="store_true", help="do not retry runs that failed before"
     )
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="tune first: run every setting of the grid on these seeds, select per problem"
+        " and planner the best mean final return, then run only that setting on --seeds"
+        " (which must be disjoint); resumable at any point",
+    )
+    p.add_argument(
+        "--estimate",
+        action="store_true",
+        help="print the estimated CPU-hours of the runs not yet in --out (cost per"
+        " simulation from the store's rows, else a short probe run) and exit",
+    )
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
+    )
     p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=cmd_plan)
@@ -809,6 +1024,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--kind", choices=KINDS, help="bbfo or plan runs (default: what the store has)")
     p.add_argument("--png", help="write the figure here")
     p.add_argument("--png-seconds", help="plan runs: the figure against wall-clock seconds")
+    p.add_argument(
+        "--axes-dir",
+        metavar="DIR",
+        help="plan runs: one figure per x axis in DIR: plan-simulations.png (simulations, the"
+        " paper's), plan-calls.png (simulator calls: executed steps + pre-checks) and"
+        " plan-cpu-seconds.png (CPU seconds); their captions go into the tables' markdown",
+    )
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="plan runs: select each planner's setting on these seeds (best mean final"
+        " return) and draw every other seed (the evaluation seeds) with it (default: select"
+        " on the drawn seeds, the paper's rule)",
+    )
     p.add_argument("--markdown", help="write the tables here as markdown")
     p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
     p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
@@ -827,6 +1056,21 @@ def build_parser() -> argparse.ArgumentParser:
         help="plan runs: simulation counts of the tables (default: 1000 3000 10000 and the budget)",
     )
     p.set_defaults(func=cmd_plot)
+
+    p = sub.add_parser(
+        "claims",
+        help="the paper's claims about Figure 4 against a plan store: ours with a 95%% interval"
+        " and a verdict (reproduced, not reproduced, reversed, no data)",
+    )
+    p.add_argument("results", help="result store directory (plan runs)")
+    p.add_argument(
+        "--tuning-seeds",
+        metavar="START:STOP",
+        help="select each planner's setting on these seeds and judge the claims on every"
+        " other seed (as plot --tuning-seeds; default: the paper's same-seed selection)",
+    )
+    p.add_argument("--markdown", help="also write the table here")
+    p.set_defaults(func=cmd_claims)
 
     p = sub.add_parser("speed", help="cost per ask of VOO, CMA-ES and GP-UCB")
     p.add_argument(

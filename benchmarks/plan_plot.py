@@ -9,27 +9,33 @@ return), the mean over seeds and a shaded 95% t-interval (:func:`mean_ci`, seeds
 value is unknown at a point left out there; the objects' band is clipped to the count's
 range, 0 to the objects at the start; with fewer than
 :data:`~voot.bench.plot.MIN_SEEDS_FOR_BAND` seeds the mean is dashed and has no band). The x axis is the number of simulations
-(:func:`plot_plan_figure`) or the wall-clock seconds since the search started
-(``x="seconds"``): each run's curve is read as a step function of its own clock
-(``elapsed``), on a grid up to the time by which every seed of the planner had finished.
+(:func:`plot_plan_figure`), the wall-clock seconds since the search started
+(``x="seconds"``: each run's curve is read as a step function of its own clock
+(``elapsed``), on a grid up to the time by which every seed of the planner had finished),
+or a cost axis of :mod:`voot.bench.axes` (``x="calls"``: steps + pre-checks; ``x="cpu"``:
+CPU seconds), one figure each, captioned by :func:`figure_caption`. With tuning seeds
+(:func:`plan_data`'s ``tuning_seeds``) the settings are selected on those seeds and the
+other seeds are drawn (:mod:`voot.bench.tuning`).
 
 Tables (markdown): the best return at given simulation counts (default 1,000 / 3,000 /
 10,000 and the budget); objects handled (objects at the start minus objects left) at
 those counts; the simulations needed to handle every object (kitchen: clear the path),
 median with a distribution-free 95% interval and the fraction of seeds that got there;
-and the cost of a simulation (milliseconds, simulator calls).
+the cost of a simulation (milliseconds, simulator calls); and the executed steps against
+the pre-checks per simulation (:func:`calls_table`).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.bench.axes import has_axis_data
 from voot.bench.plan_sweep import PLAN_PLANNERS
 from voot.bench.plot import CONFIDENCE, curve_style
 from voot.bench.select import (
@@ -75,7 +81,16 @@ class PlannerRuns:
         elapsed: seconds since the search started after every simulation (NaN unknown).
         objects_left: objects still to handle at the best leaf (None if never reported).
         objects_initial: objects at the start per seed (NaN unknown; None if never).
-        simulator_calls: simulator calls per seed.
+        simulator_calls: simulator calls per seed (the problem's own count, see
+            :mod:`voot.bench.plan_sweep`).
+        calls: cumulative steps + pre-checks after every simulation (``calls_curve``;
+            NaN rows: the row lacks it).
+        cpu_elapsed: CPU seconds since the search started after every simulation (NaN
+            rows: the row lacks it).
+        n_steps: executed steps per seed.
+        n_feasibility_checks: pre-checks per seed.
+        tuning_seeds: the seeds its setting was selected on (empty: selected on these
+            very seeds, the paper's rule).
     """
 
     problem: str
@@ -89,6 +104,18 @@ class PlannerRuns:
     objects_left: NDArray[np.float64] | None
     objects_initial: NDArray[np.float64] | None
     simulator_calls: NDArray[np.float64]
+    calls: NDArray[np.float64] | None = None
+    cpu_elapsed: NDArray[np.float64] | None = None
+    n_steps: NDArray[np.float64] | None = None
+    n_feasibility_checks: NDArray[np.float64] | None = None
+    tuning_seeds: tuple[int, ...] = ()
+
+    def axis_values(self, key: str | None) -> NDArray[np.float64] | None:
+        """The x values of a cost axis (``calls_curve`` or ``cpu_elapsed``); None for the
+        simulation count."""
+        if key is None:
+            return None
+        return {"calls_curve": self.calls, "cpu_elapsed": self.cpu_elapsed}[key]
 
     @property
     def n_seeds(self) -> int:
@@ -156,12 +183,17 @@ def plan_data(
     *,
     problems: Sequence[str] | None = None,
     planners: Sequence[str] | None = None,
+    tuning_seeds: Collection[int] | None = None,
 ) -> list[PlannerRuns]:
     """The selected runs of every planner per problem.
 
     Rows are filtered to finished ``"plan"`` rows of the given problems (display names,
     e.g. ``kitchen``, ``shekel_chain``) and planners, and to the largest budget per
-    problem; each planner's setting is then selected by best mean final return.
+    problem; each planner's setting is then selected by best mean final return: on the
+    same seeds (the paper's rule), or, with ``tuning_seeds``, on the rows of those seeds,
+    and the runs returned are then those of every other seed (the evaluation seeds) with
+    the selected setting (:func:`voot.bench.tuning.select_on_tuning`; planners without
+    tuning rows are left out).
     """
     keep = []
     for r in rows:
@@ -174,11 +206,21 @@ def plan_data(
             continue
         keep.append(r)
     keep = largest_budget(keep)
-    selections = select_hyperparameters(keep)
-    chosen = selected_rows(keep, selections)
+    tuned: tuple[int, ...] = ()
+    if tuning_seeds is None:
+        selections = select_hyperparameters(keep)
+        chosen = selected_rows(keep, selections)
+    else:
+        from voot.bench.tuning import select_on_tuning
+
+        tuned = tuple(sorted(set(int(t) for t in tuning_seeds)))
+        outcome = select_on_tuning(keep, tuned)
+        selections, chosen = list(outcome.selections), list(outcome.rows)
     out = []
     for s in selections:
         group = [r for r in chosen if cell_of(r) == s.key]
+        if not group:  # tuned, but no evaluation runs yet
+            continue
         group.sort(key=lambda r: int(r["config"]["seed"]))
         width = s.budget
         has_objects = any(r.get("objects_left") is not None for r in group)
@@ -202,6 +244,13 @@ def plan_data(
                     else None
                 ),
                 simulator_calls=np.array([float(r.get("simulator_calls", np.nan)) for r in group]),
+                calls=_stack((r.get("calls_curve") for r in group), width),
+                cpu_elapsed=_stack((r.get("cpu_elapsed") for r in group), width),
+                n_steps=np.array([float(r.get("n_steps", np.nan)) for r in group]),
+                n_feasibility_checks=np.array(
+                    [float(r.get("n_feasibility_checks", np.nan)) for r in group]
+                ),
+                tuning_seeds=tuned,
             )
         )
     return out
@@ -280,20 +329,30 @@ def plot_plan_figure(
     *,
     x: str = "simulations",
     dpi: int = 130,
+    note: str | None = None,
 ) -> Path:
     """Draw Figure 4 (one row per problem: best return | objects left) to a PNG.
 
     Args:
         data: from :func:`plan_data`.
         path: the PNG to write (its folder is created).
-        x: ``"simulations"`` or ``"seconds"`` (wall-clock time of the search).
+        x: ``"simulations"``, ``"seconds"`` (wall-clock time of the search, all seeds
+            known at every point, :func:`on_time_grid`), or a cost axis of
+            :mod:`voot.bench.axes`: ``"calls"`` (steps + pre-checks) or ``"cpu"`` (CPU
+            seconds), read per seed as a step function on a common grid
+            (:func:`voot.bench.axes.on_cost_grid`). A panel whose rows lack the cost
+            axis's data says so instead of a curve.
+        note: a line drawn under the figure's title (e.g. the tuning seeds).
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
-    if x not in ("simulations", "seconds"):
-        raise ValueError(f"x must be 'simulations' or 'seconds', got {x!r}")
+    from voot.bench.axes import AXES, get_axis, on_cost_grid
+
+    if x not in (*AXES, "seconds"):
+        raise ValueError(f"x must be one of {', '.join((*AXES, 'seconds'))}, got {x!r}")
+    axis = get_axis(x) if x != "seconds" else None
     if not data:
         raise ValueError(
             "no finished plan runs to plot (is the store empty or the filter too strict?)"
@@ -315,6 +374,7 @@ def plot_plan_figure(
         for j, (attr, ylabel) in enumerate(panels):
             ax = axes[i][j]
             drawn = False
+            lacking = False
             for d in runs:
                 values = getattr(d, attr)
                 if values is None:
@@ -322,6 +382,15 @@ def plot_plan_figure(
                 if x == "seconds":
                     xs, samples = on_time_grid(values, d.elapsed)
                     if xs.size == 0:
+                        continue
+                elif axis is not None and axis.key is not None:
+                    cost = d.axis_values(axis.key)
+                    if cost is None:
+                        lacking = True
+                        continue
+                    xs, samples = on_cost_grid(values, cost)
+                    if xs.size == 0:
+                        lacking = True
                         continue
                 else:
                     xs, samples = np.arange(1, values.shape[1] + 1), values
@@ -337,10 +406,16 @@ def plot_plan_figure(
                 handles.setdefault(d.planner, line)
                 drawn = True
             if not drawn:
+                missing = (
+                    f"{title}: the rows lack {axis.key}\n(written before it was recorded);"
+                    f"\nno {axis.label} axis"
+                    if lacking and axis is not None
+                    else f"{title}: no {ylabel} reported"
+                )
                 ax.text(
                     0.5,
                     0.5,
-                    f"{title}: no {ylabel} reported",
+                    missing,
                     ha="center",
                     va="center",
                     transform=ax.transAxes,
@@ -351,7 +426,9 @@ def plot_plan_figure(
             ax.grid(alpha=0.3)
             ax.set_ylabel(ylabel)
             if i == len(cells) - 1:
-                ax.set_xlabel("simulations" if x == "simulations" else "wall-clock seconds")
+                ax.set_xlabel(axis.label if axis is not None else "wall-clock seconds")
+    if note:
+        fig.suptitle(note, fontsize="small")
     order = [p for p in planners if p in handles]
     fig.legend(
         [handles[p] for p in order],
@@ -559,8 +636,86 @@ def cost_table(data: Sequence[PlannerRuns]) -> str:
     return "\n".join(lines)
 
 
+def _sentence(text: str) -> str:
+    return text[:1].upper() + text[1:] + "."
+
+
+def calls_table(data: Sequence[PlannerRuns]) -> str:
+    """Executed steps against kinematic pre-checks per simulation (mean over seeds), per
+    problem and planner: how the simulator calls of the calls axis split."""
+    lines = [
+        "| problem | planner | executed steps per simulation | pre-checks per simulation"
+        " | pre-checks per step | seeds with calls_curve |",
+        "| --- | --- | ---: | ---: | ---: | ---: |",
+    ]
+    planners = method_order(d.planner for d in data)
+    for cell in _cells(data):
+        for d in sorted(
+            (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
+        ):
+            if d.n_steps is None or d.n_feasibility_checks is None:
+                continue
+            steps = float(np.nanmean(d.n_steps)) if np.any(np.isfinite(d.n_steps)) else math.nan
+            checks = d.n_feasibility_checks
+            pre = float(np.nanmean(checks)) if np.any(np.isfinite(checks)) else math.nan
+            with_curve = 0 if d.calls is None else int(has_axis_data(d.calls).sum())
+            ratio = pre / steps if steps > 0 else math.nan
+            lines.append(
+                f"| {d.title} | {d.planner} | {_fmt(steps / d.simulations, 3)}"
+                f" | {_fmt(pre / d.simulations, 3)} | {_fmt(ratio, 3)}"
+                f" | {with_curve}/{d.n_seeds} |"
+            )
+    if len(lines) == 2:
+        return ""
+    return "\n".join(lines) + (
+        "\n\nThe calls axis counts both as one simulator call each; a pre-check (IK,"
+        " collisions, regions) costs less than an executed step. A sampling-based planner"
+        " makes no pre-checks."
+    )
+
+
+def figure_caption(data: Sequence[PlannerRuns], x: str) -> str:
+    """The caption of the figure on axis ``x`` (a name of :data:`voot.bench.axes.AXES`):
+    what is drawn, the axis, and how the settings were selected."""
+    from voot.bench.axes import MIN_SEED_SHARE, get_axis
+    from voot.bench.tuning import tuning_note
+
+    axis = get_axis(x)
+    seeds = sorted({d.n_seeds for d in data})
+    counts = "/".join(map(str, seeds))
+    parts = [
+        f"Best return (and objects left) against {axis.label}: mean over {counts} seeds"
+        " with a 95% t-interval.",
+        axis.caption,
+    ]
+    if axis.key is not None:
+        parts.append(
+            "Each seed's best-so-far curve is a step function of its own cost, carried"
+            " forward and never extrapolated past the seed's end; no mean is drawn where"
+            f" fewer than {MIN_SEED_SHARE:.0%} of the seeds still contribute."
+        )
+        total = sum(d.n_seeds for d in data)
+        lacking = sum(
+            d.n_seeds if (v := d.axis_values(axis.key)) is None else int((~has_axis_data(v)).sum())
+            for d in data
+        )
+        if lacking:
+            parts.append(
+                f"{lacking} of {total} runs lack {axis.key} (written before it was recorded)"
+                " and are left out of this figure."
+            )
+    tuned = {d.tuning_seeds for d in data}
+    if tuned == {()}:
+        parts.append("Settings selected on the same seeds (the paper's rule).")
+    else:
+        notes = sorted(tuning_note(t) for t in tuned if t)
+        parts.append(_sentence("; ".join(notes)))
+    return " ".join(parts)
+
+
 def plan_settings_table(data: Sequence[PlannerRuns]) -> str:
-    """The selected hyperparameters per problem and planner."""
+    """The selected hyperparameters per problem and planner (and the seeds they were
+    selected on when those were tuning seeds)."""
     lines = ["| problem | planner | selected setting | seeds |", "| --- | --- | --- | ---: |"]
     planners = method_order(d.planner for d in data)
     for cell in _cells(data):
@@ -568,14 +723,27 @@ def plan_settings_table(data: Sequence[PlannerRuns]) -> str:
             (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
         ):
             lines.append(f"| {d.title} | {d.planner} | {d.label} | {d.n_seeds} |")
+    tuned = sorted({d.tuning_seeds for d in data if d.tuning_seeds})
+    if tuned:
+        from voot.bench.tuning import tuning_note
+
+        lines.append("")
+        lines.append(_sentence("; ".join(tuning_note(t) for t in tuned)))
     return "\n".join(lines)
 
 
 def plan_report(data: Sequence[PlannerRuns], at: Sequence[int] | None = None) -> str:
     """Every table as one markdown document (sections without data are left out)."""
     parts = [("Best return", returns_table(data, at))]
+    tuned = sorted({d.tuning_seeds for d in data if d.tuning_seeds})
+    if tuned:
+        from voot.bench.tuning import tuning_note
+
+        note = _sentence("; ".join(tuning_note(t) for t in tuned))
+        parts.insert(0, ("Protocol", f"{note} The tables report the evaluation seeds only."))
     parts.append(("Objects handled", objects_table(data, at)))
     parts.append(("Simulations to handle every object", completion_table(data)))
     parts.append(("Cost of a simulation", cost_table(data)))
+    parts.append(("Simulator calls: executed steps and pre-checks", calls_table(data)))
     parts.append(("Selected hyperparameters", plan_settings_table(data)))
     return "\n\n".join(f"### {title}\n\n{table}" for title, table in parts if table) + "\n"

@@ -25,17 +25,22 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   key(planner)])``; the hyperparameters are deliberately not in it (common random
   numbers across a planner's grid, as in :mod:`voot.bench.sweep`).
 * **Record** after every simulation: the best discounted return from the root, goal
-  bonus excluded (``best_so_far``), the seconds since the search started (``elapsed``,
-  wall clock; ``cpu_elapsed``, this process's CPU time), the cumulative simulator calls
-  (``calls_curve``: executed steps plus pre-checks, so ``calls_curve[-1] == n_steps +
-  n_feasibility_checks``) and, when the problem reports it in its step info, the
-  objects still to handle at the best leaf (``objects_left``); at the end the simulator
-  calls (``simulator_calls``: the problem's own count where it keeps one, which for the
-  v1 robot domains is executed steps only), tree size, best plan and the resolved
-  planner configuration.
+  bonus excluded (``best_so_far``), the wall-clock seconds since the search started
+  (``elapsed``), the CPU seconds of the process since the search started
+  (``cpu_elapsed``, :func:`time.process_time`), the cumulative simulator calls
+  (``calls_curve``: executed steps plus kinematic pre-checks, so ``calls_curve[-1] ==
+  n_steps + n_feasibility_checks``) and, when the problem reports it in its step info,
+  the objects still to handle at the best leaf (``objects_left``); at the end the
+  simulator calls, tree size, best plan and the resolved planner configuration.
 
-Same spec -> bit-identical ``best_so_far`` and ``objects_left``, in any process, on any
-backend (only the timings differ).
+Two call counts, on purpose: ``simulator_calls`` is the problem's own count when it
+keeps one (the v1 robot domains count executed steps only, their pre-checks are cheap
+kinematic tests), else steps plus pre-checks; ``calls_curve`` always counts both, the
+x axis "simulator calls" of :mod:`voot.bench.axes` (a sampling-based planner makes no
+pre-checks, so its curve counts rollout steps).
+
+Same spec -> bit-identical ``best_so_far``, ``objects_left`` and ``calls_curve``, in any
+process, on any backend (only the timings differ: ``elapsed``, ``cpu_elapsed`` ...).
 """
 
 from __future__ import annotations
@@ -500,12 +505,13 @@ def run_plan_spec(spec: PlanSpec) -> Row:
         elapsed: list[float] = []
         cpu_elapsed: list[float] = []
         calls: list[int] = []
-        clock, cpu = time.perf_counter, time.process_time
-        t0, c0 = clock(), cpu()
+        clock, cpu_clock = time.perf_counter, time.process_time
+        t0, c0 = clock(), cpu_clock()
 
         def callback(m: Any, i: int) -> bool:
             elapsed.append(clock() - t0)
-            cpu_elapsed.append(cpu() - c0)
+            cpu_elapsed.append(cpu_clock() - c0)
+            # a sampling-based planner makes no pre-checks (no such counter)
             calls.append(int(m.n_steps) + int(getattr(m, "n_feasibility_checks", 0)))
             if recorder is not None:
                 recorder(m, i)

@@ -119,8 +119,11 @@ STATUSES = ("ok", "failed")
 #: Row keys holding one number per step (per evaluation or simulation). The index keeps
 #: them as float64 arrays; ``best_so_far`` is required, the others optional (``elapsed``:
 #: seconds after every simulation; ``objects_left``: objects still to handle at the best
-#: leaf, ``null`` where unknown, which becomes NaN in arrays).
-CURVE_KEYS = ("best_so_far", "elapsed", "objects_left")
+#: leaf, ``null`` where unknown, which becomes NaN in arrays; ``cpu_elapsed``: CPU
+#: seconds after every simulation; ``calls_curve``: cumulative simulator calls).
+CURVE_KEYS = ("best_so_far", "elapsed", "objects_left", "cpu_elapsed", "calls_curve")
+#: Curves of whole counts: read back as lists of ``int`` (the index holds float64).
+INTEGER_CURVE_KEYS = ("calls_curve",)
 
 Row = dict[str, Any]
 
@@ -129,6 +132,8 @@ _EMPTY: NDArray[np.float64] = np.empty(0, dtype=np.float64)
 
 def _to_list(key: str, curve: NDArray[np.float64]) -> list[float | None]:
     """A curve back as the list its row file holds (NaN -> None except in best_so_far)."""
+    if key in INTEGER_CURVE_KEYS and not np.isnan(curve).any():
+        return [int(v) for v in curve.tolist()]  # type: ignore[misc]
     values: list[float | None] = curve.tolist()
     if key != "best_so_far" and np.isnan(curve).any():
         values = [None if v is not None and math.isnan(v) else v for v in values]

@@ -407,3 +407,118 @@ def test_every_seed_option_is_checked_by_the_parser(
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
     assert f"argument --seed: must be an integer >= 0, got '{seed}'" in err
+
+
+TUNE_TINY = [
+    "--problems",
+    "shekel_chain",
+    "--dims",
+    "3",
+    "--planners",
+    "voot",
+    "--simulations",
+    "8",
+    "--workers",
+    "1",
+    "--no-progress",
+]
+
+
+def test_plan_with_tuning_seeds_end_to_end(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "plan"
+    tuned = ["plan", "--out", str(out), *TUNE_TINY, "--tuning-seeds", "1000:1002", "--seeds", "0:2"]
+    assert main([*tuned, "--dry-run"]) == 0
+    printed = capsys.readouterr()
+    assert "tuning: 12 runs (every setting) on seeds 1000-1001" in printed.err
+    assert (
+        "evaluation: 2 runs (the selected setting) on seeds 0-1, after the tuning runs"
+        in printed.err
+    )
+    assert main([*tuned, "--estimate", "--probe-simulations", "3"]) == 0
+    printed = capsys.readouterr().out
+    assert (
+        "| shekel_chain-3D | voot | 14 | 14 | 112 |" in printed
+        and "probe: 3 simulations" in printed
+    )
+    assert "wall-hours on 1 worker" in printed
+    # part of the tuning by hand (seed 1000): the tuned command reuses those very rows
+    by_hand = ["plan", "--out", str(out), *TUNE_TINY, "--seeds", "1000:1001"]
+    assert main(by_hand) == 0
+    capsys.readouterr()
+    assert main(tuned) == 0
+    printed = capsys.readouterr()
+    assert "12 runs: 6 already in the store, 6 ran (0 failed)" in printed.out
+    assert "2 runs: 0 already in the store, 2 ran (0 failed)" in printed.out
+    assert "settings selected on tuning seeds 1000-1001" in printed.err
+    rows = ResultStore(out).load(kind="plan")
+    assert len(rows) == 14
+    from voot.bench.select import select_hyperparameters
+
+    (sel,) = select_hyperparameters([r for r in rows if r["config"]["seed"] >= 1000])
+    evaluation = [r for r in rows if r["config"]["seed"] < 1000]
+    assert sorted(r["config"]["seed"] for r in evaluation) == [0, 1]
+    assert all(r["config"]["params"] == sel.params for r in evaluation)
+    assert main(tuned) == 0  # resume: nothing left
+    assert "2 runs: 2 already in the store, 0 ran" in capsys.readouterr().out
+    assert main([*tuned, "--estimate"]) == 0
+    printed = capsys.readouterr().out
+    assert "| shekel_chain-3D | voot | 14 | 0 | 0 |" in printed and "store: 14 rows" in printed
+
+    # plot: the evaluation seeds with the tuned setting, one figure per axis
+    figs, md = tmp_path / "figs", tmp_path / "plan.md"
+    argv = ["plot", str(out), "--tuning-seeds", "1000:1002", "--axes-dir", str(figs)]
+    assert main([*argv, "--markdown", str(md)]) == 0
+    printed = capsys.readouterr().out
+    for name in ("plan-simulations.png", "plan-calls.png", "plan-cpu-seconds.png"):
+        assert (figs / name).read_bytes()[:4] == b"\x89PNG"
+        assert f"`{name}`:" in printed
+    text = md.read_text()
+    assert "Settings selected on tuning seeds 1000-1001, disjoint from the evaluation seeds" in text
+    assert f"| shekel_chain 3-D | voot | {sel.best.label} | 2 |" in text
+    assert "### Simulator calls: executed steps and pre-checks" in text
+    assert main(["plot", str(out)]) == 0  # without the option: the same-seed rule, all seeds
+    assert f"| shekel_chain 3-D | voot | {sel.best.label} | 2 |" not in capsys.readouterr().out
+    # the claims: a chain store has none of the paper's problems, every line says so
+    assert main(["claims", str(out), "--tuning-seeds", "1000:1002"]) == 0
+    printed = capsys.readouterr().out
+    assert "| no data |" in printed and "reproduced: 0" in printed
+    assert "disjoint from the evaluation seeds" in printed
+
+
+def test_plan_tuning_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = str(tmp_path / "plan")
+    base = ["plan", "--out", out, *TUNE_TINY, "--dry-run"]
+    assert main([*base, "--tuning-seeds", "0:2", "--seeds", "1:3"]) == 2
+    assert "seeds 1 are both tuning and evaluation seeds" in capsys.readouterr().err
+    assert main([*base, "--tuning-seeds", "5:2", "--seeds", "0:2"]) == 2
+    assert "--tuning-seeds: inverted or empty range" in capsys.readouterr().err
+    assert main([*base, "--estimate", "--probe-simulations", "0"]) == 2
+    assert "--probe-simulations must be >= 1" in capsys.readouterr().err
+    assert main(["plot", out, "--tuning-seeds", "0:2"]) == 2  # no store there
+    small = ["--functions", "rastrigin", "--dims", "3", "--methods", "random", "--seeds", "1"]
+    assert main(["bbfo", "--out", out, *small, "--budget", "5", "--workers", "1"]) == 0
+    capsys.readouterr()
+    assert main(["plot", out, "--axes-dir", str(tmp_path / "f")]) == 2
+    assert "apply to plan runs" in capsys.readouterr().err
+    assert main(["claims", out]) == 2
+    assert "no finished plan runs" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("command", "option"),
+    [
+        ("plan", "--tuning-seeds"),
+        ("plan", "--estimate"),
+        ("plot", "plan-cpu-seconds.png"),
+        ("claims", "--markdown"),
+    ],
+)
+def test_protocol_options_in_the_help(
+    command: str, option: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as done:
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split()).replace("- ", "-")  # undo the wrapping
+    assert done.value.code == 0 and option in text

@@ -9,9 +9,11 @@ import numpy as np
 import pytest
 
 from voot.bench.plan_plot import (
+    calls_table,
     completion_table,
     cost_table,
     default_checkpoints,
+    figure_caption,
     first_reach,
     mean_ci,
     median_ci,
@@ -185,7 +187,7 @@ def test_figures(tmp_path: Path) -> None:
     assert secs.stat().st_size > 10_000
     with pytest.raises(ValueError, match="no finished plan runs"):
         plot_plan_figure([], tmp_path / "empty.png")
-    with pytest.raises(ValueError, match="'simulations' or 'seconds'"):
+    with pytest.raises(ValueError, match="x must be one of simulations, calls, cpu, seconds"):
         plot_plan_figure(data, tmp_path / "bad.png", x="hours")
 
 
@@ -224,3 +226,80 @@ def test_objects_band_stays_in_the_count_and_few_seeds_get_no_band(
     assert len(bands) == 1  # only the 4-seed planner has a band
     ys = np.concatenate([p.vertices[:, 1] for p in bands[0].get_paths()])
     assert ys.min() >= 0.0 and ys.max() <= 7.0
+
+
+def _with_costs(r: Row, calls_per_sim: int, cpu_per_sim: float) -> Row:
+    n = len(r["best_so_far"])
+    out = dict(r)
+    out["calls_curve"] = [calls_per_sim * (i + 1) for i in range(n)]
+    out["cpu_elapsed"] = [cpu_per_sim * (i + 1) for i in range(n)]
+    out["n_steps"] = n
+    out["n_feasibility_checks"] = (calls_per_sim - 1) * n
+    return out
+
+
+def test_cost_axes_figures_tables_and_captions(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The calls and CPU axes read each seed's own costs; a planner's x range ends where
+    its seeds end; rows lacking the keys say so instead of drawing a curve."""
+    from matplotlib.figure import Figure
+
+    from voot.bench import plan_plot
+
+    rows = [
+        _with_costs(r, 3 if r["config"]["planner"] == "voot" else 1, 0.01) for r in kitchen_rows()
+    ]
+    data = plan_data(rows)
+    voot = next(d for d in data if d.planner == "voot")
+    assert voot.calls is not None and voot.calls[0].tolist() == [3.0, 6.0, 9.0, 12.0]
+    assert voot.n_feasibility_checks is not None and voot.n_feasibility_checks.tolist() == [8.0] * 3
+    captured: list[Figure] = []
+    original = Figure.savefig
+
+    def spy(self: Figure, *args: object, **kwargs: object) -> object:
+        captured.append(self)
+        return original(self, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(Figure, "savefig", spy)
+    plan_plot.plot_plan_figure(data, tmp_path / "calls.png", x="calls", note="a note")
+    ax = captured[-1].axes[0]
+    ends = {line.get_label(): max(line.get_xdata()) for line in ax.get_lines()}
+    assert ends["voot"] == 12.0 and ends["pw_uct"] == 4.0  # 3 calls per simulation vs 1
+    labels = {a.get_xlabel() for a in captured[-1].axes}
+    assert labels == {"", "simulator calls (steps + pre-checks)"}
+    assert captured[-1].get_suptitle() == "a note"
+    plan_plot.plot_plan_figure(data, tmp_path / "cpu.png", x="cpu")
+    assert "CPU seconds" in {a.get_xlabel() for a in captured[-1].axes}
+    # an older store: no calls_curve, no cpu_elapsed
+    plan_plot.plot_plan_figure(plan_data(kitchen_rows()), tmp_path / "old.png", x="calls")
+    texts = [t.get_text() for t in captured[-1].axes[0].texts]
+    assert any("lack calls_curve" in t for t in texts) and not captured[-1].axes[0].get_lines()
+    plan_plot.plot_plan_figure(plan_data(kitchen_rows()), tmp_path / "old-sims.png")
+    assert captured[-1].axes[0].get_lines()  # still drawn against simulations
+
+    table = calls_table(data)
+    assert "| kitchen | voot | 1 | 2 | 2 | 3/3 |" in table
+    assert "| kitchen | pw_uct | 1 | 0 | 0 | 3/3 |" in table
+    assert "| kitchen | voot | 1 | 2 | 2 | 0/3 |" in calls_table(
+        plan_data([{**r, "n_steps": 4, "n_feasibility_checks": 8} for r in kitchen_rows()])
+    )
+    caption = figure_caption(data, "calls")
+    assert "steps and the kinematic pre-checks counted together" in caption
+    assert "never extrapolated" in caption and "the paper's rule" in caption
+    assert "lack" not in caption
+    old_caption = figure_caption(plan_data(kitchen_rows()), "cpu")
+    assert "9 of 9 runs lack cpu_elapsed (written before it was recorded)" in old_caption
+    tuned = plan_data(
+        rows + [{**r, "config": {**r["config"], "seed": 1000 + r["config"]["seed"]}} for r in rows],
+        tuning_seeds=[1000, 1001, 1002],
+    )
+    assert all(d.tuning_seeds == (1000, 1001, 1002) for d in tuned)
+    assert (
+        "Settings selected on tuning seeds 1000-1002, disjoint from the evaluation seeds."
+        in figure_caption(tuned, "simulations")
+    )
+    report = plan_report(tuned)
+    assert report.startswith("### Protocol") and "evaluation seeds only" in report
+    with pytest.raises(ValueError, match="valid axes"):
+        figure_caption(data, "hours")

@@ -248,6 +248,8 @@ def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
         elapsed=[0.1, 0.25, 0.5],
         objects_left=[None, 6, 4],
         objects_initial=7,
+        calls_curve=[3, 40, 41],
+        cpu_elapsed=[0.1, 0.2, 0.4],
     )
     s.write(r)
     s.write(row(1))  # a row without the optional curves
@@ -258,6 +260,9 @@ def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
         assert plan["objects_initial"] == 7 and "elapsed" not in bbfo
         as_lists = next(x for x in s.load() if x["kind"] == "plan")
         assert as_lists["objects_left"] == [None, 6.0, 4.0]  # as in the row file
+        assert plan["calls_curve"].tolist() == [3.0, 40.0, 41.0]
+        assert as_lists["calls_curve"] == [3, 40, 41]  # whole counts read back as int
+        assert all(type(v) is int for v in as_lists["calls_curve"])
         assert as_lists == s.get(r["run_id"])
     assert store_mod.CURVE_KEYS[0] == "best_so_far"
 

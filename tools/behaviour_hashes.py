@@ -21,7 +21,15 @@ from typing import Any
 
 import numpy as np
 
-TIMING_KEYS = {"wall_time", "elapsed", "search_time", "finished_at", "versions", "created"}
+TIMING_KEYS = {
+    "wall_time",
+    "elapsed",
+    "cpu_elapsed",
+    "search_time",
+    "finished_at",
+    "versions",
+    "created",
+}
 
 
 def _digest(value: Any) -> str:

@@ -1,0 +1,137 @@
+"""Tuning separate from evaluation: select settings on tuning seeds, report other seeds.
+
+The paper picked every planner's hyperparameters by best mean final value on the very
+seeds it reported, which flatters every planner by the luck of its selection. The full
+protocol (issue 14) selects instead on **tuning seeds** (e.g. 1000-1004) disjoint from
+the **evaluation seeds** (e.g. 0-19) and reports only the evaluation seeds:
+
+1. every setting of every planner's grid runs on the tuning seeds;
+2. per (problem, planner) the setting with the best mean final return on the tuning
+   seeds is selected, by the paper's rule (:func:`voot.bench.select.select_hyperparameters`);
+3. only that setting runs on the evaluation seeds.
+
+The rows are the ordinary rows of :mod:`voot.bench.plan_sweep` (a tuned run has the run
+id it would have if run by hand), so the protocol resumes at any point: finished tuning
+runs are skipped, the selection is recomputed from them (it is deterministic), and the
+evaluation runs already in the store are skipped. ``voot-bench plot --tuning-seeds`` and
+``voot-bench claims --tuning-seeds`` repeat steps 2 and 3 on a store's rows
+(:func:`select_on_tuning`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from voot.bench.select import (
+    CellKey,
+    Selection,
+    cell_of,
+    select_hyperparameters,
+    selected_rows,
+)
+from voot.bench.store import Row
+from voot.bench.sweep import params_key
+
+
+def seeds_text(seeds: Iterable[int]) -> str:
+    """Seeds as ranges: ``[1000, 1001, 1002, 7]`` -> ``"7, 1000-1002"``."""
+    values = sorted(set(int(s) for s in seeds))
+    parts: list[str] = []
+    i = 0
+    while i < len(values):
+        j = i
+        while j + 1 < len(values) and values[j + 1] == values[j] + 1:
+            j += 1
+        parts.append(str(values[i]) if i == j else f"{values[i]}-{values[j]}")
+        i = j + 1
+    return ", ".join(parts)
+
+
+def tuning_note(tuning_seeds: Iterable[int]) -> str:
+    """The sentence the captions carry when settings were selected on tuning seeds."""
+    return (
+        f"settings selected on tuning seeds {seeds_text(tuning_seeds)}, disjoint from the"
+        " evaluation seeds"
+    )
+
+
+def tuning_sentence(tuning_seeds: Iterable[int]) -> str:
+    """:func:`tuning_note` as a sentence (capital letter, full stop)."""
+    note = tuning_note(tuning_seeds)
+    return note[:1].upper() + note[1:] + "."
+
+
+def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int]) -> None:
+    """Raise ValueError if a seed is both a tuning and an evaluation seed, or none is tuned."""
+    tuning = set(int(s) for s in tuning_seeds)
+    if not tuning:
+        raise ValueError("no tuning seeds given")
+    both = tuning & set(int(s) for s in evaluation_seeds)
+    if both:
+        raise ValueError(
+            f"seeds {seeds_text(both)} are both tuning and evaluation seeds; tuning seeds"
+            " must be disjoint from the evaluation seeds (e.g. --tuning-seeds 1000:1005"
+            " --seeds 0:20)"
+        )
+
+
+def split_rows(rows: Iterable[Row], tuning_seeds: Collection[int]) -> tuple[list[Row], list[Row]]:
+    """``(tuning rows, evaluation rows)``: rows of a tuning seed, and all the others."""
+    tuning: list[Row] = []
+    evaluation: list[Row] = []
+    seeds = set(int(s) for s in tuning_seeds)
+    for r in rows:
+        (tuning if int(r["config"]["seed"]) in seeds else evaluation).append(r)
+    return tuning, evaluation
+
+
+@dataclass(frozen=True)
+class TunedRows:
+    """The outcome of :func:`select_on_tuning`.
+
+    Attributes:
+        selections: per cell, the setting selected on the tuning seeds.
+        rows: the evaluation rows of the selected settings.
+        untuned: cells with evaluation rows but no finished tuning row (left out).
+    """
+
+    selections: tuple[Selection, ...]
+    rows: tuple[Row, ...]
+    untuned: tuple[CellKey, ...]
+
+
+def select_on_tuning(rows: Iterable[Row], tuning_seeds: Collection[int]) -> TunedRows:
+    """Select each cell's setting on the rows of ``tuning_seeds``; keep the evaluation rows
+    (every other seed) of that setting.
+
+    ``rows`` should already be of one budget per problem
+    (:func:`voot.bench.select.largest_budget`), so tuning and evaluation share the cell.
+    """
+    tuning, evaluation = split_rows([r for r in rows if r.get("status") == "ok"], tuning_seeds)
+    selections = select_hyperparameters(tuning)
+    selected = {s.key for s in selections}
+    untuned = sorted({cell_of(r) for r in evaluation} - selected)
+    return TunedRows(
+        tuple(selections), tuple(selected_rows(evaluation, selections)), tuple(untuned)
+    )
+
+
+def selected_specs(candidates: Sequence[Any], selections: Iterable[Selection]) -> list[Any]:
+    """The specs of ``candidates`` (plan specs, e.g. every setting on the evaluation seeds)
+    whose setting is the one selected in their cell; cells without a selection give none."""
+    chosen = {s.key: s.best.label for s in selections}
+    out = []
+    for spec in candidates:
+        cell = cell_of({"kind": spec.kind, "config": spec.config()})
+        if chosen.get(cell) == params_key(spec.params_dict):
+            out.append(spec)
+    return out
+
+
+def tuning_selections(specs: Sequence[Any], rows: Iterable[Row]) -> list[Selection]:
+    """The selections made on the finished rows of the tuning ``specs`` (by run id)."""
+    ids = {s.run_id for s in specs}
+    mine = [r for r in rows if r.get("run_id") in ids and r.get("status") == "ok"]
+    return select_hyperparameters(mine)

@@ -1,0 +1,105 @@
+"""Tests of voot.bench.tuning: selection on tuning seeds, evaluation on the others."""
+
+from __future__ import annotations
+
+import pytest
+
+from voot.bench.plan_sweep import build_plan_specs
+from voot.bench.store import Row, make_row
+from voot.bench.tuning import (
+    check_disjoint,
+    seeds_text,
+    select_on_tuning,
+    selected_specs,
+    split_rows,
+    tuning_note,
+    tuning_selections,
+    tuning_sentence,
+)
+
+
+def row(final: float, *, seed: int, omega: float, planner: str = "voot") -> Row:
+    config = {
+        "problem": "shekel_chain",
+        "dim": 3,
+        "env_kwargs": {},
+        "planner": planner,
+        "params": {"omega": omega},
+        "simulations": 2,
+        "seed": seed,
+        "protocol": 1,
+    }
+    return make_row("plan", config, status="ok", wall_time=1.0, best_so_far=[0.0, final])
+
+
+def rows() -> list[Row]:
+    """omega=0.1 wins on the tuning seeds 1000-1001, omega=0.3 on the evaluation seeds."""
+    out = []
+    for seed in (1000, 1001):
+        out += [row(2.0, seed=seed, omega=0.1), row(1.0, seed=seed, omega=0.3)]
+    for seed in (0, 1, 2):
+        out += [row(0.0, seed=seed, omega=0.1), row(5.0, seed=seed, omega=0.3)]
+    return out
+
+
+def test_seeds_text_and_notes() -> None:
+    assert seeds_text([1002, 1000, 1001, 7]) == "7, 1000-1002"
+    assert seeds_text([]) == ""
+    note = tuning_note(range(1000, 1005))
+    assert note == "settings selected on tuning seeds 1000-1004, disjoint from the evaluation seeds"
+    assert tuning_sentence([3]).startswith("Settings selected on tuning seeds 3,")
+
+
+def test_check_disjoint() -> None:
+    check_disjoint([1000], [0, 1])
+    with pytest.raises(ValueError, match="seeds 1-2 are both tuning and evaluation seeds"):
+        check_disjoint([1, 2, 1000], [0, 1, 2])
+    with pytest.raises(ValueError, match="no tuning seeds"):
+        check_disjoint([], [0])
+
+
+def test_selection_on_tuning_seeds_differs_from_the_same_seed_rule() -> None:
+    tuning, evaluation = split_rows(rows(), {1000, 1001})
+    assert {r["config"]["seed"] for r in tuning} == {1000, 1001}
+    assert {r["config"]["seed"] for r in evaluation} == {0, 1, 2}
+    outcome = select_on_tuning(rows(), [1000, 1001])
+    (sel,) = outcome.selections
+    assert sel.params == {"omega": 0.1} and sel.best.n == 2  # chosen on the tuning seeds
+    assert {r["config"]["seed"] for r in outcome.rows} == {0, 1, 2}
+    assert all(r["config"]["params"] == {"omega": 0.1} for r in outcome.rows)
+    assert outcome.untuned == ()
+    # a planner with evaluation rows but no tuning rows is reported, not silently tuned
+    extra = [*rows(), row(1.0, seed=0, omega=0.1, planner="voronoi_pw")]
+    assert select_on_tuning(extra, [1000, 1001]).untuned == (("shekel_chain", 3, 2, "voronoi_pw"),)
+
+
+def test_selected_specs_are_the_specs_one_would_run_by_hand() -> None:
+    tuning = build_plan_specs(["shekel_chain"], [3], ["voot"], [1000, 1001], simulations=2)
+    finals = {0.001: 1.0, 0.1: 3.0, 0.3: 2.0}
+    fake = [
+        make_row(
+            "plan",
+            s.config(),
+            status="ok",
+            wall_time=0.1,
+            best_so_far=[0.0, finals[s.params_dict["omega"]] + s.params_dict["reevaluations"]],
+        )
+        for s in tuning
+    ]
+    (sel,) = tuning_selections(tuning, fake)
+    assert sel.params == {"omega": 0.1, "reevaluations": 100}
+    candidates = build_plan_specs(["shekel_chain"], [3], ["voot"], [0, 1], simulations=2)
+    chosen = selected_specs(candidates, [sel])
+    by_hand = build_plan_specs(
+        ["shekel_chain"],
+        [3],
+        ["voot"],
+        [0, 1],
+        simulations=2,
+        grid="default",
+        fixed={"omega": 0.1, "reevaluations": 100},
+    )
+    assert [s.run_id for s in chosen] == [s.run_id for s in by_hand]
+    assert selected_specs(candidates, []) == []
+    # rows of other run ids (e.g. evaluation seeds) take no part in the selection
+    assert tuning_selections(tuning[:1], fake[1:]) == []
