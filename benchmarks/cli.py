@@ -31,6 +31,7 @@ import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import Any
 
 from voot import validation as V
 from voot.bench.store import ResultStore, Row, StoreError
@@ -241,11 +242,12 @@ def cmd_plan(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
-    store = _open_store(args.out)
+    store = _open_store(args.out, _compact_config(args) if args.compact else None)
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
     )
-    print(f"results: {store.path} (backend: {backend.name})", file=sys.stderr)
+    layout = f", compact: {store.compact}" if store.compact is not None else ""
+    print(f"results: {store.path} (backend: {backend.name}{layout})", file=sys.stderr)
     with _sigterm_as_interrupt():
         summary = run_sweep(
             specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
@@ -574,10 +576,72 @@ def _stored_note(path: str, specs: Sequence[Spec]) -> str:
     return f"; {done} already in the store" if done else ""
 
 
-def _open_store(path: str) -> ResultStore:
-    """The result store at ``path`` (created if missing), or a CLIError saying why not."""
+def _compact_config(args: argparse.Namespace) -> Any:
+    """The :class:`~voot.bench.compact.CompactConfig` of ``--compact-points/--compact-spacing``."""
+    from voot.bench.compact import CompactConfig
+
+    return CompactConfig(points=args.compact_points, spacing=args.compact_spacing)
+
+
+def _add_compact_options(p: argparse.ArgumentParser, prefix: str) -> None:
+    from voot.bench.compact import DEFAULT_POINTS, SPACINGS
+
+    p.add_argument(
+        f"--{prefix}points",
+        dest="compact_points",
+        type=int,
+        default=DEFAULT_POINTS,
+        help="simulation indices kept per cost curve (elapsed, cpu_elapsed, calls_curve),"
+        " plus the first and the last (default: %(default)s)",
+    )
+    p.add_argument(
+        f"--{prefix}spacing",
+        dest="compact_spacing",
+        choices=SPACINGS,
+        default="log",
+        help="spacing of those indices (default: %(default)s)",
+    )
+
+
+def cmd_compact(args: argparse.Namespace) -> int:
+    """Convert a result store into a compact one (:func:`voot.bench.store.compact_store`)."""
+    from voot.bench.store import compact_store
+
+    out = compact_store(args.src, args.dst, _compact_config(args))
+    mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
+    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if out["dst_bytes"] else ""
+    print(
+        f"{out['rows']} rows in {args.src} ({mb_src:.2f} MB of rows); {out['copied']} copied"
+        f" now, {out['rows'] - out['copied']} already there; {args.dst}: {mb_dst:.2f} MB of"
+        f" rows{ratio}"
+    )
+    return 0
+
+
+def cmd_store_speed(args: argparse.Namespace) -> int:
+    """Print the size and load time of synthetic plan-row stores, full and compact."""
+    from voot.bench.store import time_load
+
+    if args.rows < 1 or args.length < 1:
+        raise CLIError("--rows and --length must be >= 1")
+    print(f"{args.rows} plan-like rows of {args.length} simulations (five curves each)")
+    print("| store | MB of rows | KB per row | write s | first load s | load s | verify s |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for name, config in (("full", None), ("compact", _compact_config(args))):
+        t = time_load(args.rows, args.length, args.repeats, plan=True, compact=config)
+        print(
+            f"| {name} | {t['mb']:.2f} | {1000 * t['mb'] / args.rows:.1f} | {t['write']:.2f}"
+            f" | {t['cold']:.3f} | {t['warm']:.3f} | {t['verify']:.3f} |",
+            flush=True,
+        )
+    return 0
+
+
+def _open_store(path: str, compact: Any = None) -> ResultStore:
+    """The result store at ``path`` (created if missing, compact if ``compact``), or a
+    CLIError saying why not."""
     try:
-        return ResultStore(path)
+        return ResultStore(path, compact=compact)
     except OSError as exc:
         reason = exc.strerror or type(exc).__name__
         raise CLIError(
@@ -795,7 +859,41 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--compact",
+        action="store_true",
+        help="create --out as a compact store (step curves exact, cost curves at reduced"
+        " resolution; kept in its header, so later runs into it are compact too)",
+    )
+    _add_compact_options(p, "compact-")
     p.set_defaults(func=cmd_plan)
+
+    p = sub.add_parser(
+        "compact",
+        help="copy a result store into a compact one (resumable; the source is only read)",
+        description="Every row of SRC into the compact store DST: best_so_far and"
+        " objects_left exactly (their change points), elapsed, cpu_elapsed and calls_curve at"
+        " reduced resolution with their first and last values exact. Run ids are unchanged,"
+        " so a sweep resumed on DST skips every copied run.",
+    )
+    p.add_argument("src", help="the result store to read")
+    p.add_argument("dst", help="the compact store to write (created if missing)")
+    _add_compact_options(p, "")
+    p.set_defaults(func=cmd_compact)
+
+    p = sub.add_parser(
+        "store-speed",
+        help="size and load time of a store of synthetic plan rows, full vs compact",
+    )
+    p.add_argument("--rows", type=int, default=1000, help="rows (default: %(default)s)")
+    p.add_argument(
+        "--length", type=int, default=3000, help="simulations per row (default: %(default)s)"
+    )
+    p.add_argument(
+        "--repeats", type=int, default=3, help="loads timed, best kept (default: %(default)s)"
+    )
+    _add_compact_options(p, "")
+    p.set_defaults(func=cmd_store_speed)
 
     p = sub.add_parser("select", help="selected hyperparameters per method (best mean final value)")
     p.add_argument("results", help="result store directory")
