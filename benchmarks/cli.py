@@ -618,6 +618,31 @@ def cmd_compact(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_shipped(args: argparse.Namespace) -> int:
+    """Check the committed stores against their manifest and redraw their figures
+    (:mod:`voot.bench.shipped`); with ``--write``, rewrite the manifest."""
+    from voot.bench import shipped
+
+    root = Path(args.root)
+    if not root.is_dir():
+        raise CLIError(f"{root}: no such folder (the committed stores are in docs/data)")
+    if args.write:
+        path = shipped.write_manifest(root)
+        for name, entry in shipped.read_manifest(root).items():
+            print(f"{name}: {entry['rows']} rows, sha256 {entry['sha256'][:12]}...")
+        print(f"manifest: {path}", file=sys.stderr)
+        return 0
+    out = Path(args.out) if args.out else None
+    for path in shipped.store_dirs(root):
+        got = shipped.check_store(root, path.name)
+        line = f"{path.name}: {got['rows']} rows, checksums and manifest ok"
+        if out is not None:
+            files = shipped.redraw(path, out / path.name)
+            line += f"; redrawn: {', '.join(f.name for f in files)}"
+        print(line, flush=True)
+    return 0
+
+
 def cmd_store_speed(args: argparse.Namespace) -> int:
     """Print the size and load time of synthetic plan-row stores, full and compact."""
     from voot.bench.store import time_load
@@ -880,6 +905,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("dst", help="the compact store to write (created if missing)")
     _add_compact_options(p, "")
     p.set_defaults(func=cmd_compact)
+
+    p = sub.add_parser(
+        "shipped",
+        help="check the committed result stores (docs/data) against their manifest and"
+        " redraw their figures and tables",
+    )
+    p.add_argument(
+        "--root", default="docs/data", help="folder of the stores (default: %(default)s)"
+    )
+    p.add_argument("--out", default=None, help="redraw every store's figures and tables here")
+    p.add_argument("--write", action="store_true", help="rewrite the manifest (stores.json)")
+    p.set_defaults(func=cmd_shipped)
 
     p = sub.add_parser(
         "store-speed",

@@ -103,7 +103,9 @@ def test_config_validation_names_the_valid_choices() -> None:
         CompactConfig(spacing="cubic")
     with pytest.raises(ValueError, match="points"):
         CompactConfig(points=1)
-    assert CompactConfig.from_dict(CompactConfig(7, "linear").to_dict()) == CompactConfig(7, "linear")
+    assert CompactConfig.from_dict(CompactConfig(7, "linear").to_dict()) == CompactConfig(
+        7, "linear"
+    )
     with pytest.raises(ValueError, match="version"):
         CompactConfig.from_dict({"version": 99})
     with pytest.raises(ValueError, match="object"):

@@ -537,7 +537,12 @@ def test_a_compact_store_writes_compact_rows_and_reads_them_back_full(tmp_path: 
     header = json.loads((tmp_path / "small" / HEADER_NAME).read_bytes())
     assert header["compact"] == {"version": 1, "points": 20, "spacing": "log"}
     assert small.verify() == 4
-    for loaded in (small.load(), small.load(), list(small.iter_rows()), [small.get(rows[0]["run_id"])]):
+    for loaded in (
+        small.load(),
+        small.load(),
+        list(small.iter_rows()),
+        [small.get(rows[0]["run_id"])],
+    ):
         for r in loaded:
             assert r is not None
             want = next(w for w in rows if w["run_id"] == r["run_id"])
@@ -571,7 +576,7 @@ def test_compact_settings_persist_and_a_mismatch_is_refused(tmp_path: Path) -> N
     data = json.loads(header.read_bytes())
     data["compact"]["spacing"] = "cubic"
     header.write_text(json.dumps(data))
-    with pytest.raises(StoreError, match="bad compact settings.*log, linear"):
+    with pytest.raises(StoreError, match=r"bad compact settings.*log, linear"):
         ResultStore(tmp_path / "c")
 
 
