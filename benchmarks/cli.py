@@ -521,6 +521,7 @@ def cmd_figure5(args: argparse.Namespace) -> int:
         visits=args.visits,
         max_simulations=args.max_simulations,
         env_id=normalize_problem(args.env),
+        image=args.image,
     )
     return 0
 
@@ -761,6 +762,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
     p.add_argument("--max-simulations", type=int, default=2000)
     p.add_argument("--env", default="kitchen", help="kitchen (v0, default) or kitchen_v1")
+    p.add_argument(
+        "--image",
+        default="kitchen_figure5.png",
+        help="image file name in --out (default: %(default)s); its counts go beside it as .json",
+    )
     p.set_defaults(func=cmd_figure5)
 
     p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
