@@ -107,7 +107,10 @@ def kept_indices(n: int, config: CompactConfig) -> NDArray[np.int64]:
 
 
 def _json_values(values: NDArray[np.float64]) -> list[float | None]:
-    return [None if math.isnan(v) else v for v in values.tolist()]
+    out: list[float | None] = values.tolist()
+    if np.isnan(values).any():
+        out = [None if v is not None and math.isnan(v) else v for v in out]
+    return out
 
 
 def _changes(values: NDArray[np.float64]) -> NDArray[np.int64]:

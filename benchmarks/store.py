@@ -798,7 +798,8 @@ def time_load(
     Builds the store in a temporary directory (or in ``path``, which must not exist),
     each row a ``bbfo``-like run with a ``length``-step ``best_so_far`` curve. *Cold* is
     the first load (every row file parsed, the index written), *warm* the best of
-    ``repeats`` later loads (through the index), of a store at rest (rows written
+    ``repeats`` later loads (through the index; ``warm_arrays`` the same with
+    ``arrays=True``, as ``voot-bench plot`` reads), of a store at rest (rows written
     within :data:`RACY_NS` of a load are re-read, so the benchmark waits that long
     after writing, outside the timings). Also returns ``write`` (seconds to
     write all rows), ``verify`` (best :meth:`ResultStore.verify`, the full audit) and
@@ -831,17 +832,27 @@ def time_load(
         rows = ResultStore(root / "store", create=False).load()
         cold = time.perf_counter() - t0
         assert len(rows) == n_rows
-        warm = audit = math.inf
+        warm = warm_arrays = audit = math.inf
         for _ in range(repeats):
             t0 = time.perf_counter()
             ResultStore(root / "store", create=False).load()
             warm = min(warm, time.perf_counter() - t0)
+            t0 = time.perf_counter()
+            ResultStore(root / "store", create=False).load(arrays=True)
+            warm_arrays = min(warm_arrays, time.perf_counter() - t0)
         verify = getattr(store, "verify", None)
         for _ in range(repeats if callable(verify) else 0):
             t0 = time.perf_counter()
             verify()  # type: ignore[misc]
             audit = min(audit, time.perf_counter() - t0)
-        return {"write": written, "cold": cold, "warm": warm, "verify": audit, "mb": size / 1e6}
+        return {
+            "write": written,
+            "cold": cold,
+            "warm": warm,
+            "warm_arrays": warm_arrays,
+            "verify": audit,
+            "mb": size / 1e6,
+        }
     finally:
         if path is None:
             shutil.rmtree(root, ignore_errors=True)

@@ -347,7 +347,7 @@ def test_an_old_store_without_checksums_still_loads(tmp_path: Path) -> None:
 def test_time_load_measures_a_small_store(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(store_mod, "RACY_NS", 0)
     out = store_mod.time_load(5, 10, repeats=1, path=str(tmp_path / "bench"))
-    assert set(out) == {"write", "cold", "warm", "verify", "mb"}
+    assert set(out) == {"write", "cold", "warm", "warm_arrays", "verify", "mb"}
     assert all(v >= 0 for v in out.values())
     assert 0 < out["mb"] < 0.01  # five rows of ten steps: a few kB
     assert (tmp_path / "bench" / "store").is_dir()  # a given path is kept
