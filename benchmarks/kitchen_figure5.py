@@ -338,11 +338,13 @@ def figure5(
                 rec.rec.log(
                     run.failed_entity,
                     rr.Points3D(
-                        np.column_stack([xy.reshape(-1, 2), np.full(len(xy), config.floor_height)]),
+                        np.column_stack(  # a little above the grey ones at the same spots
+                            [xy.reshape(-1, 2), np.full(len(xy), config.floor_height + 0.02)]
+                        ),
                         colors=np.tile(
                             np.array(EXECUTION_FAILED_COLOR, dtype=np.uint8), (len(xy), 1)
                         ),
-                        radii=0.8 * config.point_radius,
+                        radii=1.2 * config.point_radius,
                     ),
                 )
             rec.rec.log(
