@@ -32,7 +32,7 @@ import sys
 import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from voot import validation as V
 from voot.bench.store import ResultStore, Row, StoreError
@@ -262,7 +262,9 @@ def cmd_plan(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
-    summary = _run_plan_specs(args, specs, _open_store(args.out))
+    summary = _run_plan_specs(
+        args, specs, _open_store(args.out, _compact_config(args) if args.compact else None)
+    )
     if args.record is not None and summary.skipped:
         print(
             f"note: {summary.skipped} runs were already in the store and were not recorded"
@@ -296,7 +298,8 @@ def _run_plan_specs(
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
     )
-    print(f"results: {store.path} (backend: {backend.name})", file=sys.stderr)
+    layout = f", compact: {store.compact}" if store.compact is not None else ""
+    print(f"results: {store.path} (backend: {backend.name}{layout})", file=sys.stderr)
     with _sigterm_as_interrupt():
         summary = run_sweep(
             specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
@@ -353,7 +356,7 @@ def _plan_tuned(
         print("evaluation runs (one setting per problem and planner):")
         print(summarize_plan_specs(evaluation))
         return 0
-    store = _open_store(args.out)
+    store = _open_store(args.out, _compact_config(args) if args.compact else None)
     summary = _run_plan_specs(args, tuning, store)
     if summary.failed or _pending(tuning, store):
         print(
@@ -716,6 +719,7 @@ def cmd_figure5(args: argparse.Namespace) -> int:
         visits=args.visits,
         max_simulations=args.max_simulations,
         env_id=normalize_problem(args.env),
+        image=args.image,
     )
     return 0
 
@@ -770,10 +774,100 @@ def _stored_note(path: str, specs: Sequence[Spec]) -> str:
     return f"; {done} already in the store" if done else ""
 
 
-def _open_store(path: str) -> ResultStore:
-    """The result store at ``path`` (created if missing), or a CLIError saying why not."""
+def _compact_config(args: argparse.Namespace) -> Any:
+    """The :class:`~voot.bench.compact.CompactConfig` of ``--compact-points/--compact-spacing``."""
+    from voot.bench.compact import CompactConfig
+
+    return CompactConfig(points=args.compact_points, spacing=args.compact_spacing)
+
+
+def _add_compact_options(p: argparse.ArgumentParser, prefix: str) -> None:
+    from voot.bench.compact import DEFAULT_POINTS, SPACINGS
+
+    p.add_argument(
+        f"--{prefix}points",
+        dest="compact_points",
+        type=int,
+        default=DEFAULT_POINTS,
+        help="simulation indices kept per cost curve (elapsed, cpu_elapsed, calls_curve),"
+        " plus the first and the last (default: %(default)s)",
+    )
+    p.add_argument(
+        f"--{prefix}spacing",
+        dest="compact_spacing",
+        choices=SPACINGS,
+        default="log",
+        help="spacing of those indices (default: %(default)s)",
+    )
+
+
+def cmd_compact(args: argparse.Namespace) -> int:
+    """Convert a result store into a compact one (:func:`voot.bench.store.compact_store`)."""
+    from voot.bench.store import compact_store
+
+    out = compact_store(args.src, args.dst, _compact_config(args))
+    mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
+    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if out["dst_bytes"] else ""
+    print(
+        f"{out['rows']} rows in {args.src} ({mb_src:.2f} MB of rows); {out['copied']} copied"
+        f" now, {out['rows'] - out['copied']} already there; {args.dst}: {mb_dst:.2f} MB of"
+        f" rows{ratio}"
+    )
+    return 0
+
+
+def cmd_shipped(args: argparse.Namespace) -> int:
+    """Check the committed stores against their manifest and redraw their figures
+    (:mod:`voot.bench.shipped`); with ``--write``, rewrite the manifest."""
+    from voot.bench import shipped
+
+    root = Path(args.root)
+    if not root.is_dir():
+        raise CLIError(f"{root}: no such folder (the committed stores are in docs/data)")
+    if args.write:
+        path = shipped.write_manifest(root)
+        for name, entry in shipped.read_manifest(root).items():
+            print(f"{name}: {entry['rows']} rows, sha256 {entry['sha256'][:12]}...")
+        print(f"manifest: {path}", file=sys.stderr)
+        return 0
+    out = Path(args.out) if args.out else None
+    for path in shipped.store_dirs(root):
+        got = shipped.check_store(root, path.name)
+        line = f"{path.name}: {got['rows']} rows, checksums and manifest ok"
+        if out is not None:
+            files = shipped.redraw(path, out / path.name)
+            line += f"; redrawn: {', '.join(f.name for f in files)}"
+        print(line, flush=True)
+    return 0
+
+
+def cmd_store_speed(args: argparse.Namespace) -> int:
+    """Print the size and load time of synthetic plan-row stores, full and compact."""
+    from voot.bench.store import time_load
+
+    if args.rows < 1 or args.length < 1:
+        raise CLIError("--rows and --length must be >= 1")
+    print(f"{args.rows} plan-like rows of {args.length} simulations (five curves each)")
+    print(
+        "| store | MB of rows | KB per row | write s | first load s | load s (lists)"
+        " | load s (arrays) | verify s |"
+    )
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for name, config in (("full", None), ("compact", _compact_config(args))):
+        t = time_load(args.rows, args.length, args.repeats, plan=True, compact=config)
+        print(
+            f"| {name} | {t['mb']:.2f} | {1000 * t['mb'] / args.rows:.1f} | {t['write']:.2f}"
+            f" | {t['cold']:.3f} | {t['warm']:.3f} | {t['warm_arrays']:.3f} | {t['verify']:.3f} |",
+            flush=True,
+        )
+    return 0
+
+
+def _open_store(path: str, compact: Any = None) -> ResultStore:
+    """The result store at ``path`` (created if missing, compact if ``compact``), or a
+    CLIError saying why not."""
     try:
-        return ResultStore(path)
+        return ResultStore(path, compact=compact)
     except OSError as exc:
         reason = exc.strerror or type(exc).__name__
         raise CLIError(
@@ -868,6 +962,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
     p.add_argument("--max-simulations", type=int, default=2000)
     p.add_argument("--env", default="kitchen", help="kitchen (v0, default) or kitchen_v1")
+    p.add_argument(
+        "--image",
+        default="kitchen_figure5.png",
+        help="image file name in --out (default: %(default)s); its counts go beside it as .json",
+    )
     p.set_defaults(func=cmd_figure5)
 
     p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
@@ -1010,7 +1109,53 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--compact",
+        action="store_true",
+        help="create --out as a compact store (step curves exact, cost curves at reduced"
+        " resolution; kept in its header, so later runs into it are compact too)",
+    )
+    _add_compact_options(p, "compact-")
     p.set_defaults(func=cmd_plan)
+
+    p = sub.add_parser(
+        "compact",
+        help="copy a result store into a compact one (resumable; the source is only read)",
+        description="Every row of SRC into the compact store DST: best_so_far and"
+        " objects_left exactly (their change points), elapsed, cpu_elapsed and calls_curve at"
+        " reduced resolution with their first and last values exact. Run ids are unchanged,"
+        " so a sweep resumed on DST skips every copied run.",
+    )
+    p.add_argument("src", help="the result store to read")
+    p.add_argument("dst", help="the compact store to write (created if missing)")
+    _add_compact_options(p, "")
+    p.set_defaults(func=cmd_compact)
+
+    p = sub.add_parser(
+        "shipped",
+        help="check the committed result stores (docs/data) against their manifest and"
+        " redraw their figures and tables",
+    )
+    p.add_argument(
+        "--root", default="docs/data", help="folder of the stores (default: %(default)s)"
+    )
+    p.add_argument("--out", default=None, help="redraw every store's figures and tables here")
+    p.add_argument("--write", action="store_true", help="rewrite the manifest (stores.json)")
+    p.set_defaults(func=cmd_shipped)
+
+    p = sub.add_parser(
+        "store-speed",
+        help="size and load time of a store of synthetic plan rows, full vs compact",
+    )
+    p.add_argument("--rows", type=int, default=1000, help="rows (default: %(default)s)")
+    p.add_argument(
+        "--length", type=int, default=3000, help="simulations per row (default: %(default)s)"
+    )
+    p.add_argument(
+        "--repeats", type=int, default=3, help="loads timed, best kept (default: %(default)s)"
+    )
+    _add_compact_options(p, "")
+    p.set_defaults(func=cmd_store_speed)
 
     p = sub.add_parser("select", help="selected hyperparameters per method (best mean final value)")
     p.add_argument("results", help="result store directory")

@@ -4,13 +4,22 @@ r"""``voot-bench figure5``: the paper's Figure 5 on the kitchen, recorded.
 it has been visited ``visits`` (50) times, for VOOT and PW-UCT (or any planners) on the
 same seed, and draws them side by side from the recordings over the kitchen's floor plan
 (:func:`voot.record.figure5.samples_figure`).
+
+Every placement drawn at the node is counted in one category (:class:`Figure5Run`):
+rejected by the pre-check (the feasibility check the retries make; on v1 the cheap
+kinematic one), executed and feasible, or executed and failed, by the reason in the
+environment's step info (:func:`failure_category`: on v1 ``forbidden room`` and ``no
+base path``, which only execution finds). The counts are shown next to each panel of the
+image, in the recording (a text panel) and written as JSON beside the image.
 """
 
 from __future__ import annotations
 
+import json
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +34,8 @@ from voot.tree.step_info import StepInfo
 
 #: Visits of the first object's place node at which Figure 5 is drawn (the paper's 50).
 FIGURE5_VISITS = 50
+#: Colour (RGB) of the executed placements that failed (forbidden rooms, no base path).
+EXECUTION_FAILED_COLOR = (220, 40, 40)
 
 
 @dataclass(frozen=True)
@@ -45,6 +56,9 @@ class Figure5Run:
         entity: the recording's entity of the node's placements (coloured by Q-hat);
             the rejected proposals are in the sibling entity ``.../rejected``.
         view: the name of the 3-D view in the recording's layout.
+        execution_failures: executed placements that failed, per
+            :func:`failure_category` of their step info's ``reason``.
+        precheck_failures: rejected proposals per category of the pre-check's reason.
     """
 
     planner: str
@@ -57,11 +71,67 @@ class Figure5Run:
     n_rejected: int
     entity: str
     view: str
+    execution_failures: dict[str, int] = field(default_factory=dict)
+    precheck_failures: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def n_drawn(self) -> int:
+        """Placements drawn at the node: executed ones and those the pre-check rejected."""
+        return self.n_samples + self.n_rejected
+
+    def counts(self) -> dict[str, Any]:
+        """The counts as plain values (the JSON written beside the image)."""
+        return {
+            "node_id": self.node_id,
+            "simulations": self.n_simulations,
+            "visits": self.visits,
+            "drawn": self.n_drawn,
+            "precheck_failed": self.n_rejected,
+            "precheck_failures": dict(sorted(self.precheck_failures.items())),
+            "executed": self.n_samples,
+            "feasible": self.n_feasible,
+            "execution_failed": self.n_samples - self.n_feasible,
+            "execution_failures": dict(sorted(self.execution_failures.items())),
+        }
+
+    def counts_text(self) -> str:
+        """The counts in a few lines (beside each panel, and in the recording)."""
+        fails = ", ".join(f"{k} {v}" for k, v in sorted(self.execution_failures.items()))
+        return (
+            f"{self.n_drawn} placements drawn: {self.n_feasible} feasible;"
+            f"\nfailed at execution: {self.n_samples - self.n_feasible}"
+            + (f" ({fails})" if fails else "")
+            + f";\nfailed the pre-check: {self.n_rejected}"
+        )
+
+    @property
+    def failed_entity(self) -> str:
+        """The entity of the executed placements that failed (red; drawn only if any)."""
+        return self.entity.rsplit("/", 1)[0] + "/failed_at_execution"
+
+    def panel_entities(self) -> list[str]:
+        """The entities of the image's panel, drawn in this order."""
+        extra = [self.failed_entity] if self.n_samples > self.n_feasible else []
+        return [self.rejected_entity, self.entity, *extra]
+
+    @property
+    def counts_entity(self) -> str:
+        """The entity of the counts' text in the recording."""
+        return self.entity.rsplit("/", 1)[0] + "/counts"
 
     @property
     def rejected_entity(self) -> str:
         """The entity of the rejected proposals."""
         return self.entity.rsplit("/", 1)[0] + "/rejected"
+
+
+def failure_category(reason: str) -> str:
+    """The category of an infeasible step's ``reason``: its words before the first ``:``
+    or `` (`` (``"forbidden room: the object ..."`` -> ``"forbidden room"``, ``"no base
+    path"`` as it is, ``"collision: wall"`` -> ``"collision"``); ``""`` for a feasible
+    step."""
+    head = reason.split(":", 1)[0].split(" (", 1)[0]
+    return head.strip()
 
 
 def _state_key(snapshot: Any) -> tuple[Any, bytes]:
@@ -85,6 +155,14 @@ class ProposalLog:
         self.unwrapped = problem.unwrapped
         #: ``(state key, info, feasible)`` of every check, in order.
         self.checks: list[tuple[tuple[Any, bytes], Any, bool]] = []
+
+    def __getattr__(self, name: str) -> Any:
+        """Everything else of the problem (its ``action_metric``, ``n_simulator_calls``
+        ...), so that the search sees the same problem with and without the log: a
+        missing ``action_metric`` would make VOO fall back to the Euclidean distance."""
+        if name == "problem":  # not set yet (e.g. while unpickling)
+            raise AttributeError(name)
+        return getattr(self.problem, name)
 
     def snapshot(self) -> Any:
         return self.problem.snapshot()
@@ -115,11 +193,20 @@ class ProposalLog:
         ]
         return np.array(poses, dtype=np.float64).reshape(-1, 3)
 
+    def rejected_reasons(self, snapshot: Any) -> list[str]:
+        """The pre-check's reasons of the rejected proposals made in ``snapshot``."""
+        state = _state_key(snapshot)
+        return [str(info.get("reason", "")) for k, info, ok in self.checks if not ok and k == state]
+
 
 def _first_place_node(mcts: MCTS, visits: int) -> int | None:
     """Id of a child of the root (a place node of the first object) with ``visits`` visits."""
     for child in mcts.root.children:
-        if child.visits >= visits and StepInfo.of(child.info).next_operator == "place":
+        if (
+            child.visits >= visits
+            and child.expandable
+            and StepInfo.of(child.info).next_operator == "place"
+        ):
             return child.id
     return None
 
@@ -134,6 +221,7 @@ def figure5(
     image: str | None = "kitchen_figure5.png",
     verbose: bool = True,
     env_id: str = KITCHEN_ID,
+    counts: str | None = None,
 ) -> dict[str, Figure5Run]:
     """Record each planner until the first object's place node has ``visits`` visits.
 
@@ -145,7 +233,10 @@ def figure5(
     feasibility check rejected at the node (:class:`ProposalLog`), in the infeasible
     colour, and opens on a Figure-5 layout (:func:`figure5_blueprint`). The panels are
     then drawn from the recordings over the floor plan
-    (:func:`voot.record.figure5.samples_figure`) into ``image`` (None: no image).
+    (:func:`voot.record.figure5.samples_figure`) into ``image`` (None: no image), each
+    panel with its counts (:meth:`Figure5Run.counts_text`), which go to the JSON file
+    ``counts`` in ``out_dir`` too (default: the image's name with ``.json``; none if
+    both are None).
 
     Raises:
         ValueError: if no place node gets ``visits`` visits within ``max_simulations``.
@@ -192,6 +283,28 @@ def figure5(
             assert res.mcts is not None
             node = res.mcts.nodes[node_id]
             rejected = problem.rejected(node.snapshot)
+            run = Figure5Run(
+                planner=key,
+                recording=rrd,
+                node_id=node_id,
+                n_simulations=n_sims,
+                visits=node.visits,
+                n_samples=len(node.actions),
+                n_feasible=int(sum(node.feasible)),
+                n_rejected=len(rejected),
+                entity=f"{folder}/placements",
+                view=view,
+                execution_failures=dict(
+                    Counter(
+                        failure_category(StepInfo.of(child.info).reason)
+                        for child, ok in zip(node.children, node.feasible, strict=True)
+                        if not ok
+                    )
+                ),
+                precheck_failures=dict(
+                    Counter(failure_category(r) for r in problem.rejected_reasons(node.snapshot))
+                ),
+            )
             rec.rec.reset_time()
             rec.rec.set_time(SEARCH_TIMELINE, sequence=n_sims - 1)
             rec.rec.log(
@@ -215,31 +328,54 @@ def figure5(
                 ),
                 static=True,
             )
+            failed = [
+                StepInfo.of(child.info).placement
+                for child, ok in zip(node.children, node.feasible, strict=True)
+                if not ok
+            ]
+            xy = np.array([p[:2] for p in failed if p is not None], dtype=np.float64)
+            if xy.size:
+                rec.rec.log(
+                    run.failed_entity,
+                    rr.Points3D(
+                        np.column_stack(  # a little above the grey ones at the same spots
+                            [xy.reshape(-1, 2), np.full(len(xy), config.floor_height + 0.02)]
+                        ),
+                        colors=np.tile(
+                            np.array(EXECUTION_FAILED_COLOR, dtype=np.uint8), (len(xy), 1)
+                        ),
+                        radii=1.2 * config.point_radius,
+                    ),
+                )
+            rec.rec.log(
+                run.counts_entity,
+                rr.TextDocument(
+                    f"**{name}**, {visits} visits\n\n" + "\n\n".join(run.counts_text().split("\n")),
+                    media_type=rr.MediaType.MARKDOWN,
+                ),
+            )
         if node.visits != first.mcts.nodes[node_id].visits:  # type: ignore[union-attr]
             raise RuntimeError(
                 "the recorded search differs from the first one (not deterministic?)"
             )
-        feasible = int(sum(node.feasible))
-        runs[key] = Figure5Run(
-            planner=key,
-            recording=rrd,
-            node_id=node_id,
-            n_simulations=n_sims,
-            visits=node.visits,
-            n_samples=len(node.actions),
-            n_feasible=feasible,
-            n_rejected=len(rejected),
-            entity=f"{folder}/placements",
-            view=view,
-        )
+        runs[key] = run
         if verbose:
+            fails = ", ".join(f"{k} {v}" for k, v in sorted(run.execution_failures.items()))
             print(
                 f"{key}: place node {node_id} reached {node.visits} visits after {n_sims}"
-                f" simulations; {len(node.actions)} placements executed ({feasible} feasible),"
+                f" simulations; {run.n_drawn} placements drawn: {run.n_samples} executed"
+                f" ({run.n_feasible} feasible{'; failed: ' + fails if fails else ''}),"
                 f" {len(rejected)} rejected by the feasibility check"
                 f" ({time.perf_counter() - t0:.1f} s) -> {rrd}",
                 flush=True,
             )
+    counts_name = counts or (str(Path(image).with_suffix(".json")) if image else None)
+    if counts_name is not None and runs:
+        meta = {"env_id": env_id, "seed": seed, "visits": visits}
+        data = {**meta, "planners": {k: r.counts() for k, r in runs.items()}}
+        (out / counts_name).write_text(json.dumps(data, indent=1) + "\n")
+        if verbose:
+            print(f"counts -> {out / counts_name}")
     if image is not None and runs:
         from voot.record.figure5 import samples_figure
 
@@ -248,14 +384,16 @@ def figure5(
         fig = samples_figure(
             {names[k]: r.recording for k, r in runs.items()},
             out / image,
-            {names[k]: [r.rejected_entity, r.entity] for k, r in runs.items()},
+            {names[k]: r.panel_entities() for k, r in runs.items()},
             xlim=(env.config.house[0] - 0.1, env.config.house[1] + 0.1),
             ylim=(env.config.house[2] - 0.1, env.config.house[3] + 0.1),
             point_size=10.0,
             background=floor_plan(env),
+            notes={names[k]: r.counts_text() for k, r in runs.items()},
             title=(
                 f"Placements sampled at the first object's place node after {visits} visits"
-                f" (seed {seed}): colour = Q-hat (viridis), grey = infeasible"
+                f" (seed {seed}): colour = Q-hat (viridis), grey = infeasible, red ="
+                " failed at execution"
             ),
         )
         if verbose:
@@ -285,6 +423,7 @@ def figure5_blueprint(title: str, folder: str) -> Any:
             f"- /{SCENE}/plan/**",
             f"+ /{folder}/placements",
             f"+ /{folder}/rejected",
+            f"+ /{folder}/failed_at_execution",
             f"+ /{SCENE}/forbidden_rooms",
         ],
         eye_controls=rrb.EyeControls3D(
@@ -293,6 +432,7 @@ def figure5_blueprint(title: str, folder: str) -> Any:
         line_grid=False,
     )
     side = rrb.Vertical(
+        rrb.TextDocumentView(origin=f"/{folder}/counts", name="Samples at the node"),
         rrb.TimeSeriesView(origin=f"/{BEST_RETURN}", name="Best return"),
         rrb.TimeSeriesView(origin=f"/{N_NODES}", name="Tree nodes"),
     )

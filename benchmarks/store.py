@@ -82,6 +82,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.bench.compact import (
+    COMPACT_KEY,
+    INTERPOLATED_KEY,
+    SAMPLED_KEYS,
+    STEP_KEYS,
+    CompactConfig,
+    check_compact,
+    check_roundtrip,
+    compact_row,
+    expand_row,
+)
+
 #: Name written in the header; anything else is a foreign directory.
 FORMAT_NAME = "voot-results"
 #: Version of the header and row layout. Bump on incompatible changes.
@@ -118,10 +130,11 @@ REQUIRED_KEYS = (
 STATUSES = ("ok", "failed")
 #: Row keys holding one number per step (per evaluation or simulation). The index keeps
 #: them as float64 arrays; ``best_so_far`` is required, the others optional (``elapsed``:
-#: seconds after every simulation; ``objects_left``: objects still to handle at the best
-#: leaf, ``null`` where unknown, which becomes NaN in arrays; ``cpu_elapsed``: CPU
-#: seconds after every simulation; ``calls_curve``: cumulative simulator calls).
-CURVE_KEYS = ("best_so_far", "elapsed", "objects_left", "cpu_elapsed", "calls_curve")
+#: seconds after every simulation, ``cpu_elapsed`` the same in CPU time; ``calls_curve``:
+#: simulator calls so far; ``objects_left``: objects still to handle at the best
+#: leaf, ``null`` where unknown, which becomes NaN in arrays). A compact store
+#: (:mod:`voot.bench.compact`) stores them in a row's ``"compact"`` object instead.
+CURVE_KEYS = (*STEP_KEYS, *SAMPLED_KEYS)
 #: Curves of whole counts: read back as lists of ``int`` (the index holds float64).
 INTEGER_CURVE_KEYS = ("calls_curve",)
 
@@ -284,7 +297,8 @@ def check_row(row: Any, source: str = "row") -> Row:
     """Return ``row`` if it has the row layout, else raise :class:`StoreError` naming ``source``."""
     if not isinstance(row, dict):
         raise StoreError(f"{source}: a row must be a JSON object, got {type(row).__name__}")
-    missing = [k for k in REQUIRED_KEYS if k not in row]
+    compact = COMPACT_KEY in row
+    missing = [k for k in REQUIRED_KEYS if k not in row and not (compact and k == "best_so_far")]
     if missing:
         raise StoreError(f"{source}: not a voot result row (missing keys {missing})")
     if row["schema"] != SCHEMA_VERSION:
@@ -293,6 +307,17 @@ def check_row(row: Any, source: str = "row") -> Row:
         )
     if row["status"] not in STATUSES:
         raise StoreError(f"{source}: status {row['status']!r} is not one of {STATUSES}")
+    if compact:
+        try:
+            check_compact(row[COMPACT_KEY])
+        except ValueError as exc:
+            raise StoreError(
+                f"{source}: corrupt compact result row ({exc}); move or delete this file to"
+                " rerun that run"
+            ) from None
+        if not isinstance(row["config"], dict):
+            raise StoreError(f"{source}: 'config' must be an object")
+        return row
     if not isinstance(row["config"], dict) or not isinstance(row["best_so_far"], list):
         raise StoreError(f"{source}: 'config' must be an object and 'best_so_far' a list")
     return row
@@ -343,13 +368,23 @@ class ResultStore:
         create: create the directory and header if ``path`` does not exist or is an
             empty directory. With ``create=False`` a missing store raises
             :class:`StoreError`.
+        compact: create a *compact* store (:mod:`voot.bench.compact`): its header keeps
+            this config and every row is written compact, whoever opens it later. For an
+            existing store it must be None or the store's own config.
 
     Raises:
         StoreError: ``path`` is a file, a non-empty directory without header, or has a
-            header of another format or schema.
+            header of another format or schema; ``compact`` given for an existing store
+            with another (or no) compact config.
     """
 
-    def __init__(self, path: str | os.PathLike[str], *, create: bool = True) -> None:
+    def __init__(
+        self,
+        path: str | os.PathLike[str],
+        *,
+        create: bool = True,
+        compact: CompactConfig | None = None,
+    ) -> None:
         self.path = Path(path)
         self.header_path = self.path / HEADER_NAME
         self.runs_path = self.path / RUNS_DIR
@@ -364,12 +399,22 @@ class ResultStore:
                 )
             if not create:
                 raise StoreError(f"{self.path}: no voot result store here (no {HEADER_NAME})")
-            self._create()
+            self._create(compact)
         self.header = self._read_header()
+        if compact is not None and compact != self.compact:
+            what = (
+                "a full-resolution store"
+                if self.compact is None
+                else f"compact with {self.compact}"
+            )
+            raise StoreError(
+                f"{self.path}: this store is {what}, not compact with {compact}; use it"
+                " without --compact, or convert it into a new store with voot-bench compact"
+            )
         self.runs_path.mkdir(exist_ok=True)
 
     # ----- header ---------------------------------------------------------------------
-    def _create(self) -> None:
+    def _create(self, compact: CompactConfig | None = None) -> None:
         self.path.mkdir(parents=True, exist_ok=True)
         header = {
             "format": FORMAT_NAME,
@@ -378,6 +423,8 @@ class ResultStore:
             "created_by": dict(versions()),
             "row_checksum": ROW_CHECKSUM,
         }
+        if compact is not None:
+            header[COMPACT_KEY] = compact.to_dict()
         _write_atomic(self.header_path, (json.dumps(header, indent=1) + "\n").encode())
 
     def _read_header(self) -> dict[str, Any]:
@@ -404,6 +451,13 @@ class ResultStore:
             )
         #: Whether every row must carry a checksum (stores created with checksums).
         self.checksums_required = checksum == ROW_CHECKSUM
+        #: How rows are compacted on write (None: a full-resolution store).
+        self.compact: CompactConfig | None = None
+        if COMPACT_KEY in header:
+            try:
+                self.compact = CompactConfig.from_dict(header[COMPACT_KEY])
+            except ValueError as exc:
+                raise StoreError(f"{self.header_path}: bad compact settings ({exc})") from None
         return header
 
     # ----- rows -----------------------------------------------------------------------
@@ -418,9 +472,15 @@ class ResultStore:
 
         An earlier *failed* row of the same run id is replaced. A finished (``"ok"``) row
         is never replaced: the store keeps it and the call returns its path. An existing
-        file that does not parse raises :class:`StoreError` and is left as it is.
+        file that does not parse raises :class:`StoreError` and is left as it is. A
+        compact store writes the row compact (:func:`~voot.bench.compact.compact_row`), a
+        full store writes a compact row expanded.
         """
         check_row(row)
+        if self.compact is not None:
+            row = compact_row({k: v for k, v in row.items() if k != INTERPOLATED_KEY}, self.compact)
+        else:
+            row = expand_row(row)
         path = self.row_path(str(row["run_id"]))
         if path.exists() and self._read_row(path)["status"] == "ok":
             return path
@@ -455,27 +515,41 @@ class ResultStore:
             )
         return [self.runs_path / n for n in names]
 
-    def iter_rows(self) -> Iterator[Row]:
-        """Every row read from its file, validated; raises :class:`StoreError` on the first
-        corrupt file. (:meth:`load` is faster: it reuses the index.)"""
+    def iter_rows(self, *, expand: bool = True) -> Iterator[Row]:
+        """Every row read from its file, validated (compact rows expanded unless not
+        ``expand``); raises :class:`StoreError` on the first corrupt file. (:meth:`load`
+        is faster: it reuses the index.)"""
         for path in self.row_files():
-            yield self._read_row(path)
+            row = self._read_row(path)
+            yield expand_row(row) if expand else row
 
     def load(
-        self, kind: str | None = None, status: str | None = "ok", *, arrays: bool = False
+        self,
+        kind: str | None = None,
+        status: str | None = "ok",
+        *,
+        arrays: bool = False,
+        expand: bool = True,
     ) -> list[Row]:
         """All rows of ``kind`` (any if None) with ``status`` (any if None), in file order.
 
         With ``arrays`` each curve (:data:`CURVE_KEYS`: ``best_so_far`` and, when present,
-        ``elapsed`` and ``objects_left``) is a read-only float64 array (no list copy).
-        Rows are read through the index (see :meth:`_load_indexed`), so only row files
-        written or changed since the last load are parsed.
+        ``elapsed``, ``objects_left`` ...) is a read-only float64 array (no list copy).
+        Compact rows come expanded to full length (:func:`~voot.bench.compact.expand_row`:
+        step curves exact, cost curves interpolated and named in ``"interpolated"``), so
+        readers see no difference; ``expand=False`` leaves them compact (e.g. to resume,
+        which needs only run ids). Rows are read through the index (see
+        :meth:`_load_indexed`), so only row files written or changed since the last load
+        are parsed.
         """
-        return [
+        rows = [
             r
             for r in self._load_indexed(arrays)
             if (kind is None or r["kind"] == kind) and (status is None or r["status"] == status)
         ]
+        if expand:
+            rows = [expand_row(r, arrays=arrays) if COMPACT_KEY in r else r for r in rows]
+        return rows
 
     # ----- index: a cache of parsed rows -----------------------------------------------
     def verify(self) -> int:
@@ -602,17 +676,75 @@ class ResultStore:
     def get(self, run_id: str) -> Row | None:
         """The row of ``run_id``, or None."""
         path = self.row_path(run_id)
-        return self._read_row(path) if path.exists() else None
+        return expand_row(self._read_row(path)) if path.exists() else None
 
     def finished_ids(self, kind: str | None = None) -> set[str]:
         """Run ids with an ``"ok"`` row: a resumed sweep skips these."""
-        return {r["run_id"] for r in self.load(kind=kind, status="ok", arrays=True)}
+        rows = self.load(kind=kind, status="ok", arrays=True, expand=False)
+        return {r["run_id"] for r in rows}
 
     def __len__(self) -> int:
         return len(self.row_files())
 
     def __repr__(self) -> str:
         return f"ResultStore({str(self.path)!r})"
+
+
+def compact_store(
+    src: str | os.PathLike[str],
+    dst: str | os.PathLike[str],
+    config: CompactConfig | None = None,
+) -> dict[str, int]:
+    """Copy every row of the store ``src`` into the compact store ``dst``.
+
+    ``dst`` is created compact with ``config`` (default :class:`CompactConfig()`) or, if it
+    exists, must be a compact store of that config (an interrupted conversion resumes:
+    rows already in ``dst`` are kept, the rest copied). Each compacted row is checked to
+    expand back to its source (:func:`~voot.bench.compact.check_roundtrip`: step curves bit
+    for bit, cost curves at the kept indices) before it is written; ``src`` is only read.
+    Run ids are unchanged, so a sweep resumed on ``dst`` skips every copied run.
+
+    Returns:
+        ``{"rows": rows in src, "copied": rows written now, "src_bytes": size of src's row
+        files, "dst_bytes": size of dst's}``.
+
+    Raises:
+        StoreError: ``src`` is not a store or has a corrupt row; ``dst`` is not a compact
+            store of ``config``; ``src`` and ``dst`` are one directory.
+    """
+    source = ResultStore(src, create=False)
+    config = config if config is not None else CompactConfig()
+    if Path(dst).resolve() == source.path.resolve():
+        raise StoreError(f"{dst}: the compact copy must go to another directory than {src}")
+    target = ResultStore(dst, compact=config)
+    done = {p.stem for p in target.row_files()}
+    rows = copied = 0
+    for row in source.iter_rows(expand=False):
+        rows += 1
+        if row["run_id"] in done:
+            continue
+        if COMPACT_KEY in row:  # already compact: re-compacting would sample interpolations
+            if source.compact != config:
+                raise StoreError(
+                    f"{source.path}: a compact store of {source.compact}; it can be copied"
+                    f" only into a compact store of the same settings, not {config}"
+                )
+            target.write(row)
+            copied += 1
+            continue
+        full = row
+        small = compact_row(full, config)
+        try:
+            check_roundtrip(full, small)
+        except ValueError as exc:  # pragma: no cover - a bug in the codecs
+            raise StoreError(f"{source.path}: {exc}") from None
+        target.write(small)
+        copied += 1
+
+    def size(store: ResultStore) -> int:
+        return sum(p.stat().st_size for p in store.row_files())
+
+    return {"rows": rows, "copied": copied, "src_bytes": size(source), "dst_bytes": size(target)}
 
 
 def curves(rows: Iterable[Row]) -> NDArray[np.float64]:
@@ -632,19 +764,54 @@ def curves(rows: Iterable[Row]) -> NDArray[np.float64]:
     return out
 
 
+def synthetic_plan_row(i: int, length: int, rng: np.random.Generator) -> Row:
+    """A plan-like row for the store benchmarks: step curves (``best_so_far``,
+    ``objects_left``) that change at a few dozen simulations, and cost curves
+    (``elapsed``, ``cpu_elapsed``, ``calls_curve``) that rise at every one."""
+    jumps = rng.random(length) < min(1.0, 40.0 / length)
+    jumps[0] = True
+    best = np.cumsum(np.where(jumps, rng.random(length), 0.0)) - 2.0
+    left = np.maximum(20 - np.cumsum(jumps), 0).astype(np.float64)
+    step = rng.uniform(0.002, 0.02, length)
+    elapsed = np.round(np.cumsum(step), 6)
+    config = {"problem": "conveyor_v1", "planner": "voot", "simulations": length, "seed": i}
+    return make_row(
+        "plan",
+        config,
+        status="ok",
+        wall_time=float(elapsed[-1]),
+        best_so_far=best,
+        objects_left=left.tolist(),
+        elapsed=elapsed.tolist(),
+        cpu_elapsed=np.round(0.97 * elapsed, 6).tolist(),
+        calls_curve=np.cumsum(rng.integers(1, 60, length)).tolist(),
+    )
+
+
 def time_load(
-    n_rows: int = 1000, length: int = 1000, repeats: int = 3, path: str | None = None
+    n_rows: int = 1000,
+    length: int = 1000,
+    repeats: int = 3,
+    path: str | None = None,
+    *,
+    plan: bool = False,
+    compact: CompactConfig | None = None,
 ) -> dict[str, float]:
     """Seconds to :meth:`ResultStore.load` a store of ``n_rows`` rows, cold and warm.
 
     Builds the store in a temporary directory (or in ``path``, which must not exist),
     each row a ``bbfo``-like run with a ``length``-step ``best_so_far`` curve. *Cold* is
     the first load (every row file parsed, the index written), *warm* the best of
-    ``repeats`` later loads (through the index), of a store at rest (rows written
+    ``repeats`` later loads (through the index; ``warm_arrays`` the same with
+    ``arrays=True``, as ``voot-bench plot`` reads), of a store at rest (rows written
     within :data:`RACY_NS` of a load are re-read, so the benchmark waits that long
     after writing, outside the timings). Also returns ``write`` (seconds to
     write all rows), ``verify`` (best :meth:`ResultStore.verify`, the full audit) and
     ``mb`` (megabytes of row files).
+
+    With ``plan`` the rows are plan-like (:func:`synthetic_plan_row`: five curves of
+    ``length`` entries); with ``compact`` the store is a compact one of that config (its
+    loads include expanding every row to full length).
     """
     import shutil
 
@@ -652,10 +819,13 @@ def time_load(
         raise ValueError("n_rows, length and repeats must be >= 1")
     root = Path(tempfile.mkdtemp(prefix="voot-store-bench-")) if path is None else Path(path)
     try:
-        store = ResultStore(root / "store")
+        store = ResultStore(root / "store", compact=compact)
         rng = np.random.default_rng(0)
         t0 = time.perf_counter()
         for i in range(n_rows):
+            if plan:
+                store.write(synthetic_plan_row(i, length, rng))
+                continue
             curve = np.maximum.accumulate(rng.standard_normal(length))
             config = {"function": "shekel", "dim": 20, "method": "voo", "seed": i}
             store.write(make_row("bbfo", config, status="ok", wall_time=1.0, best_so_far=curve))
@@ -666,17 +836,27 @@ def time_load(
         rows = ResultStore(root / "store", create=False).load()
         cold = time.perf_counter() - t0
         assert len(rows) == n_rows
-        warm = audit = math.inf
+        warm = warm_arrays = audit = math.inf
         for _ in range(repeats):
             t0 = time.perf_counter()
             ResultStore(root / "store", create=False).load()
             warm = min(warm, time.perf_counter() - t0)
+            t0 = time.perf_counter()
+            ResultStore(root / "store", create=False).load(arrays=True)
+            warm_arrays = min(warm_arrays, time.perf_counter() - t0)
         verify = getattr(store, "verify", None)
         for _ in range(repeats if callable(verify) else 0):
             t0 = time.perf_counter()
             verify()  # type: ignore[misc]
             audit = min(audit, time.perf_counter() - t0)
-        return {"write": written, "cold": cold, "warm": warm, "verify": audit, "mb": size / 1e6}
+        return {
+            "write": written,
+            "cold": cold,
+            "warm": warm,
+            "warm_arrays": warm_arrays,
+            "verify": audit,
+            "mb": size / 1e6,
+        }
     finally:
         if path is None:
             shutil.rmtree(root, ignore_errors=True)

@@ -486,7 +486,7 @@ def pending_specs(specs: Sequence[S], store: ResultStore, *, retry_failed: bool 
     A run with an ``"ok"`` row is finished. With ``retry_failed=False`` a run with a
     ``"failed"`` row counts as finished too.
     """
-    rows = store.load(status=None, arrays=True)
+    rows = store.load(status=None, arrays=True, expand=False)
     done = {r["run_id"] for r in rows if r["status"] == "ok" or not retry_failed}
     unique: dict[str, S] = {}
     for s in specs:

@@ -54,3 +54,71 @@ def test_bad_input(tmp_path: Path) -> None:
         figure5(tmp_path, visits=0)
     with pytest.raises(ValueError, match="no place node"):
         figure5(tmp_path, seed=0, planners=("voot",), visits=50, max_simulations=5, image=None)
+
+
+def test_failure_category_is_the_reason_before_its_details() -> None:
+    from voot.bench.kitchen_figure5 import failure_category
+
+    assert failure_category("forbidden room: the object is in the rooms behind the door") == (
+        "forbidden room"
+    )
+    assert failure_category("no base path") == "no base path"
+    assert failure_category("collision: wall_3, table") == "collision"
+    assert failure_category("non-clearing place at the penalty cap (base path 3.1 m >= 3)") == (
+        "non-clearing place at the penalty cap"
+    )
+    assert failure_category("") == ""
+
+
+def test_v1_counts_add_up_and_come_from_the_env_step_info(tmp_path: Path) -> None:
+    import json
+    from collections import Counter
+
+    from voot.bench.kitchen_demo import options_for
+    from voot.bench.kitchen_figure5 import failure_category
+    from voot.tree.mcts import plan
+
+    env_id = "voot/KitchenClearing-v1"
+    runs = figure5(
+        tmp_path,
+        seed=0,
+        planners=("rand_doot", "voot"),
+        visits=12,
+        max_simulations=400,
+        verbose=False,
+        env_id=env_id,
+        image="f5.png",
+    )
+    saved = json.loads((tmp_path / "f5.json").read_text())
+    assert saved["env_id"] == env_id and saved["visits"] == 12
+    failed_somewhere = False
+    for key, r in runs.items():
+        counts = r.counts()
+        assert saved["planners"][key] == counts
+        assert counts["drawn"] == counts["executed"] + counts["precheck_failed"] == r.n_drawn
+        assert counts["executed"] == counts["feasible"] + sum(r.execution_failures.values())
+        assert counts["precheck_failed"] == sum(r.precheck_failures.values())
+        assert "" not in r.execution_failures and "" not in r.precheck_failures
+        # replay every executed placement through env.step: the same categories
+        res = plan(make_problem(0, env_id), key, r.n_simulations, 0, **options_for(env_id, key))
+        assert res.mcts is not None
+        node = res.mcts.nodes[r.node_id]
+        assert node.visits == r.visits and len(node.actions) == r.n_samples
+        problem = make_problem(0, env_id)
+        replayed: Counter[str] = Counter()
+        for action in node.actions:
+            problem.restore(node.snapshot)
+            step = problem.step(action)
+            if not step.feasible:
+                replayed[failure_category(str(step.info["reason"]))] += 1
+        assert dict(replayed) == r.execution_failures
+        assert set(r.execution_failures) <= {"forbidden room", "no base path"}
+        rec = read_recording(r.recording)
+        text = rec.latest(r.counts_entity, "TextDocument:text", "search")
+        assert r.counts_text().split("\n")[0] in str(text)
+        if r.n_samples > r.n_feasible:
+            failed_somewhere = True
+            _, positions = rec.column(r.failed_entity, "Points3D:positions", "search")[-1]
+            assert len(positions) == r.n_samples - r.n_feasible
+    assert failed_somewhere  # v1 finds forbidden rooms and base paths only at execution
+    assert (tmp_path / "f5.png").stat().st_size > 10_000

@@ -354,3 +354,44 @@ def test_v1_calls_curve_counts_prechecks_beside_the_problems_own_count() -> None
     assert r["n_feasibility_checks"] > 0 and r["simulator_calls"] == r["n_steps"]
     again = run_plan_spec(replace(spec))
     assert again["calls_curve"] == r["calls_curve"] and again["best_so_far"] == r["best_so_far"]
+
+
+class NeverRuns:
+    """A backend that fails the test if the sweep asks it to run anything."""
+
+    name = "never"
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        assert not list(items), f"a finished sweep ran {len(list(items))} runs again"
+        return iter(())
+
+
+def test_interrupted_sweep_into_a_compact_store_resumes_and_then_runs_nothing(
+    tmp_path: Path,
+) -> None:
+    from voot.bench.compact import CompactConfig
+
+    specs = tiny(sims=40)
+    full = ResultStore(tmp_path / "full")
+    run_sweep(specs, full, SerialBackend(), progress=False)
+    store = ResultStore(tmp_path / "compact", compact=CompactConfig(points=8))
+    with pytest.raises(KeyboardInterrupt):
+        run_sweep(specs, store, Interrupting(after=2), progress=False)
+    first = {p.name: p.read_bytes() for p in store.row_files()}
+    assert len(first) == 2 and all(b'"compact"' in data for data in first.values())
+    # a later session (another process, another machine) opens it without any flag
+    again = ResultStore(tmp_path / "compact", create=False)
+    assert again.compact == CompactConfig(points=8)
+    summary = run_sweep(specs, again, SerialBackend(), progress=False)
+    assert summary.skipped == 2 and summary.ran == len(specs) - 2
+    for name, data in first.items():
+        assert (store.runs_path / name).read_bytes() == data
+    done = run_sweep(specs, ResultStore(tmp_path / "compact"), NeverRuns(), progress=False)
+    assert done.skipped == len(specs) and done.ran == 0
+    by_id = {r["run_id"]: r for r in full.load()}
+    for r in again.load():
+        want = by_id[r["run_id"]]
+        assert r["best_so_far"] == want["best_so_far"]  # exact
+        assert r.get("objects_left") == want.get("objects_left")
+        assert len(r["elapsed"]) == 40 and np.all(np.diff(r["elapsed"]) >= 0)  # timings differ
+        assert set(r["interpolated"]) == {"elapsed", "cpu_elapsed", "calls_curve"}

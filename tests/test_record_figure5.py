@@ -73,3 +73,24 @@ def test_several_entities_per_panel_and_a_background(tmp_path: Path) -> None:
         )
     with pytest.raises(ValueError, match="empty list"):
         samples_figure({"A": paths["voot"]}, tmp_path / "x.png", {"A": []})
+
+
+def test_notes_are_written_under_their_panels(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = tmp_path / "chain.rrd"
+    record_plan(make_chain("shekel", 3, threshold=0.5), path, "voot", 30, seed=0)
+    import matplotlib.axes
+
+    written: list[str] = []
+    real_text = matplotlib.axes.Axes.text
+
+    def text(self: object, x: float, y: float, s: str, *args: object, **kwargs: object) -> object:
+        written.append(s)
+        return real_text(self, x, y, s, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(matplotlib.axes.Axes, "text", text)
+    out = samples_figure(
+        {"A": path, "B": path}, tmp_path / "n.png", "samples/root", notes={"A": "3 feasible"}
+    )
+    assert out.stat().st_size > 5000 and written == ["3 feasible"]  # B has no note

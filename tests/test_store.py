@@ -352,7 +352,7 @@ def test_an_old_store_without_checksums_still_loads(tmp_path: Path) -> None:
 def test_time_load_measures_a_small_store(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(store_mod, "RACY_NS", 0)
     out = store_mod.time_load(5, 10, repeats=1, path=str(tmp_path / "bench"))
-    assert set(out) == {"write", "cold", "warm", "verify", "mb"}
+    assert set(out) == {"write", "cold", "warm", "warm_arrays", "verify", "mb"}
     assert all(v >= 0 for v in out.values())
     assert 0 < out["mb"] < 0.01  # five rows of ten steps: a few kB
     assert (tmp_path / "bench" / "store").is_dir()  # a given path is kept
@@ -520,3 +520,127 @@ def test_time_load_arguments_and_timings(monkeypatch: pytest.MonkeyPatch) -> Non
     out = store_mod.time_load(1, 1, repeats=1)  # in a temporary directory
     elapsed = time.perf_counter() - began
     assert all(0 <= out[k] <= elapsed for k in ("write", "cold", "warm", "verify"))
+
+
+# ----- compact stores -----------------------------------------------------------------------
+def plan_rows(n: int, length: int = 600) -> list[dict]:
+    rng = np.random.default_rng(1)
+    return [store_mod.synthetic_plan_row(i, length, rng) for i in range(n)]
+
+
+def test_a_compact_store_writes_compact_rows_and_reads_them_back_full(tmp_path: Path) -> None:
+    from voot.bench.compact import CompactConfig
+
+    rows = plan_rows(4)
+    full = ResultStore(tmp_path / "full")
+    small = ResultStore(tmp_path / "small", compact=CompactConfig(points=20))
+    for r in rows:
+        full.write(r)
+        small.write(r)
+    size = sum(p.stat().st_size for p in small.row_files())
+    assert size * 5 < sum(p.stat().st_size for p in full.row_files())
+    header = json.loads((tmp_path / "small" / HEADER_NAME).read_bytes())
+    assert header["compact"] == {"version": 1, "points": 20, "spacing": "log"}
+    assert small.verify() == 4
+    for loaded in (
+        small.load(),
+        small.load(),
+        list(small.iter_rows()),
+        [small.get(rows[0]["run_id"])],
+    ):
+        for r in loaded:
+            assert r is not None
+            want = next(w for w in rows if w["run_id"] == r["run_id"])
+            assert r["best_so_far"] == want["best_so_far"]
+            assert r["objects_left"] == want["objects_left"]
+            assert r["elapsed"][-1] == want["elapsed"][-1] and len(r["elapsed"]) == 600
+            assert r["interpolated"] == ["calls_curve", "cpu_elapsed", "elapsed"]
+    arrays = small.load(arrays=True)
+    assert all(isinstance(r["calls_curve"], np.ndarray) for r in arrays)
+    raw = small.load(expand=False)
+    assert all("compact" in r and "best_so_far" not in r for r in raw)
+    assert small.finished_ids() == {r["run_id"] for r in rows}
+    # an expanded row written into a full store keeps its mark; into the compact one: kept
+    other = ResultStore(tmp_path / "other")
+    other.write(small.load()[0])
+    assert "interpolated" in other.load()[0] and "compact" not in other.load()[0]
+
+
+def test_compact_settings_persist_and_a_mismatch_is_refused(tmp_path: Path) -> None:
+    from voot.bench.compact import CompactConfig
+
+    ResultStore(tmp_path / "c", compact=CompactConfig())
+    assert ResultStore(tmp_path / "c").compact == CompactConfig()
+    assert ResultStore(tmp_path / "c", compact=CompactConfig()).compact == CompactConfig()
+    with pytest.raises(StoreError, match="voot-bench compact"):
+        ResultStore(tmp_path / "c", compact=CompactConfig(points=7))
+    ResultStore(tmp_path / "f")
+    with pytest.raises(StoreError, match="full-resolution store"):
+        ResultStore(tmp_path / "f", compact=CompactConfig())
+    header = tmp_path / "c" / HEADER_NAME
+    data = json.loads(header.read_bytes())
+    data["compact"]["spacing"] = "cubic"
+    header.write_text(json.dumps(data))
+    with pytest.raises(StoreError, match=r"bad compact settings.*log, linear"):
+        ResultStore(tmp_path / "c")
+
+
+def test_a_corrupt_compact_row_is_a_store_error_naming_the_file(tmp_path: Path) -> None:
+    from voot.bench.compact import CompactConfig
+
+    store = ResultStore(tmp_path / "c", compact=CompactConfig())
+    path = store.write(plan_rows(1)[0])
+    row = json.loads(path.read_bytes())
+    row.pop("checksum")
+    row["compact"]["curves"]["elapsed"]["codec"] = "zip"
+    path.write_bytes(store_mod.row_bytes(row))  # a valid checksum over bad content
+    with pytest.raises(StoreError, match=rf"{path.name}.*corrupt compact.*steps, sampled"):
+        store.load()
+    row["compact"]["curves"]["elapsed"]["codec"] = "sampled"
+    data = store_mod.row_bytes(row)
+    path.write_bytes(data.replace(b'"n":600', b'"n":601', 1))  # valid layout, wrong checksum
+    with pytest.raises(StoreError, match="changed since it was written"):
+        ResultStore(tmp_path / "c").verify()
+
+
+def test_compact_store_converts_resumes_and_keeps_the_source(tmp_path: Path) -> None:
+    from voot.bench.compact import CompactConfig
+
+    src = ResultStore(tmp_path / "src")
+    rows = plan_rows(3)
+    for r in rows:
+        src.write(r)
+    src.write(row(9, status="failed"))
+    before = {p.name: p.read_bytes() for p in src.row_files()}
+    out = store_mod.compact_store(tmp_path / "src", tmp_path / "dst")
+    assert out["rows"] == out["copied"] == 4 and out["dst_bytes"] * 5 < out["src_bytes"]
+    assert {p.name: p.read_bytes() for p in src.row_files()} == before
+    dst = ResultStore(tmp_path / "dst")
+    assert dst.compact == CompactConfig()
+    assert {r["run_id"] for r in dst.load(status=None)} == {p.stem for p in src.row_files()}
+    assert len(dst.load(status="failed")) == 1
+    (dst.runs_path / f"{rows[0]['run_id']}.json").unlink()  # as if interrupted before it
+    again = store_mod.compact_store(tmp_path / "src", tmp_path / "dst")
+    assert again["copied"] == 1 and again["rows"] == 4
+    # a compact source copies as it is into the same settings, and is refused for others
+    assert store_mod.compact_store(tmp_path / "dst", tmp_path / "dst2")["copied"] == 4
+    with pytest.raises(StoreError, match="same settings"):
+        store_mod.compact_store(tmp_path / "dst", tmp_path / "dst3", CompactConfig(points=5))
+    with pytest.raises(StoreError, match="another directory"):
+        store_mod.compact_store(tmp_path / "src", tmp_path / "src")
+    with pytest.raises(StoreError, match="full-resolution"):
+        store_mod.compact_store(tmp_path / "dst", tmp_path / "src")
+    with pytest.raises(StoreError, match="no voot result store"):
+        store_mod.compact_store(tmp_path / "missing", tmp_path / "dst4")
+
+
+def test_time_load_of_a_compact_plan_store(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from voot.bench.compact import CompactConfig
+
+    monkeypatch.setattr(store_mod, "RACY_NS", 0)
+    full = store_mod.time_load(3, 300, repeats=1, path=str(tmp_path / "a"), plan=True)
+    small = store_mod.time_load(
+        3, 300, repeats=1, path=str(tmp_path / "b"), plan=True, compact=CompactConfig()
+    )
+    assert small["mb"] * 3 < full["mb"]
+    assert ResultStore(tmp_path / "b" / "store").compact == CompactConfig()

@@ -68,6 +68,7 @@ def samples_figure(
     point_size: float = 14.0,
     background: Callable[[Any], None] | None = None,
     title: str | None = None,
+    notes: Mapping[str, str] | None = None,
 ) -> Path:
     """Draw ``entity``'s latest samples of each recording (title: its key) into ``out``.
 
@@ -84,6 +85,8 @@ def samples_figure(
         background: called with each panel's matplotlib ``Axes`` before the samples
             are drawn (e.g. to draw the floor plan underneath).
         title: the figure's title (default: the entity and the colour legend).
+        notes: per panel title, a text written under the panel (e.g. the counts of
+            feasible and failed samples).
     """
     if not recordings:
         raise ValueError("recordings must name at least one .rrd file")
@@ -124,18 +127,23 @@ def samples_figure(
             counts = f"{len(panel[0][1])} samples"
         else:
             counts = ", ".join(f"{len(xy)} {e.rsplit('/', 1)[-1]}" for e, xy, _, _ in panel)
-        ax.set_title(f"{name}: {counts} (simulation {t + 1})", fontsize=9)
+        if notes and name in notes:  # the counts are in the note: a short title
+            ax.set_title(f"{name} (simulation {t + 1})", fontsize=9)
+        else:
+            ax.set_title(f"{name}: {counts} (simulation {t + 1})", fontsize=9)
         ax.set_xlim(*xl)
         ax.set_ylim(*yl)
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
+        if notes and name in notes:
+            ax.text(0.0, -0.14, notes[name], transform=ax.transAxes, va="top", fontsize=8)
     legend = "colour = Q-hat (viridis, low to high), grey = infeasible"
     shown = entity if isinstance(entity, str) else "the watched node's samples"
     fig.suptitle(title if title is not None else f"{shown}: {legend}", fontsize=9)
     fig.tight_layout()
     path = Path(out)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=110, bbox_inches="tight" if notes else None)
     plt.close(fig)
     return path

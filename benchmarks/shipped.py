@@ -1,0 +1,159 @@
+"""The result stores that ship with the repository (under ``docs/data/``): manifest and redraw.
+
+A clean checkout must redraw every figure and table of the docs from the committed stores
+with ``voot-bench plot``, with no run, and a later session must be able to resume a sweep
+from them. This module names what "the committed stores are intact" means:
+
+* a **manifest** (``docs/data/stores.json``, :data:`MANIFEST_NAME`): per store, the number
+  of row files and a SHA-256 over their names and row checksums (:func:`store_digest`),
+  so a row lost or changed on the way (git, a copy) is caught, not only a corrupt one;
+* :func:`check_store`: every row file verified (:meth:`ResultStore.verify`), the rows all
+  readable through the store's reading path, their count and digest as in the manifest;
+* :func:`redraw`: ``voot-bench plot`` of a store into a folder (figures and tables), on a
+  copy of the store, so reading it leaves the committed directory as it was (the index a
+  load writes is derived data and is not committed).
+
+``voot-bench shipped`` checks and redraws them all; ``voot-bench shipped --write``
+rewrites the manifest after a store was added or extended.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shutil
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from voot.bench.store import CHECKSUM_KEY, HEADER_NAME, INDEX_NAME, ResultStore, StoreError
+
+#: The manifest's file name, in the folder that holds the stores.
+MANIFEST_NAME = "stores.json"
+#: Where the repository keeps its stores (relative to the repository's root).
+DATA_DIR = "docs/data"
+
+
+def store_dirs(root: str | Path) -> list[Path]:
+    """The result stores directly under ``root`` (folders with a store header), by name."""
+    base = Path(root)
+    return sorted(p for p in base.iterdir() if (p / HEADER_NAME).is_file())
+
+
+def store_digest(path: str | Path) -> dict[str, Any]:
+    """``{"rows": n, "sha256": ..., "compact": bool}`` of the store at ``path``.
+
+    The digest covers every row file's name and its row checksum, in name order; the
+    checksums themselves cover the bytes (every file is verified while reading it).
+    """
+    store = ResultStore(path, create=False)
+    h = hashlib.sha256()
+    n = 0
+    for row_path in store.row_files():
+        data = row_path.read_bytes()
+        store._read_row(row_path)  # parse, validate, verify the checksum
+        tail = data.rsplit(f'"{CHECKSUM_KEY}":'.encode(), 1)[-1]
+        h.update(row_path.name.encode() + b":" + tail.strip())
+        n += 1
+    return {"rows": n, "sha256": h.hexdigest(), "compact": store.compact is not None}
+
+
+def manifest(root: str | Path) -> dict[str, dict[str, Any]]:
+    """The manifest of every store under ``root`` (name -> :func:`store_digest`)."""
+    return {p.name: store_digest(p) for p in store_dirs(root)}
+
+
+def write_manifest(root: str | Path) -> Path:
+    """Write ``root/stores.json`` from the stores there; returns its path."""
+    path = Path(root) / MANIFEST_NAME
+    path.write_text(json.dumps(manifest(root), indent=1, sort_keys=True) + "\n")
+    return path
+
+
+def read_manifest(root: str | Path) -> dict[str, dict[str, Any]]:
+    """The committed manifest (StoreError naming the file if missing or not one)."""
+    path = Path(root) / MANIFEST_NAME
+    try:
+        data = json.loads(path.read_bytes())
+    except (OSError, ValueError) as exc:
+        raise StoreError(
+            f"{path}: no readable manifest of the committed stores ({exc}); write it with"
+            " voot-bench shipped --write"
+        ) from None
+    if not isinstance(data, dict):
+        raise StoreError(f"{path}: a manifest must be a JSON object of store names")
+    return data
+
+
+def check_store(root: str | Path, name: str) -> dict[str, Any]:
+    """Verify the store ``root/name`` against the manifest; its digest.
+
+    Raises:
+        StoreError: a corrupt row, a store the manifest does not list, or a row count or
+            digest that differs from the manifest's (rows lost, added or changed).
+    """
+    expected = read_manifest(root).get(name)
+    path = Path(root) / name
+    if expected is None:
+        raise StoreError(f"{path}: not in {Path(root) / MANIFEST_NAME}; add it with --write")
+    with store_copy(path) as copy:
+        got = store_digest(copy)
+        rows = ResultStore(copy, create=False).load(status=None)
+    if len(rows) != got["rows"]:  # pragma: no cover - load and the files disagree
+        raise StoreError(f"{path}: {got['rows']} row files but {len(rows)} rows read")
+    for key in ("rows", "sha256"):
+        if got[key] != expected.get(key):
+            raise StoreError(
+                f"{path}: {key} {got[key]!r}, the manifest says {expected.get(key)!r} (rows"
+                " lost, added or changed since the manifest was written)"
+            )
+    return got
+
+
+@contextmanager
+def store_copy(path: str | Path) -> Iterator[Path]:
+    """A temporary copy of the store at ``path`` without its index (removed afterwards)."""
+    tmp = Path(tempfile.mkdtemp(prefix="voot-shipped-"))
+    try:
+        copy = tmp / Path(path).name
+        shutil.copytree(path, copy, ignore=shutil.ignore_patterns(INDEX_NAME, ".*.tmp"))
+        yield copy
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def redraw(path: str | Path, out_dir: str | Path) -> list[Path]:
+    """``voot-bench plot`` of the store at ``path`` into ``out_dir``: the figures against
+    simulations and (plan stores) seconds, and the tables as markdown. Returns the files.
+
+    Raises:
+        StoreError: the store cannot be read; RuntimeError: ``voot-bench plot`` failed.
+    """
+    import contextlib
+    import io
+
+    from voot.bench.cli import main
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    name = Path(path).name
+    with store_copy(path) as copy:
+        kinds = {r["kind"] for r in ResultStore(copy, create=False).load()}
+        files: list[Path] = []
+        for kind in sorted(kinds):
+            stem = out / f"{name}-{kind}"
+            args = ["plot", str(copy), "--kind", kind, "--png", f"{stem}.png"]
+            args += ["--markdown", f"{stem}.md"]
+            if kind == "plan":
+                args += ["--png-seconds", f"{stem}-seconds.png"]
+            with (
+                contextlib.redirect_stdout(io.StringIO()),
+                contextlib.redirect_stderr(io.StringIO()) as err,
+            ):
+                status = main(args)
+            if status != 0:
+                raise RuntimeError(f"voot-bench {' '.join(args)} failed: {err.getvalue().strip()}")
+            files += [Path(a) for a in args if a.startswith(str(stem))]
+    return files

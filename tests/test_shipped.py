@@ -1,0 +1,154 @@
+"""Tests of voot.bench.shipped and of the committed stores themselves (docs/data).
+
+Every committed store reads back (checksums, row count and digest as in the manifest),
+its figures and tables redraw with ``voot-bench plot``, and a sweep given the documented
+command resumes from it without running anything.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from voot.bench import shipped
+from voot.bench.compact import CompactConfig
+from voot.bench.store import INDEX_NAME, ResultStore, Row, StoreError, make_row
+
+DATA = Path(__file__).resolve().parents[1] / shipped.DATA_DIR
+STORES = [p.name for p in shipped.store_dirs(DATA)]
+
+
+def test_the_manifest_lists_every_committed_store() -> None:
+    assert STORES, f"no result stores under {DATA}"
+    assert sorted(shipped.read_manifest(DATA)) == STORES
+
+
+@pytest.mark.parametrize("name", STORES)
+def test_a_committed_store_reads_back_and_redraws(name: str, tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    before = sorted(p.name for p in (DATA / name).rglob("*") if p.name != INDEX_NAME)
+    got = shipped.check_store(DATA, name)
+    assert got["rows"] == len(ResultStore(DATA / name, create=False).row_files()) > 0
+    files = shipped.redraw(DATA / name, tmp_path)
+    pngs = [f for f in files if f.suffix == ".png"]
+    assert pngs and all(f.stat().st_size > 10_000 for f in pngs)
+    tables = [f.read_text() for f in files if f.suffix == ".md"]
+    assert tables and all("### Best return" in t or "|" in t for t in tables)
+    after = sorted(p.name for p in (DATA / name).rglob("*") if p.name != INDEX_NAME)
+    assert after == before  # reading works on a copy
+
+
+class NeverRuns:
+    name = "never"
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        assert not list(items), "a sweep of a committed store ran runs again"
+        return iter(())
+
+
+def documented_sweeps() -> dict[str, list[Any]]:
+    """The specs of the commands docs/results-planning.md gives for each committed store."""
+    from voot.bench.plan_sweep import build_plan_specs
+
+    v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
+    return {
+        "plan-gym-control": build_plan_specs(
+            ["Reacher-v5", "Swimmer-v5", "HalfCheetah-v5"],
+            planners="voot pw_uct voronoi_pw cem mppi predictive_sampling random_shooting".split(),
+            seeds=range(10),
+            simulations=500,
+            grid="default",
+            horizon=20,
+        ),
+        "plan-v1-first-look": build_plan_specs(["kitchen_v1"], grid="default", **v1)  # type: ignore[arg-type]
+        + build_plan_specs(
+            ["kitchen_v1"],
+            grid="default",
+            env_kwargs={"pick_requires_free_carry": True},
+            **v1,  # type: ignore[arg-type]
+        ),
+    }
+
+
+@pytest.mark.parametrize("name", sorted(documented_sweeps()))
+def test_the_documented_sweep_resumes_from_the_committed_store_running_nothing(
+    name: str, tmp_path: Path
+) -> None:
+    from voot.bench.sweep import run_sweep
+
+    specs = documented_sweeps()[name]
+    copy = tmp_path / name
+    shutil.copytree(DATA / name, copy, ignore=shutil.ignore_patterns(INDEX_NAME))
+    summary = run_sweep(specs, ResultStore(copy), NeverRuns(), progress=False)
+    assert summary.ran == 0 and summary.skipped == summary.total == len(specs)
+
+
+def bbfo_row(seed: int) -> Row:
+    config = {"function": "shekel", "dim": 3, "method": "voo", "params": {}, "budget": 4}
+    best = [float(seed), float(seed), seed + 1.0, seed + 1.0]
+    return make_row("bbfo", {**config, "seed": seed}, status="ok", wall_time=0.1, best_so_far=best)
+
+
+def small_store(root: Path, compact: bool = False) -> Path:
+    store = ResultStore(root / "s", compact=CompactConfig() if compact else None)
+    for i in range(3):
+        store.write(bbfo_row(i))
+    return store.path
+
+
+def test_manifest_catches_lost_added_and_changed_rows(tmp_path: Path) -> None:
+    path = small_store(tmp_path, compact=True)
+    shipped.write_manifest(tmp_path)
+    entry = shipped.read_manifest(tmp_path)["s"]
+    assert entry["rows"] == 3 and entry["compact"] is True
+    assert shipped.check_store(tmp_path, "s")["sha256"] == entry["sha256"]
+    row_file = sorted((path / "runs").iterdir())[0]
+    data = row_file.read_bytes()
+    row_file.unlink()
+    with pytest.raises(StoreError, match="rows 2, the manifest says 3"):
+        shipped.check_store(tmp_path, "s")
+    row_file.write_bytes(data)
+    extra = ResultStore(path).write(bbfo_row(9))
+    with pytest.raises(StoreError, match="rows 4"):
+        shipped.check_store(tmp_path, "s")
+    extra.unlink()
+    assert shipped.check_store(tmp_path, "s")["rows"] == 3
+    manifest = json.loads((tmp_path / shipped.MANIFEST_NAME).read_text())
+    manifest["s"]["sha256"] = "0" * 64
+    (tmp_path / shipped.MANIFEST_NAME).write_text(json.dumps(manifest))
+    with pytest.raises(StoreError, match="sha256"):
+        shipped.check_store(tmp_path, "s")
+    with pytest.raises(StoreError, match="not in"):
+        shipped.check_store(tmp_path, "other")
+    (tmp_path / shipped.MANIFEST_NAME).write_text("[")
+    with pytest.raises(StoreError, match="voot-bench shipped --write"):
+        shipped.read_manifest(tmp_path)
+
+
+def test_a_corrupt_committed_row_is_a_store_error(tmp_path: Path) -> None:
+    path = small_store(tmp_path)
+    shipped.write_manifest(tmp_path)
+    row_file = sorted((path / "runs").iterdir())[0]
+    data = row_file.read_bytes()
+    assert b'"wall_time":0.1' in data
+    row_file.write_bytes(data.replace(b'"wall_time":0.1', b'"wall_time":0.2'))
+    with pytest.raises(StoreError, match="changed since it was written"):
+        shipped.check_store(tmp_path, "s")
+
+
+def test_the_cli_checks_and_redraws(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("matplotlib")
+    from voot.bench.cli import main
+
+    small_store(tmp_path / "data")
+    assert main(["shipped", "--root", str(tmp_path / "data"), "--write"]) == 0
+    assert main(["shipped", "--root", str(tmp_path / "data"), "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    assert "s: 3 rows, checksums and manifest ok; redrawn: s-bbfo.png, s-bbfo.md" in out
+    assert (tmp_path / "o" / "s" / "s-bbfo.png").stat().st_size > 1000
+    assert main(["shipped", "--root", str(tmp_path / "none")]) == 2
