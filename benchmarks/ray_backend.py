@@ -24,6 +24,12 @@ shuts it down afterwards; ``address="auto"`` (or ``"ray://host:10001"``, or
 ``"host:6379"``) joins a running cluster started with ``ray start --head``, whose nodes
 must have the same voot installed. If Ray is already initialised in this process (e.g.
 a test fixture), the backend uses that instance and leaves it running.
+
+**A killed driver leaves no local instance behind.** With the instance it started
+itself, the backend also starts a :class:`~voot.bench.ray_reaper.RayReaper`: if the
+driver dies without shutting Ray down (``kill -KILL``, the out-of-memory killer), the
+reaper stops what is left of that instance (Ray's agents outlived the driver otherwise).
+A cluster joined by ``address`` is never touched.
 """
 
 from __future__ import annotations
@@ -34,6 +40,7 @@ import dataclasses
 import logging
 import os
 import socket
+import warnings
 from collections.abc import Callable, Generator, Iterator, Sequence
 from typing import Any, TypeVar, cast
 
@@ -93,6 +100,9 @@ class RayBackend:
         init_options: extra keywords of ``ray.init`` (when this backend starts Ray).
         on_lost: ``on_lost(item, error, tries=n)`` makes the row of a run whose worker
             died ``max_tries`` times (default :func:`voot.bench.store.failed_row`).
+        reap_on_driver_death: with a local instance this backend starts, run a
+            :class:`~voot.bench.ray_reaper.RayReaper` that stops the instance if the
+            driver dies without shutting it down (needs ``psutil``).
     """
 
     name = "ray"
@@ -106,6 +116,7 @@ class RayBackend:
         max_tries: int = DEFAULT_MAX_TRIES,
         init_options: dict[str, Any] | None = None,
         on_lost: Callable[..., Row] = failed_row,
+        reap_on_driver_death: bool = True,
     ) -> None:
         V.optional_integer(workers, "workers", 1)
         V.integer(max_tries, "max_tries", 1)
@@ -116,6 +127,13 @@ class RayBackend:
         self.max_tries = max_tries
         self.init_options = dict(init_options or {})
         self.on_lost = on_lost
+        if not isinstance(reap_on_driver_death, bool):
+            raise ValueError(
+                f"reap_on_driver_death must be True or False, got {reap_on_driver_death!r}"
+            )
+        self.reap_on_driver_death = reap_on_driver_death
+        #: The reaper of the local instance being run (None when none is).
+        self.reaper: Any = None
         #: Runs resubmitted after a worker died, in the last :meth:`map_unordered`.
         self.retries = 0
 
@@ -146,7 +164,38 @@ class RayBackend:
                 f"cannot reach a Ray cluster at {self.address!r} ({exc}); start one with"
                 " 'ray start --head' or leave out --address for a local instance"
             ) from None
+        if self.address is None and "address" not in self.init_options:
+            self._start_reaper()
         return True
+
+    def _start_reaper(self) -> None:
+        """Watch the local instance just started (see :mod:`voot.bench.ray_reaper`)."""
+        if not self.reap_on_driver_death:
+            return
+        try:
+            import psutil  # noqa: F401
+        except ImportError:
+            warnings.warn(
+                "psutil is not installed: if this driver is killed, nothing stops its local"
+                " Ray instance (pip install psutil, or 'voot[ray]')",
+                RuntimeWarning,
+                stacklevel=3,
+            )
+            return
+        from voot.bench.ray_reaper import RayReaper
+
+        self.reaper = RayReaper()
+
+    def _shutdown(self) -> None:
+        """Shut down the local instance this backend started, then release its reaper."""
+        import ray
+
+        try:
+            ray.shutdown()
+        finally:
+            reaper, self.reaper = self.reaper, None
+            if reaper is not None:
+                reaper.done()
 
     def _outcomes(
         self, fn: Callable[[T], R], items: Sequence[T]
@@ -214,7 +263,7 @@ class RayBackend:
                 with contextlib.suppress(Exception):
                     ray.kill(actor, no_restart=True)
             if started:
-                ray.shutdown()
+                self._shutdown()
 
     def map_unordered(self, fn: Callable[[T], R], items: Sequence[T]) -> Iterator[R]:
         """Results (rows) as their runs complete; a run whose worker died ``max_tries``

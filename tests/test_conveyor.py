@@ -143,6 +143,47 @@ def test_one_bad_placement_voids_the_action(env: ConveyorPackingEnv) -> None:
     assert info["reason"].startswith("box 1/3 (obj_00): outside region")
 
 
+def test_a_box_placed_earlier_in_the_action_blocks_the_later_base_paths(
+    env: ConveyorPackingEnv,
+) -> None:
+    """The base paths of an action's later boxes go around the boxes it placed before,
+    where it placed them."""
+    env.reset(seed=0)
+    s = env.get_state()
+    corner, west = (-3.5, 2.1, 180), (-6.55, 2.55, 90)
+    # obj_00 (big) in the middle of the first room: the robot carrying obj_01 (also big)
+    # cannot get past it to the room's north-west corner
+    _, r, _, _, info = env.step(_action(env, [(-2.0, 1.1, 0), corner, (-3.51, 1.05, 180)]))
+    assert r == -2.0 and info["reason"] == "box 2/3 (obj_01): no base path"
+    # obj_00 against the room's south wall instead: the same corner is reachable
+    env.set_state(s)
+    _, _, _, _, info = env.step(_action(env, [(-3.5, -0.05, 180), corner, west]))
+    assert info["feasible"], info["reason"]
+    # obj_00 in the first room's door (x in [-2.98, -1.36] at y = -1): the robot carrying
+    # obj_02 can no longer reach the larger rooms through it
+    env.set_state(s)
+    far = (-5.5, -3.0, 90)
+    _, r, _, _, info = env.step(_action(env, [(-2.17, -0.6, 270), corner, far]))
+    assert r == -2.0 and info["reason"] == "box 3/3 (obj_02): no base path"
+    env.set_state(s)
+    _, _, _, _, info = env.step(_action(env, [(-3.5, -0.05, 180), corner, far]))
+    assert info["feasible"], info["reason"]
+
+
+def test_a_box_set_down_on_an_earlier_box_collides_with_it(env: ConveyorPackingEnv) -> None:
+    """The placed box itself is checked at floor height: set partly onto the box placed
+    just before it (the robot touching nothing), it collides with that box."""
+    env.reset(seed=0)
+    s = env.get_state()
+    _, r, _, _, info = env.step(
+        _action(env, [(-3.5, 2.1, 180), (-3.25, 2.1, 180), (-6.55, 2.55, 90)])
+    )
+    assert r == -2.0 and info["reason"] == "box 2/3 (obj_01): collision: object-obj_00"
+    env.set_state(s)
+    ok, pre = env.precheck(_action(env, [(-3.5, 2.1, 180), (-3.25, 2.1, 180), (-6.55, 2.55, 90)]))
+    assert not ok and pre["reason"] == info["reason"]
+
+
 def test_fewer_boxes_and_trailing_entries_ignored() -> None:
     env = ConveyorPackingEnv(ConveyorConfig(n_objects=4))
     env.reset(seed=0)

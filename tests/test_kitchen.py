@@ -379,6 +379,38 @@ def test_place_rewards_reach_their_caps() -> None:
     assert 1.0 / length > 0.05
 
 
+def test_a_short_clearing_place_earns_one_over_its_length_below_the_cap(
+    env: KitchenClearingEnv,
+) -> None:
+    """Under 1 m but over 1/cap, a clearing place earns 1/L: more than 1, less than 2."""
+    env.reset(seed=0)
+    env.step(kitchen_actions(env)[0])
+    x, y, _, yaw = env.object_pose(env.task.held)
+    # box1 set down 0.7 m east of where it stood: off the path, a 0.7 m drive
+    _, r, _, _, info = env.step(_place_action(env, x + 0.7, y, yaw))
+    assert info["feasible"] and info["objects_left"] == 6  # it cleared box1
+    length = info["base_path_length"]
+    assert 1.0 / env.config.max_place_reward < length < 1.0
+    assert r == pytest.approx(1.0 / length) and 1.0 < r < env.config.max_place_reward
+
+
+def test_a_pick_path_starts_clear_of_the_objects_the_robot_stands_against() -> None:
+    """With a pick base-path disc wider than the base (0.4 m), the robot stands overlapping
+    the chair or box it has just set down; that object is left out of the pick's path
+    obstacles, so the scripted solution still clears the kitchen."""
+    env = KitchenClearingEnv(KitchenConfig(pick_base_path=True, pick_path_radius=0.4))
+    env.reset(seed=0)
+    touched = []
+    for a in kitchen_actions(env):
+        if env.task.operator == "pick":
+            here = env.robot.base_pose(env.data)
+            touched += env.planner.colliding(here, 0.4, env.object_boxes())
+        _, _, terminated, _, info = env.step(a)
+        assert info["feasible"], info["reason"]
+    assert terminated and info["objects_left"] == 0
+    assert {"obj_chair1", "obj_box2"} <= set(touched)  # the case did occur
+
+
 def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
     """``last_timing`` (read by ``voot.bench.env_speed``): parts >= 0 that sum to <= total.
 

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import logging
 import os
+import signal
+import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -126,3 +130,81 @@ def test_ray_backend_is_an_executor_for_root_parallel_trees(ray_instance: None) 
     with backend:
         on_ray = plan_root_parallel(factory, "voot", 20, seed=1, n_trees=3, executor=backend)
     assert on_ray == serial
+
+
+def _ray_descendants(pid: int) -> dict[int, float]:
+    import psutil
+
+    try:
+        procs = psutil.Process(pid).children(recursive=True)
+    except psutil.NoSuchProcess:
+        return {}
+    out = {}
+    for p in procs:
+        with contextlib.suppress(psutil.Error):
+            out[p.pid] = p.create_time()
+    return out
+
+
+def _alive(pid: int, started: float) -> bool:
+    import psutil
+
+    try:
+        p = psutil.Process(pid)
+        return p.create_time() == started and p.status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_a_killed_driver_leaves_no_ray_processes(tmp_path: Path) -> None:
+    """kill -KILL of ``voot-bench plan --backend ray`` while its actors run: the local
+    instance it started (GCS, raylet, agents, workers) is gone within seconds."""
+    pytest.importorskip("psutil")
+    argv = [
+        *(sys.executable, "-c", "from voot.bench.cli import main; raise SystemExit(main())"),
+        *("plan", "--out", str(tmp_path / "store"), "--problems", "shekel_chain"),
+        *("--dims", "10", "--planners", "uniform_t", "--grid", "default", "--seeds", "20"),
+        *("--simulations", "200000", "--workers", "1", "--backend", "ray", "--no-progress"),
+    ]
+    driver = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    seen: dict[int, float] = {}
+    try:
+        deadline = time.monotonic() + 40.0
+        names: list[str] = []
+        while time.monotonic() < deadline and driver.poll() is None:
+            seen.update(_ray_descendants(driver.pid))
+            names = []
+            for pid in seen:
+                with contextlib.suppress(Exception):
+                    import psutil
+
+                    names.append(psutil.Process(pid).name())
+            if any("_Worker" in n for n in names) and "raylet" in names:
+                break
+            time.sleep(0.3)
+        assert driver.poll() is None, "the sweep ended before it could be killed"
+        assert "raylet" in names and any("_Worker" in n for n in names), names
+        os.kill(driver.pid, signal.SIGKILL)
+        driver.wait(timeout=10)
+        deadline = time.monotonic() + 15.0
+        while time.monotonic() < deadline and any(_alive(p, t) for p, t in seen.items()):
+            time.sleep(0.3)
+        survivors = [p for p, t in seen.items() if _alive(p, t)]
+        assert not survivors, f"Ray processes {survivors} outlived their killed driver"
+    finally:
+        if driver.poll() is None:
+            driver.kill()
+            driver.wait()
+        for pid, started in seen.items():  # only the driver's own descendants, by pid
+            if _alive(pid, started):
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(pid, signal.SIGKILL)
+
+
+def test_reap_on_driver_death_is_a_boolean() -> None:
+    from voot.bench.ray_backend import RayBackend
+
+    assert RayBackend().reap_on_driver_death is True
+    with pytest.raises(ValueError, match="reap_on_driver_death must be True or False"):
+        RayBackend(reap_on_driver_death=1)  # type: ignore[arg-type]

@@ -37,3 +37,42 @@ def test_plan_rewards_show_on_the_search_timeline() -> None:
     views = _views(default_blueprint(has_scene=True, has_plot=False).root_container)
     bars = [v for v in views if type(v).__name__ == "BarChartView"]
     assert [str(v.origin) for v in bars] == ["/plan/rewards"]  # type: ignore[attr-defined]
+
+
+def test_the_3d_view_opens_at_the_given_eye() -> None:
+    from voot.record.blueprint import Eye3D
+
+    eye = Eye3D((-3.9, -7.0, 6.2), (1.6, 0.3, 0.0))
+    (main,) = [
+        v
+        for v in _views(default_blueprint(has_scene=True, has_plot=True, eye=eye).root_container)
+        if type(v).__name__ == "Spatial3DView"
+    ]
+    controls = main.properties["EyeControls3D"]  # type: ignore[attr-defined]
+    # rerun stores float32
+    assert controls.position.as_arrow_array().to_pylist() == [pytest.approx([-3.9, -7.0, 6.2])]
+    assert controls.look_target.as_arrow_array().to_pylist() == [pytest.approx([1.6, 0.3, 0.0])]
+    assert controls.eye_up.as_arrow_array().to_pylist() == [[0.0, 0.0, 1.0]]
+    assert controls.kind.as_arrow_array().to_pylist() == [rrb.components.Eye3DKind.Orbital.value]
+    (auto,) = [
+        v
+        for v in _views(default_blueprint(has_scene=True, has_plot=False).root_container)
+        if type(v).__name__ == "Spatial3DView"
+    ]
+    assert "EyeControls3D" not in auto.properties  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"position": (0.0, 0.0), "look_target": (1.0, 0.0, 0.0)}, "position must be 3 finite"),
+        ({"position": (0.0, 0.0, 1.0), "look_target": (0.0, float("nan"), 0.0)}, "look_target"),
+        ({"position": (1.0, 1.0, 1.0), "look_target": (1.0, 1.0, 1.0)}, "must differ"),
+        ({"position": (0, 0, 1), "look_target": (0, 0, 0), "up": (0, 0, 0)}, "zero vector"),
+    ],
+)
+def test_eye_validation(kwargs: dict[str, object], match: str) -> None:
+    from voot.record.blueprint import Eye3D
+
+    with pytest.raises(ValueError, match=match):
+        Eye3D(**kwargs)  # type: ignore[arg-type]

@@ -45,6 +45,8 @@ def test_normalisation() -> None:
         ({"arrow_length": 0}, "arrow_length must be a finite number > 0"),
         ({"point_radius": float("nan")}, "point_radius"),
         ({"infeasible_color": (0, 0)}, "infeasible_color"),
+        ({"view_camera": ""}, "view_camera must be None, 'auto' or a camera name"),
+        ({"view_camera": 3}, "view_camera must be None, 'auto' or a camera name"),
     ],
 )
 def test_bad_options_name_the_problem(options: dict[str, object], message: str) -> None:

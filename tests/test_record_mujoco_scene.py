@@ -14,7 +14,13 @@ mujoco = pytest.importorskip("mujoco")
 
 import rerun as rr  # noqa: E402
 
-from voot.record.mujoco_scene import MujocoScene, find_mujoco, log_mujoco_model  # noqa: E402
+from voot.record.mujoco_scene import (  # noqa: E402
+    MujocoScene,
+    camera_names,
+    find_mujoco,
+    log_mujoco_model,
+    model_camera_eye,
+)
 from voot.record.reader import read_recording  # noqa: E402
 
 XML = """
@@ -153,3 +159,34 @@ def test_find_mujoco_follows_wrappers(model: object) -> None:
         assert found is not None and found[0] is model and found[1] is data
     assert find_mujoco(SimpleNamespace(model="not a model", data=None)) is None
     assert find_mujoco(None) is None
+
+
+CAMERAS = """
+<mujoco>
+  <worldbody>
+    <camera name="down" pos="1 2 5" xyaxes="1 0 0 0 1 0"/>
+    <camera name="slant" pos="0 -4 3" xyaxes="1 0 0 0 0.6 0.8"/>
+    <camera name="level" pos="0 0 1" xyaxes="1 0 0 0 0 1"/>
+    <camera pos="0 0 1"/>
+    <body name="b" pos="0 0 0.1"><geom type="box" size="2 2 0.1"/></body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_model_camera_eye() -> None:
+    """The eye at a camera, looking along its axis at the floor (or one extent ahead)."""
+    m = mujoco.MjModel.from_xml_string(CAMERAS)
+    assert camera_names(m) == ["down", "slant", "level"]  # the unnamed one left out
+    down = model_camera_eye(m, "down")
+    assert down.position == (1.0, 2.0, 5.0) and down.look_target == pytest.approx((1, 2, 0))
+    assert down.up == (0.0, 0.0, 1.0)
+    # y axis (0, 0.6, 0.8): the camera looks along -z = (0, 0.8, -0.6), down 3 m to z = 0
+    slant = model_camera_eye(m, "slant")
+    assert slant.look_target == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    level = model_camera_eye(m, "level")  # looks along +y: one extent ahead
+    assert level.look_target == pytest.approx((0.0, float(m.stat.extent), 1.0))
+    with pytest.raises(ValueError, match="no camera 'top' in the model; cameras: down, slant"):
+        model_camera_eye(m, "top")
+    with pytest.raises(ValueError, match=r"must be a mujoco\.MjModel"):
+        model_camera_eye(object(), "down")

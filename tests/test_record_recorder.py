@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -285,3 +286,74 @@ def test_a_custom_blueprint_replaces_the_default(tmp_path: Path) -> None:
     assert "custom-view-xyz" in _blueprint_text(tmp_path / "c.rrd")
     default = _blueprint_text(tmp_path / "d.rrd")
     assert "custom-view-xyz" not in default and "Best return" in default
+
+
+def _blueprint_eye(path: Path) -> tuple[list[float], list[float], list[float]] | None:
+    """The 3-D view's ``EyeControls3D`` (position, look target, up) in a file's blueprint."""
+    from rerun.chunk import RrdReader
+
+    reader = RrdReader(str(path))
+    (store,) = reader.blueprints()
+    for chunk in reader.stream(store=store):
+        batch = chunk.to_record_batch()
+        names = batch.schema.names
+        cols = {
+            part: next((n for n in names if n.endswith(f"EyeControls3D:{part}")), None)
+            for part in ("position", "look_target", "eye_up")
+        }
+        if all(cols.values()):
+            pos, target, up = (batch.column(c).to_pylist()[-1][0] for c in cols.values())  # type: ignore[arg-type]
+            return pos, target, up
+    return None
+
+
+def _env_problem(env_id: str) -> object:
+    import gymnasium as gym
+
+    from voot.envs.planning import EnvProblem
+
+    return EnvProblem(gym.make(env_id, disable_env_checker=True), seed=0)
+
+
+@pytest.mark.parametrize("env_id", ["voot/KitchenClearing-v1", "voot/ConveyorPacking-v1"])
+def test_the_3d_view_opens_at_the_scenes_perspective_camera(tmp_path: Path, env_id: str) -> None:
+    """Kitchen and conveyor recordings open with the eye at the scene's ``perspective``
+    camera, above and beside the rooms, looking down at a point on the floor."""
+    from voot.record.mujoco_scene import model_camera_eye
+
+    problem: Any = _env_problem(env_id)
+    model = problem.unwrapped.model
+    record_plan(problem, tmp_path / "k.rrd", "voot", 3, seed=0)
+    eye = _blueprint_eye(tmp_path / "k.rrd")
+    assert eye is not None, "the blueprint sets no 3-D eye"
+    pos, target, up = eye
+    expected = model_camera_eye(model, "perspective")
+    np.testing.assert_allclose(pos, expected.position, atol=1e-5)
+    np.testing.assert_allclose(target, expected.look_target, atol=1e-5)
+    assert up == [0.0, 0.0, 1.0]
+    # the eye is the MJCF camera's place; it looks down at the floor inside the rooms
+    cam = model.camera("perspective").id
+    np.testing.assert_allclose(pos, model.cam_pos[cam], atol=1e-5)
+    assert pos[2] > 5.0 and target[2] == pytest.approx(0.0, abs=1e-5)
+    cfg = problem.unwrapped.config
+    region = cfg.house if "Kitchen" in env_id else cfg.workspace
+    assert region[0] < target[0] < region[1] and region[2] < target[1] < region[3]
+    assert not (region[0] < pos[0] < region[1] and region[2] < pos[1] < region[3])  # beside
+
+
+def test_view_camera_options(tmp_path: Path) -> None:
+    """None keeps rerun's automatic view; a model camera by name; an unknown name is an
+    error naming the cameras; a scene without a perspective camera keeps rerun's view."""
+    problem: Any = _env_problem("voot/KitchenClearing-v1")
+    record_plan(problem, tmp_path / "a.rrd", "voot", 2, 0, config=RecorderConfig(view_camera=None))
+    assert _blueprint_eye(tmp_path / "a.rrd") is None
+    record_plan(
+        problem, tmp_path / "t.rrd", "voot", 2, 0, config=RecorderConfig(view_camera="top_down")
+    )
+    eye = _blueprint_eye(tmp_path / "t.rrd")
+    assert eye is not None and eye[1][:2] == pytest.approx(eye[0][:2])  # straight down
+    with pytest.raises(ValueError, match="no camera 'nope' in the model; cameras: top_down"):
+        SearchRecorder(tmp_path / "n.rrd", problem, config=RecorderConfig(view_camera="nope"))
+    # the demo scene has no camera: "auto" leaves rerun's view
+    record_plan(DemoPickPlace(), tmp_path / "d.rrd", "voot", 2, 0)
+    assert _blueprint_eye(tmp_path / "d.rrd") is None

@@ -336,6 +336,60 @@ def test_reroot_keeps_the_subtree() -> None:
     assert res.n_simulations == 10
 
 
+def _best_by_brute_force(mcts: MCTS, depth_limit: int) -> float:
+    """The best return over the tree's paths as ``best_return_over`` defines them."""
+    mode = mcts.config.best_return_over.value
+    nodes = mcts.nodes
+    if mode == "leaves":
+        pool = [n for n in nodes if not n.children]
+    elif mode == "nodes":
+        pool = nodes
+    else:
+        pool = [n for n in nodes if n.terminal or n.infeasible or n.depth >= depth_limit]
+    return max((n.path_return for n in pool), default=-math.inf)
+
+
+@pytest.mark.parametrize(
+    ("mode", "infeasible_below"),
+    [("leaves", -1.0), ("nodes", -1.0), ("complete", -1.0), ("complete", 0.3)],
+)
+def test_reroot_recomputes_the_best_path_over_the_kept_subtree(
+    mode: str, infeasible_below: float
+) -> None:
+    """After a re-root the best return and plan are those of the kept subtree, measured
+    from the new root, in every ``best_return_over`` mode, and stay so as it grows."""
+    cfg = planner_config("voot", depth_limit=4, root_commitment=None, best_return_over=mode)
+    mcts = MCTS(Counter(infeasible_below=infeasible_below), cfg, seed=0)
+    mcts.search(100)
+    # keep a subtree with an infeasible action below it if there is one
+    edge = next(
+        (
+            e
+            for e, c in enumerate(mcts.root.children)
+            if c.expandable and any(n.infeasible for n in c.subtree())
+        ),
+        mcts.recommended_edge(),
+    )
+    new_root = mcts.reroot(edge)
+    expected = _best_by_brute_force(mcts, 4)
+    assert mcts.best_return == expected
+    res = mcts.result()
+    if mode == "complete" and infeasible_below > 0.0:
+        # the kept subtree's infeasible actions end complete paths
+        assert math.isfinite(expected) and res.feasible[-1] is False
+    elif mode == "complete":
+        # the kept paths end one action short of the horizon, now counted from the new
+        # root: none is complete yet, so there is no best plan
+        assert expected == -math.inf and res.actions == () and mcts.best_node() is new_root
+    else:
+        assert expected > 0.0 and len(res.actions) >= 1
+        disc = 0.9 ** np.arange(len(res.rewards))
+        assert float(disc @ res.rewards) == pytest.approx(res.best_return)
+    for _ in range(3):
+        mcts.search(10)
+        assert mcts.best_return == _best_by_brute_force(mcts, 4) > -math.inf
+
+
 def test_nodes_are_inspectable() -> None:
     res = plan(Counter(), "voot", 30, seed=0, depth_limit=3)
     assert res.mcts is not None
@@ -494,7 +548,7 @@ def test_commitment_returns_to_the_original_root_after_a_goal() -> None:
     mcts.search(
         400,
         callback=lambda m, i: seen.append(
-            (m._goal_found, m.current_root is m.root, m._commit_threshold)
+            (m._goal_found, m.current_root is m.root, m.commit_threshold)
         ),
     )
     first_goal = next(i for i, s in enumerate(seen) if s[0])
@@ -604,6 +658,102 @@ def test_commitment_moves_to_the_best_q_feasible_child_at_that_moment() -> None:
     best = max((k for k in range(len(q)) if ok[k]), key=lambda k: (q[k], -k))
     assert child is mcts.root.children[best]
     assert sum(ok) == 4  # exactly at the threshold
+
+
+class RootOrder(Counter):
+    """Counter whose k-th root action earns ``root_rewards[k]`` (later ones 0) and whose
+    root actions numbered in ``terminal_at`` end the episode (a goal); deeper actions earn
+    0. The tree never repeats a step, so the order of the root's actions is its edges'."""
+
+    def __init__(self, root_rewards: tuple[float, ...], terminal_at: tuple[int, ...] = ()) -> None:
+        super().__init__(dim=1)
+        self.root_rewards, self.terminal_at, self.k = root_rewards, terminal_at, 0
+
+    def step(self, action: np.ndarray) -> StepResult:
+        self.n_steps += 1
+        if self.t > 0:
+            self.t += 1
+            return StepResult(0.0, info={"t": self.t})
+        k, self.k = self.k, self.k + 1
+        self.t = 1
+        reward = self.root_rewards[k] if k < len(self.root_rewards) else 0.0
+        return StepResult(reward, terminal=k in self.terminal_at, info={"t": self.t})
+
+
+def test_commitment_goes_to_the_first_child_when_it_is_the_best() -> None:
+    """Edge 0 is a child like the others: committed to when its Q-hat is the highest."""
+    problem = RootOrder((1.0, 0.6, 0.8))
+    mcts = MCTS(problem, planner_config("uniform_t", root_commitment=3, depth_limit=3), seed=0)
+    moved: list[tuple[int, int]] = []
+
+    def watch(m: MCTS, i: int) -> None:
+        if m.current_root is not m.root and not moved:
+            moved.append((i, m.current_root.edge))
+
+    mcts.search(30, callback=watch)
+    assert moved, "the root never committed"
+    assert moved[0][1] == 0
+    assert mcts.root.q[:3] == pytest.approx([1.0, 0.6, 0.8])  # deeper actions earn 0
+
+
+def test_a_root_with_a_terminal_child_stays_and_doubles_its_threshold() -> None:
+    """The original rule: once the root has a terminal child, a commitment check keeps
+    the root and doubles the threshold (2, 4, 8, ...), each time the root's counted
+    actions reach it."""
+    problem = RootOrder((0.5, 0.9, 0.5), terminal_at=(1,))  # the second root action: a goal
+    cfg = planner_config("uniform_t", root_commitment=2, depth_limit=3)
+    mcts = MCTS(problem, cfg, seed=0)
+    assert mcts.commit_threshold == 2
+    seen: list[tuple[int, int | None]] = []
+    mcts.search(
+        40,
+        callback=lambda m, i: seen.append((m.root.n_commit_actions, m.commit_threshold)),
+    )
+    assert mcts.current_root is mcts.root  # never committed
+    assert mcts.root.n_terminal_children == 1 and mcts.root.n_commit_actions > 8
+    thresholds = [t for _, t in seen]
+    changes = [k for k in range(1, len(seen)) if thresholds[k] != thresholds[k - 1]]
+    assert sorted(set(thresholds)) == [2 * 2**j for j in range(len(set(thresholds)))]
+    assert len(changes) >= 3
+    for k in changes:  # doubled at the check after the counted actions reached it
+        assert thresholds[k] == 2 * thresholds[k - 1]
+        assert seen[k - 1][0] >= thresholds[k - 1] > seen[k - 2][0]
+    # without the terminal child the same root commits at its second counted action
+    plain = MCTS(RootOrder((0.5, 0.9, 0.5)), cfg, seed=0)
+    plain.search(40)
+    assert plain.current_root is not plain.root and plain.commit_threshold == 2
+
+
+class CrashesOnce(Counter):
+    """Step calls go: an infeasible root action, a feasible one, then a crash one level
+    down (a simulator error, not a reward); from then on every action is feasible."""
+
+    def __init__(self) -> None:
+        super().__init__(dim=1)
+        self.calls = 0
+
+    def step(self, action: np.ndarray) -> StepResult:
+        self.calls += 1
+        if self.calls == 1:
+            return StepResult(-2.0, feasible=False, info={"t": self.t})
+        if self.calls == 3:
+            raise RuntimeError("simulator crashed")
+        self.t += 1
+        return StepResult(0.5, info={"t": self.t})
+
+
+def test_a_search_interrupted_by_a_step_error_continues_on_a_feasible_child() -> None:
+    """The simulation the error cut short left a feasible root action not yet backed up
+    (Q-hat -inf): continuing, the commitment moves to it, not to the infeasible one."""
+    mcts = MCTS(CrashesOnce(), planner_config("uniform_t", root_commitment=1, depth_limit=3))
+    with pytest.raises(RuntimeError, match="crashed"):
+        mcts.search(5)
+    root = mcts.root
+    assert root.feasible == [False, True] and root.q[1] == -math.inf
+    first: list[Node] = []
+    res = mcts.search(5, callback=lambda m, i: first.append(m.current_root) if not first else None)
+    assert first[0] is root.children[1]
+    assert res.best_return > 0.0 and mcts.n_steps > 3
 
 
 class BadReward(NullProblem):

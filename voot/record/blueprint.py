@@ -5,13 +5,21 @@ timeline, the watched nodes' sampled base poses and placements on the ``search``
 timeline) or, for problems without a scene, the 2-D plot of sampled actions. Right, top
 to bottom: the best return over simulations, the tree size, the search tree as a graph,
 the plan's rewards (a static bar chart, one bar per action, so that it shows on any
-timeline) and its return on the ``plan`` timeline, and the 2-D sample plot when it is not already the main view. The time panel
-opens on the ``search`` timeline.
+timeline) and its return on the ``plan`` timeline, and the 2-D sample plot when it is not
+already the main view. The time panel opens on the ``search`` timeline.
+
+The 3-D view opens with an :class:`Eye3D` when one is given (the recorder takes it from
+the scene's ``perspective`` camera, :func:`voot.record.mujoco_scene.model_camera_eye`):
+rerun's own first view frames the bounding box of everything logged from a fixed side,
+which on the kitchen and conveyor scenes cuts off the robot.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
 
 #: Entity paths written by :class:`voot.record.SearchRecorder` (and read by the tests).
 SCENE = "scene"
@@ -24,8 +32,50 @@ SEARCH_TIMELINE = "search"
 PLAN_TIMELINE = "plan"
 
 
-def default_blueprint(*, has_scene: bool, has_plot: bool, has_plan: bool = True) -> Any:
-    """The blueprint for a recording with (or without) a 3-D scene and a 2-D sample plot."""
+@dataclass(frozen=True)
+class Eye3D:
+    """Where the 3-D view's orbiting eye starts: world coordinates (metres), z up.
+
+    Attributes:
+        position: the eye.
+        look_target: the point it looks at and orbits around.
+        up: the world's up direction the eye keeps (MuJoCo's +z).
+    """
+
+    position: tuple[float, float, float]
+    look_target: tuple[float, float, float]
+    up: tuple[float, float, float] = (0.0, 0.0, 1.0)
+
+    def __post_init__(self) -> None:
+        for name in ("position", "look_target", "up"):
+            value = np.asarray(getattr(self, name), dtype=np.float64)
+            if value.shape != (3,) or not np.all(np.isfinite(value)):
+                raise ValueError(f"{name} must be 3 finite numbers, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, tuple(float(v) for v in value))
+        if self.position == self.look_target:
+            raise ValueError("position and look_target must differ")
+        if not any(self.up):
+            raise ValueError("up must not be the zero vector")
+
+    def controls(self) -> Any:
+        """The rerun ``EyeControls3D`` (orbital) of this eye."""
+        import rerun.blueprint as rrb
+
+        return rrb.archetypes.EyeControls3D(
+            kind=rrb.components.Eye3DKind.Orbital,
+            position=self.position,
+            look_target=self.look_target,
+            eye_up=self.up,
+        )
+
+
+def default_blueprint(
+    *, has_scene: bool, has_plot: bool, has_plan: bool = True, eye: Eye3D | None = None
+) -> Any:
+    """The blueprint for a recording with (or without) a 3-D scene and a 2-D sample plot.
+
+    ``eye``: where the 3-D view's eye starts (None: rerun's automatic view).
+    """
     import rerun.blueprint as rrb
 
     side: list[Any] = [
@@ -45,7 +95,11 @@ def default_blueprint(*, has_scene: bool, has_plot: bool, has_plan: bool = True)
             )
         )
     if has_scene:
-        main: Any = rrb.Spatial3DView(origin=f"/{SCENE}", name="Scene and sampled actions")
+        main: Any = rrb.Spatial3DView(
+            origin=f"/{SCENE}",
+            name="Scene and sampled actions",
+            eye_controls=None if eye is None else eye.controls(),
+        )
         if has_plot:
             side.append(rrb.Spatial2DView(origin=f"/{SAMPLES_2D}", name="Sampled actions (2-D)"))
     else:

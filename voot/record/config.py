@@ -18,6 +18,11 @@ from voot.record.colors import INFEASIBLE_COLOR, check_color
 #: Watch entry meaning the tree's root.
 ROOT = "root"
 
+#: ``view_camera`` value: the scene's ``perspective`` camera if it has one.
+AUTO_CAMERA = "auto"
+#: The camera ``view_camera="auto"`` looks for (voot's scenes, models/generate_scenes.py).
+PERSPECTIVE_CAMERA = "perspective"
+
 #: Prefix of a watch entry meaning "the first node of the current best path whose
 #: operator is ...", e.g. ``"best:place"``.
 BEST_PREFIX = "best:"
@@ -51,6 +56,13 @@ class RecorderConfig:
             problem has a MuJoCo model.
         geom_groups: MuJoCo geom groups to draw (MuJoCo's viewer shows 0, 1, 2 by
             default; collision-only geoms usually sit in group 3); None draws all.
+        view_camera: the MuJoCo camera whose pose the default layout's 3-D view opens
+            with (:func:`voot.record.mujoco_scene.model_camera_eye`): a camera name of
+            the model; ``"auto"``: its ``perspective`` camera if it has one (voot's
+            kitchen and conveyor scenes: above and beside the rooms, looking at the
+            robot's workspace), else rerun's automatic view; None: rerun's automatic
+            view (it frames everything logged from a fixed side and can cut off the
+            robot). A name the model has no camera for is an error listing its cameras.
         floor_height: height (m) at which sampled base poses and placements are drawn.
         arrow_length: length (m) of the heading arrows of sampled poses.
         point_radius: radius (m) of the placement points in 3-D (and, in action units,
@@ -72,6 +84,7 @@ class RecorderConfig:
     record_plan: bool = True
     scene: bool = True
     geom_groups: tuple[int, ...] | None = (0, 1, 2)
+    view_camera: str | None = AUTO_CAMERA
     floor_height: float = 0.02
     arrow_length: float = 0.15
     point_radius: float = 0.03
@@ -120,6 +133,13 @@ class RecorderConfig:
                     f"geom_groups must be None or a tuple of MuJoCo groups 0-5, got {groups!r}"
                 )
             object.__setattr__(self, "geom_groups", tuple(groups))
+        if self.view_camera is not None and (
+            not isinstance(self.view_camera, str) or not self.view_camera.strip()
+        ):
+            raise ValueError(
+                f"view_camera must be None, {AUTO_CAMERA!r} or a camera name of the model,"
+                f" got {self.view_camera!r}"
+            )
         object.__setattr__(
             self, "floor_height", V.positive(self.floor_height, "floor_height", allow_zero=True)
         )

@@ -12,6 +12,10 @@ Poses are computed on a private ``MjData``: :meth:`MujocoScene.log_poses` copies
 ``qpos`` and the mocap poses of the given data and runs ``mj_kinematics``, so the
 caller's data (an environment's) is never touched. Height fields and SDF geoms are
 skipped (counted in :attr:`MujocoScene.skipped`). MuJoCo is imported lazily.
+
+:func:`model_camera_eye` turns one of the model's cameras into the 3-D view's first eye
+(:class:`voot.record.blueprint.Eye3D`), so a recording opens on the view the scene was
+designed with.
 """
 
 from __future__ import annotations
@@ -21,6 +25,8 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from voot.record.blueprint import Eye3D
 
 #: MuJoCo's default geom colour: a geom with a material and this rgba takes the material's.
 _DEFAULT_RGBA = (0.5, 0.5, 0.5, 1.0)
@@ -328,6 +334,43 @@ class MujocoScene:
         self.set_state(data)
         for b in self.moving:
             rec.log(self.body_entities[b], self._transform(b))
+
+
+def camera_names(model: Any) -> list[str]:
+    """The names of ``model``'s cameras (unnamed ones left out), in id order."""
+    return [n for n in (model.camera(i).name for i in range(model.ncam)) if n]
+
+
+def model_camera_eye(model: Any, camera: str) -> Eye3D:
+    """The 3-D view's eye at ``model``'s camera ``camera`` (its pose at the model's
+    initial state).
+
+    The eye stands where the camera is and looks along its optical axis at the point
+    where that axis meets the floor (z = 0), the point it orbits around; a camera that
+    does not look down looks at the point one scene extent (``model.stat.extent``) ahead.
+    The eye keeps the world's +z up (the camera's roll is not kept). A name the model
+    has no camera for is a ValueError listing the cameras.
+    """
+    import mujoco
+
+    if not _is_mj(model, "MjModel"):
+        raise ValueError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+    cid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, str(camera))
+    if cid < 0:
+        raise ValueError(
+            f"no camera {camera!r} in the model; cameras: {', '.join(camera_names(model)) or 'none'}"
+        )
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    mujoco.mj_camlight(model, data)
+    position = np.array(data.cam_xpos[cid], dtype=np.float64)
+    # a MuJoCo camera looks along its frame's -z axis
+    forward = -np.asarray(data.cam_xmat[cid], dtype=np.float64).reshape(3, 3)[:, 2]
+    if forward[2] < -1e-9 and position[2] > 0.0:
+        target = position + forward * (-position[2] / forward[2])
+    else:
+        target = position + forward * float(model.stat.extent)
+    return Eye3D(tuple(position.tolist()), tuple(target.tolist()))
 
 
 def log_mujoco_model(

@@ -26,7 +26,8 @@ index of the best plan):
   root's snapshot (the problem is restored afterwards); the root's poses also sit at
   ``search`` index 0 so that the scene shows while scrubbing the search;
 * ``scene/plan/{base_pose,placement}``: the executed action's pose at each plan step;
-* a default blueprint (:func:`voot.record.blueprint.default_blueprint`).
+* a default blueprint (:func:`voot.record.blueprint.default_blueprint`), its 3-D view
+  opening at the scene's ``perspective`` camera (``RecorderConfig.view_camera``).
 
 Cost: scalars and sample drawings are buffered and sent as columns every
 ``flush_every`` simulations (a drawing grows with the node's action count; one is made
@@ -55,10 +56,11 @@ from voot.record.blueprint import (
     SCENE,
     SEARCH_TIMELINE,
     TREE,
+    Eye3D,
     default_blueprint,
 )
-from voot.record.config import BEST_PREFIX, ROOT, RecorderConfig
-from voot.record.mujoco_scene import MujocoScene, find_mujoco
+from voot.record.config import AUTO_CAMERA, BEST_PREFIX, PERSPECTIVE_CAMERA, ROOT, RecorderConfig
+from voot.record.mujoco_scene import MujocoScene, camera_names, find_mujoco, model_camera_eye
 from voot.record.samples import BASE_POSE_KEY, PLACEMENT_KEY, NodeSamples, SampleLog, pose_of
 from voot.record.tree_graph import build_tree_graph, log_tree
 from voot.tree.mcts import MCTS, PlanResult
@@ -170,6 +172,8 @@ class SearchRecorder:
         self._scene_arg = scene
         self._blueprint = blueprint
         self.scene: MujocoScene | None = None
+        #: Where the default layout's 3-D view starts (``view_camera``), None: rerun's.
+        self._eye: Eye3D | None = None
         self._mj_data: Any = None
         self._scene_done = False
         self._sims: list[int] = []
@@ -245,6 +249,11 @@ class SearchRecorder:
                 )
             return
         model, data = found
+        camera = self.config.view_camera
+        if camera == AUTO_CAMERA:
+            camera = PERSPECTIVE_CAMERA if PERSPECTIVE_CAMERA in camera_names(model) else None
+        # checked before anything is logged: an unknown camera name names the cameras
+        self._eye = None if camera is None else model_camera_eye(model, camera)
         self.scene = MujocoScene(model, SCENE, self.config.geom_groups)
         self._mj_data = data
         self.scene.log_geometry(self.rec)
@@ -365,6 +374,7 @@ class SearchRecorder:
                     has_scene=self.scene is not None or "scene" in self._drawn.values(),
                     has_plot="plot" in self._drawn.values(),
                     has_plan=self.config.record_plan,
+                    eye=self._eye,
                 )
             )
         finally:

@@ -310,6 +310,16 @@ class MCTS:
             return -math.inf
         return self.best_node().path_return
 
+    @property
+    def commit_threshold(self) -> int | None:
+        """Counted actions the current root needs before the next commitment check.
+
+        Starts at ``root_commitment`` (None: commitment off) and doubles each time a
+        check keeps the root where it is (a terminal child) or, with
+        ``commit_reset_on_goal``, returns it to the original root after a goal.
+        """
+        return self._commit_threshold
+
     def best_plan(self) -> list[tuple[Node, int]]:
         """``(node, edge)`` pairs of the best path from the root."""
         return self.best_node().path()
