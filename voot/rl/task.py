@@ -103,7 +103,7 @@ class PlanningTask(gym.Wrapper[Any, Any, Any, Any]):
         max_episode_steps: int | None = None,
     ) -> None:
         super().__init__(env)
-        u = env.unwrapped
+        u: Any = env.unwrapped
         if not (
             callable(getattr(u, "get_state", None)) and callable(getattr(u, "set_state", None))
         ):
