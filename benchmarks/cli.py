@@ -37,6 +37,7 @@ from typing import TYPE_CHECKING, Any
 from voot import validation as V
 from voot.bench.store import ResultStore, Row, StoreError
 from voot.bench.sweep import Spec
+from voot.rl.train import MissingExtraError
 
 if TYPE_CHECKING:
     from voot.bench.plan_sweep import PlanSpec
@@ -463,7 +464,7 @@ def _plan_filter(names: Sequence[str] | None) -> list[str] | None:
 
 def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     from voot.bench.plan_plot import plan_data, plan_report, plot_plan_figure
-    from voot.tree.shooting import normalize_any_planner as normalize_planner
+    from voot.bench.plan_sweep import normalize_plan_planner as normalize_planner
 
     if args.regret or args.log or args.functions or args.dims or args.methods:
         raise CLIError(
@@ -1041,7 +1042,8 @@ def build_parser() -> argparse.ArgumentParser:
         nargs="+",
         metavar="NAME",
         help="voot doot rand_doot pw_uct voronoi_pw hoot uniform_t, or the sampling-based"
-        " cem mppi predictive_sampling random_shooting (default: the paper's)",
+        " cem mppi predictive_sampling random_shooting, or the RL baselines ppo ddpg"
+        " (budget matched to a voot search, docs/rl.md) (default: the paper's)",
     )
     p.add_argument(
         "--seeds", default=None, help="N (seeds 0..N-1) or START:STOP (default: the paper's)"
@@ -1295,7 +1297,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(words)
     try:
         return int(args.func(args))
-    except (CLIError, StoreError, ValueError) as exc:
+    except (CLIError, StoreError, ValueError, MissingExtraError) as exc:
         print(f"voot-bench: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:

@@ -5,7 +5,8 @@ hyperparameter grid, :func:`planner_grid`) x seeds, every run with a budget of
 simulations. :func:`build_plan_specs` turns the grid into :class:`PlanSpec` values and
 :func:`run_plan_spec` runs one with :class:`voot.tree.MCTS` (or, for the sampling-based
 planners ``cem``, ``mppi``, ``predictive_sampling`` and ``random_shooting``, with
-:class:`voot.tree.shooting.ShootingPlanner`: the same row), returning a result row of
+:class:`voot.tree.shooting.ShootingPlanner`: the same row; for the RL planners ``ppo`` and
+``ddpg``, by :mod:`voot.bench.rl_runs`, with a budget matched to a tree search), returning a result row of
 kind ``"plan"`` for the same store, backends and resume logic as the black-box sweep
 (:func:`voot.bench.sweep.run_sweep`).
 
@@ -75,6 +76,8 @@ PLAN_PLANNERS: tuple[str, ...] = (
     "mppi",
     "predictive_sampling",
     "random_shooting",
+    "ppo",
+    "ddpg",
 )
 #: Re-evaluation counts ``w`` (the paper's :math:`N_r = 1 + w`) searched per family; the
 #: authors used 100 on the chains and 5 on the robot domains.
@@ -124,11 +127,10 @@ def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[st
     mppi        noise x temperature
     predictive_sampling  noise
     random_shooting      (none)
+    ppo, ddpg   (none: the paper gives no RL grid; SB3's defaults)
     ==========  ==================================================
     """
-    from voot.tree.shooting import normalize_any_planner
-
-    key = normalize_any_planner(planner)
+    key = normalize_plan_planner(planner)
     if grid not in GRIDS:
         raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
     if family not in REEVALUATIONS:
@@ -153,6 +155,24 @@ def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[st
         dict(zip(names, values, strict=True))
         for values in itertools.product(*(axes[n] for n in names))  # type: ignore[index]
     ]
+
+
+def normalize_plan_planner(name: str) -> str:
+    """The canonical name of any planner of ``voot-bench plan``: a tree planner, a
+    sampling-based one or an RL one (``ppo``, ``ddpg``); a ValueError listing all."""
+    from voot.bench.rl_runs import RL_PLANNERS, is_rl_planner
+    from voot.tree.config import available_planners
+    from voot.tree.shooting import available_shooting_planners, normalize_any_planner
+
+    if is_rl_planner(name):
+        return str(name).strip().lower()
+    try:
+        return normalize_any_planner(name)
+    except ValueError:
+        valid = sorted(available_planners() + available_shooting_planners() + list(RL_PLANNERS))
+        raise ValueError(
+            f"unknown planner {name!r}; valid planners are: {', '.join(valid)}"
+        ) from None
 
 
 def _config_fields() -> set[str]:
@@ -239,9 +259,12 @@ def run_config(
     env_kwargs: Mapping[str, Any] | None = None,
 ) -> Any:
     """The config of a run: :func:`shooting_run_config` for a sampling-based planner,
-    else :func:`mcts_config`."""
+    :func:`voot.bench.rl_runs.rl_run_config` for an RL one, else :func:`mcts_config`."""
+    from voot.bench.rl_runs import is_rl_planner, rl_run_config
     from voot.tree.shooting import is_shooting_planner
 
+    if is_rl_planner(planner):
+        return rl_run_config(problem, dim, planner, params, env_kwargs)
     if is_shooting_planner(planner):
         return shooting_run_config(problem, dim, planner, params, env_kwargs)
     return mcts_config(problem, dim, planner, params, env_kwargs)
@@ -341,9 +364,15 @@ def _horizon_param(planner: str, horizon: int | None) -> dict[str, int | None]:
     without root commitment (which would let the horizon recede past ``H``)."""
     if horizon is None:
         return {}
+    from voot.bench.rl_runs import is_rl_planner
     from voot.tree.shooting import is_shooting_planner
 
     h = V.integer(horizon, "horizon", 1)
+    if is_rl_planner(planner):
+        raise ValueError(
+            f"--horizon sets a planner's depth; the RL planner {planner!r} learns on whole"
+            " episodes (set its max_episode_steps instead, e.g. --set max_episode_steps=5)"
+        )
     if is_shooting_planner(planner):
         return {"horizon": h}
     return {"depth_limit": h, "root_commitment": None}
@@ -384,16 +413,21 @@ def build_plan_specs(
         ValueError: unknown problem, planner, parameter or grid; bad numbers; a chain
             dimension without a reference threshold. Messages list the valid choices.
     """
-    from voot.tree.shooting import is_shooting_planner, normalize_any_planner
+    from voot.bench.rl_runs import is_rl_planner
+    from voot.tree.shooting import is_shooting_planner
 
     names = [P.normalize_problem(p) for p in problems]
     if not names:
         raise ValueError("no problems given")
     dim_list = _int_list(dims, "dims", 1) if dims is not None else list(P.DEFAULT_CHAIN_DIMS)
     seed_list = _int_list(seeds, "seeds", 0) if seeds is not None else None
-    planner_list = [normalize_any_planner(p) for p in planners] if planners is not None else None
+    planner_list = [normalize_plan_planner(p) for p in planners] if planners is not None else None
     if planner_list is not None and not planner_list:
         raise ValueError("no planners given")
+    if planner_list is not None and any(is_rl_planner(p) for p in planner_list):
+        from voot.rl import require_sb3
+
+        require_sb3()  # a missing rl extra is an error now, naming the extra
     if simulations is not None:
         _int_list([simulations], "simulations", 1)
     if grid not in GRIDS:
@@ -436,10 +470,12 @@ def build_plan_specs(
                     for seed in seeds_here:
                         specs.append(PlanSpec(problem, dim, env, planner, items, int(n_sims), seed))
     if record is not None:
-        shooting = sorted({s.planner for s in specs if is_shooting_planner(s.planner)})
+        shooting = sorted(
+            {s.planner for s in specs if is_shooting_planner(s.planner) or is_rl_planner(s.planner)}
+        )
         if shooting:
             raise ValueError(
-                f"recording draws a search tree; the sampling-based planners {shooting}"
+                f"recording draws a search tree; the sampling-based and RL planners {shooting}"
                 " keep none (record tree planners only)"
             )
         if len(specs) > MAX_RECORDINGS:
@@ -484,6 +520,10 @@ def _jsonable(value: Any) -> Any:
 @one_blas_thread
 def run_plan_spec(spec: PlanSpec) -> Row:
     """Run one planning spec and return its row (status ``"failed"`` on an exception)."""
+    from voot.bench.rl_runs import is_rl_planner, run_rl_spec
+
+    if is_rl_planner(spec.planner):
+        return run_rl_spec(spec)
     start = time.perf_counter()
     best: list[float] = []
     try:

@@ -35,12 +35,17 @@ def offending(modules: list[str], *prefixes: str) -> list[str]:
 def test_optim_functions_tree_load_no_mujoco_envs_or_bench() -> None:
     modules = loaded_after("voot.tree", "voot.optim", "voot.functions")
     assert "voot.tree.root_parallel" in modules
-    assert offending(modules, "mujoco", "voot.envs", "voot.bench", "voot.record") == []
+    assert offending(modules, "mujoco", "voot.envs", "voot.bench", "voot.record", "voot.rl") == []
 
 
 def test_parallel_loads_nothing_of_the_layers_above() -> None:
     modules = loaded_after("voot.parallel")
     assert offending(modules, "mujoco", "voot.tree", "voot.envs", "voot.bench", "ray") == []
+
+
+def test_rl_loads_no_torch_sb3_or_bench() -> None:
+    modules = loaded_after("voot.rl")
+    assert offending(modules, "torch", "stable_baselines3", "voot.bench", "mujoco") == []
 
 
 def test_record_loads_no_bench() -> None:

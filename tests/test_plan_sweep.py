@@ -77,7 +77,7 @@ def test_grids() -> None:
     ("kwargs", "match"),
     [
         ({"problems": ["nope"]}, "unknown problem 'nope'; valid problems"),
-        ({"planners": ["vooot"]}, "unknown planner 'vooot'; valid planners are: cem, doot"),
+        ({"planners": ["vooot"]}, "unknown planner 'vooot'; valid planners are: cem, ddpg, doot"),
         ({"dims": [5]}, "no reference threshold for the shekel chain in 5-D"),
         ({"dims": [0]}, "dims must be integers >= 1"),
         ({"seeds": [-1]}, "seeds must be integers >= 0"),

@@ -1,0 +1,193 @@
+"""The configurations of the RL baselines: PPO and DDPG as stable-baselines3 runs them.
+
+Every field is a named, validated option at stable-baselines3's default (SB3 2.x,
+``stable_baselines3.PPO`` and ``stable_baselines3.DDPG``, checked against the installed
+signatures by ``tests/test_rl_config.py``), except:
+
+* ``gamma``: the problem's discount (the tree's: kitchen 0.9, conveyor 0.99, chains
+  0.9), set by the benchmark runner; 0.99, SB3's default, when used directly;
+* DDPG's exploration noise, which SB3 leaves off by default (``action_noise=None``): a
+  Gaussian of standard deviation ``action_noise_sigma = 0.1`` per action dimension, in
+  the policy's scaled action units ``[-1, 1]``, the noise of SB3's own DDPG example
+  (docs, "DDPG", ``NormalActionNoise(sigma=0.1 * np.ones(n_actions))``);
+* ``device``: ``"cpu"`` instead of SB3's ``"auto"``, so that a machine with a GPU does
+  not silently give other (non-reproducible) numbers;
+* ``max_episode_steps``: None (an episode ends where the env ends it, as a tree
+  rollout), an option of the task (:class:`voot.rl.task.PlanningTask`), not of SB3.
+
+The networks are SB3's defaults (``policy_kwargs`` unset: PPO's ``MlpPolicy`` two
+hidden layers of 64 with tanh; DDPG's two of 400 and 300 with ReLU). The paper gives no
+RL hyperparameters beyond "PPO and DDPG", so these are the library defaults a user
+gets.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, fields
+from types import MappingProxyType
+from typing import Any, ClassVar
+
+from voot import validation as V
+
+#: Devices a run may use (CPU: bit-reproducible; see docs/rl.md).
+DEVICES = ("cpu", "cuda", "auto")
+
+
+@dataclass(frozen=True)
+class RLConfig:
+    """What every RL algorithm shares (see the module docstring).
+
+    Attributes:
+        gamma: discount of the learned return and of the reported one.
+        learning_rate: the optimiser's step size (Adam).
+        batch_size: minibatch size of an update.
+        device: torch device; ``"cpu"`` for reproducible runs.
+        max_episode_steps: truncate episodes after this many steps (None: the env's end).
+    """
+
+    gamma: float = 0.99
+    learning_rate: float = 3e-4
+    batch_size: int = 64
+    device: str = "cpu"
+    max_episode_steps: int | None = None
+
+    name: ClassVar[str] = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "gamma", V.number(self.gamma, "gamma", 0.0, 1.0))
+        object.__setattr__(self, "learning_rate", V.positive(self.learning_rate, "learning_rate"))
+        object.__setattr__(self, "batch_size", V.integer(self.batch_size, "batch_size", 1))
+        object.__setattr__(self, "device", V.one_of(self.device, "device", DEVICES))
+        object.__setattr__(
+            self,
+            "max_episode_steps",
+            V.optional_integer(self.max_episode_steps, "max_episode_steps", 1),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """Every field by name, and the algorithm's ``name``."""
+        return {"name": self.name, **asdict(self)}
+
+    def sb3_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of the SB3 algorithm's constructor (noise excepted)."""
+        skip = {"max_episode_steps", "action_noise_sigma"}
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in skip}
+
+
+@dataclass(frozen=True)
+class PPOConfig(RLConfig):
+    """Proximal policy optimisation (Schulman et al., 2017), SB3's defaults.
+
+    Attributes:
+        learning_rate: 3e-4.
+        n_steps: env steps per rollout before an update: 2048.
+        batch_size: 64.
+        n_epochs: passes over a rollout per update: 10.
+        gae_lambda: GAE's :math:`\\lambda`: 0.95.
+        clip_range: the policy ratio's clip: 0.2.
+        normalize_advantage: True.
+        ent_coef: entropy bonus weight: 0.0.
+        vf_coef: value loss weight: 0.5.
+        max_grad_norm: gradient clipping: 0.5.
+    """
+
+    learning_rate: float = 3e-4
+    n_steps: int = 2048
+    batch_size: int = 64
+    n_epochs: int = 10
+    gae_lambda: float = 0.95
+    clip_range: float = 0.2
+    normalize_advantage: bool = True
+    ent_coef: float = 0.0
+    vf_coef: float = 0.5
+    max_grad_norm: float = 0.5
+
+    name: ClassVar[str] = "ppo"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        object.__setattr__(self, "n_steps", V.integer(self.n_steps, "n_steps", 2))
+        object.__setattr__(self, "n_epochs", V.integer(self.n_epochs, "n_epochs", 1))
+        object.__setattr__(self, "gae_lambda", V.number(self.gae_lambda, "gae_lambda", 0.0, 1.0))
+        object.__setattr__(self, "clip_range", V.positive(self.clip_range, "clip_range"))
+        object.__setattr__(
+            self, "normalize_advantage", V.flag(self.normalize_advantage, "normalize_advantage")
+        )
+        object.__setattr__(self, "ent_coef", V.positive(self.ent_coef, "ent_coef", allow_zero=True))
+        object.__setattr__(self, "vf_coef", V.positive(self.vf_coef, "vf_coef"))
+        object.__setattr__(self, "max_grad_norm", V.positive(self.max_grad_norm, "max_grad_norm"))
+
+
+@dataclass(frozen=True)
+class DDPGConfig(RLConfig):
+    """Deep deterministic policy gradient (Lillicrap et al., 2016), SB3's defaults.
+
+    Attributes:
+        learning_rate: 1e-3.
+        buffer_size: replay buffer capacity: 1,000,000.
+        learning_starts: env steps before the first update: 100.
+        batch_size: 256.
+        tau: target networks' soft update: 0.005.
+        train_freq: env steps between updates: 1.
+        gradient_steps: gradient steps per update: 1.
+        action_noise_sigma: standard deviation of the Gaussian exploration noise, per
+            action dimension in scaled units: 0.1 (SB3's DDPG example; SB3 itself
+            defaults to no noise).
+    """
+
+    learning_rate: float = 1e-3
+    buffer_size: int = 1_000_000
+    learning_starts: int = 100
+    batch_size: int = 256
+    tau: float = 0.005
+    train_freq: int = 1
+    gradient_steps: int = 1
+    action_noise_sigma: float = 0.1
+
+    name: ClassVar[str] = "ddpg"
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        object.__setattr__(self, "buffer_size", V.integer(self.buffer_size, "buffer_size", 1))
+        object.__setattr__(
+            self, "learning_starts", V.integer(self.learning_starts, "learning_starts", 0)
+        )
+        object.__setattr__(self, "tau", V.number(self.tau, "tau", 0.0, 1.0, open_low=True))
+        object.__setattr__(self, "train_freq", V.integer(self.train_freq, "train_freq", 1))
+        object.__setattr__(
+            self, "gradient_steps", V.integer(self.gradient_steps, "gradient_steps", 1)
+        )
+        object.__setattr__(
+            self,
+            "action_noise_sigma",
+            V.positive(self.action_noise_sigma, "action_noise_sigma", allow_zero=True),
+        )
+
+
+#: The RL algorithms by name.
+RL_ALGORITHMS: Mapping[str, type[RLConfig]] = MappingProxyType(
+    {c.name: c for c in (PPOConfig, DDPGConfig)}
+)
+
+
+def available_algorithms() -> list[str]:
+    """Names accepted by :func:`rl_config`."""
+    return sorted(RL_ALGORITHMS)
+
+
+def normalize_algorithm(name: object) -> str:
+    """The canonical algorithm name (``"PPO"`` -> ``"ppo"``), or a ValueError listing them."""
+    key = str(name).strip().lower()
+    if key not in RL_ALGORITHMS:
+        raise ValueError(
+            f"unknown RL algorithm {name!r}; valid algorithms are: {', '.join(available_algorithms())}"
+        )
+    return key
+
+
+def rl_config(name: str, **overrides: Any) -> RLConfig:
+    """The config of algorithm ``name`` with ``overrides`` (unknown ones name the valid)."""
+    cls = RL_ALGORITHMS[normalize_algorithm(name)]
+    V.config_options(cls, overrides)
+    return cls(**overrides)
