@@ -431,6 +431,8 @@ class CollisionChecker:
         self._qpos_view = self.data.qpos
         # (geom, geom, held) -> what the contact reports (a pure function of the three)
         self._pair_hit: dict[tuple[int, int, int], str | None] = {}
+        # the last query, ``(held, qpos bytes)``, and its report (see check)
+        self._last: tuple[tuple[int, bytes], CollisionReport] | None = None
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -481,8 +483,14 @@ class CollisionChecker:
         Returns:
             The names of what is hit (scene geom names; object body names), sorted,
             without duplicates; prefixed ``"robot-"`` or ``"object-"`` by the party hit.
+            Treat it as read-only: a query repeating the last one (the same ``held`` and
+            the same ``qpos`` once the changes are applied, byte for byte) returns the
+            last report itself. The report is a pure function of the two (kinematics and
+            contacts depend on the positions alone), so the repeat is exact; it is what a
+            pre-screen followed by the full step of the same action asks
+            (:meth:`voot.envs.task_env.ManipulationEnv.certainly_infeasible`).
         """
-        m, d = self.model, self.data
+        d = self.data
         q = self._qpos_view
         q[:] = qpos
         base_sl, arm_sl, finger_sl = self._base_sl, self._arm_sl, self._finger_sl
@@ -503,6 +511,17 @@ class CollisionChecker:
                     q[adr : adr + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
                 else:
                     set_object_pose(d, objects[i], pose)
+        key = (-2 if held is None else held, q.tobytes())
+        last = self._last
+        if last is not None and last[0] == key:
+            return last[1]
+        report = self._query(held)
+        self._last = (key, report)
+        return report
+
+    def _query(self, held: int | None) -> CollisionReport:
+        """The contacts of the configuration in :attr:`data`'s ``qpos``, as a report."""
+        m, d = self.model, self.data
         mujoco.mj_kinematics(m, d)
         restore = self._held_affinity.get(held) if held is not None else None
         if restore is not None:

@@ -563,8 +563,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
             return "collision: " + ", ".join(report.hits), base, None, no_rel
-        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
-        held_rel = (float(rel[0]), float(rel[1]), float(rel[2]))
+        held_rel = self._held_rel(base, pose)
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
             t0 = time.perf_counter()
             carry_reason = self._carry_blocked(obj, held_rel, base)
@@ -573,6 +572,43 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             if carry_reason:
                 return carry_reason, base, None, no_rel
         return "", base, ik.q, held_rel
+
+    @staticmethod
+    def _held_rel(base: FloatArray, pose: FloatArray) -> tuple[float, float, float]:
+        """The object's body pose ``(x, y, yaw)`` in the frame of the base at ``base``."""
+        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
+        return float(rel[0]), float(rel[1]), float(rel[2])
+
+    def certainly_infeasible(self, action: ArrayLike) -> bool:
+        """The exact pre-screen of :meth:`ManipulationEnv.certainly_infeasible`.
+
+        A place: its checks before the base path (:meth:`_place_checks`, as the step
+        runs them). A pick: the robot in the house, the base at the tucked arm free of
+        collisions and, with ``pick_requires_free_carry``, the carry disc free; the
+        step tests the carry disc last (after IK and the arm's collisions, so that the
+        reasons it gives stay those it gave without the rule), but for the verdict
+        alone it can come first and spares the IK of a pick that cannot carry.
+        """
+        t, cfg = self.task, self.config
+        if t.done or t.steps >= cfg.horizon:
+            return False  # the step raises
+        a = self._plain_action(action)
+        if a is None:
+            return False
+        if t.operator == "place":
+            params = denormalize(a[:3], cfg.place_ranges)
+            return bool(self._place_checks(params, forbidden_rooms=True)[0])
+        params = denormalize(a, cfg.pick_ranges)
+        obj = t.on_path[0]
+        base = self.pick_base_pose(obj, params)
+        if not rect_inside(base_footprint(base), cfg.house):
+            return True
+        if not self.collision.check(self.data.qpos, base, TUCK).free:
+            return True
+        if cfg.pick_requires_free_carry:
+            held_rel = self._held_rel(base, self.object_pose(obj))
+            return bool(self._carry_blocked(obj, held_rel, base))
+        return False
 
     def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task

@@ -364,6 +364,35 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
         return EnvProblem(self if env is None else env)
 
+    def certainly_infeasible(self, action: ArrayLike) -> bool:
+        """Would :meth:`transition` certainly find ``action`` infeasible now? Changes nothing.
+
+        An exact pre-screen for a pre-check that runs the whole step (v0's
+        ``"full_step"``): True only if the step's ``info["feasible"]`` would be False;
+        False when that is not settled cheaply (the step must run), when the action needs
+        clipping or is malformed, or when the episode has ended (the step would raise).
+        The step's conditions are a conjunction of pure functions of the state and the
+        action, so any one of them that fails settles the answer whatever the step's
+        order: a subclass tests the cheap ones (and those that spare the costly ones)
+        first and builds no info, reason or next state. The base class settles nothing.
+        """
+        return False
+
+    def _plain_action(self, action: ArrayLike) -> FloatArray | None:
+        """``action`` as :meth:`_validate_action` returns it when no clipping is needed.
+
+        None for anything else (wrong shape, entries outside ``[-1, 1]``, NaN): the
+        caller leaves those to the step, which clips or raises.
+        """
+        if type(action) is not np.ndarray or action.dtype != np.float64:
+            return None
+        if action.shape != self.action_space.shape:
+            return None
+        values = action.tolist()
+        if min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values)):
+            return action
+        return None
+
     def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
         """:meth:`step` without the observation: ``(reward, terminated, truncated, info)``.
 
