@@ -998,6 +998,7 @@ class BasePlanner:
         self._template = self._make_template(config.corner_segments)
         self._static_cache: OrderedDict[float, _Graph] = OrderedDict()
         self._static_lists: tuple[list[float], ...] | None = None
+        self._lists_cache: dict[tuple[Box2D, ...], tuple[tuple[list[float], ...], list[str]]] = {}
         self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
 
     # ----- public API -------------------------------------------------------------------
@@ -1067,12 +1068,31 @@ class BasePlanner:
         # the point test of points_hit_boxes box by box on floats; a one-off radius (a
         # carried object's disc) needs no scene in the graph cache
         scene = self._graph_cache.get((radius, mov))
-        lists = _box_lists(scene) if scene is not None else self._box_lists_of(mov)
-        names = [*(b.name for b in self.static_obstacles), *(b.name for b in mov)]
+        lists, names = self._lists_and_names(mov)
+        if scene is not None:
+            lists = _box_lists(scene)
         out = [names[k] for k in _point_hit_indices(p.x, p.y, lists, r_hit)]
         if not self._inside_xy(p.x, p.y, r_hit):
             out.insert(0, "workspace")
         return out
+
+    def _lists_and_names(
+        self, movable: tuple[Box2D, ...]
+    ) -> tuple[tuple[list[float], ...], list[str]]:
+        """:meth:`_box_lists_of` ``movable`` and the boxes' names, static first.
+
+        Remembered for the last few obstacle sets (a pure function of the boxes): an
+        env asks :meth:`colliding` with one set of objects and a new radius (a carried
+        object's disc) at every pick it checks.
+        """
+        hit = self._lists_cache.get(movable)
+        if hit is None:
+            names = [*(b.name for b in self.static_obstacles), *(b.name for b in movable)]
+            hit = (self._box_lists_of(movable), names)
+            if len(self._lists_cache) >= 16:
+                self._lists_cache.clear()
+            self._lists_cache[movable] = hit
+        return hit
 
     def _box_lists_of(self, movable: tuple[Box2D, ...]) -> tuple[list[float], ...]:
         """:func:`_box_lists` of the static boxes followed by ``movable``, without a scene.
@@ -1118,6 +1138,7 @@ class BasePlanner:
         """Drop the cached graphs (results do not change; only the next query's time)."""
         self._static_cache.clear()
         self._graph_cache.clear()
+        self._lists_cache.clear()
 
     # ----- internals --------------------------------------------------------------------
     def _inflated_radius(self, robot_radius: float) -> float:
