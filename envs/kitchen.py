@@ -77,7 +77,13 @@ from voot.envs.robot import (
     compose2d,
     inverse2d,
 )
-from voot.envs.scene import object_footprint, rect_inside, rect_overlaps
+from voot.envs.scene import (
+    object_footprint,
+    rect_fields_inside,
+    rect_fields_overlap,
+    rect_inside,
+    rect_overlaps,
+)
 from voot.envs.swept_volume import obstacles_on_path
 from voot.envs.task_env import (
     ManipulationEnv,
@@ -85,6 +91,7 @@ from voot.envs.task_env import (
     add_marker_box,
     add_marker_segment,
     denormalize,
+    denormalize_floats,
     env_config,
     pose_tuple,
     preset_config,
@@ -307,6 +314,37 @@ class KitchenTask:
     done: bool
 
 
+@dataclass(frozen=True, slots=True)
+class ScreenContext:
+    """What :meth:`KitchenClearingEnv.certainly_infeasible` needs of one state.
+
+    Built once per state (a task record and the ``qpos`` bytes: every number here is a
+    function of the two), so the pre-screen of each proposal at a node computes only
+    what depends on the action.
+
+    Attributes:
+        task: The task record the numbers are for.
+        qpos: The ``qpos`` bytes they are for.
+        obj: The object handled (held at a place, first on the path at a pick).
+        ranges: The operator's parameter ranges.
+        center: The object's footprint centre in its body frame (``ObjectInfo.center``).
+        half: The footprint's half extents.
+        pose: The object's body pose ``(x, y, z, yaw)`` (``object_pose``).
+        box: The object's footprint now (``object_box``).
+        inverse: ``inverse2d(held_rel)`` at a place (the base in the object's frame).
+    """
+
+    task: KitchenTask
+    qpos: bytes
+    obj: int
+    ranges: tuple[tuple[float, float], ...]
+    center: tuple[float, float]
+    half: tuple[float, float]
+    pose: FloatArray
+    box: Box2D
+    inverse: tuple[float, float, float]
+
+
 class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     """The object-clearing domain as a gymnasium environment (see the module docstring).
 
@@ -336,6 +374,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self._path: BasePath | None = None
         self._order: tuple[int, ...] = ()
         self._disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc] = {}
+        self._screen: ScreenContext | None = None
         super().__init__(
             "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
         )
@@ -582,32 +621,103 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     def certainly_infeasible(self, action: ArrayLike) -> bool:
         """The exact pre-screen of :meth:`ManipulationEnv.certainly_infeasible`.
 
-        A place: its checks before the base path (:meth:`_place_checks`, as the step
-        runs them). A pick: the robot in the house, the base at the tucked arm free of
-        collisions and, with ``pick_requires_free_carry``, the carry disc free; the
-        step tests the carry disc last (after IK and the arm's collisions, so that the
-        reasons it gives stay those it gave without the rule), but for the verdict
-        alone it can come first and spares the IK of a pick that cannot carry.
+        A place: its checks before the base path, as :meth:`_place_checks` runs them (on
+        floats, with what depends on the state alone computed once per state: see
+        :class:`ScreenContext`). A pick: the robot in the house, the base at the tucked
+        arm free of collisions and, with ``pick_requires_free_carry``, the carry disc
+        free; the step tests the carry disc last (after IK and the arm's collisions, so
+        that the reasons it gives stay those it gave without the rule), but for the
+        verdict alone it can come first and spares the IK of a pick that cannot carry.
+        Every number is computed with the step's operations, in its order.
         """
-        t, cfg = self.task, self.config
-        if t.done or t.steps >= cfg.horizon:
+        t = self.task
+        if t.done or t.steps >= self.config.horizon:
             return False  # the step raises
         a = self._plain_action(action)
         if a is None:
             return False
+        ctx = self._screen_context()
         if t.operator == "place":
-            params = denormalize(a[:3], cfg.place_ranges)
-            return bool(self._place_checks(params, forbidden_rooms=True)[0])
-        params = denormalize(a, cfg.pick_ranges)
-        obj = t.on_path[0]
-        base = self.pick_base_pose(obj, params)
-        if not rect_inside(base_footprint(base), cfg.house):
+            return self._place_screened(ctx, a.tolist())
+        return self._pick_screened(ctx, a.tolist())
+
+    def _screen_context(self) -> ScreenContext:
+        """The pre-screen's per-state numbers (rebuilt when the task or qpos changed)."""
+        t, qpos = self.task, self.data.qpos.tobytes()
+        ctx = self._screen
+        if ctx is not None and ctx.task is t and ctx.qpos == qpos:
+            return ctx
+        cfg = self.config
+        obj = t.held if t.operator == "place" else t.on_path[0]
+        info = self.objects[obj]
+        ox, oy = info.center.tolist()
+        hx, hy = info.half.tolist()
+        pose = self.object_pose(obj)
+        inverse = (
+            tuple(inverse2d(t.held_rel).tolist()) if t.operator == "place" else (0.0, 0.0, 0.0)
+        )
+        ranges = cfg.place_ranges if t.operator == "place" else cfg.pick_ranges
+        ctx = self._screen = ScreenContext(
+            task=t,
+            qpos=qpos,
+            obj=obj,
+            ranges=ranges,
+            center=(ox, oy),
+            half=(hx, hy),
+            pose=pose,
+            box=self.object_box(obj),
+            inverse=(inverse[0], inverse[1], inverse[2]),
+        )
+        return ctx
+
+    def _place_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
+        """Does the place ``a`` fail :meth:`_place_checks` (with the forbidden rooms)?"""
+        cfg, t = self.config, self.task
+        x, y, theta = denormalize_floats(a[:3], ctx.ranges)
+        ox, oy = ctx.center
+        hx, hy = ctx.half
+        # object_footprint's and compose2d's numbers (the same cosine and sine)
+        c, s = math.cos(theta), math.sin(theta)
+        cx = x + c * ox - s * oy
+        cy = y + s * ox + c * oy
+        if not rect_fields_inside(cx, cy, hx, hy, theta, cfg.house):
             return True
-        if not self.collision.check(self.data.qpos, base, TUCK).free:
+        if rect_fields_overlap(cx, cy, hx, hy, theta, cfg.forbidden):
+            return True
+        ix, iy, it = ctx.inverse
+        bx = x + c * ix - s * iy
+        by = y + s * ix + c * iy
+        bt = theta + it
+        if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, bt, cfg.house):
+            return True
+        z = float(ctx.pose[2])
+        report = self.collision.check(
+            self.data.qpos,
+            (bx, by, bt),
+            t.grasp_q,
+            held=ctx.obj,
+            object_poses={ctx.obj: (x, y, z, theta)},
+        )
+        return not report.free
+
+    def _pick_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
+        """Does the pick ``a`` fail the region, tucked-base collision or carry test?"""
+        cfg = self.config
+        p = denormalize_floats(a, ctx.ranges)
+        box = ctx.box
+        # pick_base_pose's numbers
+        dist = p[3] * ARM_REACH
+        ang = box.yaw + p[4]
+        bx, by = box.cx + dist * math.cos(ang), box.cy + dist * math.sin(ang)
+        heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
+        if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, heading, cfg.house):
+            return True
+        if not self.collision.check(self.data.qpos, (bx, by, heading), TUCK).free:
             return True
         if cfg.pick_requires_free_carry:
-            held_rel = self._held_rel(base, self.object_pose(obj))
-            return bool(self._carry_blocked(obj, held_rel, base))
+            base = np.array([bx, by, heading])
+            held_rel = self._held_rel(base, ctx.pose)
+            return bool(self._carry_blocked(ctx.obj, held_rel, base))
         return False
 
     def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:

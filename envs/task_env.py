@@ -150,6 +150,37 @@ def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, Fl
     return hit
 
 
+def denormalize_floats(a: Sequence[float], ranges: Sequence[tuple[float, float]]) -> list[float]:
+    """:func:`denormalize` on Python floats: the same numbers, without the arrays.
+
+    Each entry is ``low + 0.5 * (a + 1.0) * (high - low)``, the IEEE operations numpy
+    applies elementwise, in its order; for the envs' pre-screens, which read the
+    parameters one by one.
+    """
+    lo, width = _range_lists(ranges)
+    return [lo_i + 0.5 * (a_i + 1.0) * w_i for lo_i, a_i, w_i in zip(lo, a, width, strict=True)]
+
+
+#: ``(low, high - low)`` lists of the ranges :func:`denormalize_floats` has seen.
+_RANGE_LISTS: dict[Any, tuple[list[float], list[float]]] = {}
+
+
+def _range_lists(ranges: Sequence[tuple[float, float]]) -> tuple[list[float], list[float]]:
+    """:func:`_range_arrays` as lists of Python floats (the same numbers)."""
+    try:
+        hit = _RANGE_LISTS.get(ranges)
+    except TypeError:  # not hashable (lists)
+        lo, width = _range_arrays(ranges)
+        return lo.tolist(), width.tolist()
+    if hit is None:
+        lo, width = _range_arrays(ranges)
+        hit = (lo.tolist(), width.tolist())
+        if len(_RANGE_LISTS) >= 64:
+            _RANGE_LISTS.clear()
+        _RANGE_LISTS[ranges] = hit
+    return hit
+
+
 def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
     """Inverse of :func:`denormalize`: parameters in the paper's units to ``[-1, 1]^d``."""
     lo = np.array([r[0] for r in ranges], dtype=np.float64)
