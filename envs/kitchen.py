@@ -332,6 +332,9 @@ class ScreenContext:
         pose: The object's body pose ``(x, y, z, yaw)`` (``object_pose``).
         box: The object's footprint now (``object_box``).
         inverse: ``inverse2d(held_rel)`` at a place (the base in the object's frame).
+        disc: The carry disc at a place (``held_disc``), else None.
+        start: The disc's centre pose now at a place (the base path's start), else None.
+        movable: The footprints of the other objects (``object_boxes(exclude=(obj,))``).
     """
 
     task: KitchenTask
@@ -343,6 +346,9 @@ class ScreenContext:
     pose: FloatArray
     box: Box2D
     inverse: tuple[float, float, float]
+    disc: CarryDisc | None
+    start: FloatArray | None
+    movable: tuple[Box2D, ...]
 
 
 class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
@@ -623,7 +629,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
 
         A place: its checks before the base path, as :meth:`_place_checks` runs them (on
         floats, with what depends on the state alone computed once per state: see
-        :class:`ScreenContext`). A pick: the robot in the house, the base at the tucked
+        :class:`ScreenContext`), then the base path itself (the planner remembers its
+        last answer, so a place that passes is not planned twice). A pick: the robot in the house, the base at the tucked
         arm free of collisions and, with ``pick_requires_free_carry``, the carry disc
         free; the step tests the carry disc last (after IK and the arm's collisions, so
         that the reasons it gives stay those it gave without the rule), but for the
@@ -653,10 +660,10 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         ox, oy = info.center.tolist()
         hx, hy = info.half.tolist()
         pose = self.object_pose(obj)
-        inverse = (
-            tuple(inverse2d(t.held_rel).tolist()) if t.operator == "place" else (0.0, 0.0, 0.0)
-        )
-        ranges = cfg.place_ranges if t.operator == "place" else cfg.pick_ranges
+        place = t.operator == "place"
+        inverse = tuple(inverse2d(t.held_rel).tolist()) if place else (0.0, 0.0, 0.0)
+        ranges = cfg.place_ranges if place else cfg.pick_ranges
+        disc = self.held_disc() if place else None
         ctx = self._screen = ScreenContext(
             task=t,
             qpos=qpos,
@@ -667,11 +674,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             pose=pose,
             box=self.object_box(obj),
             inverse=(inverse[0], inverse[1], inverse[2]),
+            disc=disc,
+            start=None if disc is None else disc.center(self.robot.base_pose(self.data)),
+            movable=tuple(self.object_boxes(exclude=(obj,))),
         )
         return ctx
 
     def _place_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
-        """Does the place ``a`` fail :meth:`_place_checks` (with the forbidden rooms)?"""
+        """Does the place ``a`` fail :meth:`_place_checks` (forbidden rooms on) or its path?"""
         cfg, t = self.config, self.task
         x, y, theta = denormalize_floats(a[:3], ctx.ranges)
         ox, oy = ctx.center
@@ -698,7 +708,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             held=ctx.obj,
             object_poses={ctx.obj: (x, y, z, theta)},
         )
-        return not report.free
+        if not report.free:
+            return True
+        # the step's base path (the planner remembers it for the step that follows)
+        disc = ctx.disc
+        assert disc is not None and ctx.start is not None
+        goal = disc.center(np.array([bx, by, bt]))
+        return self.planner.plan(ctx.start, goal, disc.radius, ctx.movable) is None
 
     def _pick_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
         """Does the pick ``a`` fail the region, tucked-base collision or carry test?"""
