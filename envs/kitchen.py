@@ -701,14 +701,13 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, bt, cfg.house):
             return True
         z = float(ctx.pose[2])
-        report = self.collision.check(
+        if self.collision.collides(
             self.data.qpos,
             (bx, by, bt),
             t.grasp_q,
             held=ctx.obj,
             object_poses={ctx.obj: (x, y, z, theta)},
-        )
-        if not report.free:
+        ):
             return True
         # the step's base path (the planner remembers it for the step that follows)
         disc = ctx.disc
@@ -728,7 +727,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
         if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, heading, cfg.house):
             return True
-        if not self.collision.check(self.data.qpos, (bx, by, heading), TUCK).free:
+        if self.collision.collides(self.data.qpos, (bx, by, heading), TUCK):
             return True
         if cfg.pick_requires_free_carry:
             base = np.array([bx, by, heading])
