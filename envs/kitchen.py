@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import struct
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -381,6 +382,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self._order: tuple[int, ...] = ()
         self._disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc] = {}
         self._screen: ScreenContext | None = None
+        self._last_carry: tuple[tuple[int, bytes, bytes], str] | None = None
         super().__init__(
             "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
         )
@@ -875,8 +877,24 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         """Why the robot could not move carrying ``obj`` from ``base`` ('' if it could).
 
         The test the place step's base planner makes of its start: the carry disc at
-        ``base`` against the house, the static obstacles and the other objects.
+        ``base`` against the house, the static obstacles and the other objects. The last
+        answer is remembered (keyed by the numbers, bit for bit, and the ``qpos`` bytes,
+        which place the objects), for the step after the pre-screen.
         """
+        key = (
+            obj,
+            struct.pack("<3d", *held_rel) + np.asarray(base, dtype=np.float64).tobytes(),
+            self.data.qpos.tobytes(),
+        )
+        last = self._last_carry
+        if last is not None and last[0] == key:
+            return last[1]
+        reason = self._carry_reason(obj, held_rel, base)
+        self._last_carry = (key, reason)
+        return reason
+
+    def _carry_reason(self, obj: int, held_rel: tuple[float, float, float], base: ArrayLike) -> str:
+        """:meth:`_carry_blocked` without its memory of the last query."""
         disc = self.carry_disc_for(obj, held_rel)
         hits = self.planner.colliding(
             disc.center(base), disc.radius, self.object_boxes(exclude=(obj,))

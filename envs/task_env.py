@@ -357,6 +357,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
         self._renderer: mujoco.Renderer | None = None
         self._box_cache: dict[int, tuple[bytes, Box2D]] = {}
+        self._boxes_cache: dict[tuple[tuple[int, ...], bytes], tuple[Box2D, ...]] = {}
         # the generator state of the last snapshot, shared by the snapshots after it while
         # it does not change (see _rng_snapshot)
         self._rng_shared: Mapping[str, Any] | None = None
@@ -493,8 +494,20 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         return box
 
     def object_boxes(self, exclude: Sequence[int] = ()) -> list[Box2D]:
-        """Footprints of all objects but ``exclude``, in object order."""
-        return [self.object_box(i) for i in range(len(self.objects)) if i not in exclude]
+        """Footprints of all objects but ``exclude``, in object order (a new list).
+
+        The last few answers are remembered by ``exclude`` and the ``qpos`` bytes (the
+        footprints are a function of the objects' free joints), so the checks of one
+        state ask :meth:`object_box` once per object.
+        """
+        key = (tuple(exclude), self.data.qpos.tobytes())
+        hit = self._boxes_cache.get(key)
+        if hit is None:
+            hit = tuple(self.object_box(i) for i in range(len(self.objects)) if i not in exclude)
+            if len(self._boxes_cache) >= 8:
+                self._boxes_cache.clear()
+            self._boxes_cache[key] = hit
+        return list(hit)
 
     # ----- snapshots -----------------------------------------------------------------------
     def get_state(self) -> EnvState[TaskT]:
