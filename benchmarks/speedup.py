@@ -106,26 +106,21 @@ if spec["split"]:
         return out
 
     setattr(u, name, timed)
-    if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
-        check = u.precheck
 
-        def timed_check(action, check=check):
+    def stopwatch(check, slot):  # check, its seconds added to split[slot]
+
+        def timed_check(action):
             t0 = time.perf_counter()
             out = check(action)
-            split[4] += time.perf_counter() - t0
+            split[slot] += time.perf_counter() - t0
             return out
 
-        u.precheck = timed_check
+        return timed_check
+
+    if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
+        u.precheck = stopwatch(u.precheck, 4)
     if "certainly_infeasible" in vars(type(u)):  # v0: the env's exact pre-screen, timed apart
-        screen = u.certainly_infeasible
-
-        def timed_screen(action, screen=screen):
-            t0 = time.perf_counter()
-            out = screen(action)
-            split[5] += time.perf_counter() - t0
-            return out
-
-        u.certainly_infeasible = timed_screen
+        u.certainly_infeasible = stopwatch(u.certainly_infeasible, 5)
 options = domain_options(spec["env_id"], None, spec["planner"])
 wall, cpu = time.perf_counter(), time.process_time()
 res = plan(problem, spec["planner"], spec["simulations"], seed=spec["seed"], **options)

@@ -206,6 +206,15 @@ def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
 _SURE = 1e-9
 
 
+def _aabb(
+    cx: float, cy: float, half_x: float, half_y: float, yaw: float
+) -> tuple[float, float, float, float]:
+    """``(xmin, xmax, ymin, ymax)`` of the axis-aligned box around the rectangle."""
+    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
+    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
+    return cx - ex, cx + ex, cy - ey, cy + ey
+
+
 def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
     """Is the rectangle ``box`` inside the axis-aligned ``(xmin, xmax, ymin, ymax)``?
 
@@ -230,9 +239,7 @@ def rect_fields_inside(
     within 1e-9 m of an edge.
     """
     xmin, xmax, ymin, ymax = bounds
-    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
-    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
-    lo_x, hi_x, lo_y, hi_y = cx - ex, cx + ex, cy - ey, cy + ey
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
     if (
         lo_x >= xmin + _SURE
         and hi_x <= xmax - _SURE
@@ -277,9 +284,7 @@ def rect_fields_overlap(
 ) -> bool:
     """:func:`rect_overlaps` of the rectangle with these :class:`Box2D` fields (floats)."""
     xmin, xmax, ymin, ymax = bounds
-    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
-    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
-    lo_x, hi_x, lo_y, hi_y = cx - ex, cx + ex, cy - ey, cy + ey
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
     if hi_x < xmin - _SURE or lo_x > xmax + _SURE or hi_y < ymin - _SURE or lo_y > ymax + _SURE:
         return False
     if lo_x > xmin + _SURE and hi_x < xmax - _SURE and lo_y > ymin + _SURE and hi_y < ymax - _SURE:
