@@ -91,7 +91,7 @@ from voot.tree import plan
 env = gym.make(spec["env_id"], disable_env_checker=True)
 problem = EnvProblem(env.unwrapped, seed=spec["seed"])
 u = problem.unwrapped
-split = [0.0, 0.0, 0.0, 0.0, 0.0]
+split = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 if spec["split"]:
     name = "transition" if hasattr(type(u), "transition") else "step"
     inner = getattr(u, name)
@@ -106,16 +106,21 @@ if spec["split"]:
         return out
 
     setattr(u, name, timed)
-    if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
-        check = u.precheck
 
-        def timed_check(action, check=check):
+    def stopwatch(check, slot):  # check, its seconds added to split[slot]
+
+        def timed_check(action):
             t0 = time.perf_counter()
             out = check(action)
-            split[4] += time.perf_counter() - t0
+            split[slot] += time.perf_counter() - t0
             return out
 
-        u.precheck = timed_check
+        return timed_check
+
+    if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
+        u.precheck = stopwatch(u.precheck, 4)
+    if "certainly_infeasible" in vars(type(u)):  # v0: the env's exact pre-screen, timed apart
+        u.certainly_infeasible = stopwatch(u.certainly_infeasible, 5)
 options = domain_options(spec["env_id"], None, spec["planner"])
 wall, cpu = time.perf_counter(), time.process_time()
 res = plan(problem, spec["planner"], spec["simulations"], seed=spec["seed"], **options)
@@ -136,6 +141,7 @@ out = {
         "planning": split[2],
         "steps": split[3],
         "precheck": split[4],
+        "prescreen": split[5],
     }
     if spec["split"]
     else None,
@@ -419,7 +425,10 @@ def split_line(run: RunResult) -> str:
     precheck = float(run.split.get("precheck", 0.0))
     if precheck > 0:
         parts["kinematic pre-checks"] = precheck
-    parts["tree search + adapter"] = max(run.wall - run.split["steps"] - precheck, 0.0)
+    prescreen = float(run.split.get("prescreen", 0.0))
+    if prescreen > 0:
+        parts["v0 pre-screens"] = prescreen
+    parts["tree search + adapter"] = max(run.wall - run.split["steps"] - precheck - prescreen, 0.0)
     total = run.wall
     cells = ", ".join(
         f"{name} {1e3 * sec / sims:.2f} ({100 * sec / total:.0f}%)" for name, sec in parts.items()

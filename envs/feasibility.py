@@ -407,6 +407,10 @@ class CollisionReport:
         return not self.hits
 
 
+#: A contact pair not looked up yet (the pair memo holds None for "not reported").
+_UNKNOWN = object()
+
+
 class CollisionChecker:
     """MuJoCo collision queries for the robot and the object it holds.
 
@@ -431,6 +435,9 @@ class CollisionChecker:
         self._qpos_view = self.data.qpos
         # (geom, geom, held) -> what the contact reports (a pure function of the three)
         self._pair_hit: dict[tuple[int, int, int], str | None] = {}
+        # the last query, ``(held, qpos bytes)``, and its report (see check; None: a hit
+        # found by collides, names not built)
+        self._last: tuple[tuple[int, bytes], CollisionReport | None] | None = None
         self.robot = robot
         self.objects = objects
         n = model.ngeom
@@ -481,8 +488,70 @@ class CollisionChecker:
         Returns:
             The names of what is hit (scene geom names; object body names), sorted,
             without duplicates; prefixed ``"robot-"`` or ``"object-"`` by the party hit.
+            Treat it as read-only: a query repeating the last one (the same ``held`` and
+            the same ``qpos`` once the changes are applied, byte for byte) returns the
+            last report itself. The report is a pure function of the two (kinematics and
+            contacts depend on the positions alone), so the repeat is exact; it is what a
+            pre-screen followed by the full step of the same action asks
+            (:meth:`voot.envs.task_env.ManipulationEnv.certainly_infeasible`).
         """
-        m, d = self.model, self.data
+        key = self._configure(qpos, base_pose, arm_q, held, object_poses)
+        last = self._last
+        if last is not None and last[0] == key and last[1] is not None:
+            return last[1]
+        self._contacts(held)
+        report = self._report(held)
+        self._last = (key, report)
+        return report
+
+    def collides(
+        self,
+        qpos: FloatArray,
+        base_pose: ArrayLike,
+        arm_q: ArrayLike,
+        held: int | None = None,
+        object_poses: Mapping[int, ArrayLike] | None = None,
+    ) -> bool:
+        """``not check(...).free`` (the same arguments), without naming what is hit.
+
+        It stops at the first contact that counts, so a pre-screen that only needs the
+        verdict pays for no names; a free configuration is remembered as the last query
+        (its report is empty), so :meth:`check` of it right after costs nothing.
+        """
+        key = self._configure(qpos, base_pose, arm_q, held, object_poses)
+        last = self._last
+        if last is not None and last[0] == key:
+            return last[1] is None or not last[1].free
+        self._contacts(held)
+        d = self.data
+        ncon = d.ncon
+        if ncon:
+            held_i = -2 if held is None else held
+            memo = self._pair_hit
+            for a, b in d.contact.geom[:ncon].tolist():
+                pair = (a, b, held_i)
+                name = memo.get(pair, _UNKNOWN)
+                if name is _UNKNOWN:
+                    name = memo[pair] = self._hit_name(a, b, held_i)
+                if name is not None:
+                    self._last = (key, None)  # hit; the names are built if check() asks
+                    return True
+        self._last = (key, CollisionReport())
+        return False
+
+    def _configure(
+        self,
+        qpos: FloatArray,
+        base_pose: ArrayLike,
+        arm_q: ArrayLike,
+        held: int | None,
+        object_poses: Mapping[int, ArrayLike] | None,
+    ) -> tuple[int, bytes]:
+        """Write the configuration into :attr:`data`'s ``qpos``; the query's key.
+
+        The key is ``held`` and the ``qpos`` bytes: what a report is a function of.
+        """
+        d = self.data
         q = self._qpos_view
         q[:] = qpos
         base_sl, arm_sl, finger_sl = self._base_sl, self._arm_sl, self._finger_sl
@@ -503,6 +572,11 @@ class CollisionChecker:
                     q[adr : adr + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
                 else:
                     set_object_pose(d, objects[i], pose)
+        return (-2 if held is None else held, q.tobytes())
+
+    def _contacts(self, held: int | None) -> None:
+        """Kinematics and contacts of the configuration in :attr:`data` (``held``'s filter)."""
+        m, d = self.model, self.data
         mujoco.mj_kinematics(m, d)
         restore = self._held_affinity.get(held) if held is not None else None
         if restore is not None:
@@ -513,6 +587,10 @@ class CollisionChecker:
             affinity[geoms] = reduced
         else:
             mujoco.mj_collision(m, d)
+
+    def _report(self, held: int | None) -> CollisionReport:
+        """The report of the contacts in :attr:`data`."""
+        d = self.data
         ncon = d.ncon
         if ncon == 0:
             return CollisionReport()

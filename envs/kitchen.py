@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import struct
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -77,7 +78,13 @@ from voot.envs.robot import (
     compose2d,
     inverse2d,
 )
-from voot.envs.scene import object_footprint, rect_inside, rect_overlaps
+from voot.envs.scene import (
+    object_footprint,
+    rect_fields_inside,
+    rect_fields_overlap,
+    rect_inside,
+    rect_overlaps,
+)
 from voot.envs.swept_volume import obstacles_on_path
 from voot.envs.task_env import (
     ManipulationEnv,
@@ -85,6 +92,7 @@ from voot.envs.task_env import (
     add_marker_box,
     add_marker_segment,
     denormalize,
+    denormalize_floats,
     env_config,
     pose_tuple,
     preset_config,
@@ -307,6 +315,43 @@ class KitchenTask:
     done: bool
 
 
+@dataclass(frozen=True, slots=True)
+class ScreenContext:
+    """What :meth:`KitchenClearingEnv.certainly_infeasible` needs of one state.
+
+    Built once per state (a task record and the ``qpos`` bytes: every number here is a
+    function of the two), so the pre-screen of each proposal at a node computes only
+    what depends on the action.
+
+    Attributes:
+        task: The task record the numbers are for.
+        qpos: The ``qpos`` bytes they are for.
+        obj: The object handled (held at a place, first on the path at a pick).
+        ranges: The operator's parameter ranges.
+        center: The object's footprint centre in its body frame (``ObjectInfo.center``).
+        half: The footprint's half extents.
+        pose: The object's body pose ``(x, y, z, yaw)`` (``object_pose``).
+        box: The object's footprint now (``object_box``).
+        inverse: ``inverse2d(held_rel)`` at a place (the base in the object's frame).
+        disc: The carry disc at a place (``held_disc``), else None.
+        start: The disc's centre pose now at a place (the base path's start), else None.
+        movable: The footprints of the other objects (``object_boxes(exclude=(obj,))``).
+    """
+
+    task: KitchenTask
+    qpos: bytes
+    obj: int
+    ranges: tuple[tuple[float, float], ...]
+    center: tuple[float, float]
+    half: tuple[float, float]
+    pose: FloatArray
+    box: Box2D
+    inverse: tuple[float, float, float]
+    disc: CarryDisc | None
+    start: FloatArray | None
+    movable: tuple[Box2D, ...]
+
+
 class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     """The object-clearing domain as a gymnasium environment (see the module docstring).
 
@@ -336,6 +381,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self._path: BasePath | None = None
         self._order: tuple[int, ...] = ()
         self._disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc] = {}
+        self._screen: ScreenContext | None = None
+        self._last_carry: tuple[tuple[int, bytes, bytes], str] | None = None
         super().__init__(
             "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
         )
@@ -563,8 +610,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
             return "collision: " + ", ".join(report.hits), base, None, no_rel
-        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
-        held_rel = (float(rel[0]), float(rel[1]), float(rel[2]))
+        held_rel = self._held_rel(base, pose)
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
             t0 = time.perf_counter()
             carry_reason = self._carry_blocked(obj, held_rel, base)
@@ -573,6 +619,123 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             if carry_reason:
                 return carry_reason, base, None, no_rel
         return "", base, ik.q, held_rel
+
+    @staticmethod
+    def _held_rel(base: FloatArray, pose: FloatArray) -> tuple[float, float, float]:
+        """The object's body pose ``(x, y, yaw)`` in the frame of the base at ``base``."""
+        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
+        return float(rel[0]), float(rel[1]), float(rel[2])
+
+    def certainly_infeasible(self, action: ArrayLike) -> bool:
+        """The exact pre-screen of :meth:`ManipulationEnv.certainly_infeasible`.
+
+        A place: its checks before the base path, as :meth:`_place_checks` runs them (on
+        floats, with what depends on the state alone computed once per state: see
+        :class:`ScreenContext`), then the base path itself (the planner remembers its
+        last answer, so a place that passes is not planned twice). A pick: the robot in the house, the base at the tucked
+        arm free of collisions and, with ``pick_requires_free_carry``, the carry disc
+        free; the step tests the carry disc last (after IK and the arm's collisions, so
+        that the reasons it gives stay those it gave without the rule), but for the
+        verdict alone it can come first and spares the IK of a pick that cannot carry.
+        Every number is computed with the step's operations, in its order.
+        """
+        t = self.task
+        if t.done or t.steps >= self.config.horizon:
+            return False  # the step raises
+        a = self._plain_action(action)
+        if a is None:
+            return False
+        ctx = self._screen_context()
+        if t.operator == "place":
+            return self._place_screened(ctx, a.tolist())
+        return self._pick_screened(ctx, a.tolist())
+
+    def _screen_context(self) -> ScreenContext:
+        """The pre-screen's per-state numbers (rebuilt when the task or qpos changed)."""
+        t, qpos = self.task, self.data.qpos.tobytes()
+        ctx = self._screen
+        if ctx is not None and ctx.task is t and ctx.qpos == qpos:
+            return ctx
+        cfg = self.config
+        obj = t.held if t.operator == "place" else t.on_path[0]
+        info = self.objects[obj]
+        ox, oy = info.center.tolist()
+        hx, hy = info.half.tolist()
+        pose = self.object_pose(obj)
+        place = t.operator == "place"
+        inverse = tuple(inverse2d(t.held_rel).tolist()) if place else (0.0, 0.0, 0.0)
+        ranges = cfg.place_ranges if place else cfg.pick_ranges
+        disc = self.held_disc() if place else None
+        ctx = self._screen = ScreenContext(
+            task=t,
+            qpos=qpos,
+            obj=obj,
+            ranges=ranges,
+            center=(ox, oy),
+            half=(hx, hy),
+            pose=pose,
+            box=self.object_box(obj),
+            inverse=(inverse[0], inverse[1], inverse[2]),
+            disc=disc,
+            start=None if disc is None else disc.center(self.robot.base_pose(self.data)),
+            movable=tuple(self.object_boxes(exclude=(obj,))),
+        )
+        return ctx
+
+    def _place_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
+        """Does the place ``a`` fail :meth:`_place_checks` (forbidden rooms on) or its path?"""
+        cfg, t = self.config, self.task
+        x, y, theta = denormalize_floats(a[:3], ctx.ranges)
+        ox, oy = ctx.center
+        hx, hy = ctx.half
+        # object_footprint's and compose2d's numbers (the same cosine and sine)
+        c, s = math.cos(theta), math.sin(theta)
+        cx = x + c * ox - s * oy
+        cy = y + s * ox + c * oy
+        if not rect_fields_inside(cx, cy, hx, hy, theta, cfg.house):
+            return True
+        if rect_fields_overlap(cx, cy, hx, hy, theta, cfg.forbidden):
+            return True
+        ix, iy, it = ctx.inverse
+        bx = x + c * ix - s * iy
+        by = y + s * ix + c * iy
+        bt = theta + it
+        if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, bt, cfg.house):
+            return True
+        z = float(ctx.pose[2])
+        if self.collision.collides(
+            self.data.qpos,
+            (bx, by, bt),
+            t.grasp_q,
+            held=ctx.obj,
+            object_poses={ctx.obj: (x, y, z, theta)},
+        ):
+            return True
+        # the step's base path (the planner remembers it for the step that follows)
+        disc = ctx.disc
+        assert disc is not None and ctx.start is not None
+        goal = disc.center(np.array([bx, by, bt]))
+        return self.planner.plan(ctx.start, goal, disc.radius, ctx.movable) is None
+
+    def _pick_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
+        """Does the pick ``a`` fail the region, tucked-base collision or carry test?"""
+        cfg = self.config
+        p = denormalize_floats(a, ctx.ranges)
+        box = ctx.box
+        # pick_base_pose's numbers
+        dist = p[3] * ARM_REACH
+        ang = box.yaw + p[4]
+        bx, by = box.cx + dist * math.cos(ang), box.cy + dist * math.sin(ang)
+        heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
+        if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, heading, cfg.house):
+            return True
+        if self.collision.collides(self.data.qpos, (bx, by, heading), TUCK):
+            return True
+        if cfg.pick_requires_free_carry:
+            base = np.array([bx, by, heading])
+            held_rel = self._held_rel(base, ctx.pose)
+            return bool(self._carry_blocked(ctx.obj, held_rel, base))
+        return False
 
     def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task
@@ -714,8 +877,24 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         """Why the robot could not move carrying ``obj`` from ``base`` ('' if it could).
 
         The test the place step's base planner makes of its start: the carry disc at
-        ``base`` against the house, the static obstacles and the other objects.
+        ``base`` against the house, the static obstacles and the other objects. The last
+        answer is remembered (keyed by the numbers, bit for bit, and the ``qpos`` bytes,
+        which place the objects), for the step after the pre-screen.
         """
+        key = (
+            obj,
+            struct.pack("<3d", *held_rel) + np.asarray(base, dtype=np.float64).tobytes(),
+            self.data.qpos.tobytes(),
+        )
+        last = self._last_carry
+        if last is not None and last[0] == key:
+            return last[1]
+        reason = self._carry_reason(obj, held_rel, base)
+        self._last_carry = (key, reason)
+        return reason
+
+    def _carry_reason(self, obj: int, held_rel: tuple[float, float, float], base: ArrayLike) -> str:
+        """:meth:`_carry_blocked` without its memory of the last query."""
         disc = self.carry_disc_for(obj, held_rel)
         hits = self.planner.colliding(
             disc.center(base), disc.radius, self.object_boxes(exclude=(obj,))

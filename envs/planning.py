@@ -76,9 +76,22 @@ class EnvProblem:
             from the env's current state.
         units: ``"normalized"`` (``[-1, 1]`` boxes) or ``"paper"`` (the parameters'
             own ranges).
+        prescreen: With the ``"full_step"`` pre-check (v0), ask the env's exact
+            pre-screen (:meth:`~voot.envs.task_env.ManipulationEnv.certainly_infeasible`)
+            before stepping: an action it settles as infeasible is rejected without the
+            step, whose result (:attr:`last_check`, or the step of that action that
+            follows) is computed only when asked for. Every answer, result, count and
+            state is the one without it (False: step every check, as before); only
+            the time differs.
     """
 
-    def __init__(self, env: Any, seed: int | None = None, units: str = "normalized") -> None:
+    def __init__(
+        self,
+        env: Any,
+        seed: int | None = None,
+        units: str = "normalized",
+        prescreen: bool = True,
+    ) -> None:
         u = getattr(env, "unwrapped", env)
         if not isinstance(u, KitchenClearingEnv | ConveyorPackingEnv):
             raise ValueError(
@@ -96,9 +109,16 @@ class EnvProblem:
         # a snapshot equal to the env's current state, or None if unknown
         self._here: EnvState[Any] | None = None
         self._bounds: dict[str, Bounds] = {}
-        #: The result of the last :meth:`is_feasible` call (None before the first).
-        self.last_check: StepResult | None = None
+        self._last_check: StepResult | None = None
+        # the last check the env's pre-screen settled: (version, action bytes, the
+        # snapshot it was made in); its result is computed only if asked for
+        self._screened: tuple[int, bytes, EnvState[Any]] | None = None
+        self._pending = False  # is last_check the result of _screened (not computed)?
         self._kinematic = u.config.precheck == "kinematic"
+        if not isinstance(prescreen, bool):
+            raise ValueError(f"prescreen must be True or False, got {prescreen!r}")
+        #: Whether full-step checks ask the env's exact pre-screen first (see the class).
+        self.prescreen = prescreen
         #: Runs of the env's simulator (``transition``), pre-checks that step included.
         self.n_simulator_calls = 0
         self._metrics: dict[str, ActionDistance] = {}
@@ -159,10 +179,40 @@ class EnvProblem:
         self._here = snapshot
         self._version += 1
 
-    def _run(self, action: ArrayLike) -> StepResult:
-        reward, terminated, truncated, info = self.unwrapped.transition(self.to_env_action(action))
-        self.n_simulator_calls += 1
-        # reward, feasible, terminal, bonus, info
+    @property
+    def last_check(self) -> StepResult | None:
+        """The result of the last :meth:`is_feasible` call (None before the first).
+
+        Its info says where a rejected proposal would have put the robot and the object.
+        A check the pre-screen settled gets its result computed here, on first access
+        (the same step, from the state the check was made in; the env is left where it
+        is).
+        """
+        if self._pending:
+            self._pending = False
+            screened = self._screened
+            assert screened is not None
+            self._last_check = self._replay(screened[2], screened[1])
+        return self._last_check
+
+    def _replay(self, before: EnvState[Any], key: bytes) -> StepResult:
+        """The step of the action ``key`` (its bytes) from snapshot ``before``.
+
+        The env is put back where it was (the problem's snapshot of it, exactly).
+        """
+        u = self.unwrapped
+        here = self.snapshot()
+        u.set_state(before)
+        action = self.to_env_action(np.frombuffer(key, dtype=np.float64))
+        res = self._result(*u.transition(action))
+        u.set_state(here)
+        self._here = here
+        return res
+
+    @staticmethod
+    def _result(
+        reward: float, terminated: bool, truncated: bool, info: dict[str, Any]
+    ) -> StepResult:
         return StepResult(
             float(reward),
             bool(info["feasible"]),
@@ -171,10 +221,31 @@ class EnvProblem:
             info,
         )
 
+    def _transition(self, env_action: FloatArray) -> StepResult:
+        """One counted run of the env's simulator on an env action."""
+        self.n_simulator_calls += 1
+        return self._result(*self.unwrapped.transition(env_action))
+
     def step(self, action: ArrayLike) -> StepResult:
         key = np.asarray(action, dtype=np.float64).tobytes()
         cache, self._cache = self._cache, None
+        screened = self._screened
         self._version += 1
+        if (
+            screened is not None
+            and screened[0] == self._version - 1
+            and screened[1] == key
+            and screened[2].task is self.unwrapped.task
+        ):
+            # the step of a check the pre-screen settled (its simulator run was counted):
+            # run now, it is also the check's result
+            self._screened = None
+            self._here = None
+            res = self._result(*self.unwrapped.transition(self.to_env_action(action)))
+            if self._pending:
+                self._pending = False
+                self._last_check = res
+            return res
         if (
             cache is not None
             and cache[0] == self._version - 1
@@ -184,7 +255,7 @@ class EnvProblem:
             self._jump(cache[3], cache[4])
             return cache[2]
         self._here = None
-        return self._run(action)
+        return self._transition(self.to_env_action(action))
 
     def _jump(self, before: EnvState[Any], after: EnvState[Any]) -> None:
         """Go from snapshot ``before`` (the current state) to ``after``.
@@ -202,15 +273,26 @@ class EnvProblem:
     def is_feasible(self, action: ArrayLike) -> bool:
         """Does ``action`` pass the env's pre-check now? (The state is left unchanged.)"""
         u = self.unwrapped
+        self._pending = False
         if self._kinematic:
             ok, info = u.precheck(self.to_env_action(action))
             reward = 0.0 if ok else float(u.config.infeasible_reward)
-            self.last_check = StepResult(reward=reward, feasible=ok, info=info)
+            self._last_check = StepResult(reward=reward, feasible=ok, info=info)
             return ok
         before = self._here
         if before is None or before.task is not u.task:
             before = self.snapshot()
-        res = self._run(action)
+        self._screened = None
+        env_action = self.to_env_action(action)
+        if self.prescreen and u.certainly_infeasible(env_action):
+            # counted as the step it stands for; that step runs only if asked for
+            self.n_simulator_calls += 1
+            key = np.asarray(action, dtype=np.float64).tobytes()
+            self._cache = None
+            self._screened = (self._version, key, before)
+            self._pending = True
+            return False
+        res = self._transition(env_action)
         if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
             # only the task record moved on (the step count): share the rest, and put
             # the task record back (what _jump does for such a pair)
@@ -227,7 +309,7 @@ class EnvProblem:
             self._jump(after, before)
         key = np.asarray(action, dtype=np.float64).tobytes()
         self._cache = (self._version, key, res, before, after)
-        self.last_check = res
+        self._last_check = res
         return res.feasible
 
     def action_metric(self) -> ActionDistance:

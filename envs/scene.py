@@ -206,10 +206,13 @@ def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
 _SURE = 1e-9
 
 
-def _extent(box: Box2D) -> tuple[float, float]:
-    """Half extents along x and y of the axis-aligned box around ``box``."""
-    c, s = abs(math.cos(box.yaw)), abs(math.sin(box.yaw))
-    return box.half_x * c + box.half_y * s, box.half_x * s + box.half_y * c
+def _aabb(
+    cx: float, cy: float, half_x: float, half_y: float, yaw: float
+) -> tuple[float, float, float, float]:
+    """``(xmin, xmax, ymin, ymax)`` of the axis-aligned box around the rectangle."""
+    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
+    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
+    return cx - ex, cx + ex, cy - ey, cy + ey
 
 
 def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
@@ -219,9 +222,24 @@ def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
     more than 1e-9 m; only a rectangle within that of an edge is tested with its corner
     array (as before), so the answer is always the corner test's.
     """
+    return rect_fields_inside(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
+
+
+def rect_fields_inside(
+    cx: float,
+    cy: float,
+    half_x: float,
+    half_y: float,
+    yaw: float,
+    bounds: tuple[float, float, float, float],
+) -> bool:
+    """:func:`rect_inside` of the rectangle with these :class:`Box2D` fields (floats).
+
+    For a caller that has the numbers and no box: the box is built only for a rectangle
+    within 1e-9 m of an edge.
+    """
     xmin, xmax, ymin, ymax = bounds
-    ex, ey = _extent(box)
-    lo_x, hi_x, lo_y, hi_y = box.cx - ex, box.cx + ex, box.cy - ey, box.cy + ey
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
     if (
         lo_x >= xmin + _SURE
         and hi_x <= xmax - _SURE
@@ -231,7 +249,7 @@ def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
         return True
     if lo_x < xmin - _SURE or hi_x > xmax + _SURE or lo_y < ymin - _SURE or hi_y > ymax + _SURE:
         return False
-    return _rect_inside_corners(box, bounds)
+    return _rect_inside_corners(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
 
 
 def _rect_inside_corners(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
@@ -253,14 +271,25 @@ def rect_overlaps(box: Box2D, bounds: tuple[float, float, float, float]) -> bool
     clearly inside it is decided with plain floats; the others run the test on arrays,
     as before.
     """
+    return rect_fields_overlap(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
+
+
+def rect_fields_overlap(
+    cx: float,
+    cy: float,
+    half_x: float,
+    half_y: float,
+    yaw: float,
+    bounds: tuple[float, float, float, float],
+) -> bool:
+    """:func:`rect_overlaps` of the rectangle with these :class:`Box2D` fields (floats)."""
     xmin, xmax, ymin, ymax = bounds
-    ex, ey = _extent(box)
-    lo_x, hi_x, lo_y, hi_y = box.cx - ex, box.cx + ex, box.cy - ey, box.cy + ey
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
     if hi_x < xmin - _SURE or lo_x > xmax + _SURE or hi_y < ymin - _SURE or lo_y > ymax + _SURE:
         return False
     if lo_x > xmin + _SURE and hi_x < xmax - _SURE and lo_y > ymin + _SURE and hi_y < ymax - _SURE:
         return True
-    return _rect_overlaps_sat(box, bounds)
+    return _rect_overlaps_sat(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
 
 
 def _rect_overlaps_sat(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:

@@ -150,6 +150,37 @@ def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, Fl
     return hit
 
 
+def denormalize_floats(a: Sequence[float], ranges: Sequence[tuple[float, float]]) -> list[float]:
+    """:func:`denormalize` on Python floats: the same numbers, without the arrays.
+
+    Each entry is ``low + 0.5 * (a + 1.0) * (high - low)``, the IEEE operations numpy
+    applies elementwise, in its order; for the envs' pre-screens, which read the
+    parameters one by one.
+    """
+    lo, width = _range_lists(ranges)
+    return [lo_i + 0.5 * (a_i + 1.0) * w_i for lo_i, a_i, w_i in zip(lo, a, width, strict=True)]
+
+
+#: ``(low, high - low)`` lists of the ranges :func:`denormalize_floats` has seen.
+_RANGE_LISTS: dict[Any, tuple[list[float], list[float]]] = {}
+
+
+def _range_lists(ranges: Sequence[tuple[float, float]]) -> tuple[list[float], list[float]]:
+    """:func:`_range_arrays` as lists of Python floats (the same numbers)."""
+    try:
+        hit = _RANGE_LISTS.get(ranges)
+    except TypeError:  # not hashable (lists)
+        lo, width = _range_arrays(ranges)
+        return lo.tolist(), width.tolist()
+    if hit is None:
+        lo, width = _range_arrays(ranges)
+        hit = (lo.tolist(), width.tolist())
+        if len(_RANGE_LISTS) >= 64:
+            _RANGE_LISTS.clear()
+        _RANGE_LISTS[ranges] = hit
+    return hit
+
+
 def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
     """Inverse of :func:`denormalize`: parameters in the paper's units to ``[-1, 1]^d``."""
     lo = np.array([r[0] for r in ranges], dtype=np.float64)
@@ -326,6 +357,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self._state_size = int(mujoco.mj_stateSize(self.model, self.STATE_SIGNATURE))
         self._renderer: mujoco.Renderer | None = None
         self._box_cache: dict[int, tuple[bytes, Box2D]] = {}
+        self._boxes_cache: dict[tuple[tuple[int, ...], bytes], tuple[Box2D, ...]] = {}
         # the generator state of the last snapshot, shared by the snapshots after it while
         # it does not change (see _rng_snapshot)
         self._rng_shared: Mapping[str, Any] | None = None
@@ -363,6 +395,35 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         from voot.envs.planning import EnvProblem
 
         return EnvProblem(self if env is None else env)
+
+    def certainly_infeasible(self, action: ArrayLike) -> bool:
+        """Would :meth:`transition` certainly find ``action`` infeasible now? Changes nothing.
+
+        An exact pre-screen for a pre-check that runs the whole step (v0's
+        ``"full_step"``): True only if the step's ``info["feasible"]`` would be False;
+        False when that is not settled cheaply (the step must run), when the action needs
+        clipping or is malformed, or when the episode has ended (the step would raise).
+        The step's conditions are a conjunction of pure functions of the state and the
+        action, so any one of them that fails settles the answer whatever the step's
+        order: a subclass tests the cheap ones (and those that spare the costly ones)
+        first and builds no info, reason or next state. The base class settles nothing.
+        """
+        return False
+
+    def _plain_action(self, action: ArrayLike) -> FloatArray | None:
+        """``action`` as :meth:`_validate_action` returns it when no clipping is needed.
+
+        None for anything else (wrong shape, entries outside ``[-1, 1]``, NaN): the
+        caller leaves those to the step, which clips or raises.
+        """
+        if type(action) is not np.ndarray or action.dtype != np.float64:
+            return None
+        if action.shape != self.action_space.shape:
+            return None
+        values = action.tolist()
+        if min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values)):
+            return action
+        return None
 
     def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
         """:meth:`step` without the observation: ``(reward, terminated, truncated, info)``.
@@ -433,8 +494,20 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         return box
 
     def object_boxes(self, exclude: Sequence[int] = ()) -> list[Box2D]:
-        """Footprints of all objects but ``exclude``, in object order."""
-        return [self.object_box(i) for i in range(len(self.objects)) if i not in exclude]
+        """Footprints of all objects but ``exclude``, in object order (a new list).
+
+        The last few answers are remembered by ``exclude`` and the ``qpos`` bytes (the
+        footprints are a function of the objects' free joints), so the checks of one
+        state ask :meth:`object_box` once per object.
+        """
+        key = (tuple(exclude), self.data.qpos.tobytes())
+        hit = self._boxes_cache.get(key)
+        if hit is None:
+            hit = tuple(self.object_box(i) for i in range(len(self.objects)) if i not in exclude)
+            if len(self._boxes_cache) >= 8:
+                self._boxes_cache.clear()
+            self._boxes_cache[key] = hit
+        return list(hit)
 
     # ----- snapshots -----------------------------------------------------------------------
     def get_state(self) -> EnvState[TaskT]:

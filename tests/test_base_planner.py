@@ -649,3 +649,29 @@ def test_colliding_names_as_the_array_test() -> None:
         assert planner.colliding((x, y, 0.0), r, movable) == ref
     assert 100 < seen < 1400
     assert planner.colliding((0.0, 0.0, 0.0), 0.4) == []
+
+
+def test_the_last_plan_is_remembered_exactly() -> None:
+    """A repeated query returns the last answer; any other query is planned afresh."""
+    static, movable = house_static(), house_movable()[-4:]
+    planner = BasePlanner(WORKSPACE, static)
+    s, g, r = _query()
+    first = planner.plan(s, g, r, movable)
+    assert first is not None
+    assert planner.plan(s, g, r, list(movable)) is first  # the same boxes, as a list
+    assert planner.plan((s.x, s.y, s.theta), g, r, movable) is first  # the same numbers
+    # equal boxes that are other objects, another radius, a signed zero: planned afresh
+    copies = [Box2D(b.cx, b.cy, b.half_x, b.half_y, b.yaw, b.name) for b in movable]
+    again = planner.plan(s, g, r, copies)
+    assert again is not first and again == first
+    assert planner.plan(s, g, r + 0.01, copies) is not again
+    g0 = Pose2D(g.x, g.y, 0.0)
+    zero = planner.plan(s, g0, r, movable)
+    assert planner.plan(s, Pose2D(g.x, g.y, -0.0), r, movable) is not zero
+    # a query that finds no path is remembered as such
+    blocked = Pose2D(-1.9, 0.0, 0.0)  # in the west wall
+    assert planner.plan(s, blocked, r, movable) is None
+    assert planner.plan(s, blocked, r, movable) is None
+    planner.clear_caches()
+    assert planner._last_plan is None
+    assert planner.plan(s, g, r, movable) == first

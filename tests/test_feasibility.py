@@ -273,3 +273,54 @@ def test_closest_seed_is_the_sorted_violation_choice(ik: ArmIK) -> None:
         viol = [ik._violation(q) for q in seeds]
         order = sorted(range(len(seeds)), key=lambda i: (viol[i], i))
         assert ik._closest_seed(seeds) == (order[0], viol[order[0]] == 0.0)
+
+
+def test_collides_is_not_free_and_the_last_query_is_remembered() -> None:
+    """collides() == not check().free; a repeated query is answered from memory, exactly."""
+    model = load_model("kitchen")
+    robot = Robot(model)
+    objects = movable_objects(model)
+    checker = CollisionChecker(model, robot, objects)
+    fresh = CollisionChecker(model, robot, objects)  # asked once per configuration
+    data = mujoco.MjData(model)
+    rng = np.random.default_rng(5)
+    outcomes = set()
+    for k in range(300):
+        base = (float(rng.uniform(-2, 6)), float(rng.uniform(-4, 4)), float(rng.uniform(-3, 3)))
+        held = None if k % 3 == 0 else int(rng.integers(len(objects)))
+        poses = None if held is None else {held: (base[0] + 0.6, base[1], 0.0, 0.3)}
+        ref = fresh.check(data.qpos, base, TUCK, held=held, object_poses=poses)
+        fresh._last = None  # the reference never answers from memory
+        hit = checker.collides(data.qpos, base, TUCK, held=held, object_poses=poses)
+        assert hit == (not ref.free)
+        outcomes.add(hit)
+        # the same query again, through check(): the full names (a hit was not named yet)
+        report = checker.check(data.qpos, base, TUCK, held=held, object_poses=poses)
+        assert report.hits == ref.hits
+        assert checker.check(data.qpos, base, TUCK, held=held, object_poses=poses) is report
+        assert checker.collides(data.qpos, base, TUCK, held=held, object_poses=poses) == hit
+    assert outcomes == {True, False}
+
+
+def test_the_collision_memory_is_keyed_by_the_configuration() -> None:
+    """Any change of qpos, of the overrides or of the held object is a new query."""
+    model = load_model("kitchen")
+    checker = CollisionChecker(model, Robot(model), movable_objects(model))
+    qpos = model.qpos0.copy()
+    free = checker.check(qpos, (-1.5, -1.5, math.pi / 2), TUCK)
+    assert free.free and checker.check(qpos, (-1.5, -1.5, math.pi / 2), TUCK) is free
+    # the scene's state moved: the robot now stands on the west wall
+    assert checker.check(qpos, (-1.9, -1.5, 0.0), TUCK).hits == ["robot-wall_west"]
+    moved = qpos.copy()
+    i = next(k for k, o in enumerate(checker.objects) if o.name == "obj_box1")
+    data = mujoco.MjData(model)
+    x, y, _, _ = object_pose(data, checker.objects[i])
+    a = checker.check(qpos, (x, y, 0.0), TUCK)
+    adr = checker.objects[i].qpos_adr
+    moved[adr : adr + 2] = (1.8, -2.5)  # the box is carried away: the same base is free now
+    b = checker.check(moved, (x, y, 0.0), TUCK)
+    assert "robot-obj_box1" in a.hits and "robot-obj_box1" not in b.hits
+    # held or not changes the key: a new report, not the remembered one
+    r1 = checker.check(qpos, (x, y, 0.0), TUCK)
+    assert checker.check(qpos, (x, y, 0.0), TUCK) is r1
+    assert checker.check(qpos, (x, y, 0.0), TUCK, held=i) is not r1

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import pickle
 import subprocess
@@ -467,3 +468,53 @@ def test_precheck_infos_and_the_state_after_a_place(env: KitchenClearingEnv) -> 
     t = env.task
     assert t.operator == "pick" and t.held == -1
     assert t.held_rel == (0.0, 0.0, 0.0) and t.grasp_q == ()
+
+
+def _screen_against_the_step(env: KitchenClearingEnv, actions: np.ndarray) -> dict[str, int]:
+    """certainly_infeasible of each action vs the step's verdict; counts of the outcomes."""
+    counts = {"screened": 0, "infeasible": 0, "feasible": 0}
+    for a in actions:
+        before = env.get_state()
+        screened = env.certainly_infeasible(a)
+        assert env.get_state() == before  # the screen changes nothing
+        _, _, _, info = env.transition(a)
+        env.set_state(before)
+        if info["feasible"]:
+            assert not screened, info  # never a feasible action
+            counts["feasible"] += 1
+        else:
+            counts["infeasible"] += 1
+            counts["screened"] += screened
+    return counts
+
+
+@pytest.mark.parametrize("carry", [True, False])
+def test_certainly_infeasible_is_exact(carry: bool) -> None:
+    """The pre-screen never rejects a feasible step, and settles most infeasible ones."""
+    env = KitchenClearingEnv(config=KitchenConfig(pick_requires_free_carry=carry))
+    env.reset(seed=0)
+    rng = np.random.default_rng(11)
+    totals = {"pick": [0, 0], "place": [0, 0]}  # screened, infeasible
+    for good in kitchen_actions(env)[:4]:
+        op = env.task.operator
+        dim = 6 if op == "pick" else 3
+        props = np.zeros((150, 6))
+        props[:, :dim] = rng.uniform(-1, 1, (150, dim))
+        c = _screen_against_the_step(env, props)
+        totals[op][0] += c["screened"]
+        totals[op][1] += c["infeasible"]
+        env.transition(good)
+    for op, (screened, infeasible) in totals.items():
+        assert infeasible > 100 and screened > 0.6 * infeasible, (op, screened, infeasible)
+
+
+def test_certainly_infeasible_leaves_odd_cases_to_the_step(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    far = np.full(6, 1.0)  # the robot leaves the house
+    assert env.certainly_infeasible(far)
+    assert not env.certainly_infeasible(far * 3.0)  # to be clipped: the step decides
+    assert not env.certainly_infeasible(np.full(6, np.nan))  # the step raises
+    assert not env.certainly_infeasible(far[:3])
+    env.task = dataclasses.replace(env.task, done=True)
+    assert not env.certainly_infeasible(far)  # the step raises: the episode has ended
+    env.reset(seed=0)

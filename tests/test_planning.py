@@ -184,7 +184,7 @@ def test_lean_check_matches_plain_step(env_id: str) -> None:
 
 def test_infeasible_check_is_undone_by_the_task_alone(kitchen: KitchenClearingEnv) -> None:
     """An infeasible step changes only the step count (what _jump relies on)."""
-    p = EnvProblem(kitchen, seed=0)
+    p = EnvProblem(kitchen, seed=0, prescreen=False)  # the check steps
     before = p.snapshot()
     bad = np.full(6, 1.0)  # the far corner of the box: the robot leaves the house
     assert not p.is_feasible(bad)
@@ -267,3 +267,66 @@ def test_simulator_calls_count_every_transition(kitchen: KitchenClearingEnv) -> 
     assert v1.is_feasible(pick) and v1.n_simulator_calls == 0  # the kinematic pre-check
     v1.step(pick)
     assert v1.n_simulator_calls == 1
+
+
+# ----- the pre-screen ------------------------------------------------------------------------
+def test_prescreen_changes_no_answer_result_count_or_state() -> None:
+    """EnvProblem(prescreen=True) against prescreen=False, check by check and step by step."""
+    on = EnvProblem(gym.make("voot/KitchenClearing-v0").unwrapped, seed=0)
+    off = EnvProblem(gym.make("voot/KitchenClearing-v0").unwrapped, seed=0, prescreen=False)
+    assert on.prescreen and not off.prescreen
+    rng = np.random.default_rng(6)
+    screened = 0
+    for good in kitchen_actions(on.unwrapped)[:4]:
+        dim = on.action_bounds().dim
+        before_on, before_off = on.snapshot(), off.snapshot()
+        for action in rng.uniform(-1, 1, (40, dim)):
+            assert on.is_feasible(action) == off.is_feasible(action)
+            screened += on._pending
+            a, b = on.last_check, off.last_check
+            assert a is not None and b is not None
+            assert (a.reward, a.feasible, a.terminal, a.bonus) == (
+                b.reward, b.feasible, b.terminal, b.bonus,
+            )  # fmt: skip
+            assert _same_info(a.info, b.info)
+            assert on.snapshot() == off.snapshot()
+            assert on.n_simulator_calls == off.n_simulator_calls
+        # execute the last (mostly rejected) proposal, as a search does after its retries
+        ra, rb = on.step(action), off.step(action)
+        assert (ra.reward, ra.feasible) == (rb.reward, rb.feasible) and _same_info(ra.info, rb.info)
+        assert on.snapshot() == off.snapshot() and on.n_simulator_calls == off.n_simulator_calls
+        on.restore(before_on)
+        off.restore(before_off)
+        on.step(np.asarray(good)[:dim]), off.step(np.asarray(good)[:dim])
+        assert on.snapshot() == off.snapshot()
+    assert screened > 60  # the pre-screen settled most checks
+
+
+def test_a_screened_check_is_computed_where_it_was_made(kitchen: KitchenClearingEnv) -> None:
+    """last_check of a screened check, read after the env moved on, is the check's own."""
+    p = EnvProblem(kitchen, seed=0)
+    bad = np.full(6, 1.0)  # the far corner of the box: settled by the pre-screen
+    s0 = p.snapshot()
+    ref, _, _ = _plain_check(p, bad)
+    calls = p.n_simulator_calls
+    assert not p.is_feasible(bad) and p._pending
+    assert p.n_simulator_calls == calls + 1  # counted as the step it stands for
+    pick = kitchen_actions(kitchen)[0]
+    assert p.is_feasible(pick) is True  # last_check is now this one's
+    p.step(pick)
+    here = p.snapshot()
+    p.restore(s0)
+    assert not p.is_feasible(bad)
+    p.restore(here)  # moved on before anyone read last_check
+    check = p.last_check
+    assert check is not None and not check.feasible
+    assert check.reward == ref.reward and _same_info(check.info, ref.info)
+    assert p.snapshot() == here == kitchen.get_state()  # computed without moving the env
+    assert p.last_check is check  # computed once
+    # the step of a screened action runs it, counted with its check
+    p.restore(s0)
+    assert not p.is_feasible(bad)
+    calls = p.n_simulator_calls
+    res = p.step(bad)
+    assert not res.feasible and p.n_simulator_calls == calls and p.last_check is res
+    assert kitchen.task.steps == s0.task.steps + 1

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from voot.envs.base_planner import Box2D
@@ -109,3 +110,25 @@ def test_rect_inside_and_overlaps_agree_with_the_corner_tests() -> None:
     for box in _random_boxes(3000, bounds):
         assert rect_inside(box, bounds) == _inside_corners(box, bounds)
         assert rect_overlaps(box, bounds) == scene._rect_overlaps_sat(box, bounds)
+
+
+def test_rect_tests_on_fields_match_the_box_tests() -> None:
+    """rect_fields_inside / rect_fields_overlap decide as rect_inside / rect_overlaps."""
+    from voot.envs.scene import rect_fields_inside, rect_fields_overlap, rect_inside, rect_overlaps
+
+    rng = np.random.default_rng(4)
+    bounds = (-1.0, 2.0, -0.5, 1.5)
+    seen = set()
+    for k in range(3000):
+        hx, hy = (float(v) for v in rng.uniform(0.05, 0.6, 2))
+        yaw = float(rng.uniform(-np.pi, np.pi)) if k % 4 else 0.0
+        cx, cy = (float(v) for v in rng.uniform(-1.8, 2.8, 2))
+        if k % 5 == 0:  # right at an edge, where the corner arrays decide
+            cx = bounds[0] + hx
+        box = Box2D(cx, cy, hx, hy, yaw, "b")
+        inside = rect_fields_inside(cx, cy, hx, hy, yaw, bounds)
+        overlap = rect_fields_overlap(cx, cy, hx, hy, yaw, bounds)
+        assert inside == rect_inside(box, bounds)
+        assert overlap == rect_overlaps(box, bounds)
+        seen.add((inside, overlap))
+    assert seen == {(True, True), (False, True), (False, False)}

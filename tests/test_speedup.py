@@ -85,10 +85,15 @@ def test_compare_tiny_workloads() -> None:
         assert speedup.curve_digest([float.fromhex(v) for v in c.current.curve or ()]) == (
             c.current.curve_sha256
         )
+    kitchen, conveyor = comparisons
+    assert kitchen.current.split is not None and kitchen.current.split["prescreen"] > 0
+    assert conveyor.current.split is not None and conveyor.current.split["prescreen"] == 0
     text = speedup.format_report(full, current, comparisons)
     assert (
         "bit-identical: yes" in text and "ms wall per simulation" in text and "kitchen-voot" in text
     )
+    assert "v0 pre-screens" in speedup.split_line(kitchen.current)
+    assert "v0 pre-screens" not in speedup.split_line(conveyor.current)
     data = speedup.report_json(full, current, comparisons)
     assert [w["curve_identical"] for w in data["workloads"]] == [True, True]
 

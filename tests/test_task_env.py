@@ -137,3 +137,36 @@ def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> Non
         assert np.array_equal(env._observation(), obs_here)
     env.set_state(start)  # a good snapshot still restores exactly
     assert env.get_state() == start
+
+
+def test_denormalize_floats_is_denormalize() -> None:
+    from voot.envs.task_env import denormalize_floats
+
+    ranges = ((-0.3, 1.7), (0.5, 1.0), (-np.pi, np.pi))
+    rng = np.random.default_rng(8)
+    for a in [*rng.uniform(-1, 1, (500, 3)), np.array([-1.0, 1.0, 0.0])]:
+        ref = denormalize(a, ranges).tolist()
+        assert denormalize_floats(a.tolist(), ranges) == ref
+        assert denormalize_floats(a.tolist(), [list(r) for r in ranges]) == ref  # unhashable
+
+
+def test_plain_action_is_the_validated_action_or_none(kitchen: KitchenClearingEnv) -> None:
+    a = np.linspace(-1.0, 1.0, kitchen.action_dim)
+    assert kitchen._plain_action(a) is a
+    assert np.array_equal(kitchen._validate_action(a)[0], a)
+    for bad in (a * 2.0, np.full(kitchen.action_dim, np.nan), a[:3], a.astype(np.float32), list(a)):
+        assert kitchen._plain_action(bad) is None  # left to the step (clipped or refused)
+
+
+def test_object_boxes_follow_the_state(kitchen: KitchenClearingEnv) -> None:
+    """The remembered footprints are those of the current qpos (and of the exclusion)."""
+    kitchen.reset(seed=0)
+    s = kitchen.get_state()
+    boxes = kitchen.object_boxes()
+    assert kitchen.object_boxes() == boxes and kitchen.object_boxes(exclude=(0,)) == boxes[1:]
+    adr = kitchen.objects[0].qpos_adr
+    kitchen.data.qpos[adr] += 0.25  # moved behind the env's back: a new footprint
+    moved = kitchen.object_boxes()
+    assert abs(moved[0].cx - (boxes[0].cx + 0.25)) < 1e-12 and moved[1:] == boxes[1:]
+    kitchen.set_state(s)
+    assert kitchen.object_boxes() == boxes

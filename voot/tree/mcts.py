@@ -49,7 +49,7 @@ from voot.tree.config import (
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.node import Node
 from voot.tree.problem import PlanningProblem, StepResult
-from voot.tree.samplers import UniformSampler, make_optimizer_sampler
+from voot.tree.samplers import UniformSampler, make_optimizer_sampler, same_point
 from voot.tree.selection import SelectionRule, make_selection
 
 if TYPE_CHECKING:
@@ -513,7 +513,7 @@ class MCTS:
             sampler.reject(previous)
             x: FloatArray = sampler.propose()
             # a deterministic sampler repeats itself: no new draw to check
-            return None if np.array_equal(previous, x) else x
+            return None if same_point(previous, x) else x
 
         return self.add_action(node, sampler.propose(), redraw)
 
