@@ -94,7 +94,9 @@ class TunedRows:
     Attributes:
         selections: per cell, the setting selected on the tuning seeds.
         rows: the evaluation rows of the selected settings.
-        untuned: cells with evaluation rows but no finished tuning row (left out).
+        untuned: cells with evaluation rows of several settings but no finished tuning
+            row (left out); a cell whose evaluation rows all share one setting (a planner
+            without a grid, such as the RL baselines) needs no tuning and is kept.
     """
 
     selections: tuple[Selection, ...]
@@ -112,10 +114,30 @@ def select_on_tuning(rows: Iterable[Row], tuning_seeds: Collection[int]) -> Tune
     tuning, evaluation = split_rows([r for r in rows if r.get("status") == "ok"], tuning_seeds)
     selections = select_hyperparameters(tuning)
     selected = {s.key for s in selections}
-    untuned = sorted({cell_of(r) for r in evaluation} - selected)
-    return TunedRows(
-        tuple(selections), tuple(selected_rows(evaluation, selections)), tuple(untuned)
-    )
+    missing = {cell_of(r) for r in evaluation} - selected
+    # a planner without a grid (e.g. the RL baselines, uniform random shooting) has nothing
+    # to select: its evaluation rows at its default setting are kept without tuning rows
+    single = {
+        cell_of(r)
+        for r in evaluation
+        if cell_of(r) in missing and _has_no_grid(r) and not r["config"].get("params")
+    }
+    kept = selected_rows(evaluation, selections) + [
+        r for r in evaluation if cell_of(r) in single and not r["config"].get("params")
+    ]
+    return TunedRows(tuple(selections), tuple(kept), tuple(sorted(missing - single)))
+
+
+def _has_no_grid(row: Row) -> bool:
+    """Whether the row's planner has a single setting in every grid (nothing to tune)."""
+    from voot.bench.plan_sweep import planner_grid
+    from voot.bench.problems import family
+
+    cfg = row["config"]
+    try:
+        return planner_grid(str(cfg["planner"]), family(str(cfg["problem"]))) == [{}]
+    except ValueError:
+        return False
 
 
 def selected_specs(candidates: Sequence[Any], selections: Iterable[Selection]) -> list[Any]:

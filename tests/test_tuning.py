@@ -103,3 +103,20 @@ def test_selected_specs_are_the_specs_one_would_run_by_hand() -> None:
     assert selected_specs(candidates, []) == []
     # rows of other run ids (e.g. evaluation seeds) take no part in the selection
     assert tuning_selections(tuning[:1], fake[1:]) == []
+
+
+def test_a_planner_without_a_grid_needs_no_tuning_rows() -> None:
+    """RL baselines and uniform random shooting have one setting: their evaluation rows
+    (at that default setting) are kept; a gridded planner's are not."""
+
+    def default_row(seed: int, planner: str) -> Row:
+        r = row(1.0, seed=seed, omega=0.1, planner=planner)
+        r["config"] = {**r["config"], "params": {}}
+        return r
+
+    extra = [*rows(), default_row(0, "random_shooting"), default_row(1, "random_shooting")]
+    extra.append(default_row(0, "pw_uct"))  # a grid, but no tuning rows: left out
+    outcome = select_on_tuning(extra, [1000, 1001])
+    kept = [r for r in outcome.rows if r["config"]["planner"] == "random_shooting"]
+    assert sorted(r["config"]["seed"] for r in kept) == [0, 1]
+    assert outcome.untuned == (("shekel_chain", 3, 2, "pw_uct"),)
