@@ -122,9 +122,10 @@ def select_on_tuning(rows: Iterable[Row], tuning_seeds: Collection[int]) -> Tune
         for r in evaluation
         if cell_of(r) in missing and _has_no_grid(r) and not r["config"].get("params")
     }
-    kept = selected_rows(evaluation, selections) + [
-        r for r in evaluation if cell_of(r) in single and not r["config"].get("params")
-    ]
+    fixed = [r for r in evaluation if cell_of(r) in single and not r["config"].get("params")]
+    # their one setting, as a selection of one candidate (so tables and figures list them)
+    selections = [*selections, *select_hyperparameters(fixed)]
+    kept = selected_rows(evaluation, selections)
     return TunedRows(tuple(selections), tuple(kept), tuple(sorted(missing - single)))
 
 

@@ -120,3 +120,5 @@ def test_a_planner_without_a_grid_needs_no_tuning_rows() -> None:
     kept = [r for r in outcome.rows if r["config"]["planner"] == "random_shooting"]
     assert sorted(r["config"]["seed"] for r in kept) == [0, 1]
     assert outcome.untuned == (("shekel_chain", 3, 2, "pw_uct"),)
+    fixed = [s for s in outcome.selections if s.method == "random_shooting"]
+    assert len(fixed) == 1 and fixed[0].params == {} and fixed[0].best.n == 2
