@@ -19,10 +19,13 @@ On the two cost axes every seed reaches a given simulation at a different x, so 
 seeds are read on a common grid (:func:`on_cost_grid`) the honest way for a
 best-so-far curve, which is a step function: at grid point ``x`` a seed's value is its
 value after the last simulation with cost at most ``x`` (carried forward, never
-interpolated); before its first simulation and past its own last one a seed contributes
-no value (it is not extrapolated). Where fewer than ``min_share`` of the seeds still
-contribute, no mean is drawn: the mean of the few slow (or cheap) survivors is not the
-planner's mean.
+interpolated); before its first simulation a seed contributes no value. Past its own
+last simulation a seed has spent its whole budget: by default (``hold_final=True``) it
+keeps its final value up to the axis's right end, because its search is over and its
+best is final. Dropping finished seeds instead (``hold_final=False``) leaves a mean of
+the slowest seeds only, and those are slow because they went further (more executed
+steps per simulation), which biases the curve's end upwards. Where fewer than
+``min_share`` of the seeds contribute (before most have started), no mean is drawn.
 
 Rows written before ``calls_curve`` and ``cpu_elapsed`` existed still draw on the
 simulation axis; on the other two they count as lacking the data.
@@ -107,14 +110,19 @@ def has_axis_data(x: NDArray[np.float64]) -> NDArray[np.bool_]:
 
 
 def read_steps(
-    values: NDArray[np.float64], x: NDArray[np.float64], grid: NDArray[np.float64]
+    values: NDArray[np.float64],
+    x: NDArray[np.float64],
+    grid: NDArray[np.float64],
+    *,
+    hold_final: bool = False,
 ) -> NDArray[np.float64]:
     """Each seed's step function ``x -> value`` read at ``grid``.
 
     Row ``i`` of ``values`` is seed ``i``'s value after every simulation, row ``i`` of
     ``x`` its (non-decreasing) cost after every simulation, NaN where unknown. At grid
     point ``g`` the value is that of the last simulation with ``x <= g``; NaN before the
-    seed's first simulation and past its last (no extrapolation).
+    seed's first simulation, and past its last NaN too unless ``hold_final`` (then the
+    final value: the finished search's best).
     """
     values = np.asarray(values, dtype=np.float64)
     x = np.asarray(x, dtype=np.float64)
@@ -130,7 +138,7 @@ def read_steps(
         if np.any(np.diff(xi) < 0):
             raise ValueError(f"seed row {i}: the x values must not decrease")
         idx = np.searchsorted(xi, grid, side="right") - 1
-        inside = (idx >= 0) & (grid <= xi[-1])
+        inside = (idx >= 0) & ((grid <= xi[-1]) | bool(hold_final))
         out[i] = np.where(inside, vi[np.clip(idx, 0, None)], np.nan)
     return out
 
@@ -141,8 +149,10 @@ def on_cost_grid(
     *,
     points: int = GRID_POINTS,
     min_share: float = MIN_SEED_SHARE,
+    hold_final: bool = True,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Per-seed curves on a common grid of a cost axis (:func:`read_steps`).
+    """Per-seed curves on a common grid of a cost axis (:func:`read_steps`; a finished
+    seed keeps its final value unless ``hold_final`` is False, see the module docstring).
 
     Seeds without x values (rows lacking the key) are left out. The grid runs linearly
     from the smallest first x to the largest last x over the seeds; grid points where
@@ -164,7 +174,7 @@ def on_cost_grid(
     lo = float(np.nanmin(xs))
     hi = float(max(np.nanmax(row) for row in xs))
     grid = np.linspace(lo, hi, n_points)
-    samples = read_steps(vs, xs, grid)
+    samples = read_steps(vs, xs, grid, hold_final=hold_final)
     need = max(1, math.ceil(share * xs.shape[0]))
     count = (~np.isnan(samples)).sum(axis=0)
     samples[:, count < need] = np.nan

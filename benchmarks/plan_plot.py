@@ -691,8 +691,9 @@ def figure_caption(data: Sequence[PlannerRuns], x: str) -> str:
     if axis.key is not None:
         parts.append(
             "Each seed's best-so-far curve is a step function of its own cost, carried"
-            " forward and never extrapolated past the seed's end; no mean is drawn where"
-            f" fewer than {MIN_SEED_SHARE:.0%} of the seeds still contribute."
+            " forward; a seed that has spent its whole budget keeps its final value to the"
+            " axis's end (its search is over); no mean is drawn where fewer than"
+            f" {MIN_SEED_SHARE:.0%} of the seeds have started."
         )
         total = sum(d.n_seeds for d in data)
         lacking = sum(

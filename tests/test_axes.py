@@ -45,12 +45,15 @@ def test_read_steps_checks_its_input() -> None:
 def test_on_cost_grid_spans_every_seed_and_masks_where_few_remain() -> None:
     values = np.array([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0], [7.0, 8.0]])
     x = np.array([[1.0, 2.0], [1.0, 4.0], [1.0, 6.0], [NAN, NAN]])  # the last seed lacks x
-    grid, samples = on_cost_grid(values, x, points=6, min_share=0.5)
+    grid, samples = on_cost_grid(values, x, points=6, min_share=0.5, hold_final=False)
     assert grid[0] == 1.0 and grid[-1] == 6.0 and samples.shape == (3, 6)
     count = (~np.isnan(samples)).sum(axis=0)
     # past x = 4 only one of three seeds is left: below half, nothing is drawn there
     assert np.all(count[grid <= 4.0] >= 2) and np.all(count[grid > 4.0] == 0)
-    _, all_kept = on_cost_grid(values, x, points=6, min_share=0.0)
+    # by default a finished seed keeps its final value: all three contribute to the end
+    _, held = on_cost_grid(values, x, points=6, min_share=0.5)
+    assert np.array_equal(held[:, -1], [2.0, 4.0, 6.0])
+    _, all_kept = on_cost_grid(values, x, points=6, min_share=0.0, hold_final=False)
     assert (~np.isnan(all_kept[:, -1])).sum() == 1  # the last seed alone at the end
     assert has_axis_data(x).tolist() == [True, True, True, False]
 

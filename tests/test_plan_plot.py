@@ -286,7 +286,7 @@ def test_cost_axes_figures_tables_and_captions(
     )
     caption = figure_caption(data, "calls")
     assert "steps and the kinematic pre-checks counted together" in caption
-    assert "never extrapolated" in caption and "the paper's rule" in caption
+    assert "keeps its final value" in caption and "the paper's rule" in caption
     assert "lack" not in caption
     old_caption = figure_caption(plan_data(kitchen_rows()), "cpu")
     assert "9 of 9 runs lack cpu_elapsed (written before it was recorded)" in old_caption
