@@ -152,3 +152,28 @@ def test_the_cli_checks_and_redraws(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert "s: 3 rows, checksums and manifest ok; redrawn: s-bbfo.png, s-bbfo.md" in out
     assert (tmp_path / "o" / "s" / "s-bbfo.png").stat().st_size > 1000
     assert main(["shipped", "--root", str(tmp_path / "none")]) == 2
+
+
+def test_the_protocol_pages_tables_are_what_the_committed_store_redraws(tmp_path: Path) -> None:
+    """docs/results-planning.md shows the v1 protocol's tables as the store redraws them."""
+    pytest.importorskip("matplotlib")
+    import importlib.util
+
+    root = DATA.parents[1]
+    path = root / "docs" / "scripts" / "protocol_v1_docs.py"
+    spec = importlib.util.spec_from_file_location("protocol_v1_docs", path)
+    assert spec is not None and spec.loader is not None
+    docs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(docs)
+    with shipped.store_copy(DATA / "protocol-v1") as copy:
+        blocks = docs.render(copy, tmp_path)
+    page = (root / "docs" / "results-planning.md").read_text()
+    for name, body in blocks.items():
+        assert docs.marked(page, name) == body, (
+            f"run python docs/scripts/protocol_v1_docs.py ({name})"
+        )
+    assert sorted(p.name for p in tmp_path.glob("*.png")) == [
+        "plan-calls.png",
+        "plan-cpu-seconds.png",
+        "plan-simulations.png",
+    ]
