@@ -57,6 +57,7 @@ def documented_sweeps() -> dict[str, list[Any]]:
 
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
     return {
+        "protocol-v1": protocol_v1_sweep(),
         "plan-gym-control": build_plan_specs(
             ["Reacher-v5", "Swimmer-v5", "HalfCheetah-v5"],
             planners="voot pw_uct voronoi_pw cem mppi predictive_sampling random_shooting".split(),
@@ -73,6 +74,39 @@ def documented_sweeps() -> dict[str, list[Any]]:
             **v1,  # type: ignore[arg-type]
         ),
     }
+
+
+#: The RL runs of the v1 protocol in the committed store: (problem, planner) -> seeds.
+PROTOCOL_V1_RL = {
+    ("voot/KitchenClearing-v1", "ppo"): range(20),
+    ("voot/ConveyorPacking-v1", "ppo"): range(46),
+    ("voot/KitchenClearing-v1", "ddpg"): range(11),
+    ("voot/ConveyorPacking-v1", "ddpg"): range(3),
+}
+
+
+def protocol_v1_sweep() -> list[Any]:
+    """The v1 protocol as docs/results-planning.md runs it: the grids on the tuning seeds
+    1000-1004, the settings selected there on the paper's evaluation seeds (the tuned
+    ``voot-bench plan --tuning-seeds``), and the RL runs (built directly: their specs need
+    no stable-baselines3 to be named)."""
+    from voot.bench.plan_sweep import PlanSpec, build_plan_specs
+    from voot.bench.tuning import selected_specs, tuning_selections
+
+    problems = ["kitchen_v1", "conveyor_v1"]
+    planners = "voot doot rand_doot pw_uct voronoi_pw hoot cem mppi predictive_sampling".split()
+    tuning = build_plan_specs(problems, planners=planners, seeds=range(1000, 1005))
+    rows = ResultStore(DATA / "protocol-v1", create=False).load(kind="plan")
+    evaluation = selected_specs(
+        build_plan_specs(problems, planners=planners), tuning_selections(tuning, rows)
+    )
+    budget = {"voot/KitchenClearing-v1": 2000, "voot/ConveyorPacking-v1": 3000}
+    rl = [
+        PlanSpec(problem, None, (), planner, (), budget[problem], seed)
+        for (problem, planner), seeds in PROTOCOL_V1_RL.items()
+        for seed in seeds
+    ]
+    return [*tuning, *evaluation, *rl]
 
 
 @pytest.mark.parametrize("name", sorted(documented_sweeps()))

@@ -19,7 +19,9 @@ from voot.bench.store import ResultStore
 def main() -> None:
     rows = ResultStore("docs/data/protocol-v1", create=False).load(kind="plan")
     data = plan_data(rows, tuning_seeds=range(1000, 1005))
-    print("| problem | planner | seeds | last improvement (median simulation) | seeds still improving in the last quarter |")
+    print(
+        "| problem | planner | seeds | last improvement (median simulation) | seeds still improving in the last quarter |"
+    )
     print("| --- | --- | ---: | ---: | ---: |")
     for d in data:
         returns = d.returns
