@@ -80,7 +80,7 @@ def documented_sweeps() -> dict[str, list[Any]]:
 PROTOCOL_V1_RL = {
     ("voot/KitchenClearing-v1", "ppo"): range(20),
     ("voot/ConveyorPacking-v1", "ppo"): range(46),
-    ("voot/KitchenClearing-v1", "ddpg"): range(11),
+    ("voot/KitchenClearing-v1", "ddpg"): range(20),
     ("voot/ConveyorPacking-v1", "ddpg"): range(3),
 }
 
