@@ -876,6 +876,63 @@ class _Graph:
         return self._adjacency
 
 
+class DiscProbe:
+    """The planner's start and goal tests of a disc, for one set of obstacles.
+
+    :meth:`blocked` is exactly the test that makes :meth:`BasePlanner.plan` return None
+    for an end point (and :meth:`BasePlanner.colliding` non-empty): the disc leaves the
+    workspace or overlaps an obstacle. :meth:`verdict` answers the same question for a
+    centre and radius that the caller knows only to within ``margin`` (computed on
+    Python floats where the exact numbers come from numpy, whose rounding may differ in
+    the last bits): True or False when the answer is the same for every disc within
+    ``margin``, None when it is too close to tell (ask the exact test then).
+    """
+
+    __slots__ = ("_lists", "_planner")
+
+    def __init__(self, planner: BasePlanner, lists: tuple[list[float], ...]) -> None:
+        self._planner = planner
+        self._lists = lists
+
+    def blocked(self, x: float, y: float, robot_radius: float) -> bool:
+        """Does the disc at ``(x, y)`` leave the workspace or touch an obstacle? (exact)"""
+        planner = self._planner
+        r_hit = planner._inflated_radius(robot_radius) - planner.config.contact_tolerance
+        return not planner._inside_xy(x, y, r_hit) or _point_hits_any(x, y, self._lists, r_hit)
+
+    def verdict(self, x: float, y: float, robot_radius: float, margin: float) -> bool | None:
+        """:meth:`blocked` for a disc known to within ``margin`` metres; None if unsure."""
+        planner = self._planner
+        cfg = planner.config
+        if cfg.radius_step > 0.0:
+            return None  # rounding the radius up to a step is not continuous
+        r_hit = robot_radius + cfg.clearance - cfg.contact_tolerance
+        xmin, xmax, ymin, ymax = planner.workspace
+        lo, hi = r_hit - margin, r_hit + margin
+        if not (xmin + lo <= x <= xmax - lo and ymin + lo <= y <= ymax - lo):
+            return True
+        unsure = not (xmin + hi <= x <= xmax - hi and ymin + hi <= y <= ymax - hi)
+        bcx, bcy, bcos, bsin, bhx, bhy, breach = self._lists
+        lo2, hi2 = lo * lo, hi * hi
+        for k in range(len(bcx)):
+            rx = x - bcx[k]
+            ry = y - bcy[k]
+            far = breach[k] + hi + 1e-6
+            if rx * rx + ry * ry > far * far:
+                continue
+            c, s = bcos[k], bsin[k]
+            lx = rx * c + ry * s
+            ly = -rx * s + ry * c
+            dx = max(abs(lx) - bhx[k], 0.0)
+            dy = max(abs(ly) - bhy[k], 0.0)
+            d2 = dx * dx + dy * dy
+            if d2 < lo2:
+                return True
+            if d2 <= hi2:
+                unsure = True
+        return None if unsure else False
+
+
 @dataclass(eq=False)
 class _Scene:
     """What one ``(radius, movable)`` pair needs: the obstacle arrays and, once built, the graph."""
@@ -1156,6 +1213,16 @@ class BasePlanner:
         if points_hit_boxes(xy, scene.boxes, r_hit).any():
             return False
         return not bool(segments_hit_any(xy[:-1], xy[1:], scene.boxes, r_hit).any())
+
+    def disc_probe(self, movable: Sequence[Box2D] = ()) -> DiscProbe:
+        """Point tests of a disc among the static obstacles and ``movable`` (see :class:`DiscProbe`).
+
+        For callers that test many disc positions against one set of obstacles (an env's
+        pre-screen at one state): the obstacle lists are looked up once.
+        """
+        mov = self._movable(movable)
+        lists, _ = self._lists_and_names(mov)
+        return DiscProbe(self, lists)
 
     def clear_caches(self) -> None:
         """Drop the cached graphs (results do not change; only the next query's time)."""

@@ -64,7 +64,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D
+from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D, DiscProbe
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
     ARM_REACH,
@@ -75,6 +75,7 @@ from voot.envs.robot import (
     CarryDisc,
     base_footprint,
     carry_disc,
+    carry_disc_floats,
     compose2d,
     inverse2d,
 )
@@ -336,6 +337,7 @@ class ScreenContext:
         disc: The carry disc at a place (``held_disc``), else None.
         start: The disc's centre pose now at a place (the base path's start), else None.
         movable: The footprints of the other objects (``object_boxes(exclude=(obj,))``).
+        probe: The base planner's disc tests among the static obstacles and ``movable``.
     """
 
     task: KitchenTask
@@ -350,6 +352,7 @@ class ScreenContext:
     disc: CarryDisc | None
     start: FloatArray | None
     movable: tuple[Box2D, ...]
+    probe: DiscProbe
 
 
 class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
@@ -613,7 +616,10 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         held_rel = self._held_rel(base, pose)
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
             t0 = time.perf_counter()
-            carry_reason = self._carry_blocked(obj, held_rel, base)
+            bx, by, heading = base.tolist()
+            ctx = self._screen_context()
+            free = ctx.obj == obj and self._carry_verdict(ctx, held_rel, bx, by, heading) is False
+            carry_reason = "" if free else self._carry_blocked(obj, held_rel, base)
             col_time += time.perf_counter() - t0
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
             if carry_reason:
@@ -666,6 +672,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         inverse = tuple(inverse2d(t.held_rel).tolist()) if place else (0.0, 0.0, 0.0)
         ranges = cfg.place_ranges if place else cfg.pick_ranges
         disc = self.held_disc() if place else None
+        movable = tuple(self.object_boxes(exclude=(obj,)))
         ctx = self._screen = ScreenContext(
             task=t,
             qpos=qpos,
@@ -678,7 +685,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             inverse=(inverse[0], inverse[1], inverse[2]),
             disc=disc,
             start=None if disc is None else disc.center(self.robot.base_pose(self.data)),
-            movable=tuple(self.object_boxes(exclude=(obj,))),
+            movable=movable,
+            probe=self.planner.disc_probe(movable),
         )
         return ctx
 
@@ -702,6 +710,14 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         bt = theta + it
         if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, bt, cfg.house):
             return True
+        # the base path's goal test first (a disc in collision there has no path): a
+        # few float tests that spare the MuJoCo query of most colliding placements
+        disc = ctx.disc
+        assert disc is not None and ctx.start is not None
+        goal = disc.center(np.array([bx, by, bt]))
+        gx, gy, _ = goal.tolist()
+        if ctx.probe.blocked(gx, gy, disc.radius):
+            return True
         z = float(ctx.pose[2])
         if self.collision.collides(
             self.data.qpos,
@@ -712,9 +728,6 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         ):
             return True
         # the step's base path (the planner remembers it for the step that follows)
-        disc = ctx.disc
-        assert disc is not None and ctx.start is not None
-        goal = disc.center(np.array([bx, by, bt]))
         return self.planner.plan(ctx.start, goal, disc.radius, ctx.movable) is None
 
     def _pick_screened(self, ctx: ScreenContext, a: list[float]) -> bool:
@@ -729,13 +742,41 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         heading = math.atan2(box.cy - by, box.cx - bx) + p[5]
         if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, heading, cfg.house):
             return True
-        if self.collision.collides(self.data.qpos, (bx, by, heading), TUCK):
-            return True
-        if cfg.pick_requires_free_carry:
+        if cfg.pick_requires_free_carry:  # float tests, before the MuJoCo query
             base = np.array([bx, by, heading])
             held_rel = self._held_rel(base, ctx.pose)
-            return bool(self._carry_blocked(ctx.obj, held_rel, base))
-        return False
+            blocked = self._carry_verdict(ctx, held_rel, bx, by, heading)
+            if blocked is None:
+                blocked = bool(self._carry_blocked(ctx.obj, held_rel, base))
+            if blocked:
+                return True
+        return self.collision.collides(self.data.qpos, (bx, by, heading), TUCK)
+
+    #: Metres within which :meth:`_carry_verdict` defers to the exact carry test: far
+    #: above the float difference (~1e-15 m) of :func:`carry_disc_floats`.
+    _CARRY_MARGIN = 1e-9
+
+    def _carry_verdict(
+        self,
+        ctx: ScreenContext,
+        held_rel: tuple[float, float, float],
+        bx: float,
+        by: float,
+        heading: float,
+    ) -> bool | None:
+        """:meth:`_carry_blocked` as a verdict from float tests; None if they cannot tell.
+
+        The carry disc (:func:`carry_disc_floats`) at the base ``(bx, by, heading)``
+        against the obstacles of ``ctx`` (:meth:`DiscProbe.verdict`).
+        """
+        info = self.objects[ctx.obj]
+        box = object_footprint(info, *held_rel)
+        ox, oy, radius = carry_disc_floats(box.cx, box.cy, box.half_x, box.half_y, box.yaw)
+        radius = max(radius, self.config.robot_radius)
+        c, s = math.cos(heading), math.sin(heading)
+        return ctx.probe.verdict(
+            bx + c * ox - s * oy, by + s * ox + c * oy, radius, self._CARRY_MARGIN
+        )
 
     def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task
