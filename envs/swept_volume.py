@@ -18,6 +18,8 @@ circle and lie slightly inside the exact area.
 
 from __future__ import annotations
 
+import itertools
+import math
 from collections import OrderedDict
 from collections.abc import Sequence
 
@@ -107,6 +109,13 @@ def path_hits(
             _PATH_HITS.popitem(last=False)
     missing = list(dict.fromkeys(b for b in objs if b not in memo))
     if missing:
+        # a box whose circumscribed disc is farther than the reach from every segment is
+        # clear (a margin far above rounding); only the others need the exact test
+        segments = _segment_lists(xy)
+        for b in [b for b in missing if _certainly_clear(segments, r + tolerance, b)]:
+            memo[b] = False
+        missing = [b for b in missing if b not in memo]
+    if missing:
         if len(memo) > 100_000:
             memo.clear()
         memo.update(zip(missing, _path_hits_arrays(xy, r + tolerance, missing), strict=True))
@@ -115,6 +124,32 @@ def path_hits(
 
 #: Per path (waypoint bytes, shape, radius + tolerance): box -> does it meet the path?
 _PATH_HITS: OrderedDict[tuple[bytes, tuple[int, ...], float], dict[Box2D, bool]] = OrderedDict()
+
+
+def _segment_lists(xy: np.ndarray) -> list[tuple[float, float, float, float]]:
+    """The polyline's segments ``(x0, y0, x1, y1)`` as floats (a point: one null segment)."""
+    pts = xy.tolist()
+    if len(pts) == 1:
+        return [(pts[0][0], pts[0][1], pts[0][0], pts[0][1])]
+    return [(a[0], a[1], b[0], b[1]) for a, b in itertools.pairwise(pts)]
+
+
+def _certainly_clear(
+    segments: list[tuple[float, float, float, float]], reach: float, box: Box2D
+) -> bool:
+    """Is every segment farther than ``reach`` (+ 1e-6 m) from the box's circumscribed disc?"""
+    far = reach + math.hypot(box.half_x, box.half_y) + 1e-6
+    far2 = far * far
+    px, py = box.cx, box.cy
+    for x0, y0, x1, y1 in segments:
+        dx, dy = x1 - x0, y1 - y0
+        length2 = dx * dx + dy * dy
+        u = 0.0 if length2 == 0.0 else ((px - x0) * dx + (py - y0) * dy) / length2
+        u = min(max(u, 0.0), 1.0)
+        ex, ey = x0 + u * dx - px, y0 + u * dy - py
+        if ex * ex + ey * ey <= far2:
+            return False
+    return True
 
 
 def _path_hits_arrays(xy: np.ndarray, reach: float, objects: list[Box2D]) -> list[bool]:
