@@ -316,6 +316,18 @@ class KitchenTask:
     done: bool
 
 
+def _held_rel_floats(
+    bx: float, by: float, bt: float, pose: tuple[float, float, float]
+) -> tuple[float, float, float]:
+    """:meth:`KitchenClearingEnv._held_rel` of the base ``(bx, by, bt)`` and the object's
+    ``(x, y, yaw)``: ``compose2d(inverse2d(base), pose)``'s operations on the same floats."""
+    c, s = math.cos(bt), math.sin(bt)
+    ix, iy, it = -c * bx - s * by, s * bx - c * by, -bt
+    c, s = math.cos(it), math.sin(it)
+    px, py, pt = pose
+    return ix + c * px - s * py, iy + s * px + c * py, it + pt
+
+
 @dataclass(frozen=True, slots=True)
 class ScreenContext:
     """What :meth:`KitchenClearingEnv.certainly_infeasible` needs of one state.
@@ -332,6 +344,7 @@ class ScreenContext:
         center: The object's footprint centre in its body frame (``ObjectInfo.center``).
         half: The footprint's half extents.
         pose: The object's body pose ``(x, y, z, yaw)`` (``object_pose``).
+        pose_xyyaw: Its ``(x, y, yaw)`` as floats.
         box: The object's footprint now (``object_box``).
         inverse: ``inverse2d(held_rel)`` at a place (the base in the object's frame).
         disc: The carry disc at a place (``held_disc``), else None.
@@ -347,6 +360,7 @@ class ScreenContext:
     center: tuple[float, float]
     half: tuple[float, float]
     pose: FloatArray
+    pose_xyyaw: tuple[float, float, float]
     box: Box2D
     inverse: tuple[float, float, float]
     disc: CarryDisc | None
@@ -681,6 +695,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             center=(ox, oy),
             half=(hx, hy),
             pose=pose,
+            pose_xyyaw=(float(pose[0]), float(pose[1]), float(pose[3])),
             box=self.object_box(obj),
             inverse=(inverse[0], inverse[1], inverse[2]),
             disc=disc,
@@ -743,10 +758,10 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if not rect_fields_inside(bx, by, BASE_HALF, BASE_HALF, heading, cfg.house):
             return True
         if cfg.pick_requires_free_carry:  # float tests, before the MuJoCo query
-            base = np.array([bx, by, heading])
-            held_rel = self._held_rel(base, ctx.pose)
+            held_rel = _held_rel_floats(bx, by, heading, ctx.pose_xyyaw)
             blocked = self._carry_verdict(ctx, held_rel, bx, by, heading)
             if blocked is None:
+                base = np.array([bx, by, heading])
                 blocked = bool(self._carry_blocked(ctx.obj, held_rel, base))
             if blocked:
                 return True
@@ -769,9 +784,12 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         The carry disc (:func:`carry_disc_floats`) at the base ``(bx, by, heading)``
         against the obstacles of ``ctx`` (:meth:`DiscProbe.verdict`).
         """
-        info = self.objects[ctx.obj]
-        box = object_footprint(info, *held_rel)
-        ox, oy, radius = carry_disc_floats(box.cx, box.cy, box.half_x, box.half_y, box.yaw)
+        # object_footprint's numbers
+        x, y, yaw = held_rel
+        c, s = math.cos(yaw), math.sin(yaw)
+        fx, fy = ctx.center
+        hx, hy = ctx.half
+        ox, oy, radius = carry_disc_floats(x + c * fx - s * fy, y + s * fx + c * fy, hx, hy, yaw)
         radius = max(radius, self.config.robot_radius)
         c, s = math.cos(heading), math.sin(heading)
         return ctx.probe.verdict(

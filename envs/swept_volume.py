@@ -19,7 +19,6 @@ circle and lie slightly inside the exact area.
 from __future__ import annotations
 
 import itertools
-import math
 from collections import OrderedDict
 from collections.abc import Sequence
 
@@ -27,7 +26,14 @@ import numpy as np
 import shapely
 from numpy.typing import ArrayLike
 
-from voot.envs.base_planner import BoolArray, Box2D, BoxArrays, FloatArray, segments_hit_boxes
+from voot.envs.base_planner import (
+    BoolArray,
+    Box2D,
+    BoxArrays,
+    FloatArray,
+    _segment_hits_any,
+    segments_hit_boxes,
+)
 
 __all__ = ["obstacles_on_path", "path_hits", "swept_footprint"]
 
@@ -109,13 +115,6 @@ def path_hits(
             _PATH_HITS.popitem(last=False)
     missing = list(dict.fromkeys(b for b in objs if b not in memo))
     if missing:
-        # a box whose circumscribed disc is farther than the reach from every segment is
-        # clear (a margin far above rounding); only the others need the exact test
-        segments = _segment_lists(xy)
-        for b in [b for b in missing if _certainly_clear(segments, r + tolerance, b)]:
-            memo[b] = False
-        missing = [b for b in missing if b not in memo]
-    if missing:
         if len(memo) > 100_000:
             memo.clear()
         memo.update(zip(missing, _path_hits_arrays(xy, r + tolerance, missing), strict=True))
@@ -126,35 +125,33 @@ def path_hits(
 _PATH_HITS: OrderedDict[tuple[bytes, tuple[int, ...], float], dict[Box2D, bool]] = OrderedDict()
 
 
-def _segment_lists(xy: np.ndarray) -> list[tuple[float, float, float, float]]:
-    """The polyline's segments ``(x0, y0, x1, y1)`` as floats (a point: one null segment)."""
-    pts = xy.tolist()
-    if len(pts) == 1:
-        return [(pts[0][0], pts[0][1], pts[0][0], pts[0][1])]
-    return [(a[0], a[1], b[0], b[1]) for a, b in itertools.pairwise(pts)]
-
-
-def _certainly_clear(
-    segments: list[tuple[float, float, float, float]], reach: float, box: Box2D
-) -> bool:
-    """Is every segment farther than ``reach`` (+ 1e-6 m) from the box's circumscribed disc?"""
-    far = reach + math.hypot(box.half_x, box.half_y) + 1e-6
-    far2 = far * far
-    px, py = box.cx, box.cy
-    for x0, y0, x1, y1 in segments:
-        dx, dy = x1 - x0, y1 - y0
-        length2 = dx * dx + dy * dy
-        u = 0.0 if length2 == 0.0 else ((px - x0) * dx + (py - y0) * dy) / length2
-        u = min(max(u, 0.0), 1.0)
-        ex, ey = x0 + u * dx - px, y0 + u * dy - py
-        if ex * ex + ey * ey <= far2:
-            return False
-    return True
+#: Up to this many (box, waypoint) pairs :func:`_path_hits_arrays` tests on floats.
+_FLOAT_PAIRS = 256
 
 
 def _path_hits_arrays(xy: np.ndarray, reach: float, objects: list[Box2D]) -> list[bool]:
-    """The segment-box test of :func:`path_hits` on arrays, for ``objects``."""
+    """The segment-box test of :func:`path_hits`, for ``objects``.
+
+    :func:`segments_hit_boxes`'s answers; for a few boxes (the kitchen asks about the one
+    it just moved) from :func:`_segment_hits_any`, its float twin (the same operations
+    per pair, so the same answers), which is cheaper than the arrays for a short path.
+    """
     boxes = BoxArrays.from_boxes(objects)
+    if len(objects) * xy.shape[0] <= _FLOAT_PAIRS:
+        lists = (
+            boxes.center[:, 0].tolist(), boxes.center[:, 1].tolist(), boxes.cos.tolist(),
+            boxes.sin.tolist(), boxes.half[:, 0].tolist(), boxes.half[:, 1].tolist(),
+            boxes.reach.tolist(),
+        )  # fmt: skip
+        pts = xy.tolist()
+        segments = list(itertools.pairwise(pts)) if len(pts) > 1 else [(pts[0], pts[0])]
+        out = []
+        for k in range(len(objects)):
+            one = tuple([col[k]] for col in lists)
+            out.append(
+                any(_segment_hits_any(a[0], a[1], b[0], b[1], one, reach, [0]) for a, b in segments)
+            )
+        return out
     hit = np.zeros(len(boxes), dtype=bool)
     # a single waypoint is a degenerate segment (a point)
     p = xy[:-1] if xy.shape[0] > 1 else xy
