@@ -679,6 +679,7 @@ def cmd_speedup(args: argparse.Namespace) -> int:
             split=not args.no_split,
             timeout=args.timeout,
             log=sys.stderr,
+            repeats=args.repeats,
         )
     except speedup.SpeedupError as exc:
         raise CLIError(str(exc)) from exc
@@ -1280,6 +1281,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="instead: the v1 domains' cost per simulation and its split (current code only)",
     )
     p.add_argument("--no-split", action="store_true", help="skip the per-simulation time split")
+    p.add_argument(
+        "--repeats",
+        type=int,
+        default=1,
+        help="alternating runs of each code; the fastest of each is compared (default: 1)",
+    )
     p.add_argument(
         "--timeout", type=float, default=None, help="seconds allowed per run (default: none)"
     )

@@ -325,10 +325,19 @@ def run_workload(
 
 @dataclass(frozen=True)
 class Comparison:
-    """The baseline's and the current code's runs of one workload."""
+    """The baseline's and the current code's runs of one workload.
+
+    With repeats, ``baseline`` and ``current`` are each code's fastest run (least CPU
+    time: on a shared machine the noise only ever adds time) and ``baseline_cpu`` and
+    ``current_cpu`` hold every run's CPU seconds, in the order they ran (alternating).
+    """
 
     baseline: RunResult
     current: RunResult
+    baseline_cpu: tuple[float, ...] = ()
+    current_cpu: tuple[float, ...] = ()
+    #: Did every repeat of a code give the same curve as its first run?
+    repeats_agree: bool = True
 
     @property
     def ratio(self) -> float:
@@ -337,8 +346,13 @@ class Comparison:
 
     @property
     def identical(self) -> bool:
-        """Are the best-return curves bit-identical (same length and bytes)?"""
-        return self.baseline.curve_sha256 == self.current.curve_sha256
+        """Are the best-return curves bit-identical (same length and bytes), in every run?"""
+        return self.repeats_agree and self.baseline.curve_sha256 == self.current.curve_sha256
+
+    @property
+    def repeats(self) -> int:
+        """Runs of each code."""
+        return max(len(self.current_cpu), 1)
 
 
 def select_workloads(
@@ -380,13 +394,20 @@ def compare(
     curve: bool = False,
     timeout: float | None = None,
     log: Any = None,
+    repeats: int = 1,
 ) -> tuple[str, str, list[Comparison]]:
     """Run every workload with the baseline commit's code, then with the current code.
+
+    With ``repeats`` > 1 the two alternate (baseline, current, baseline, ...) that many
+    times each, and each code's fastest run is compared: the usual defence of a ratio
+    against a shared machine's load, which comes and goes and only ever adds time.
 
     Returns:
         The baseline's full hash, a description of the current checkout, and one
         :class:`Comparison` per workload.
     """
+    if not (isinstance(repeats, int) and repeats >= 1):
+        raise SpeedupError(f"repeats must be an integer >= 1, got {repeats!r}")
     root = repo_root(repo)
     full = resolve_commit(root, baseline)
     current = describe_checkout(root)
@@ -396,16 +417,38 @@ def compare(
         base_root = import_root(base_tree, Path(tmp) / "baseline")
         cur_root = import_root(root, Path(tmp) / "current")
         for w in workloads:
-            if log is not None:
-                print(f"{w.name}: {w.simulations} simulations, baseline {full[:7]} ...", file=log)
-            # both runs are timed alike (the split's bookkeeping costs both the same)
-            old = run_workload(base_root, w, "baseline", split=split, curve=curve, timeout=timeout)
-            if log is not None:
-                print(f"{w.name}: {old.cpu:.1f} s; current code ...", file=log)
-            new = run_workload(cur_root, w, "current", split=split, curve=curve, timeout=timeout)
-            if log is not None:
-                print(f"{w.name}: {new.cpu:.1f} s", file=log)
-            results.append(Comparison(old, new))
+            olds: list[RunResult] = []
+            news: list[RunResult] = []
+            for k in range(repeats):
+                tag = f" (run {k + 1} of {repeats})" if repeats > 1 else ""
+                if log is not None:
+                    print(
+                        f"{w.name}: {w.simulations} simulations, baseline {full[:7]}{tag} ...",
+                        file=log,
+                    )
+                # both runs are timed alike (the split's bookkeeping costs both the same)
+                old = run_workload(
+                    base_root, w, "baseline", split=split, curve=curve, timeout=timeout
+                )
+                if log is not None:
+                    print(f"{w.name}: {old.cpu:.1f} s; current code ...", file=log)
+                new = run_workload(cur_root, w, "current", split=split, curve=curve, timeout=timeout)
+                if log is not None:
+                    print(f"{w.name}: {new.cpu:.1f} s", file=log)
+                olds.append(old)
+                news.append(new)
+            agree = all(r.curve_sha256 == olds[0].curve_sha256 for r in olds) and all(
+                r.curve_sha256 == news[0].curve_sha256 for r in news
+            )
+            results.append(
+                Comparison(
+                    min(olds, key=lambda r: r.cpu),
+                    min(news, key=lambda r: r.cpu),
+                    tuple(r.cpu for r in olds),
+                    tuple(r.cpu for r in news),
+                    agree,
+                )
+            )
     return full, current, results
 
 
@@ -440,7 +483,12 @@ def format_report(baseline: str, current: str, comparisons: Sequence[Comparison]
     """The table ``voot-bench speedup`` prints."""
     lines = [
         f"baseline: {baseline[:10]}   current: {current}",
-        "CPU seconds of the search (process time), same machine, one after the other",
+        "CPU seconds of the search (process time), same machine, one after the other"
+        + (
+            f"; {comparisons[0].repeats} alternating runs each, the fastest shown"
+            if comparisons and comparisons[0].repeats > 1
+            else ""
+        ),
         "",
         f"{'workload':<16} {'sims':>6} {'code':<9} {'cpu s':>8} {'sims/s':>8} {'ms/sim':>8}"
         f" {'steps':>7} {'checks':>9}  curve sha256",
@@ -457,6 +505,9 @@ def format_report(baseline: str, current: str, comparisons: Sequence[Comparison]
             f"{'':<16} {'':>6} {'ratio':<9} {c.ratio:>7.2f}x   best-return curve bit-identical:"
             f" {'yes' if c.identical else 'NO'}"
         )
+        if c.repeats > 1:
+            for code, cpus in (("baseline", c.baseline_cpu), ("current", c.current_cpu)):
+                lines.append(f"  {code:<9}every run: " + ", ".join(f"{v:.2f}" for v in cpus))
         for run in (c.baseline, c.current):
             detail = split_line(run)
             if detail:
@@ -494,6 +545,8 @@ def report_json(baseline: str, current: str, comparisons: Sequence[Comparison]) 
                 "current": run_dict(c.current),
                 "ratio": c.ratio,
                 "curve_identical": c.identical,
+                "baseline_cpu_runs": list(c.baseline_cpu),
+                "current_cpu_runs": list(c.current_cpu),
             }
             for c in comparisons
         ],
