@@ -432,7 +432,9 @@ def compare(
                 )
                 if log is not None:
                     print(f"{w.name}: {old.cpu:.1f} s; current code ...", file=log)
-                new = run_workload(cur_root, w, "current", split=split, curve=curve, timeout=timeout)
+                new = run_workload(
+                    cur_root, w, "current", split=split, curve=curve, timeout=timeout
+                )
                 if log is not None:
                     print(f"{w.name}: {new.cpu:.1f} s", file=log)
                 olds.append(old)

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import mink
 import mujoco
 import numpy as np
+import qpsolvers
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
@@ -365,14 +366,7 @@ class ArmIK:
         self.configuration.update(best)
         pe = oe = math.inf
         for it in range(1, cfg.max_iterations + 1):
-            vel = mink.solve_ik(
-                self.configuration,
-                [self.task],
-                1.0,
-                cfg.solver,
-                damping=cfg.damping,
-                limits=self.limits,
-            )
+            vel = self._ik_velocity()
             self.configuration.integrate_inplace(vel, 1.0)
             err = self.task.compute_error(self.configuration)
             pe, oe = float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:]))
@@ -381,6 +375,23 @@ class ArmIK:
                 return IKResult(True, q, it, pe, oe)
         q = self.configuration.q.copy()
         return IKResult(False, q, cfg.max_iterations, pe, oe, reason="no convergence")
+
+    def _ik_velocity(self) -> FloatArray:
+        """One differential-IK step: ``mink.solve_ik`` (dt 1) without its limit check.
+
+        ``mink.solve_ik`` first checks the configuration against the joint limits and,
+        with ``safety_break=False`` (its default, and ours), only logs a warning when it
+        is outside them; the rest (``mink.build_ik``, then ``qpsolvers.solve_problem``)
+        is what it computes, so the step is the same. The check was a tenth of a step's
+        cost, and our iterates start clipped to the limits, which the QP keeps.
+        """
+        cfg = self.config
+        problem = mink.build_ik(self.configuration, [self.task], 1.0, cfg.damping, self.limits)
+        result = qpsolvers.solve_problem(problem, solver=cfg.solver)
+        if not result.found or result.x is None:
+            raise mink.NoSolutionFound(cfg.solver)
+        velocity: FloatArray = result.x / 1.0
+        return velocity
 
     def forward(self, q: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """Grasp-site position and frame in the base frame for arm joints ``q``."""

@@ -316,6 +316,11 @@ class KitchenTask:
     done: bool
 
 
+def _on_path_of(path: BasePath, radius: float, boxes: list[Box2D]) -> list[str]:
+    """:func:`obstacles_on_path` of the fixed path (names of ``boxes`` it meets)."""
+    return obstacles_on_path(path.waypoints, radius, boxes)
+
+
 def _held_rel_floats(
     bx: float, by: float, bt: float, pose: tuple[float, float, float]
 ) -> tuple[float, float, float]:
@@ -399,6 +404,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self._order: tuple[int, ...] = ()
         self._disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc] = {}
         self._screen: ScreenContext | None = None
+        self._on_path_memo: dict[Box2D, bool] = {}
         self._last_carry: tuple[tuple[int, bytes, bytes], str] | None = None
         super().__init__(
             "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
@@ -460,9 +466,24 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         return set(obstacles_on_path(self._path.waypoints, self.config.robot_radius, boxes))
 
     def _on_path(self) -> tuple[int, ...]:
-        """Objects (not held) on the path now, in handling order."""
-        names = self._on_path_names(self.object_boxes())
-        return tuple(i for i in self._order if self.objects[i].name in names)
+        """Objects (not held) on the path now, in handling order.
+
+        Each footprint's answer is a function of the footprint alone (the path and the
+        radius are fixed), so it is remembered per footprint: after a place only the
+        moved object is new. The answers are :func:`obstacles_on_path`'s.
+        """
+        if self._path is None:
+            return ()
+        boxes = self.object_boxes()
+        memo = self._on_path_memo
+        missing = [b for b in boxes if b not in memo]
+        if missing:
+            if len(memo) > 100_000:
+                memo.clear()
+            names = set(_on_path_of(self._path, self.config.robot_radius, missing))
+            memo.update((b, b.name in names) for b in missing)
+        on = {b.name for b in boxes if memo[b]}
+        return tuple(i for i in self._order if self.objects[i].name in on)
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------
     def _reset_physics(self) -> None:
@@ -669,6 +690,16 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if t.operator == "place":
             return self._place_screened(ctx, a.tolist())
         return self._pick_screened(ctx, a.tolist())
+
+    def certainly_infeasible_values(self, values: list[float]) -> bool:
+        """:meth:`certainly_infeasible` of the plain action with entries ``values``."""
+        t = self.task
+        if t.done or t.steps >= self.config.horizon or len(values) != self.action_dim:
+            return False  # the step raises (or the action is not one)
+        ctx = self._screen_context()
+        if t.operator == "place":
+            return self._place_screened(ctx, values)
+        return self._pick_screened(ctx, values)
 
     def _screen_context(self) -> ScreenContext:
         """The pre-screen's per-state numbers (rebuilt when the task or qpos changed)."""

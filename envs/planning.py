@@ -47,6 +47,7 @@ result, snapshot and random number is the same as with the plain step-record-res
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -283,8 +284,19 @@ class EnvProblem:
         if before is None or before.task is not u.task:
             before = self.snapshot()
         self._screened = None
-        env_action = self.to_env_action(action)
-        if self.prescreen and u.certainly_infeasible(env_action):
+        env_action = None
+        if self.prescreen:
+            values = self._plain_values(action)
+            if values is not None:
+                # the env action's entries in [-1, 1]: the pre-screen of the env action
+                # (zeros after the operator's parameters), without building it
+                screened = u.certainly_infeasible_values(values)
+            else:
+                env_action = self.to_env_action(action)
+                screened = u.certainly_infeasible(env_action)
+        else:
+            screened = False
+        if screened:
             # counted as the step it stands for; that step runs only if asked for
             self.n_simulator_calls += 1
             key = np.asarray(action, dtype=np.float64).tobytes()
@@ -292,6 +304,8 @@ class EnvProblem:
             self._screened = (self._version, key, before)
             self._pending = True
             return False
+        if env_action is None:
+            env_action = self.to_env_action(action)
         res = self._transition(env_action)
         if not res.feasible and u.INFEASIBLE_CHANGES_TASK_ONLY:
             # only the task record moved on (the step count): share the rest, and put
@@ -311,6 +325,27 @@ class EnvProblem:
         self._cache = (self._version, key, res, before, after)
         self._last_check = res
         return res.feasible
+
+    def _plain_values(self, action: ArrayLike) -> list[float] | None:
+        """The entries of the env action of ``action`` when it is a plain one, else None.
+
+        Plain: normalised units, a float64 vector of the current operator's length, every
+        entry in ``[-1, 1]`` (so no clipping), followed by zeros up to the env's action
+        length (as :meth:`to_env_action` pads it). Anything else (paper units, another
+        shape, NaN) is None, and goes the general way.
+        """
+        if self.units != "normalized" or type(action) is not np.ndarray:
+            return None
+        if action.dtype != np.float64 or action.ndim != 1:
+            return None
+        values: list[float] = action.tolist()
+        if len(values) != self.action_bounds().dim:
+            return None
+        if not (min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values))):
+            return None
+        if len(values) < self._dim:
+            values.extend([0.0] * (self._dim - len(values)))
+        return values
 
     def action_metric(self) -> ActionDistance:
         """The authors' distance between actions of the current operator (planner units)."""

@@ -410,6 +410,15 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         """
         return False
 
+    def certainly_infeasible_values(self, values: list[float]) -> bool:
+        """:meth:`certainly_infeasible` of the action with entries ``values``.
+
+        ``values`` is a full-length action as Python floats, every entry in ``[-1, 1]``
+        (the caller checked: no clipping needed); subclasses answer from the floats
+        without the array. The base class builds the array.
+        """
+        return self.certainly_infeasible(np.array(values, dtype=np.float64))
+
     def _plain_action(self, action: ArrayLike) -> FloatArray | None:
         """``action`` as :meth:`_validate_action` returns it when no clipping is needed.
 

@@ -675,3 +675,55 @@ def test_the_last_plan_is_remembered_exactly() -> None:
     planner.clear_caches()
     assert planner._last_plan is None
     assert planner.plan(s, g, r, movable) == first
+
+
+# ----------------------------------------------------------------------------------------
+# disc probes (the envs' pre-screen tests)
+# ----------------------------------------------------------------------------------------
+def test_disc_probe_blocked_is_the_planners_end_point_test() -> None:
+    planner = BasePlanner(WORKSPACE, house_static())
+    movable = house_movable()
+    probe = planner.disc_probe(movable)
+    rng = np.random.default_rng(3)
+    free = blocked = 0
+    for _ in range(3000):
+        x, y = rng.uniform(-2.2, 6.2), rng.uniform(-4.2, 4.2)
+        r = float(rng.uniform(0.2, 0.6))
+        expect = bool(planner.colliding((x, y, 0.0), r, movable))
+        assert probe.blocked(x, y, r) is expect
+        if expect:
+            blocked += 1
+            # a goal whose disc is blocked has no path, whatever the start
+            assert planner.plan((0.0, 0.0, 0.0), (x, y, 0.0), r, movable) is None
+        else:
+            free += 1
+    assert free > 300 and blocked > 300
+
+
+def test_disc_probe_verdict_agrees_or_abstains_near_contact() -> None:
+    planner = BasePlanner(WORKSPACE, house_static())
+    movable = house_movable()
+    probe = planner.disc_probe(movable)
+    rng = np.random.default_rng(4)
+    margin = 1e-9
+    told = 0
+    for _ in range(3000):
+        x, y = rng.uniform(-2.2, 6.2), rng.uniform(-4.2, 4.2)
+        r = float(rng.uniform(0.2, 0.6))
+        verdict = probe.verdict(x, y, r, margin)
+        if verdict is not None:
+            told += 1
+            assert verdict is probe.blocked(x, y, r)
+            # the answer holds for every disc within the margin
+            for dx, dy, dr in ((margin, 0, 0), (0, -margin, 0), (0, 0, margin), (0, 0, -margin)):
+                assert probe.blocked(x + 0.9 * dx, y + 0.9 * dy, r + 0.9 * dr) is verdict
+    assert told > 2990
+    # a disc touching the wall x = -1.9 within the margin: too close to tell
+    r = 0.3
+    x_touch = -1.9 + r + planner.config.clearance - planner.config.contact_tolerance
+    assert probe.verdict(x_touch, 0.0, r, margin) is None
+    assert probe.verdict(x_touch + 10 * margin, 0.0, r, margin) is False
+    assert probe.verdict(x_touch - 10 * margin, 0.0, r, margin) is True
+    # rounded radii (radius_step) are not continuous: no verdict
+    stepped = BasePlanner(WORKSPACE, house_static(), BasePlannerConfig(radius_step=0.01))
+    assert stepped.disc_probe(movable).verdict(0.0, 0.0, 0.3, margin) is None

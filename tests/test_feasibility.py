@@ -324,3 +324,28 @@ def test_the_collision_memory_is_keyed_by_the_configuration() -> None:
     r1 = checker.check(qpos, (x, y, 0.0), TUCK)
     assert checker.check(qpos, (x, y, 0.0), TUCK) is r1
     assert checker.check(qpos, (x, y, 0.0), TUCK, held=i) is not r1
+
+
+def test_ik_step_is_minks_solve_ik(ik: ArmIK) -> None:
+    """ArmIK's step skips solve_ik's limit warning only: the velocity is the same, bit for bit."""
+    import mink
+
+    rng = np.random.default_rng(6)
+    for _ in range(20):
+        q = rng.uniform(ik.lower, ik.upper)
+        target = np.array([0.5, 0.0, 0.5]) + rng.uniform(-0.15, 0.15, 3)
+        ik.task.set_target(
+            mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(rot_x(1.0)), target)
+        )
+        ik.configuration.update(q)
+        ours = ik._ik_velocity()
+        ik.configuration.update(q)
+        theirs = mink.solve_ik(
+            ik.configuration,
+            [ik.task],
+            1.0,
+            ik.config.solver,
+            damping=ik.config.damping,
+            limits=ik.limits,
+        )
+        assert np.array_equal(ours, theirs)

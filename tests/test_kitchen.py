@@ -20,7 +20,7 @@ import voot  # noqa: F401  (registers the ids)
 from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig
 from voot.envs.robot import compose2d, inverse2d
 from voot.envs.scripted import kitchen_actions
-from voot.envs.task_env import normalize
+from voot.envs.task_env import denormalize, normalize
 
 
 @pytest.fixture(scope="module")
@@ -477,6 +477,7 @@ def _screen_against_the_step(env: KitchenClearingEnv, actions: np.ndarray) -> di
         before = env.get_state()
         screened = env.certainly_infeasible(a)
         assert env.get_state() == before  # the screen changes nothing
+        assert env.certainly_infeasible_values(a.tolist()) is screened  # the float entry
         _, _, _, info = env.transition(a)
         env.set_state(before)
         if info["feasible"]:
@@ -518,3 +519,41 @@ def test_certainly_infeasible_leaves_odd_cases_to_the_step(env: KitchenClearingE
     env.task = dataclasses.replace(env.task, done=True)
     assert not env.certainly_infeasible(far)  # the step raises: the episode has ended
     env.reset(seed=0)
+
+
+def test_carry_verdict_on_floats_is_the_carry_test(env: KitchenClearingEnv) -> None:
+    """The pick screen's float carry test answers as _carry_blocked, or abstains."""
+    from voot.envs.kitchen import _held_rel_floats
+
+    env.reset(seed=0)
+    rng = np.random.default_rng(12)
+    ctx = env._screen_context()
+    seen = set()
+    for a in rng.uniform(-1, 1, (600, 6)):
+        base = env.pick_base_pose(ctx.obj, denormalize(a, ctx.ranges))
+        bx, by, heading = base.tolist()
+        held_rel = _held_rel_floats(bx, by, heading, ctx.pose_xyyaw)
+        assert held_rel == env._held_rel(base, ctx.pose)
+        verdict = env._carry_verdict(ctx, held_rel, bx, by, heading)
+        assert verdict is not None
+        assert verdict is bool(env._carry_blocked(ctx.obj, held_rel, base))
+        seen.add(verdict)
+    assert seen == {True, False}
+
+
+def test_on_path_memory_gives_the_swept_volume_answers() -> None:
+    from voot.envs.swept_volume import obstacles_on_path
+
+    env = KitchenClearingEnv()
+    env.reset(seed=0)
+    assert env._path is not None
+    for a in kitchen_actions(env):
+        env.transition(a)
+        names = set(
+            obstacles_on_path(env._path.waypoints, env.config.robot_radius, env.object_boxes())
+        )
+        expect = tuple(i for i in env._order if env.objects[i].name in names)
+        assert env._on_path() == expect
+        if env.task.operator == "pick" and not env.task.done:
+            assert env.task.on_path == expect
+    assert env._on_path_memo  # answers were remembered

@@ -92,3 +92,18 @@ def test_compose_inverse_tuple_is_pose_tuple_of_the_array() -> None:
         got = compose_inverse_tuple(tuple(a.tolist()), rel)
         assert got == pose_tuple(compose_inverse2d(a, rel))
         assert all(type(v) is float for v in got)
+
+
+def test_carry_disc_on_floats_matches_the_array_disc() -> None:
+    from voot.envs.base_planner import Box2D
+    from voot.envs.robot import carry_disc_floats
+
+    rng = np.random.default_rng(2)
+    for _ in range(500):
+        cx, cy = (float(v) for v in rng.uniform(-0.8, 0.8, 2))
+        hx, hy = (float(v) for v in rng.uniform(0.05, 0.4, 2))
+        yaw = float(rng.uniform(-math.pi, math.pi))
+        exact = carry_disc(Box2D(cx, cy, hx, hy, yaw).corners())
+        ox, oy, radius = carry_disc_floats(cx, cy, hx, hy, yaw)
+        assert abs(ox - exact.offset[0]) < 1e-12 and abs(oy - exact.offset[1]) < 1e-12
+        assert abs(radius - exact.radius) < 1e-12

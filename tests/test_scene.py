@@ -132,3 +132,27 @@ def test_rect_tests_on_fields_match_the_box_tests() -> None:
         assert overlap == rect_overlaps(box, bounds)
         seen.add((inside, overlap))
     assert seen == {(True, True), (False, True), (False, False)}
+
+
+def test_float_separating_axes_agree_with_the_corner_arrays_or_abstain() -> None:
+    from voot.envs import scene
+
+    rng = np.random.default_rng(9)
+    bounds = (-1.0, 2.0, -0.5, 1.5)
+    told = abstained = 0
+    for k in range(4000):
+        hx, hy = (float(v) for v in rng.uniform(0.05, 0.6, 2))
+        yaw = float(rng.uniform(-np.pi, np.pi))
+        cx, cy = (float(v) for v in rng.uniform(-1.8, 2.8, 2))
+        box = Box2D(cx, cy, hx, hy, yaw, "b")
+        if k % 7 == 0:  # a corner exactly on an edge: the floats must abstain or agree
+            c = box.corners()
+            cx += bounds[0] - float(c[:, 0].max())
+            box = Box2D(cx, cy, hx, hy, yaw, "b")
+        sure = scene._rect_overlaps_floats(cx, cy, hx, hy, yaw, bounds)
+        if sure is None:
+            abstained += 1
+        else:
+            told += 1
+            assert sure == scene._rect_overlaps_sat(box, bounds)
+    assert told > 3000 and abstained > 0

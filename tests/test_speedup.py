@@ -101,3 +101,18 @@ def test_compare_tiny_workloads() -> None:
 def test_cli_errors(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["speedup", "--workloads", "nope"]) == 2
     assert "unknown workload" in capsys.readouterr().err
+
+
+def test_compare_repeats_alternate_and_keep_the_fastest() -> None:
+    _checkout()
+    workloads = [Workload("kitchen-voot", "voot/KitchenClearing-v0", "voot", 3)]
+    full, current, (c,) = speedup.compare(workloads, "HEAD", split=False, repeats=2)
+    assert len(c.baseline_cpu) == len(c.current_cpu) == c.repeats == 2
+    assert c.baseline.cpu == min(c.baseline_cpu) and c.current.cpu == min(c.current_cpu)
+    assert c.identical and c.repeats_agree
+    text = speedup.format_report(full, current, (c,))
+    assert "2 alternating runs each" in text and "every run:" in text
+    data = speedup.report_json(full, current, (c,))
+    assert data["workloads"][0]["current_cpu_runs"] == list(c.current_cpu)
+    with pytest.raises(SpeedupError, match="repeats must be an integer >= 1"):
+        speedup.compare(workloads, "HEAD", repeats=0)

@@ -168,3 +168,28 @@ def test_path_hits_remembered_answers_are_the_fresh_ones() -> None:
     assert 10 < sum(fresh) < 290
     with pytest.raises(ValueError, match="must be a Box2D"):
         path_hits(path, 0.48, [boxes[0], "nope"])  # type: ignore[list-item]
+
+
+def test_float_and_array_path_tests_agree(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The few-box float branch of path_hits gives the array branch's answers."""
+    from voot.envs import swept_volume as sv
+
+    rng = np.random.default_rng(8)
+    path = np.array([[0.0, 0.0], [2.0, 0.5], [2.5, 2.0], [2.5, 2.0], [0.5, 3.0]])
+    boxes = [
+        Box2D(*(float(v) for v in rng.uniform(-0.5, 3.0, 2)), *(float(v) for v in rng.uniform(0.05, 0.4, 2)),
+              float(rng.uniform(-math.pi, math.pi)), f"b{i}")
+        for i in range(400)
+    ]  # fmt: skip
+    for reach in (0.3, 0.45):
+        for xy in (path, path[:1], path[:2]):
+            floats = sv._path_hits_arrays(xy, reach, boxes[:1]) + sv._path_hits_arrays(
+                xy, reach, boxes[1:2]
+            )
+            monkeypatch.setattr(sv, "_FLOAT_PAIRS", 10**9)
+            all_floats = sv._path_hits_arrays(xy, reach, boxes)
+            monkeypatch.setattr(sv, "_FLOAT_PAIRS", 0)
+            arrays = sv._path_hits_arrays(xy, reach, boxes)
+            monkeypatch.undo()
+            assert all_floats == arrays and floats == arrays[:2]
+            assert 20 < sum(arrays) < 380
