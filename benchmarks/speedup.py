@@ -119,8 +119,9 @@ if spec["split"]:
 
     if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
         u.precheck = stopwatch(u.precheck, 4)
-    if "certainly_infeasible" in vars(type(u)):  # v0: the env's exact pre-screen, timed apart
-        u.certainly_infeasible = stopwatch(u.certainly_infeasible, 5)
+    for name in ("certainly_infeasible", "certainly_infeasible_values"):
+        if name in vars(type(u)):  # v0: the env's exact pre-screen (either entry), timed apart
+            setattr(u, name, stopwatch(getattr(u, name), 5))
 options = domain_options(spec["env_id"], None, spec["planner"])
 wall, cpu = time.perf_counter(), time.process_time()
 res = plan(problem, spec["planner"], spec["simulations"], seed=spec["seed"], **options)
