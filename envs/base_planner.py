@@ -332,6 +332,33 @@ class BasePath:
         w = np.asarray(waypoints, dtype=np.float64)
         return cls(w, path_length(w, rotation_weight))
 
+    @classmethod
+    def _from_owned(cls, waypoints: FloatArray, rotation_weight: float) -> BasePath:
+        """:meth:`from_waypoints` of a new ``(k, 3)`` float64 array nobody else holds.
+
+        The planner's and the envs' own paths: the array is made read-only in place
+        instead of copied, and its shape and finiteness (the planner's inputs are
+        validated) are checked only if it is not a finite ``(k, 3)`` array; the path is
+        the same as :meth:`from_waypoints` builds.
+        """
+        w = waypoints
+        length = path_length(w, rotation_weight)
+        if not (
+            type(w) is np.ndarray
+            and w.dtype == np.float64
+            and w.ndim == 2
+            and w.shape[1] == 3
+            and w.shape[0] >= 1
+            and math.isfinite(length)
+            and math.isfinite(float(w.sum()))
+        ):
+            return cls(w, length)
+        w.setflags(write=False)
+        path = object.__new__(cls)
+        object.__setattr__(path, "waypoints", w)
+        object.__setattr__(path, "length", float(length))
+        return path
+
     @property
     def translation_length(self) -> float:
         """Length of the polyline in the plane (metres), ignoring rotation."""
@@ -1481,7 +1508,7 @@ class BasePlanner:
             # the two ends keep their own headings (the interpolation below is
             # overwritten at both ends): the straight path needs no arithmetic
             waypoints = np.array([[start.x, start.y, start.theta], [goal.x, goal.y, goal.theta]])
-            return BasePath.from_waypoints(waypoints, self.config.rotation_weight)
+            return BasePath._from_owned(waypoints, self.config.rotation_weight)
         xy = np.array(polyline, dtype=np.float64)
         xy[0] = (start.x, start.y)
         xy[-1] = (goal.x, goal.y)
@@ -1494,4 +1521,4 @@ class BasePlanner:
         theta[0] = start.theta
         theta[-1] = goal.theta
         waypoints = np.column_stack([xy, theta])
-        return BasePath.from_waypoints(waypoints, self.config.rotation_weight)
+        return BasePath._from_owned(waypoints, self.config.rotation_weight)

@@ -441,7 +441,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         plan_time = time.perf_counter() - t0
         if path is None:
             return "no base path", col_time, plan_time
-        base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
         moved[i] = (x, y, 0.0, theta)
         lengths.append(float(base_path.length))
         paths.append(base_path.waypoints)

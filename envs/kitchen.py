@@ -1019,7 +1019,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self.last_timing = StepTiming(collision=col_time, planning=plan_time)
         if path is None:
             return self._infeasible("place", obj, "no base path", base, placement)
-        base_path = BasePath.from_waypoints(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
         before = self.data.qpos.copy() if cfg.nonclearing_penalty_infeasible else None
         set_object_pose(self.data, self.objects[obj], (x, y, z, theta))
         self._set_robot(base)
