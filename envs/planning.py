@@ -105,6 +105,7 @@ class EnvProblem:
         self.unwrapped: ManipulationEnv[Any] = u
         self.units = units
         self._dim = u.action_dim
+        self._is_kitchen = isinstance(u, KitchenClearingEnv)
         self._version = 0
         self._cache: tuple[int, bytes, StepResult, EnvState[Any], EnvState[Any]] | None = None
         # a snapshot equal to the env's current state, or None if unknown
@@ -136,8 +137,7 @@ class EnvProblem:
         return tuple(u.config.place_ranges) * OBJECTS_PER_ACTION
 
     def _operator(self) -> str:
-        u = self.unwrapped
-        return u.task.operator if isinstance(u, KitchenClearingEnv) else "place"
+        return self.unwrapped.task.operator if self._is_kitchen else "place"
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box (built once per operator and shared)."""
@@ -339,7 +339,8 @@ class EnvProblem:
         if action.dtype != np.float64 or action.ndim != 1:
             return None
         values: list[float] = action.tolist()
-        if len(values) != self.action_bounds().dim:
+        box = self._bounds.get(self._operator())
+        if len(values) != (box.dim if box is not None else self.action_bounds().dim):
             return None
         if not (min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values))):
             return None
