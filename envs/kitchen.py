@@ -316,11 +316,6 @@ class KitchenTask:
     done: bool
 
 
-def _on_path_of(path: BasePath, radius: float, boxes: list[Box2D]) -> list[str]:
-    """:func:`obstacles_on_path` of the fixed path (names of ``boxes`` it meets)."""
-    return obstacles_on_path(path.waypoints, radius, boxes)
-
-
 def _held_rel_floats(
     bx: float, by: float, bt: float, pose: tuple[float, float, float]
 ) -> tuple[float, float, float]:
@@ -480,7 +475,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if missing:
             if len(memo) > 100_000:
                 memo.clear()
-            names = set(_on_path_of(self._path, self.config.robot_radius, missing))
+            names = set(obstacles_on_path(self._path.waypoints, self.config.robot_radius, missing))
             memo.update((b, b.name in names) for b in missing)
         on = {b.name for b in boxes if memo[b]}
         return tuple(i for i in self._order if self.objects[i].name in on)
