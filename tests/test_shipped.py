@@ -79,9 +79,9 @@ def documented_sweeps() -> dict[str, list[Any]]:
 #: The RL runs of the v1 protocol in the committed store: (problem, planner) -> seeds.
 PROTOCOL_V1_RL = {
     ("voot/KitchenClearing-v1", "ppo"): range(20),
-    ("voot/ConveyorPacking-v1", "ppo"): range(46),
+    ("voot/ConveyorPacking-v1", "ppo"): range(50),
     ("voot/KitchenClearing-v1", "ddpg"): range(20),
-    ("voot/ConveyorPacking-v1", "ddpg"): range(3),
+    ("voot/ConveyorPacking-v1", "ddpg"): range(12),
 }
 
 
