@@ -513,6 +513,15 @@ class BoxArrays:
     def __len__(self) -> int:
         return len(self.names)
 
+    def lists(self) -> tuple[list[float], ...]:
+        """The columns as lists of Python floats, in the order the float tests read them:
+        centre x, centre y, cos, sin, half x, half y, reach."""
+        return (
+            self.center[:, 0].tolist(), self.center[:, 1].tolist(), self.cos.tolist(),
+            self.sin.tolist(), self.half[:, 0].tolist(), self.half[:, 1].tolist(),
+            self.reach.tolist(),
+        )  # fmt: skip
+
     def concat(self, other: BoxArrays) -> BoxArrays:
         return BoxArrays(
             np.concatenate([self.center, other.center]),
@@ -642,16 +651,7 @@ def segments_hit_boxes(
 def _box_lists(scene: _Scene) -> tuple[list[float], ...]:
     """The scene's boxes as lists of Python floats (built once per scene)."""
     if scene.lists is None:
-        b = scene.boxes
-        scene.lists = (
-            b.center[:, 0].tolist(),
-            b.center[:, 1].tolist(),
-            b.cos.tolist(),
-            b.sin.tolist(),
-            b.half[:, 0].tolist(),
-            b.half[:, 1].tolist(),
-            b.reach.tolist(),
-        )
+        scene.lists = scene.boxes.lists()
     return scene.lists
 
 

@@ -646,10 +646,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         held_rel = self._held_rel(base, pose)
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
             t0 = time.perf_counter()
-            bx, by, heading = base.tolist()
-            ctx = self._screen_context()
-            free = ctx.obj == obj and self._carry_verdict(ctx, held_rel, bx, by, heading) is False
-            carry_reason = "" if free else self._carry_blocked(obj, held_rel, base)
+            carry_reason = self._carry_blocked(obj, held_rel, base)
             col_time += time.perf_counter() - t0
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
             if carry_reason:
@@ -659,8 +656,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
     @staticmethod
     def _held_rel(base: FloatArray, pose: FloatArray) -> tuple[float, float, float]:
         """The object's body pose ``(x, y, yaw)`` in the frame of the base at ``base``."""
-        rel = compose2d(inverse2d(base), (pose[0], pose[1], pose[3]))
-        return float(rel[0]), float(rel[1]), float(rel[2])
+        bx, by, bt = (float(v) for v in base[:3])
+        return _held_rel_floats(bx, by, bt, (float(pose[0]), float(pose[1]), float(pose[3])))
 
     def certainly_infeasible(self, action: ArrayLike) -> bool:
         """The exact pre-screen of :meth:`ManipulationEnv.certainly_infeasible`.
@@ -681,10 +678,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         a = self._plain_action(action)
         if a is None:
             return False
-        ctx = self._screen_context()
-        if t.operator == "place":
-            return self._place_screened(ctx, a.tolist())
-        return self._pick_screened(ctx, a.tolist())
+        return self.certainly_infeasible_values(a.tolist())
 
     def certainly_infeasible_values(self, values: list[float]) -> bool:
         """:meth:`certainly_infeasible` of the plain action with entries ``values``."""
@@ -786,9 +780,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if cfg.pick_requires_free_carry:  # float tests, before the MuJoCo query
             held_rel = _held_rel_floats(bx, by, heading, ctx.pose_xyyaw)
             blocked = self._carry_verdict(ctx, held_rel, bx, by, heading)
-            if blocked is None:
-                base = np.array([bx, by, heading])
-                blocked = bool(self._carry_blocked(ctx.obj, held_rel, base))
+            if blocked is None:  # too close to tell on floats: the exact (remembered) test
+                blocked = bool(self._carry_blocked(ctx.obj, held_rel, np.array([bx, by, heading])))
             if blocked:
                 return True
         return self.collision.collides(self.data.qpos, (bx, by, heading), TUCK)
@@ -964,13 +957,16 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         The test the place step's base planner makes of its start: the carry disc at
         ``base`` against the house, the static obstacles and the other objects. The last
         answer is remembered (keyed by the numbers, bit for bit, and the ``qpos`` bytes,
-        which place the objects), for the step after the pre-screen.
+        which place the objects), for the step after the pre-screen. At a pick state the
+        float test (:meth:`_carry_verdict`) answers first when it is sure the disc is free.
         """
-        key = (
-            obj,
-            struct.pack("<3d", *held_rel) + np.asarray(base, dtype=np.float64).tobytes(),
-            self.data.qpos.tobytes(),
-        )
+        b = np.asarray(base, dtype=np.float64)
+        ctx = self._screen_context()
+        if ctx.task.operator == "pick" and ctx.obj == obj:
+            bx, by, heading = b.tolist()
+            if self._carry_verdict(ctx, held_rel, bx, by, heading) is False:
+                return ""
+        key = (obj, struct.pack("<3d", *held_rel) + b.tobytes(), self.data.qpos.tobytes())
         last = self._last_carry
         if last is not None and last[0] == key:
             return last[1]

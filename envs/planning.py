@@ -339,8 +339,7 @@ class EnvProblem:
         if action.dtype != np.float64 or action.ndim != 1:
             return None
         values: list[float] = action.tolist()
-        box = self._bounds.get(self._operator())
-        if len(values) != (box.dim if box is not None else self.action_bounds().dim):
+        if len(values) != self.action_bounds().dim:
             return None
         if not (min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values))):
             return None

@@ -138,11 +138,7 @@ def _path_hits_arrays(xy: np.ndarray, reach: float, objects: list[Box2D]) -> lis
     """
     boxes = BoxArrays.from_boxes(objects)
     if len(objects) * xy.shape[0] <= _FLOAT_PAIRS:
-        lists = (
-            boxes.center[:, 0].tolist(), boxes.center[:, 1].tolist(), boxes.cos.tolist(),
-            boxes.sin.tolist(), boxes.half[:, 0].tolist(), boxes.half[:, 1].tolist(),
-            boxes.reach.tolist(),
-        )  # fmt: skip
+        lists = boxes.lists()
         pts = xy.tolist()
         segments = list(itertools.pairwise(pts)) if len(pts) > 1 else [(pts[0], pts[0])]
         out = []

@@ -31,11 +31,16 @@ def _run(argv: list[str]) -> None:
         raise SystemExit(f"voot-bench {' '.join(argv)} failed ({code})")
 
 
+def _block(name: str) -> re.Pattern[str]:
+    """The ``<!-- protocol-v1:NAME -->`` ... ``<!-- /protocol-v1:NAME -->`` block: (start, body, end)."""
+    return re.compile(rf"(<!-- protocol-v1:{name} -->\n)(.*?)(<!-- /protocol-v1:{name} -->)", re.S)
+
+
 def _replace(text: str, name: str, body: str) -> str:
-    pattern = re.compile(rf"(<!-- protocol-v1:{name} -->\n).*?(<!-- /protocol-v1:{name} -->)", re.S)
+    pattern = _block(name)
     if not pattern.search(text):
         raise SystemExit(f"{PAGE} has no <!-- protocol-v1:{name} --> markers")
-    return pattern.sub(lambda m: m.group(1) + body + m.group(2), text)
+    return pattern.sub(lambda m: m.group(1) + body + m.group(3), text)
 
 
 def render(store: str | Path = STORE, figures: str | Path = FIGURES) -> dict[str, str]:
@@ -53,12 +58,10 @@ def render(store: str | Path = STORE, figures: str | Path = FIGURES) -> dict[str
 
 def marked(text: str, name: str) -> str:
     """The block between the ``<!-- protocol-v1:NAME -->`` markers of ``text``."""
-    match = re.search(
-        rf"<!-- protocol-v1:{name} -->\n(.*?)<!-- /protocol-v1:{name} -->", text, re.S
-    )
+    match = _block(name).search(text)
     if match is None:
         raise SystemExit(f"no <!-- protocol-v1:{name} --> markers")
-    return match.group(1)
+    return match.group(2)
 
 
 def main() -> None:
