@@ -96,6 +96,7 @@ import struct
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -513,6 +514,21 @@ class BoxArrays:
     def __len__(self) -> int:
         return len(self.names)
 
+    @cached_property
+    def corners_and_extents(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Corner ``x`` and ``y`` (``(4 m,)``, box-major, counter-clockwise from
+        ``(+, +)`` as :meth:`BasePlanner._polygon_nodes` orders them) and the half extents
+        of each box's axis-aligned bounding box (``(m,)`` each), for prefilters only."""
+        c, s = self.cos[:, None], self.sin[:, None]
+        lx = _CORNER_SIGNS[:, 0] * self.half[:, 0:1]
+        ly = _CORNER_SIGNS[:, 1] * self.half[:, 1:2]
+        kx = self.center[:, 0:1] + c * lx - s * ly
+        ky = self.center[:, 1:2] + s * lx + c * ly
+        ac, as_ = np.abs(self.cos), np.abs(self.sin)
+        ax = ac * self.half[:, 0] + as_ * self.half[:, 1]
+        ay = as_ * self.half[:, 0] + ac * self.half[:, 1]
+        return kx.ravel(), ky.ravel(), ax, ay
+
     def lists(self) -> tuple[list[float], ...]:
         """The columns as lists of Python floats, in the order the float tests read them:
         centre x, centre y, cos, sin, half x, half y, reach."""
@@ -875,6 +891,10 @@ class _Nodes:
     def take(self, index: IntArray) -> _Nodes:
         return _Nodes(self.pos[index], self.to_prev[index], self.to_next[index])
 
+    def part(self, start: int, stop: int) -> _Nodes:
+        """Nodes ``start`` to ``stop - 1`` (views)."""
+        return _Nodes(self.pos[start:stop], self.to_prev[start:stop], self.to_next[start:stop])
+
     def concat(self, other: _Nodes) -> _Nodes:
         return _Nodes(
             np.concatenate([self.pos, other.pos]),
@@ -977,6 +997,10 @@ class _Scene:
     # the boxes as Python lists, for the single-segment test
     lists: tuple[list[float], ...] | None = None
 
+
+#: How many radii :meth:`BasePlanner._build_graph` remembers having seen (a radius seen
+#: again gets its static graph built and cached).
+_RADII_REMEMBERED = 256
 
 #: Lines through a vertex whose sines to both neighbours multiply to more than
 #: ``-_TANGENT_EPS`` count as tangent (collinear neighbours, up to rounding, are allowed).
@@ -1082,9 +1106,11 @@ class BasePlanner:
         self._static = BoxArrays.from_boxes(self.static_obstacles)
         self._template = self._make_template(config.corner_segments)
         self._static_cache: OrderedDict[float, _Graph] = OrderedDict()
+        self._radii_seen: OrderedDict[float, None] = OrderedDict()
         self._static_lists: tuple[list[float], ...] | None = None
         self._last_plan: tuple[bytes, tuple[Box2D, ...], BasePath | None] | None = None
         self._lists_cache: dict[tuple[Box2D, ...], tuple[tuple[list[float], ...], list[str]]] = {}
+        self._arrays_cache: dict[tuple[Box2D, ...], tuple[BoxArrays, BoxArrays]] = {}
         self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
 
     # ----- public API -------------------------------------------------------------------
@@ -1254,8 +1280,10 @@ class BasePlanner:
     def clear_caches(self) -> None:
         """Drop the cached graphs (results do not change; only the next query's time)."""
         self._static_cache.clear()
+        self._radii_seen.clear()
         self._graph_cache.clear()
         self._lists_cache.clear()
+        self._arrays_cache.clear()
         self._last_plan = None
 
     # ----- internals --------------------------------------------------------------------
@@ -1336,11 +1364,47 @@ class BasePlanner:
         to_prev = -np.column_stack([np.cos(before), np.sin(before)])
         return _CORNER_SIGNS[k], unit, to_prev, to_next
 
-    def _free_nodes(self, nodes: _Nodes, boxes: BoxArrays, r_hit: float) -> _Nodes:
-        free = self._inside(nodes.pos, r_hit) & ~points_hit_boxes(nodes.pos, boxes, r_hit).any(
-            axis=1
-        )
-        return nodes.take(np.flatnonzero(free))
+    def _free_mask(
+        self, owners: BoxArrays, nodes: _Nodes, boxes: BoxArrays, radius: float, r_hit: float
+    ) -> BoolArray:
+        """Which of the polygon nodes ``nodes`` of the boxes ``owners`` (at ``radius``, as
+        :meth:`_polygon_nodes` makes them) lie inside the workspace and clear of ``boxes``.
+
+        :func:`points_hit_boxes`'s test, on the node-box pairs that can meet only: the
+        ``m`` nodes of a corner lie within ``dist`` of it (their distance from the
+        corner), so a corner farther than ``dist + r_hit`` (plus a micrometre for
+        rounding) from a box's axis-aligned bounding box along x or y cannot meet the
+        box. Each remaining pair's numbers are :func:`points_hit_boxes`'s, so the mask is.
+        """
+        inside = self._inside(nodes.pos, r_hit)
+        if len(boxes) == 0 or len(nodes) == 0:
+            return inside
+        m = self.config.corner_segments
+        dist = (radius + self.config.vertex_margin) / math.cos(math.pi / (4 * m))
+        kx, ky, _, _ = owners.corners_and_extents
+        _, _, ax, ay = boxes.corners_and_extents
+        reach = dist + r_hit + 1e-6
+        gap_x = np.abs(kx[:, None] - boxes.center[:, 0]) - ax
+        gap_y = np.abs(ky[:, None] - boxes.center[:, 1]) - ay
+        corner, box = np.nonzero((gap_x < reach) & (gap_y < reach))
+        node = ((corner * m)[:, None] + np.arange(m)).ravel()
+        box = np.repeat(box, m)
+        pos = nodes.pos[node]
+        rx = pos[:, 0] - boxes.center[box, 0]
+        ry = pos[:, 1] - boxes.center[box, 1]
+        c, s = boxes.cos[box], boxes.sin[box]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = np.maximum(np.abs(lx) - boxes.half[box, 0], 0.0)
+        dy = np.maximum(np.abs(ly) - boxes.half[box, 1], 0.0)
+        inside[node[dx * dx + dy * dy < r_hit * r_hit]] = False
+        return inside
+
+    def _free_polygon_nodes(self, owners: BoxArrays, boxes: BoxArrays, radius: float) -> _Nodes:
+        """The polygon nodes of ``owners`` at ``radius`` clear of ``boxes`` (:meth:`_free_mask`)."""
+        nodes = self._polygon_nodes(owners, radius)
+        r_hit = radius - self.config.contact_tolerance
+        return nodes.take(np.flatnonzero(self._free_mask(owners, nodes, boxes, radius, r_hit)))
 
     @staticmethod
     def _candidates(a: _Nodes, b: _Nodes, same: bool) -> tuple[IntArray, IntArray]:
@@ -1370,7 +1434,7 @@ class BasePlanner:
             self._static_cache.move_to_end(radius)
             return cached
         r_hit = radius - self.config.contact_tolerance
-        nodes = self._free_nodes(self._polygon_nodes(self._static, radius), self._static, r_hit)
+        nodes = self._free_polygon_nodes(self._static, self._static, radius)
         ia, ib = self._candidates(nodes, nodes, same=True)
         graph = _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, self._static, r_hit))
         self._static_cache[radius] = graph
@@ -1385,8 +1449,14 @@ class BasePlanner:
         if scene is not None:
             self._graph_cache.move_to_end(key)
             return scene
-        movable_arrays = BoxArrays.from_boxes(movable)
-        scene = _Scene(radius, movable_arrays, self._static.concat(movable_arrays))
+        arrays = self._arrays_cache.get(movable)
+        if arrays is None:  # one obstacle set meets many radii (one per grasp)
+            movable_arrays = BoxArrays.from_boxes(movable)
+            arrays = (movable_arrays, self._static.concat(movable_arrays))
+            if len(self._arrays_cache) >= 16:
+                self._arrays_cache.clear()
+            self._arrays_cache[movable] = arrays
+        scene = _Scene(radius, *arrays, lists=self._lists_and_names(movable)[0])
         if self.config.graph_cache_size > 0:
             self._graph_cache[key] = scene
             if len(self._graph_cache) > self.config.graph_cache_size:
@@ -1394,8 +1464,22 @@ class BasePlanner:
         return scene
 
     def _build_graph(self, scene: _Scene) -> _Graph:
-        """The visibility graph among the static and movable obstacles of ``scene``."""
+        """The visibility graph among the static and movable obstacles of ``scene``.
+
+        Two ways to the same graph (the same nodes, edges, orientations and order, bit
+        for bit: every test is elementwise): on top of the static graph of the radius,
+        cached for the radii that recur, or, the first time a radius is seen (a carried
+        object's disc changes with every grasp, so most radii never recur), in one pass
+        over all obstacles, which skips the static graph's own edge tests.
+        """
         radius = scene.radius
+        if radius not in self._static_cache:
+            seen = self._radii_seen
+            if radius not in seen:
+                seen[radius] = None
+                if len(seen) > _RADII_REMEMBERED:
+                    seen.popitem(last=False)
+                return self._one_pass_graph(scene)
         static = self._static_graph(radius)
         if len(scene.movable) == 0:
             return static
@@ -1406,7 +1490,7 @@ class BasePlanner:
         new_index = np.cumsum(alive) - 1
         keep = alive[static.i] & alive[static.j]
         base = static.nodes.take(np.flatnonzero(alive))
-        mnodes = self._free_nodes(self._polygon_nodes(scene.movable, radius), scene.boxes, r_hit)
+        mnodes = self._free_polygon_nodes(scene.movable, scene.boxes, radius)
         nodes = base.concat(mnodes)
         nb = len(base)
         # candidate edges: surviving static ones (only the movable obstacles can block
@@ -1416,6 +1500,27 @@ class BasePlanner:
         ia = np.concatenate([new_index[static.i[keep]], mi + nb, mi2 + nb])
         ib = np.concatenate([new_index[static.j[keep]], bj, mj2 + nb])
         return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, scene.boxes, r_hit))
+
+    def _one_pass_graph(self, scene: _Scene) -> _Graph:
+        """:meth:`_build_graph` without the static graph: the same nodes and edges, in the
+        same order (static edges, movable-to-static, movable-to-movable)."""
+        r_hit = scene.radius - self.config.contact_tolerance
+        boxes = scene.boxes
+        polygon = self._polygon_nodes(boxes, scene.radius)
+        free = self._free_mask(boxes, polygon, boxes, scene.radius, r_hit)
+        nodes = polygon.take(np.flatnonzero(free))
+        # the polygon nodes come box by box, the static boxes first
+        nb = int(np.count_nonzero(free[: len(self._static) * 4 * self.config.corner_segments]))
+        base = nodes.part(0, nb)
+        si, sj = self._candidates(base, base, same=True)
+        if nb == len(nodes):
+            return _Graph(nodes, *self._keep_free(nodes.pos, si, sj, boxes, r_hit))
+        mnodes = nodes.part(nb, len(nodes))
+        mi, bj = self._candidates(mnodes, base, same=False)
+        mi2, mj2 = self._candidates(mnodes, mnodes, same=True)
+        ia = np.concatenate([si, mi + nb, mi2 + nb])
+        ib = np.concatenate([sj, bj, mj2 + nb])
+        return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, boxes, r_hit))
 
     @staticmethod
     def _visible(nodes: _Nodes, point: FloatArray, boxes: BoxArrays, r_hit: float) -> IntArray:

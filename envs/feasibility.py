@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 
 import mink
@@ -286,18 +286,22 @@ class ArmIK:
         Ordered: elbow up before elbow down, forward pan before backward, then the two
         wrist solutions. Empty if the wrist centre is out of the arm's reach.
         """
+        return list(self._seed_iter(position, rotation))
+
+    def _seed_iter(self, position: ArrayLike, rotation: ArrayLike) -> Iterator[FloatArray]:
+        """:meth:`seeds` one at a time, in their order (:meth:`solve` stops at the first
+        inside the limits)."""
         p = np.asarray(position, dtype=np.float64)
         r = np.asarray(rotation, dtype=np.float64)
         wrist = p - TOOL * r[:, 0]
         d = wrist - SHOULDER
         dist = float(np.linalg.norm(d))
         if dist > UPPER_ARM + FOREARM or dist < abs(UPPER_ARM - FOREARM):
-            return []
+            return
         cos_alpha = (dist**2 - UPPER_ARM**2 - FOREARM**2) / (2 * UPPER_ARM * FOREARM)
         alpha = math.acos(max(-1.0, min(1.0, cos_alpha)))  # bend between the links
         gamma = math.atan2(FOREARM * math.sin(alpha), UPPER_ARM + FOREARM * math.cos(alpha))
         rho = math.hypot(d[0], d[1])
-        out: list[FloatArray] = []
         for roll in (math.pi, 0.0):  # elbow up, elbow down
             for flip in (False, True):
                 pan = math.atan2(d[1], d[0]) + (math.pi if flip else 0.0)
@@ -306,11 +310,33 @@ class ArmIK:
                 q1, q2, q3, q4 = _wrap(pan), _wrap(lift), roll, -alpha
                 r04 = rot_z(q1) @ rot_y(q2) @ rot_x(q3) @ rot_y(q4)
                 for q5, q6, q7 in xyx_euler(r04.T @ r):
-                    out.append(np.array([q1, q2, q3, q4, q5, q6, q7]))
-        return out
+                    yield np.array([q1, q2, q3, q4, q5, q6, q7])
 
     def _violation(self, q: FloatArray) -> float:
         return float(np.sum(np.maximum(self.lower - q, 0) + np.maximum(q - self.upper, 0)))
+
+    def _float_violation(self, q: FloatArray) -> float:
+        """:meth:`_violation` summed on floats in joint order (zero iff it is zero)."""
+        v = 0.0
+        for qj, lo, hi in zip(q.tolist(), self._lower_l, self._upper_l, strict=True):
+            v += max(lo - qj, 0.0) + max(qj - hi, 0.0)
+        return v
+
+    def _chosen_seed(
+        self, position: FloatArray, rotation: FloatArray
+    ) -> tuple[FloatArray, bool] | None:
+        """:meth:`_closest_seed` of :meth:`seeds` (the seed and whether it is inside the
+        limits; None if there is none), computing seeds only up to the first inside the
+        limits: that one is the choice whatever follows."""
+        seeds: list[FloatArray] = []
+        for q in self._seed_iter(position, rotation):
+            if self._float_violation(q) == 0.0:
+                return q, True
+            seeds.append(q)
+        if not seeds:
+            return None
+        first, inside = self._closest_seed(seeds)
+        return seeds[first], inside
 
     def _closest_seed(self, seeds: list[FloatArray]) -> tuple[int, bool]:
         """The seed :meth:`solve` refines (least limit violation, first on ties) and
@@ -320,13 +346,7 @@ class ArmIK:
         (where numpy's summation order could decide) does :meth:`_violation` decide. A
         zero violation is exact either way (every term is zero).
         """
-        lower, upper = self._lower_l, self._upper_l
-        approx = []
-        for q in seeds:
-            v = 0.0
-            for qj, lo, hi in zip(q.tolist(), lower, upper, strict=True):
-                v += max(lo - qj, 0.0) + max(qj - hi, 0.0)
-            approx.append(v)
+        approx = [self._float_violation(q) for q in seeds]
         m = min(approx)
         if m == 0.0:
             return approx.index(0.0), True
@@ -352,12 +372,12 @@ class ArmIK:
         cfg = self.config
         p = np.asarray(position, dtype=np.float64)
         r = np.asarray(rotation, dtype=np.float64)
-        seeds = self.seeds(p, r)
-        if not seeds:
-            return IKResult(False, None, 0, reason="out of reach")
         # the seed closest to the limits (exact seeds inside them first), then in order
-        first, inside = self._closest_seed(seeds)
-        best = np.clip(seeds[first], self.lower, self.upper)
+        chosen = self._chosen_seed(p, r)
+        if chosen is None:
+            return IKResult(False, None, 0, reason="out of reach")
+        seed, inside = chosen
+        best = np.clip(seed, self.lower, self.upper)
         self.task.set_target(mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(r), p))
         if inside:
             pe, oe = self._errors(best)

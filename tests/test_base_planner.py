@@ -400,7 +400,43 @@ def test_radius_step_rounds_up_and_shares_caches() -> None:
     assert reference is not None and len(reference.waypoints) > 2
     for r in (0.471, 0.475, 0.4799):
         assert planner.plan(s2, g2, r) == reference
-    assert list(planner._static_cache) == [0.5, 0.48]
+    assert [radius for radius, _ in planner._graph_cache] == [0.5, 0.48]
+
+
+def _graph_arrays(graph: bp._Graph) -> list[bytes]:
+    nodes = graph.nodes
+    return [a.tobytes() for a in (nodes.pos, nodes.to_prev, nodes.to_next, graph.i, graph.j)] + [
+        graph.w.tobytes()
+    ]
+
+
+@pytest.mark.parametrize("movable_count", [0, 1, 4, 10])
+def test_one_pass_graph_is_the_graph_on_the_static_one(movable_count: int) -> None:
+    """Both routes of _build_graph give the same nodes and edges, bit for bit, in order."""
+    static, movable = house_static(), tuple(house_movable()[:movable_count])
+    planner = BasePlanner(WORKSPACE, static)
+    for radius in (0.3, 0.4137, 0.52, 0.61):
+        scene = planner._scene(radius, movable)
+        one_pass = planner._one_pass_graph(scene)
+        static_graph = planner._static_graph(radius)  # cached: the second route now
+        layered = planner._build_graph(scene)
+        assert planner._static_cache[radius] is static_graph
+        assert len(one_pass.i) > 0
+        assert _graph_arrays(one_pass) == _graph_arrays(layered)
+
+
+def test_a_radius_seen_again_gets_its_static_graph_cached() -> None:
+    planner = BasePlanner(WORKSPACE, house_static())
+    movable = house_movable()
+    s, g = Pose2D(-1.5, 1.0, 0.0), Pose2D(4.5, -1.5, 0.0)  # through the kitchen door
+    first = planner.plan(s, g, 0.3, movable[:3])
+    assert first is not None and len(first.waypoints) > 2
+    assert list(planner._static_cache) == []  # first sight of the radius: one pass
+    second = planner.plan(s, g, 0.3, movable[:2])
+    assert list(planner._static_cache) == [0.3]
+    assert second is not None
+    planner.clear_caches()
+    assert planner.plan(s, g, 0.3, movable[:3]) == first
 
 
 def test_movable_box_can_close_a_door() -> None:
