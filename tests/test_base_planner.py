@@ -21,8 +21,10 @@ from voot.envs.base_planner import (
     BasePlanner,
     BasePlannerConfig,
     Box2D,
+    BoxArrays,
     Pose2D,
     path_length,
+    points_hit_boxes,
     se2_distance,
     wrap_angle,
 )
@@ -423,6 +425,37 @@ def test_one_pass_graph_is_the_graph_on_the_static_one(movable_count: int) -> No
         assert planner._static_cache[radius] is static_graph
         assert len(one_pass.i) > 0
         assert _graph_arrays(one_pass) == _graph_arrays(layered)
+
+
+def test_free_mask_is_the_full_point_box_test() -> None:
+    """The corner prefilter of _free_mask drops only pairs that cannot meet."""
+    rng = np.random.default_rng(8)
+    static = house_static()
+    planner = BasePlanner(WORKSPACE, static, BasePlannerConfig(corner_segments=3))
+    freed = covered = 0
+    for k in range(40):
+        movable = [
+            Box2D(
+                *rng.uniform((-1.8, -3.8), (5.8, 3.8)),
+                *rng.uniform(0.05, 0.5, 2),
+                float(rng.uniform(-3, 3)),
+                f"m{i}",
+            )
+            for i in range(int(rng.integers(0, 8)))
+        ]
+        boxes = BoxArrays.from_boxes(static + movable)
+        owners = BoxArrays.from_boxes(movable) if k % 2 else boxes
+        radius = float(rng.uniform(0.05, 1.5))
+        r_hit = radius - planner.config.contact_tolerance
+        nodes = planner._polygon_nodes(owners, radius)
+        mask = planner._free_mask(owners, nodes, boxes, radius, r_hit)
+        full = planner._inside(nodes.pos, r_hit) & ~points_hit_boxes(nodes.pos, boxes, r_hit).any(
+            axis=1
+        )
+        assert mask.tolist() == full.tolist()
+        freed += int(full.sum())
+        covered += int((~full).sum())
+    assert freed > 100 and covered > 100
 
 
 def test_a_radius_seen_again_gets_its_static_graph_cached() -> None:

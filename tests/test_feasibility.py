@@ -275,6 +275,28 @@ def test_closest_seed_is_the_sorted_violation_choice(ik: ArmIK) -> None:
         assert ik._closest_seed(seeds) == (order[0], viol[order[0]] == 0.0)
 
 
+def test_chosen_seed_is_the_closest_of_all_seeds(ik: ArmIK) -> None:
+    """Stopping at the first seed inside the limits picks what choosing among all did."""
+    rng = np.random.default_rng(6)
+    outcomes = set()
+    for _ in range(200):
+        # targets of random joint values, some beyond the limits (seeds outside them)
+        q = rng.uniform(ik.lower - 0.5, ik.upper + 0.5)
+        p, r = ik.forward(q)
+        seeds = ik.seeds(p, r)
+        chosen = ik._chosen_seed(p, r)
+        if not seeds:
+            assert chosen is None
+            continue
+        first, inside = ik._closest_seed(seeds)
+        assert chosen is not None
+        assert chosen[0].tobytes() == seeds[first].tobytes() and chosen[1] == inside
+        outcomes.add((inside, first > 0))
+    # stopped early at a later seed, and fell back to choosing among all
+    assert (True, True) in outcomes and any(not inside for inside, _ in outcomes)
+    assert ik._chosen_seed(np.array([5.0, 0.0, 0.0]), np.eye(3)) is None  # out of reach
+
+
 def test_collides_is_not_free_and_the_last_query_is_remembered() -> None:
     """collides() == not check().free; a repeated query is answered from memory, exactly."""
     model = load_model("kitchen")
