@@ -24,10 +24,12 @@ float fast paths.
 from __future__ import annotations
 
 import copy
+import ctypes
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 
+import daqp
 import mink
 import mujoco
 import numpy as np
@@ -278,6 +280,17 @@ class ArmIK:
         self._lower_l: list[float] = self.lower.tolist()
         self._upper_l: list[float] = self.upper.tolist()
         self._site = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_SITE, "grasp")
+        limit = self.limits[0]
+        # the QP's constant constraint matrix, as mink stacks it (hinge limits only)
+        self._qp_rows: FloatArray | None = None
+        if (
+            self.config.solver == "daqp"
+            and limit.projection_matrix is not None
+            and len(limit._ball_qposadr) == 0
+            and callable(getattr(self.task, "compute_qp_residual", None))
+        ):
+            P = limit.projection_matrix
+            self._qp_rows = np.vstack([np.vstack([P, -P])])
 
     # ----- closed form ------------------------------------------------------------------
     def seeds(self, position: ArrayLike, rotation: ArrayLike) -> list[FloatArray]:
@@ -406,11 +419,62 @@ class ArmIK:
         cost, and our iterates start clipped to the limits, which the QP keeps.
         """
         cfg = self.config
+        if self._qp_rows is not None:
+            return self._daqp_velocity()
         problem = mink.build_ik(self.configuration, [self.task], 1.0, cfg.damping, self.limits)
         result = qpsolvers.solve_problem(problem, solver=cfg.solver)
         if not result.found or result.x is None:
             raise mink.NoSolutionFound(cfg.solver)
         velocity: FloatArray = result.x / 1.0
+        return velocity
+
+    def _daqp_velocity(self) -> FloatArray:
+        """:meth:`_ik_velocity` with daqp: the QP that ``mink.build_ik`` assembles (one
+        frame task, hinge limits) and the call that qpsolvers makes of daqp, without their
+        generic machinery (per-task lists, the constant constraint rows rebuilt, a
+        ``Problem`` and a ``Solution``): the same arrays, built with the same operations,
+        so the step is bit for bit theirs (``tests/test_feasibility.py`` compares).
+        """
+        conf, limit, rows = self.configuration, self.limits[0], self._qp_rows
+        assert rows is not None
+        nv = self.model.nv
+        # mink.solve_ik._compute_qp_objective for one task with a weighted residual
+        weighted_jacobian, weighted_error, mu = self.task.compute_qp_residual(conf)
+        w = np.vstack([weighted_jacobian])
+        hessian = w.T @ w
+        linear = -(np.concatenate([weighted_error]) @ w)
+        hessian.flat[:: nv + 1] += self.config.damping + (0.0 + mu)
+        # ConfigurationLimit.compute_qp_inequalities: G is constant, h follows q
+        q = conf.q
+        upper_gap = np.empty((nv,))
+        mujoco.mj_differentiatePos(
+            m=limit.model, qvel=upper_gap, dt=1.0, qpos1=q, qpos2=limit.upper
+        )
+        lower_gap = np.empty((nv,))
+        mujoco.mj_differentiatePos(
+            m=limit.model, qvel=lower_gap, dt=1.0, qpos1=limit.lower, qpos2=q
+        )
+        bound = np.hstack(
+            [
+                np.hstack(
+                    [limit.gain * upper_gap[limit.indices], limit.gain * lower_gap[limit.indices]]
+                )
+            ]
+        )
+        # qpsolvers' daqp_solve_problem for inequalities only
+        m = rows.shape[0]
+        x, _, exitflag, _ = daqp.solve(
+            hessian,
+            linear,
+            rows,
+            bound,
+            np.full(m, -1e30),
+            np.zeros(m, dtype=ctypes.c_int),
+            primal_start=None,
+        )
+        if exitflag <= 0 or x is None:
+            raise mink.NoSolutionFound("daqp")
+        velocity: FloatArray = x / 1.0
         return velocity
 
     def forward(self, q: ArrayLike) -> tuple[FloatArray, FloatArray]:

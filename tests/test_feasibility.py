@@ -349,18 +349,26 @@ def test_the_collision_memory_is_keyed_by_the_configuration() -> None:
 
 
 def test_ik_step_is_minks_solve_ik(ik: ArmIK) -> None:
-    """ArmIK's step skips solve_ik's limit warning only: the velocity is the same, bit for bit."""
+    """ArmIK's step (its own daqp call) is mink.solve_ik's velocity, bit for bit, with the
+    limits inactive and active (joints at a limit, far targets)."""
     import mink
 
+    assert ik._qp_rows is not None  # the daqp path is the one under test
     rng = np.random.default_rng(6)
-    for _ in range(20):
+    at_limit = 0
+    for k in range(200):
         q = rng.uniform(ik.lower, ik.upper)
-        target = np.array([0.5, 0.0, 0.5]) + rng.uniform(-0.15, 0.15, 3)
+        if k % 2:
+            q = np.clip(rng.uniform(ik.lower - 1.0, ik.upper + 1.0), ik.lower, ik.upper)
+        spread = 0.15 if k % 3 else 0.8
+        target = np.array([0.5, 0.0, 0.5]) + rng.uniform(-spread, spread, 3)
+        rotation = rot_x(float(rng.uniform(-3, 3))) @ rot_y(float(rng.uniform(-1.5, 1.5)))
         ik.task.set_target(
-            mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(rot_x(1.0)), target)
+            mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(rotation), target)
         )
         ik.configuration.update(q)
         ours = ik._ik_velocity()
+        at_limit += bool(np.any(q == ik.lower) or np.any(q == ik.upper))
         ik.configuration.update(q)
         theirs = mink.solve_ik(
             ik.configuration,
@@ -370,4 +378,10 @@ def test_ik_step_is_minks_solve_ik(ik: ArmIK) -> None:
             damping=ik.config.damping,
             limits=ik.limits,
         )
-        assert np.array_equal(ours, theirs)
+        assert ours.tobytes() == theirs.tobytes()
+    assert at_limit > 50
+    generic = ArmIK()
+    generic._qp_rows = None  # mink.build_ik and qpsolvers, as for another solver
+    generic.task.set_target(ik.task.transform_target_to_world)
+    generic.configuration.update(q)
+    assert generic._ik_velocity().tobytes() == theirs.tobytes()
