@@ -1511,15 +1511,18 @@ class BasePlanner:
         nodes = polygon.take(np.flatnonzero(free))
         # the polygon nodes come box by box, the static boxes first
         nb = int(np.count_nonzero(free[: len(self._static) * 4 * self.config.corner_segments]))
-        base = nodes.part(0, nb)
-        si, sj = self._candidates(base, base, same=True)
-        if nb == len(nodes):
-            return _Graph(nodes, *self._keep_free(nodes.pos, si, sj, boxes, r_hit))
-        mnodes = nodes.part(nb, len(nodes))
-        mi, bj = self._candidates(mnodes, base, same=False)
-        mi2, mj2 = self._candidates(mnodes, mnodes, same=True)
-        ia = np.concatenate([si, mi + nb, mi2 + nb])
-        ib = np.concatenate([sj, bj, mj2 + nb])
+        # all bitangent pairs i < j at once, then in the layered build's order and
+        # orientation: the tangency of a pair does not depend on its orientation (the
+        # direction's sign cancels exactly), its segment test may
+        i, j = self._candidates(nodes, nodes, same=True)
+        movable_i, movable_j = i >= nb, j >= nb
+        static_pair = ~movable_j
+        mixed = movable_j & ~movable_i
+        both = movable_i
+        mixed_i, mixed_j = i[mixed], j[mixed]
+        order = np.lexsort((mixed_i, mixed_j))  # by movable node, then static node
+        ia = np.concatenate([i[static_pair], mixed_j[order], i[both]])
+        ib = np.concatenate([j[static_pair], mixed_i[order], j[both]])
         return _Graph(nodes, *self._keep_free(nodes.pos, ia, ib, boxes, r_hit))
 
     @staticmethod
