@@ -86,7 +86,7 @@ from voot.envs.scene import (
     rect_inside,
     rect_overlaps,
 )
-from voot.envs.swept_volume import obstacles_on_path
+from voot.envs.swept_volume import PathProbe, obstacles_on_path
 from voot.envs.task_env import (
     ManipulationEnv,
     StepTiming,
@@ -411,6 +411,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
                 f"no base path from start {cfg.start} to goal {cfg.goal} for radius {cfg.robot_radius}"
             )
         self._path = path
+        self._path_probe = PathProbe(path.waypoints, cfg.robot_radius)
         self._order = self._handling_order()
         self.task = self._initial_task()
         if not self.task.on_path:
@@ -465,7 +466,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
 
         Each footprint's answer is a function of the footprint alone (the path and the
         radius are fixed), so it is remembered per footprint: after a place only the
-        moved object is new. The answers are :func:`obstacles_on_path`'s.
+        moved object is new. The answers are :func:`obstacles_on_path`'s (its
+        :class:`~voot.envs.swept_volume.PathProbe`'s).
         """
         if self._path is None:
             return ()
@@ -475,8 +477,7 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         if missing:
             if len(memo) > 100_000:
                 memo.clear()
-            names = set(obstacles_on_path(self._path.waypoints, self.config.robot_radius, missing))
-            memo.update((b, b.name in names) for b in missing)
+            memo.update(zip(missing, self._path_probe.hits(missing), strict=True))
         on = {b.name for b in boxes if memo[b]}
         return tuple(i for i in self._order if self.objects[i].name in on)
 

@@ -35,7 +35,7 @@ from voot.envs.base_planner import (
     segments_hit_boxes,
 )
 
-__all__ = ["obstacles_on_path", "path_hits", "swept_footprint"]
+__all__ = ["PathProbe", "obstacles_on_path", "path_hits", "swept_footprint"]
 
 
 def _polyline(waypoints: ArrayLike) -> FloatArray:
@@ -119,6 +119,32 @@ def path_hits(
             memo.clear()
         memo.update(zip(missing, _path_hits_arrays(xy, r + tolerance, missing), strict=True))
     return np.array([memo[b] for b in objs], dtype=bool)
+
+
+class PathProbe:
+    """:func:`path_hits` of one fixed path, checked once, for callers that ask it about
+    many boxes (the kitchen, about its fixed path after every placement; it remembers
+    the answers per footprint itself).
+
+    Args:
+        waypoints: The path, as for :func:`path_hits` (copied).
+        robot_radius: Radius of the disc swept along it (> 0).
+        tolerance: As for :func:`path_hits`.
+    """
+
+    __slots__ = ("_reach", "_xy")
+
+    def __init__(self, waypoints: ArrayLike, robot_radius: float, tolerance: float = 1e-9):
+        self._xy = _polyline(waypoints).copy()
+        r = _radius(robot_radius)
+        if not (np.isfinite(tolerance) and tolerance >= 0.0):
+            raise ValueError(f"tolerance must be a finite number >= 0, got {tolerance!r}")
+        self._reach = float(r + tolerance)
+
+    def hits(self, objects: Sequence[Box2D]) -> list[bool]:
+        """Does each box meet the path? (:func:`path_hits`'s answers, as a list.)"""
+        objs = list(objects)
+        return _path_hits_arrays(self._xy, self._reach, objs) if objs else []
 
 
 #: Per path (waypoint bytes, shape, radius + tolerance): box -> does it meet the path?

@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 from voot.envs.base_planner import BasePlanner, Box2D, Pose2D
-from voot.envs.swept_volume import obstacles_on_path, path_hits, swept_footprint
+from voot.envs.swept_volume import PathProbe, obstacles_on_path, path_hits, swept_footprint
 
 R = 0.5
 STRAIGHT = np.array([[0.0, 0.0, 0.0], [4.0, 0.0, 0.0]])
@@ -193,3 +193,28 @@ def test_float_and_array_path_tests_agree(monkeypatch: pytest.MonkeyPatch) -> No
             monkeypatch.undo()
             assert all_floats == arrays and floats == arrays[:2]
             assert 20 < sum(arrays) < 380
+
+
+def test_path_probe_is_path_hits() -> None:
+    """A probe of a fixed path answers as path_hits, one box or many; bad paths are refused."""
+    rng = np.random.default_rng(9)
+    path = np.array([[-1.5, -1.5, 0.3], [-1.0, 0.5, 0.0], [0.0, 2.5, 1.0]])
+    boxes = [
+        Box2D(float(x), float(y), 0.25, 0.15, float(t), f"b{k}")
+        for k, (x, y, t) in enumerate(rng.uniform((-3, -3, 0), (2, 4, 6), (200, 3)))
+    ]
+    probe = PathProbe(path, 0.48)
+    expected = path_hits(path, 0.48, boxes).tolist()
+    assert probe.hits(boxes) == expected
+    assert [probe.hits([b])[0] for b in boxes] == expected
+    assert probe.hits([]) == []
+    assert 10 < sum(expected) < 190
+    path[0, 0] = 99.0  # the probe kept its own copy
+    assert probe.hits(boxes) == expected
+    for bad, match in (
+        (lambda: PathProbe(np.zeros((0, 2)), R), "waypoints"),
+        (lambda: PathProbe(STRAIGHT, -1.0), "robot_radius"),
+        (lambda: PathProbe(STRAIGHT, R, tolerance=math.nan), "tolerance"),
+    ):
+        with pytest.raises(ValueError, match=match):
+            bad()
