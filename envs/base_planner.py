@@ -708,11 +708,26 @@ def _component_lists(graph: _Graph) -> list[tuple[list[Any], ...]]:
     ]
 
 
-def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: float) -> bool:
-    """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations)."""
+def _point_hits_any(
+    x: float,
+    y: float,
+    boxes: tuple[list[float], ...],
+    radius: float,
+    hint: list[int] | None = None,
+) -> bool:
+    """:func:`points_hit_boxes` for one point and any box, on Python floats (same operations).
+
+    The boxes are tried from ``hint[0]`` on (the box that the caller's last point hit:
+    points asked in a row mostly hit the same one; the answer does not depend on the
+    order), and ``hint[0]`` is set to the box hit.
+    """
+    if hint is None:
+        hint = _LAST_POINT_HIT
     bcx, bcy, bcos, bsin, bhx, bhy, breach = boxes
     r2 = radius * radius
-    for k in range(len(bcx)):
+    n = len(bcx)
+    first = hint[0] if hint[0] < n else 0
+    for k in itertools.chain(range(first, n), range(first)):
         rx = x - bcx[k]
         ry = y - bcy[k]
         far = breach[k] + radius + 1e-6  # the point is at least this far from the box centre
@@ -724,8 +739,13 @@ def _point_hits_any(x: float, y: float, boxes: tuple[list[float], ...], radius: 
         dx = max(abs(lx) - bhx[k], 0.0)
         dy = max(abs(ly) - bhy[k], 0.0)
         if dx * dx + dy * dy < r2:
+            hint[0] = k
             return True
     return False
+
+
+#: Index of the box that the last point of :func:`_point_hits_any` hit.
+_LAST_POINT_HIT = [0]
 
 
 def _point_hit_indices(
@@ -935,17 +955,23 @@ class DiscProbe:
     ``margin``, None when it is too close to tell (ask the exact test then).
     """
 
-    __slots__ = ("_lists", "_planner")
+    __slots__ = ("_blocked_hint", "_lists", "_planner", "_verdict_hint")
 
     def __init__(self, planner: BasePlanner, lists: tuple[list[float], ...]) -> None:
         self._planner = planner
         self._lists = lists
+        # the box that decided the last answer, tried first (the answers do not depend on
+        # the order of the boxes)
+        self._blocked_hint = [0]
+        self._verdict_hint = [0]
 
     def blocked(self, x: float, y: float, robot_radius: float) -> bool:
         """Does the disc at ``(x, y)`` leave the workspace or touch an obstacle? (exact)"""
         planner = self._planner
         r_hit = planner._inflated_radius(robot_radius) - planner.config.contact_tolerance
-        return not planner._inside_xy(x, y, r_hit) or _point_hits_any(x, y, self._lists, r_hit)
+        return not planner._inside_xy(x, y, r_hit) or _point_hits_any(
+            x, y, self._lists, r_hit, self._blocked_hint
+        )
 
     def verdict(self, x: float, y: float, robot_radius: float, margin: float) -> bool | None:
         """:meth:`blocked` for a disc known to within ``margin`` metres; None if unsure."""
@@ -961,7 +987,10 @@ class DiscProbe:
         unsure = not (xmin + hi <= x <= xmax - hi and ymin + hi <= y <= ymax - hi)
         bcx, bcy, bcos, bsin, bhx, bhy, breach = self._lists
         lo2, hi2 = lo * lo, hi * hi
-        for k in range(len(bcx)):
+        hint = self._verdict_hint
+        n = len(bcx)
+        first = hint[0] if hint[0] < n else 0
+        for k in itertools.chain(range(first, n), range(first)):
             rx = x - bcx[k]
             ry = y - bcy[k]
             far = breach[k] + hi + 1e-6
@@ -974,6 +1003,7 @@ class DiscProbe:
             dy = max(abs(ly) - bhy[k], 0.0)
             d2 = dx * dx + dy * dy
             if d2 < lo2:
+                hint[0] = k
                 return True
             if d2 <= hi2:
                 unsure = True

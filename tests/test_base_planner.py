@@ -640,6 +640,10 @@ def test_single_segment_and_point_tests_match_the_arrays() -> None:
         assert got == ref
         ref_pt = bool(bp.points_hit_boxes(p[None], arrays, r).any())
         assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r) == ref_pt
+        # whichever box the hint names first (the last hit, or any other)
+        start = [k % (len(boxes) + 3)]
+        assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r, start) == ref_pt
+        assert start[0] < len(boxes)
 
 
 def test_no_path_shortcut_agrees_with_the_search() -> None:
@@ -780,6 +784,10 @@ def test_disc_probe_verdict_agrees_or_abstains_near_contact() -> None:
         x, y = rng.uniform(-2.2, 6.2), rng.uniform(-4.2, 4.2)
         r = float(rng.uniform(0.2, 0.6))
         verdict = probe.verdict(x, y, r, margin)
+        # the probe's memory of the last deciding box changes no answer
+        fresh = planner.disc_probe(movable)
+        assert verdict is fresh.verdict(x, y, r, margin)
+        assert probe.blocked(x, y, r) is planner.disc_probe(movable).blocked(x, y, r)
         if verdict is not None:
             told += 1
             assert verdict is probe.blocked(x, y, r)
