@@ -62,6 +62,7 @@ from voot.optim.base import Bounds
 from voot.tree.problem import ActionDistance, StepResult
 
 FloatArray = NDArray[np.float64]
+_F64 = np.dtype(np.float64)
 
 #: Action units an :class:`EnvProblem` can expose.
 UNITS = ("normalized", "paper")
@@ -334,12 +335,14 @@ class EnvProblem:
         length (as :meth:`to_env_action` pads it). Anything else (paper units, another
         shape, NaN) is None, and goes the general way.
         """
-        if self.units != "normalized" or type(action) is not np.ndarray:
+        # the native float64 descriptor is a singleton: another one goes the general way
+        if type(action) is not np.ndarray or action.dtype is not _F64 or action.ndim != 1:
             return None
-        if action.dtype != np.float64 or action.ndim != 1:
+        if self.units != "normalized":
             return None
         values: list[float] = action.tolist()
-        if len(values) != self.action_bounds().dim:
+        box = self._bounds.get(self._operator())
+        if len(values) != (box if box is not None else self.action_bounds()).dim:
             return None
         if not (min(values) >= -1.0 and max(values) <= 1.0 and math.isfinite(sum(values))):
             return None

@@ -211,7 +211,7 @@ def carry_disc_floats(
         ys.append(lx * s + ly * c + cy)
     ox = 0.5 * (min(xs) + max(xs))
     oy = 0.5 * (min(ys) + max(ys))
-    far = max(math.hypot(px - ox, py - oy) for px, py in zip(xs, ys, strict=True))
+    far = max([math.hypot(px - ox, py - oy) for px, py in zip(xs, ys, strict=True)])
     margin = ROBOT_RADIUS - math.sqrt(2.0) * BASE_HALF
     return ox, oy, max(ROBOT_RADIUS, far + margin)
 
