@@ -702,8 +702,9 @@ def _component_lists(graph: _Graph) -> list[tuple[list[Any], ...]]:
         nodes.to_next[:, 0].tolist(),
         nodes.to_next[:, 1].tolist(),
     )
+    shared = [0]  # the box that blocked the last segment from the start, for every node
     return [
-        (*([col[v] for v in members] for col in cols), [[0] for _ in members])
+        (*([col[v] for v in members] for col in cols), [shared] * len(members))
         for members in groups.values()
     ]
 
