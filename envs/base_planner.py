@@ -60,7 +60,8 @@ and, per start, the reachable nodes are cached with the graph: tree search asks 
 goals from one start, most of them unreachable).
 
 The static part (static vertices and their mutual visibility) is computed once per radius
-and cached; the graph including the movable obstacles is cached per
+that recurs and cached (a radius seen for the first time gets its whole graph in one pass
+over all obstacles, the same graph); the graph including the movable obstacles is cached per
 ``(radius, movable)`` (tree search queries many goals from the same state); a query then
 only connects its start and goal. Every returned path is collision-free under the exact
 disc model. The polygonal corners make it a shortest path up to a factor of at most
