@@ -290,7 +290,7 @@ class ArmIK:
             and callable(getattr(self.task, "compute_qp_residual", None))
         ):
             P = limit.projection_matrix
-            self._qp_rows = np.vstack([np.vstack([P, -P])])
+            self._qp_rows = np.vstack([P, -P])
 
     # ----- closed form ------------------------------------------------------------------
     def seeds(self, position: ArrayLike, rotation: ArrayLike) -> list[FloatArray]:
@@ -454,12 +454,8 @@ class ArmIK:
         mujoco.mj_differentiatePos(
             m=limit.model, qvel=lower_gap, dt=1.0, qpos1=limit.lower, qpos2=q
         )
-        bound = np.hstack(
-            [
-                np.hstack(
-                    [limit.gain * upper_gap[limit.indices], limit.gain * lower_gap[limit.indices]]
-                )
-            ]
+        bound = np.concatenate(
+            [limit.gain * upper_gap[limit.indices], limit.gain * lower_gap[limit.indices]]
         )
         # qpsolvers' daqp_solve_problem for inequalities only
         m = rows.shape[0]
