@@ -81,7 +81,7 @@ PROTOCOL_V1_RL = {
     ("voot/KitchenClearing-v1", "ppo"): range(20),
     ("voot/ConveyorPacking-v1", "ppo"): range(50),
     ("voot/KitchenClearing-v1", "ddpg"): range(20),
-    ("voot/ConveyorPacking-v1", "ddpg"): range(39),
+    ("voot/ConveyorPacking-v1", "ddpg"): range(50),
 }
 
 
