@@ -58,6 +58,8 @@ def documented_sweeps() -> dict[str, list[Any]]:
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
     return {
         "protocol-v1": protocol_v1_sweep(),
+        "protocol-v1-same-seed": build_plan_specs(["kitchen_v1"], planners=PROTOCOL_V1_PLANNERS)
+        + build_plan_specs(["conveyor_v1"], planners=SAME_SEED_CONVEYOR_PLANNERS),
         "plan-gym-control": build_plan_specs(
             ["Reacher-v5", "Swimmer-v5", "HalfCheetah-v5"],
             planners="voot pw_uct voronoi_pw cem mppi predictive_sampling random_shooting".split(),
@@ -75,6 +77,15 @@ def documented_sweeps() -> dict[str, list[Any]]:
         ),
     }
 
+
+#: The tree and MPC planners of the v1 protocol (each with the paper's grid).
+PROTOCOL_V1_PLANNERS = (
+    "voot doot rand_doot pw_uct voronoi_pw hoot cem mppi predictive_sampling".split()
+)
+
+#: The planners whose whole grid is in the same-seed store on the conveyor's 50 seeds
+#: (the kitchen has all of them on its 20).
+SAME_SEED_CONVEYOR_PLANNERS = ["voot", "hoot"]
 
 #: The RL runs of the v1 protocol in the committed store: (problem, planner) -> seeds.
 PROTOCOL_V1_RL = {
@@ -94,7 +105,7 @@ def protocol_v1_sweep() -> list[Any]:
     from voot.bench.tuning import selected_specs, tuning_selections
 
     problems = ["kitchen_v1", "conveyor_v1"]
-    planners = "voot doot rand_doot pw_uct voronoi_pw hoot cem mppi predictive_sampling".split()
+    planners = PROTOCOL_V1_PLANNERS
     tuning = build_plan_specs(problems, planners=planners, seeds=range(1000, 1005))
     rows = ResultStore(DATA / "protocol-v1", create=False).load(kind="plan")
     evaluation = selected_specs(
