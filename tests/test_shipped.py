@@ -85,7 +85,15 @@ PROTOCOL_V1_PLANNERS = (
 
 #: The planners whose whole grid is in the same-seed store on the conveyor's 50 seeds
 #: (the kitchen has all of them on its 20).
-SAME_SEED_CONVEYOR_PLANNERS = ["voot", "hoot"]
+SAME_SEED_CONVEYOR_PLANNERS = [
+    "voot",
+    "doot",
+    "pw_uct",
+    "hoot",
+    "cem",
+    "mppi",
+    "predictive_sampling",
+]
 
 #: The RL runs of the v1 protocol in the committed store: (problem, planner) -> seeds.
 PROTOCOL_V1_RL = {
