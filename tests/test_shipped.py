@@ -58,8 +58,9 @@ def documented_sweeps() -> dict[str, list[Any]]:
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
     return {
         "protocol-v1": protocol_v1_sweep(),
-        "protocol-v1-same-seed": build_plan_specs(["kitchen_v1"], planners=PROTOCOL_V1_PLANNERS)
-        + build_plan_specs(["conveyor_v1"], planners=SAME_SEED_CONVEYOR_PLANNERS),
+        "protocol-v1-same-seed": build_plan_specs(
+            ["kitchen_v1", "conveyor_v1"], planners=PROTOCOL_V1_PLANNERS
+        ),
         "plan-gym-control": build_plan_specs(
             ["Reacher-v5", "Swimmer-v5", "HalfCheetah-v5"],
             planners="voot pw_uct voronoi_pw cem mppi predictive_sampling random_shooting".split(),
@@ -82,12 +83,6 @@ def documented_sweeps() -> dict[str, list[Any]]:
 PROTOCOL_V1_PLANNERS = (
     "voot doot rand_doot pw_uct voronoi_pw hoot cem mppi predictive_sampling".split()
 )
-
-#: The planners whose whole grid is in the same-seed store on the conveyor's 50 seeds
-#: (the kitchen has all of them on its 20): all but the two not yet run.
-SAME_SEED_CONVEYOR_PLANNERS = [
-    p for p in PROTOCOL_V1_PLANNERS if p not in {"rand_doot", "voronoi_pw"}
-]
 
 #: The RL runs of the v1 protocol in the committed store: (problem, planner) -> seeds.
 PROTOCOL_V1_RL = {
