@@ -102,11 +102,10 @@ def protocol_v1_sweep() -> list[Any]:
     from voot.bench.tuning import selected_specs, tuning_selections
 
     problems = ["kitchen_v1", "conveyor_v1"]
-    planners = PROTOCOL_V1_PLANNERS
-    tuning = build_plan_specs(problems, planners=planners, seeds=range(1000, 1005))
+    tuning = build_plan_specs(problems, planners=PROTOCOL_V1_PLANNERS, seeds=range(1000, 1005))
     rows = ResultStore(DATA / "protocol-v1", create=False).load(kind="plan")
     evaluation = selected_specs(
-        build_plan_specs(problems, planners=planners), tuning_selections(tuning, rows)
+        build_plan_specs(problems, planners=PROTOCOL_V1_PLANNERS), tuning_selections(tuning, rows)
     )
     budget = {"voot/KitchenClearing-v1": 2000, "voot/ConveyorPacking-v1": 3000}
     rl = [

@@ -2,6 +2,7 @@
 
     python tools/behaviour_hashes.py record tools/behaviour_hashes.json   # before
     python tools/behaviour_hashes.py compare tools/behaviour_hashes.json  # after
+    python tools/behaviour_hashes.py bbfo-digest cmaes  # one black-box run's hash
 
 Covers: black-box sweep runs (VOO, DOO, CMA-ES) and a whole bbfo sweep through the store,
 plan-sweep runs on a chain and on both kitchen versions and a whole plan sweep, a
@@ -86,8 +87,7 @@ def _cmaes_with_fixed_kernel() -> dict[str, str]:
 
 
 def _bbfo() -> dict[str, str]:
-    out = {f"bbfo/{method}": _bbfo_digest(method) for method in ("voo", "doo")}
-    return out | _cmaes_with_fixed_kernel()
+    return {f"bbfo/{m}": _bbfo_digest(m) for m in ("voo", "doo")} | _cmaes_with_fixed_kernel()
 
 
 def _plan_rows() -> dict[str, str]:
