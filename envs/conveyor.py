@@ -40,8 +40,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.base_planner import BasePath, BasePlannerConfig
-from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
+from voot.envs.arm_ik import IKConfig
+from voot.envs.base_planner import BasePlannerConfig
+from voot.envs.grasp import side_grasp
+from voot.envs.planar import BasePath
 from voot.envs.robot import (
     BASE_HALF,
     ROBOT_RADIUS,
@@ -52,7 +54,8 @@ from voot.envs.robot import (
     compose_inverse2d,
     compose_inverse_tuple,
 )
-from voot.envs.scene import object_footprint, rect_inside
+from voot.envs.rotations import rot_z
+from voot.envs.scene import object_footprint, rect_inside, set_object_pose
 from voot.envs.task_env import (
     ManipulationEnv,
     StepTiming,

@@ -12,7 +12,7 @@ alternating pick and place actions:
   depth fraction in [0.1, 0.9], base distance in [0.4, 0.9] x arm reach (0.92 m), base
   angle around the object (object frame) in [0, 2 pi), heading offset from facing the
   object in [-30, 30] deg. Feasible iff the base footprint is inside the house, the arm's
-  IK reaches the grasp (:mod:`voot.envs.feasibility`), the robot at the grasp
+  IK reaches the grasp (:mod:`voot.envs.arm_ik`), the robot at the grasp
   collides with nothing (the gripper may touch the grasped object) and, with
   ``pick_requires_free_carry`` (default), the robot can still move with its load: the
   carry disc the place step plans with is free at the pick pose (otherwise every
@@ -64,8 +64,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D, DiscProbe
-from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
+from voot.envs.arm_ik import IKConfig
+from voot.envs.base_planner import BasePlannerConfig, DiscProbe
+from voot.envs.grasp import side_grasp
+from voot.envs.planar import BasePath, Box2D
 from voot.envs.robot import (
     ARM_REACH,
     BASE_HALF,
@@ -79,12 +81,14 @@ from voot.envs.robot import (
     compose2d,
     inverse2d,
 )
+from voot.envs.rotations import rot_z
 from voot.envs.scene import (
     object_footprint,
     rect_fields_inside,
     rect_fields_overlap,
     rect_inside,
     rect_overlaps,
+    set_object_pose,
 )
 from voot.envs.swept_volume import PathProbe, obstacles_on_path
 from voot.envs.task_env import (

@@ -3,7 +3,7 @@
 The robot is a PR2-class holonomic base (0.64 m square) with one 7-joint arm and a
 parallel gripper. This module gives named access to its joints and geoms inside a
 compiled scene (:class:`Robot`), its kinematic constants (used by the analytic IK seed in
-:mod:`voot.envs.feasibility`), and the disc model used for base motion planning.
+:mod:`voot.envs.arm_ik`), and the disc model used for base motion planning.
 
 Base motion model (:class:`CarryDisc`): the robot is a disc of radius
 :data:`ROBOT_RADIUS` = 0.48 m centred at the base (the 0.64 m square's circumradius is
@@ -27,7 +27,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from voot.envs.base_planner import Box2D
+from voot.envs.planar import Box2D
 
 FloatArray = NDArray[np.float64]
 

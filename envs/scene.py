@@ -4,11 +4,13 @@ The scenes (``voot.models``: ``kitchen.xml``, ``conveyor.xml``, both including
 ``robot.xml``) are the single source of truth for the geometry. This module turns the
 compiled :class:`mujoco.MjModel` into what the task layer needs:
 
-* :func:`static_footprints`: one :class:`~voot.envs.base_planner.Box2D` per static
+* :func:`static_footprints`: one :class:`~voot.envs.planar.Box2D` per static
   collision geom (walls, counters, furniture) that stands in the robot's height band;
 * :class:`ObjectInfo`: each movable object (a body with a free joint named ``obj_*``): its
   free-joint address, its geoms, and its footprint rectangle in its own frame;
-* :func:`object_footprint`: that rectangle at the object's current pose.
+* :func:`object_footprint`: that rectangle at the object's current pose;
+* :func:`object_pose` and :func:`set_object_pose`: an object's ``(x, y, z, yaw)``
+  read from and written to its free joint's ``qpos``.
 
 A footprint is the bounding rectangle, in the geom's (or object's) own horizontal frame,
 of the geom's axis-aligned bounding box (``model.geom_aabb``): exact for boxes standing
@@ -24,9 +26,9 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-from voot.envs.base_planner import Box2D
+from voot.envs.planar import Box2D
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.intp]
@@ -204,6 +206,25 @@ def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
 #: Margin (metres) of the float shortcuts of :func:`rect_inside` and :func:`rect_overlaps`:
 #: far above the rounding difference (~1e-14 m) between them and the corner arrays.
 _SURE = 1e-9
+
+
+def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:
+    """Put ``obj``'s body at ``(x, y, z, yaw)`` (free joint qpos)."""
+    if type(pose) is tuple and len(pose) == 4:
+        x, y, z, yaw = (float(v) for v in pose)
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    a = obj.qpos_adr
+    data.qpos[a : a + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+
+
+def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:
+    """``(x, y, z, yaw)`` of ``obj``'s body from its free joint."""
+    a = obj.qpos_adr
+    # floats: the same products and powers (C pow) as on numpy scalars, cheaper
+    x, y, z, q0, q1, q2, q3 = data.qpos[a : a + 7].tolist()
+    yaw = math.atan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2**2 + q3**2))
+    return np.array([x, y, z, yaw])
 
 
 def _aabb(

@@ -26,14 +26,14 @@ import numpy as np
 import shapely
 from numpy.typing import ArrayLike
 
-from voot.envs.base_planner import (
+from voot.envs.disc_geometry import (
     BoolArray,
-    Box2D,
     BoxArrays,
     FloatArray,
     _segment_hits_any,
     segments_hit_boxes,
 )
+from voot.envs.planar import Box2D
 
 __all__ = ["PathProbe", "obstacles_on_path", "path_hits", "swept_footprint"]
 

@@ -49,10 +49,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
-from voot.envs.feasibility import ArmIK, CollisionChecker, IKConfig, object_pose
+from voot.envs.arm_ik import ArmIK, IKConfig
+from voot.envs.base_planner import BasePlanner, BasePlannerConfig
+from voot.envs.collision import CollisionChecker
+from voot.envs.planar import Box2D
 from voot.envs.robot import TUCK, Robot
-from voot.envs.scene import load_model, movable_objects, object_footprint, static_footprints
+from voot.envs.scene import (
+    load_model,
+    movable_objects,
+    object_footprint,
+    object_pose,
+    static_footprints,
+)
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]

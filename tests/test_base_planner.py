@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 import subprocess
 import sys
 import time
@@ -12,135 +10,24 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import shapely
+from floor_plans import (
+    WORKSPACE,
+    assert_path_clear,
+    door_scene,
+    house_movable,
+    house_static,
+    random_free_poses,
+    wall,
+)
 from scipy import ndimage
 
-import voot.envs.base_planner as bp
-from voot.envs.base_planner import (
-    BasePath,
-    BasePlanner,
-    BasePlannerConfig,
-    Box2D,
+from voot.envs.base_planner import BasePlanner, BasePlannerConfig
+from voot.envs.disc_geometry import (
     BoxArrays,
-    Pose2D,
-    path_length,
     points_hit_boxes,
-    se2_distance,
-    wrap_angle,
+    points_inside,
 )
-
-WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
-
-
-def wall(x0: float, x1: float, y0: float, y1: float, name: str) -> Box2D:
-    return Box2D.from_bounds(x0, x1, y0, y1, name)
-
-
-def house_static() -> list[Box2D]:
-    """A kitchen-sized floor plan: outer walls, a kitchen with a 1.0 m door, furniture."""
-    return [
-        wall(-2.0, -1.9, -4.0, 4.0, "wall_w"),
-        wall(5.9, 6.0, -4.0, 4.0, "wall_e"),
-        wall(-2.0, 6.0, 3.9, 4.0, "wall_n"),
-        wall(-0.5, 6.0, -4.0, -3.9, "wall_s"),
-        wall(2.75, 2.85, -1.0, 1.5, "kitchen_e_low"),  # door y in [1.5, 2.5]
-        wall(2.75, 2.85, 2.5, 3.65, "kitchen_e_high"),
-        wall(-2.0, 2.85, 3.55, 3.65, "kitchen_n"),
-        wall(0.6, 2.85, -1.05, -0.95, "kitchen_s"),
-        wall(2.85, 6.0, 0.45, 0.55, "rooms_divider"),
-        wall(-1.5, 1.5, 2.97, 3.55, "counter_sink"),
-        wall(2.2, 2.75, -0.5, 1.4, "counter_e"),
-        wall(-1.9, -1.35, 2.4, 3.55, "fridge"),
-        Box2D(1.3, 0.3, 0.5, 0.35, 0.0, "table"),
-        wall(3.5, 5.0, 2.3, 3.9, "bed"),
-        wall(4.8, 5.9, -2.2, -0.8, "sofa"),
-        wall(3.0, 3.6, -3.9, -3.3, "shelf"),
-        wall(1.0, 2.2, -3.9, -3.4, "cabinet"),
-        Box2D(4.6, 1.5, 0.4, 0.4, 0.6, "armchair"),
-        wall(-1.9, -1.4, -3.9, -3.5, "coat_rack"),
-    ]
-
-
-def house_movable() -> list[Box2D]:
-    return [
-        Box2D(-1.2, -0.5, 0.22, 0.22, 0.1, "chair_a"),
-        Box2D(-0.7, 0.4, 0.15, 0.15, 0.0, "box_a"),
-        Box2D(-0.1, 1.3, 0.22, 0.22, 0.4, "chair_b"),
-        Box2D(0.6, 2.0, 0.15, 0.15, 0.0, "box_b"),
-        Box2D(-0.8, 2.0, 0.12, 0.12, 0.3, "box_c"),
-        Box2D(0.9, 1.1, 0.22, 0.22, 0.0, "chair_c"),
-        Box2D(1.8, -0.3, 0.22, 0.22, 0.2, "chair_d"),
-        Box2D(0.2, -2.0, 0.15, 0.15, 0.0, "box_d"),
-        Box2D(1.5, 1.9, 0.12, 0.12, 0.0, "box_e"),
-        Box2D(-0.9, -2.6, 0.15, 0.15, 0.5, "box_f"),
-    ]
-
-
-def random_free_poses(
-    planner: BasePlanner, radius: float, movable: list[Box2D], n: int, seed: int
-) -> list[Pose2D]:
-    rng = np.random.default_rng(seed)
-    out: list[Pose2D] = []
-    while len(out) < n:
-        p = Pose2D(rng.uniform(-2, 6), rng.uniform(-4, 4), rng.uniform(-math.pi, math.pi))
-        if planner.is_free(p, radius, movable):
-            out.append(p)
-    return out
-
-
-def assert_path_clear(
-    path: BasePath, radius: float, obstacles: list[Box2D], workspace=WORKSPACE
-) -> None:
-    """Independent check with shapely: every obstacle at least ``radius`` from the path."""
-    xy = path.waypoints[:, :2]
-    line = shapely.LineString(xy) if len(np.unique(xy, axis=0)) > 1 else shapely.Point(xy[0])
-    for box in obstacles:
-        d = line.distance(shapely.Polygon(box.corners()))
-        assert d >= radius - 1e-7, f"path passes {d:.6f} from {box.name}, radius {radius}"
-    xmin, xmax, ymin, ymax = workspace
-    assert np.all(xy[:, 0] >= xmin + radius - 1e-9) and np.all(xy[:, 0] <= xmax - radius + 1e-9)
-    assert np.all(xy[:, 1] >= ymin + radius - 1e-9) and np.all(xy[:, 1] <= ymax - radius + 1e-9)
-    # dense samples against the inflated boxes too
-    dense = path.interpolate(0.01)[:, :2]
-    for box in obstacles:
-        poly = shapely.Polygon(box.corners())
-        dists = shapely.distance(shapely.points(dense), poly)
-        assert np.all(dists >= radius - 1e-7), box.name
-
-
-# ----------------------------------------------------------------------------------------
-# value types
-# ----------------------------------------------------------------------------------------
-def test_pose_and_box_validation() -> None:
-    with pytest.raises(ValueError, match=r"Pose2D\.x"):
-        Pose2D(float("nan"), 0.0, 0.0)
-    with pytest.raises(ValueError, match="half_x and half_y must be > 0"):
-        Box2D(0.0, 0.0, 0.0, 1.0)
-    with pytest.raises(ValueError, match=r"Box2D\.yaw"):
-        Box2D(0.0, 0.0, 1.0, 1.0, float("inf"))
-    with pytest.raises(ValueError, match="xmin < xmax"):
-        Box2D.from_bounds(1.0, 0.0, 0.0, 1.0)
-    with pytest.raises(ValueError, match="Pose2D or"):
-        Pose2D.coerce([1.0, 2.0])
-    assert Pose2D.coerce(np.array([1.0, 2.0, 3.0])) == Pose2D(1.0, 2.0, 3.0)
-
-
-def test_box_corners_rotated() -> None:
-    b = Box2D(1.0, 2.0, 0.5, 0.25, math.pi / 2, "b")
-    c = b.corners()
-    # a quarter turn maps the local (+x, +y) corner (0.5, 0.25) to (-0.25, 0.5)
-    np.testing.assert_allclose(c[0], [1.0 - 0.25, 2.0 + 0.5], atol=1e-12)
-    assert shapely.Polygon(c).area == pytest.approx(0.5)
-
-
-def test_box_hash_and_equality() -> None:
-    a = Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "a")
-    b = Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "a")
-    assert a == b and hash(a) == hash(b)
-    assert a != Box2D(1.0, 2.0, 0.5, 0.25, 0.1, "c")
-    c = pickle.loads(pickle.dumps(a))
-    assert c == a and hash(c) == hash(a) and c.__dict__ == a.__dict__
-    assert copy.deepcopy(a) == a
+from voot.envs.planar import Box2D, Pose2D, path_length, wrap_angle
 
 
 @pytest.mark.parametrize(
@@ -183,15 +70,6 @@ def test_planner_input_validation() -> None:
         planner.plan(s, (0.0, 0.0, float("nan")), 0.3)
 
 
-# ----------------------------------------------------------------------------------------
-# length
-# ----------------------------------------------------------------------------------------
-def test_wrap_and_se2_distance() -> None:
-    assert float(wrap_angle(3 * math.pi / 2)) == pytest.approx(-math.pi / 2)
-    assert se2_distance((0, 0, 0.1), (3, 4, 2 * math.pi - 0.1), 1.0) == pytest.approx(5.2)
-    assert se2_distance((0, 0, 0.0), (0, 0, math.pi), 0.5) == pytest.approx(math.pi / 2)
-
-
 def test_path_length_formula() -> None:
     planner = BasePlanner(WORKSPACE, house_static(), BasePlannerConfig(rotation_weight=0.7))
     s = Pose2D(-0.5, -2.5, 3.0)
@@ -220,24 +98,6 @@ def test_turn_in_place_length() -> None:
     assert path.translation_length == 0.0
 
 
-def test_base_path_value_type() -> None:
-    path = BasePath.from_waypoints([[0, 0, 0], [1, 0, 0], [1, 1, math.pi / 2]], 1.0)
-    assert path.length == pytest.approx(2 + math.pi / 2)
-    with pytest.raises(ValueError):
-        path.waypoints[0, 0] = 5.0  # read-only
-    with pytest.raises(ValueError, match="shape"):
-        BasePath(np.zeros((3, 2)), 1.0)
-    dense = path.interpolate(0.1)
-    np.testing.assert_array_equal(dense[0], path.waypoints[0])
-    np.testing.assert_array_equal(dense[-1], path.waypoints[-1])
-    steps = np.hypot(*np.diff(dense[:, :2], axis=0).T)
-    assert steps.max() <= 0.1 + 1e-12
-    assert path == BasePath.from_waypoints(path.waypoints, 1.0)
-
-
-# ----------------------------------------------------------------------------------------
-# validity and optimality
-# ----------------------------------------------------------------------------------------
 @pytest.mark.parametrize("radius", [0.3, 0.45])
 def test_paths_avoid_obstacles(radius: float) -> None:
     static, movable = house_static(), house_movable()
@@ -254,33 +114,6 @@ def test_paths_avoid_obstacles(radius: float) -> None:
         assert planner.path_is_free(path.waypoints, radius, movable)
         assert path.translation_length >= math.hypot(g.x - s.x, g.y - s.y) - 1e-12
     assert found >= 8  # the scene is cluttered, but many queries have paths
-
-
-def test_bitangent_pruning_keeps_shortest_paths(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The reduced visibility graph gives the same lengths as the full one."""
-    static, movable = house_static(), house_movable()
-    queries = []
-    for radius in (0.3, 0.45):
-        planner = BasePlanner(WORKSPACE, static)
-        starts = random_free_poses(planner, radius, movable, 15, seed=3)
-        goals = random_free_poses(planner, radius, movable, 15, seed=4)
-        queries += [(s, g, radius) for s, g in zip(starts, goals, strict=True)]
-    reduced = BasePlanner(WORKSPACE, static)
-    lengths = [reduced.plan(s, g, r, movable) for s, g, r in queries]
-    monkeypatch.setattr(
-        bp,
-        "_tangent_grid",
-        lambda nodes, ux, uy, axis: np.ones(np.broadcast(ux, uy).shape, dtype=bool),
-    )
-    full = BasePlanner(WORKSPACE, static)
-    multi = 0
-    for (s, g, r), a in zip(queries, lengths, strict=True):
-        b = full.plan(s, g, r, movable)
-        assert (a is None) == (b is None)
-        if a is not None and b is not None:
-            assert a.length == pytest.approx(b.length, abs=1e-9)
-            multi += len(a.waypoints) > 2
-    assert multi >= 3
 
 
 def test_detour_around_wall_is_near_optimal() -> None:
@@ -319,16 +152,16 @@ def test_path_existence_matches_grid_connectivity() -> None:
     ys = np.arange(WORKSPACE[2], WORKSPACE[3] + 1e-9, res)
     gx, gy = np.meshgrid(xs, ys, indexing="ij")
     pts = np.column_stack([gx.ravel(), gy.ravel()])
-    boxes = bp.BoxArrays.from_boxes(static + movable)
+    boxes = BoxArrays.from_boxes(static + movable)
     checked = 0
     for radius in (0.35, 0.5):
         free = np.concatenate(
             [
-                ~bp.points_hit_boxes(chunk, boxes, radius).any(axis=1)
+                ~points_hit_boxes(chunk, boxes, radius).any(axis=1)
                 for chunk in np.array_split(pts, 16)
             ]
         )
-        free &= planner._inside(pts, radius)
+        free &= points_inside(pts, WORKSPACE, radius)
         labels, _ = ndimage.label(free.reshape(gx.shape))
         # poses with a margin, so that grid rounding cannot matter
         starts = random_free_poses(planner, radius + 0.05, movable, 20, seed=5)
@@ -341,17 +174,6 @@ def test_path_existence_matches_grid_connectivity() -> None:
             assert (path is not None) == (ls == lg), (s, g, radius)
             checked += 1
     assert checked == 40
-
-
-# ----------------------------------------------------------------------------------------
-# doors
-# ----------------------------------------------------------------------------------------
-def door_scene(width: float) -> list[Box2D]:
-    """A wall along x = 0 across the workspace with a door of ``width`` centred at y = 0."""
-    return [
-        wall(-0.1, 0.1, -5.0, -width / 2, "wall_low"),
-        wall(-0.1, 0.1, width / 2, 5.0, "wall_high"),
-    ]
 
 
 @pytest.mark.parametrize(
@@ -405,73 +227,6 @@ def test_radius_step_rounds_up_and_shares_caches() -> None:
     assert [radius for radius, _ in planner._graph_cache] == [0.5, 0.48]
 
 
-def _graph_arrays(graph: bp._Graph) -> list[bytes]:
-    nodes = graph.nodes
-    return [a.tobytes() for a in (nodes.pos, nodes.to_prev, nodes.to_next, graph.i, graph.j)] + [
-        graph.w.tobytes()
-    ]
-
-
-@pytest.mark.parametrize("movable_count", [0, 1, 4, 10])
-def test_one_pass_graph_is_the_graph_on_the_static_one(movable_count: int) -> None:
-    """Both routes of _build_graph give the same nodes and edges, bit for bit, in order."""
-    static, movable = house_static(), tuple(house_movable()[:movable_count])
-    planner = BasePlanner(WORKSPACE, static)
-    for radius in (0.3, 0.4137, 0.52, 0.61):
-        scene = planner._scene(radius, movable)
-        one_pass = planner._one_pass_graph(scene)
-        static_graph = planner._static_graph(radius)  # cached: the second route now
-        layered = planner._build_graph(scene)
-        assert planner._static_cache[radius] is static_graph
-        assert len(one_pass.i) > 0
-        assert _graph_arrays(one_pass) == _graph_arrays(layered)
-
-
-def test_free_mask_is_the_full_point_box_test() -> None:
-    """The corner prefilter of _free_mask drops only pairs that cannot meet."""
-    rng = np.random.default_rng(8)
-    static = house_static()
-    planner = BasePlanner(WORKSPACE, static, BasePlannerConfig(corner_segments=3))
-    freed = covered = 0
-    for k in range(40):
-        movable = [
-            Box2D(
-                *rng.uniform((-1.8, -3.8), (5.8, 3.8)),
-                *rng.uniform(0.05, 0.5, 2),
-                float(rng.uniform(-3, 3)),
-                f"m{i}",
-            )
-            for i in range(int(rng.integers(0, 8)))
-        ]
-        boxes = BoxArrays.from_boxes(static + movable)
-        owners = BoxArrays.from_boxes(movable) if k % 2 else boxes
-        radius = float(rng.uniform(0.05, 1.5))
-        r_hit = radius - planner.config.contact_tolerance
-        nodes = planner._polygon_nodes(owners, radius)
-        mask = planner._free_mask(owners, nodes, boxes, radius, r_hit)
-        full = planner._inside(nodes.pos, r_hit) & ~points_hit_boxes(nodes.pos, boxes, r_hit).any(
-            axis=1
-        )
-        assert mask.tolist() == full.tolist()
-        freed += int(full.sum())
-        covered += int((~full).sum())
-    assert freed > 100 and covered > 100
-
-
-def test_a_radius_seen_again_gets_its_static_graph_cached() -> None:
-    planner = BasePlanner(WORKSPACE, house_static())
-    movable = house_movable()
-    s, g = Pose2D(-1.5, 1.0, 0.0), Pose2D(4.5, -1.5, 0.0)  # through the kitchen door
-    first = planner.plan(s, g, 0.3, movable[:3])
-    assert first is not None and len(first.waypoints) > 2
-    assert list(planner._static_cache) == []  # first sight of the radius: one pass
-    second = planner.plan(s, g, 0.3, movable[:2])
-    assert list(planner._static_cache) == [0.3]
-    assert second is not None
-    planner.clear_caches()
-    assert planner.plan(s, g, 0.3, movable[:3]) == first
-
-
 def test_movable_box_can_close_a_door() -> None:
     planner = BasePlanner((-5.0, 5.0, -5.0, 5.0), door_scene(1.5))
     s, g = Pose2D(-2.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
@@ -481,9 +236,6 @@ def test_movable_box_can_close_a_door() -> None:
     assert planner.plan(s, g, 0.2, [blocker]) is not None
 
 
-# ----------------------------------------------------------------------------------------
-# start / goal handling
-# ----------------------------------------------------------------------------------------
 def test_start_or_goal_in_collision_gives_none() -> None:
     static, movable = house_static(), house_movable()
     planner = BasePlanner(WORKSPACE, static)
@@ -522,9 +274,6 @@ def test_straight_line_when_clear() -> None:
     assert path.length == pytest.approx(math.hypot(3.0, 0.5) + 0.7)
 
 
-# ----------------------------------------------------------------------------------------
-# determinism and caches
-# ----------------------------------------------------------------------------------------
 def _query() -> tuple[Pose2D, Pose2D, float]:
     return Pose2D(-0.6, -1.6, 0.3), Pose2D(3.4, 1.2, -2.0), 0.45
 
@@ -566,9 +315,6 @@ def test_same_path_in_another_process() -> None:
     assert out == [p.waypoints.tobytes().hex(), repr(p.length)]
 
 
-# ----------------------------------------------------------------------------------------
-# speed (a benchmark, excluded by default: pytest -m slow -s tests/test_base_planner.py)
-# ----------------------------------------------------------------------------------------
 @pytest.mark.slow
 def test_plan_speed_report() -> None:
     """Median plan time in the kitchen-sized house, first and repeated queries per state."""
@@ -611,108 +357,16 @@ def test_plan_speed_report() -> None:
     assert np.median(r) < 5.0
 
 
-# ----------------------------------------------------------------------------------------
-# the float shortcuts and the no-path shortcut answer as the array code does
-# ----------------------------------------------------------------------------------------
-def _lists(boxes: list[Box2D]) -> tuple[list[float], ...]:
-    scene = bp._Scene(0.5, bp.BoxArrays.from_boxes([]), bp.BoxArrays.from_boxes(boxes))
-    return bp._box_lists(scene)
-
-
-def test_single_segment_and_point_tests_match_the_arrays() -> None:
-    boxes = house_static() + house_movable()
-    arrays = bp.BoxArrays.from_boxes(boxes)
-    lists = _lists(boxes)
-    rng = np.random.default_rng(11)
-    pts = rng.uniform((-2.5, -4.5), (6.5, 4.5), (4000, 2))
-    # and segments that graze a box corner at exactly the radius
-    for k in range(0, 4000, 4):
-        b = boxes[k % len(boxes)]
-        pts[k] = b.corners()[k % 4] + 0.5 * np.array([1.0, 0.0])
-    hint = [0]
-    for k in range(0, len(pts) - 1, 2):
-        p, q = pts[k], pts[k + 1]
-        r = [0.3, 0.48, 0.5, 0.9][k % 4]
-        ref = bool(bp.segments_hit_any(p[None], q[None], arrays, r)[0])
-        got = bp._segment_hits_any(
-            float(p[0]), float(p[1]), float(q[0]), float(q[1]), lists, r, hint
-        )
-        assert got == ref
-        ref_pt = bool(bp.points_hit_boxes(p[None], arrays, r).any())
-        assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r) == ref_pt
-        # whichever box the hint names first (the last hit, or any other)
-        start = [k % (len(boxes) + 3)]
-        assert bp._point_hits_any(float(p[0]), float(p[1]), lists, r, start) == ref_pt
-        if ref_pt:  # the hint now names a box the point hits
-            assert bool(bp.points_hit_boxes(p[None], arrays, r)[0, start[0]])
-
-
-def test_no_path_shortcut_agrees_with_the_search() -> None:
-    """_no_path says True only where _search finds nothing, and plans are unchanged."""
-    static, movable = house_static(), house_movable()
-    fast = BasePlanner(WORKSPACE, static)
-    for radius in (0.45, 0.52):
-        poses = random_free_poses(fast, radius, movable, 60, seed=4)
-        for k in range(0, len(poses) - 1, 2):
-            s, g = poses[k], poses[k + 1]
-            path = fast.plan(s, g, radius, movable)
-            scene = fast._scene(fast._inflated_radius(radius), tuple(movable))
-            if scene.graph is None:
-                continue  # the straight line was free: no search
-            ends = np.array([[s.x, s.y], [g.x, g.y]])
-            r_hit = scene.radius - fast.config.contact_tolerance
-            full = fast._search(scene.graph, ends, scene.boxes, r_hit)
-            assert fast._no_path(scene, s.x, s.y, g.x, g.y, r_hit) == (full is None)
-            assert (path is None) == (full is None)
-    # a door too narrow for the disc: start and goal in different components
-    blocked = fast.plan((0.0, 0.0, 0.0), (4.5, -1.5, 0.0), 0.55, movable)
-    assert blocked is None
-
-
-def test_box_fast_is_the_constructed_box() -> None:
-    a = Box2D(1.0, -2.0, 0.5, 0.25, 0.3, "x")
-    b = Box2D.fast(np.float64(1.0), -2.0, 0.5, 0.25, 0.3, "x")
-    assert a == b and hash(a) == hash(b) and vars(a) == vars(b)
-    assert pickle.loads(pickle.dumps(b)) == a
-    with pytest.raises(ValueError, match="half_x"):
-        Box2D.fast(0.0, 0.0, -1.0, 1.0, 0.0, "bad")
-    with pytest.raises(ValueError, match="finite"):
-        Box2D.fast(math.nan, 0.0, 1.0, 1.0, 0.0, "bad")
-
-
-def _path_length_arrays(w: np.ndarray, rw: float) -> float:
-    diff = np.diff(w, axis=0)
-    trans = np.hypot(diff[:, 0], diff[:, 1])
-    rot = np.abs(wrap_angle(diff[:, 2]))
-    return float(np.sum(trans) + rw * np.sum(rot))
-
-
-def test_straight_paths_are_the_array_version() -> None:
-    rng = np.random.default_rng(8)
-    for w in rng.uniform(-7, 7, (2000, 2, 3)):
-        for rw in (1.0, 0.3):
-            assert path_length(w, rw) == _path_length_arrays(w, rw)
-    w = np.array([[0.0, 0.0, math.pi], [1.0, 1.0, -math.pi]])  # a turn of exactly 2 pi
-    assert path_length(w, 1.0) == _path_length_arrays(w, 1.0)
-    planner = BasePlanner(WORKSPACE, [])
-    for s, g in rng.uniform(-1.0, 1.0, (200, 2, 3)):
-        path = planner.plan(s, g, 0.4)
-        assert path is not None and path.waypoints.shape == (2, 3)
-        # what _make_path computed for two points: the ends with their own headings
-        assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
-        assert path.length == _path_length_arrays(np.array([s, g]), 1.0)
-
-
 def test_colliding_names_as_the_array_test() -> None:
     static, movable = house_static(), house_movable()
     planner = BasePlanner(WORKSPACE, static)
-    boxes = bp.BoxArrays.from_boxes(static + movable)
+    boxes = BoxArrays.from_boxes(static + movable)
     rng = np.random.default_rng(9)
     seen = 0
     for x, y, r in rng.uniform((-2.5, -4.5, 0.3), (6.5, 4.5, 0.9), (1500, 3)):
         got = planner.colliding((x, y, 0.0), r, movable)
         r_hit = r - planner.config.contact_tolerance
-        hits = np.flatnonzero(bp.points_hit_boxes(np.array([[x, y]]), boxes, r_hit)[0])
+        hits = np.flatnonzero(points_hit_boxes(np.array([[x, y]]), boxes, r_hit)[0])
         ref = [boxes.names[k] for k in hits]
         if not planner._inside_xy(x, y, r_hit):
             ref.insert(0, "workspace")
@@ -751,9 +405,6 @@ def test_the_last_plan_is_remembered_exactly() -> None:
     assert planner.plan(s, g, r, movable) == first
 
 
-# ----------------------------------------------------------------------------------------
-# disc probes (the envs' pre-screen tests)
-# ----------------------------------------------------------------------------------------
 def test_disc_probe_blocked_is_the_planners_end_point_test() -> None:
     planner = BasePlanner(WORKSPACE, house_static())
     movable = house_movable()
@@ -805,3 +456,23 @@ def test_disc_probe_verdict_agrees_or_abstains_near_contact() -> None:
     # rounded radii (radius_step) are not continuous: no verdict
     stepped = BasePlanner(WORKSPACE, house_static(), BasePlannerConfig(radius_step=0.01))
     assert stepped.disc_probe(movable).verdict(0.0, 0.0, 0.3, margin) is None
+
+
+def _path_length_arrays(w: np.ndarray, rw: float) -> float:
+    """path_length's array expression (tests/test_planar.py checks the float version)."""
+    diff = np.diff(w, axis=0)
+    trans = np.hypot(diff[:, 0], diff[:, 1])
+    rot = np.abs(wrap_angle(diff[:, 2]))
+    return float(np.sum(trans) + rw * np.sum(rot))
+
+
+def test_straight_paths_keep_their_ends() -> None:
+    rng = np.random.default_rng(8)
+    rng.uniform(-7, 7, (2000, 2, 3))  # the draws of the path-length half
+    planner = BasePlanner(WORKSPACE, [])
+    for s, g in rng.uniform(-1.0, 1.0, (200, 2, 3)):
+        path = planner.plan(s, g, 0.4)
+        assert path is not None and path.waypoints.shape == (2, 3)
+        # what _make_path computed for two points: the ends with their own headings
+        assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
+        assert path.length == _path_length_arrays(np.array([s, g]), 1.0)

@@ -95,7 +95,7 @@ def test_compose_inverse_tuple_is_pose_tuple_of_the_array() -> None:
 
 
 def test_carry_disc_on_floats_matches_the_array_disc() -> None:
-    from voot.envs.base_planner import Box2D
+    from voot.envs.planar import Box2D
     from voot.envs.robot import carry_disc_floats
 
     rng = np.random.default_rng(2)

@@ -4,17 +4,20 @@ from __future__ import annotations
 
 import math
 
+import mujoco
 import numpy as np
 import pytest
 
-from voot.envs.base_planner import Box2D
+from voot.envs.planar import Box2D
 from voot.envs.scene import (
     load_model,
     movable_objects,
     object_footprint,
+    object_pose,
     quat_of_yaw,
     rect_inside,
     rect_overlaps,
+    set_object_pose,
     static_footprints,
     yaw_of_quat,
 )
@@ -156,3 +159,11 @@ def test_float_separating_axes_agree_with_the_corner_arrays_or_abstain() -> None
             told += 1
             assert sure == scene._rect_overlaps_sat(box, bounds)
     assert told > 3000 and abstained > 0
+
+
+def test_set_and_read_object_pose() -> None:
+    model = load_model("kitchen")
+    data = mujoco.MjData(model)
+    obj = movable_objects(model)[0]
+    set_object_pose(data, obj, (1.0, -2.0, 0.0, 2.5))
+    np.testing.assert_allclose(object_pose(data, obj), [1.0, -2.0, 0.0, 2.5], atol=1e-12)

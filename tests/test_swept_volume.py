@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 import shapely
 
-from voot.envs.base_planner import BasePlanner, Box2D, Pose2D
+from voot.envs.base_planner import BasePlanner
+from voot.envs.planar import Box2D, Pose2D
 from voot.envs.swept_volume import PathProbe, obstacles_on_path, path_hits, swept_footprint
 
 R = 0.5

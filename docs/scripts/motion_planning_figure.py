@@ -23,7 +23,8 @@ import matplotlib.pyplot as plt
 from matplotlib.patches import Circle
 from matplotlib.patches import Polygon as PolygonPatch
 
-from voot.envs.base_planner import BasePlanner, Box2D, Pose2D
+from voot.envs.base_planner import BasePlanner
+from voot.envs.planar import Box2D, Pose2D
 from voot.envs.swept_volume import obstacles_on_path, swept_footprint
 
 WORKSPACE = (-2.0, 6.0, -4.0, 4.0)

@@ -100,9 +100,9 @@ def plan_animation(
         max_motion_frames: at most this many frames per base motion.
         arm_frames: frames of each arm motion.
     """
-    from voot.envs.feasibility import set_object_pose
     from voot.envs.kitchen import KitchenClearingEnv
     from voot.envs.robot import TUCK, compose2d
+    from voot.envs.scene import set_object_pose
 
     env = problem.unwrapped
     if not isinstance(env, KitchenClearingEnv):
