@@ -393,6 +393,57 @@ def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
     return out
 
 
+def cmd_ablation(args: argparse.Namespace) -> int:
+    """``voot-bench ablation``: the one-factor-at-a-time ablation (:mod:`voot.bench.ablation`),
+    tuned as the protocol (every variant's grid on the tuning seeds, then its selected
+    setting on the evaluation seeds); ``--table`` draws its table from the store."""
+    from voot.bench import ablation as A
+
+    if args.list:
+        print(A.switch_list())
+        return 0
+    try:
+        switches = A.check_switches(split_list(args.switches) or None)
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
+    if args.table:
+        return _print_ablation_table(args.out, args.tuning_seeds, args.markdown)
+    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
+        raise CLIError("--address and --max-tries go with --backend ray")
+    if args.probe_simulations < 1:
+        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+    problems = split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+    include = not args.no_baseline
+
+    def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
+        return A.ablation_specs(
+            switches,
+            seeds,
+            problems=problems,
+            include_baseline=include,
+            simulations=args.simulations,
+        )
+
+    tuning = specs_of(parse_range(args.tuning_seeds, "--tuning-seeds"))
+    evaluation = specs_of(parse_range(args.seeds, "--seeds"))
+    args.record = None
+    return _plan_tuned(args, tuning, evaluation)
+
+
+def _print_ablation_table(path: str, tuning_seeds: str, markdown: str | None) -> int:
+    from voot.bench.ablation_table import ablation_table
+
+    _, rows = _load_rows(path, "plan")
+    text = ablation_table(rows, parse_range(tuning_seeds, "--tuning-seeds"))
+    print(text)
+    if markdown:
+        md = Path(markdown)
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(text + "\n")
+        print(f"markdown: {md}", file=sys.stderr)
+    return 0
+
+
 # ----- select / plot -------------------------------------------------------------------
 KINDS = ("bbfo", "plan")
 INSTANCE_FILTER_HELP = (
@@ -595,6 +646,13 @@ def cmd_claims(args: argparse.Namespace) -> int:
     from voot.bench.plan_plot import plan_data
     from voot.bench.tuning import tuning_sentence
 
+    if args.ablation:
+        if args.tuning_seeds is None:
+            raise CLIError(
+                "--ablation: the ablation's settings are selected on tuning seeds; give"
+                " --tuning-seeds (the documented run: 1000:1005)"
+            )
+        return _print_ablation_table(args.results, args.tuning_seeds, args.markdown)
     _, rows = _load_rows(args.results, "plan")
     tuning = _tuning_seeds(args.tuning_seeds)
     data = plan_data(rows, tuning_seeds=tuning)
@@ -1122,6 +1180,67 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_plan)
 
     p = sub.add_parser(
+        "ablation",
+        help="one switch at a time from the v1 defaults to the authors' code, for VOOT and"
+        " PW-UCT (tuned as the protocol; resumable); --table draws its table",
+        description="The ablation of issue 23: every departure of voot's v1 defaults from the"
+        " authors' code as a variant of VOOT and PW-UCT (one switch at a time, and all at"
+        " once), each variant's grid on the tuning seeds, its selected setting on the"
+        " evaluation seeds of both v1 domains. --list prints the switches.",
+    )
+    p.add_argument(
+        "--out", default="results/ablation-v1", help="result store directory (%(default)s)"
+    )
+    p.add_argument("--switches", nargs="+", metavar="NAME", help="switches (default: all)")
+    p.add_argument(
+        "--problems",
+        nargs="+",
+        metavar="NAME",
+        help="kitchen_v1 and/or conveyor_v1 (default: both)",
+    )
+    p.add_argument("--seeds", default="0:20", help="evaluation seeds (default: %(default)s)")
+    p.add_argument(
+        "--tuning-seeds", default="1000:1005", help="tuning seeds (default: %(default)s)"
+    )
+    p.add_argument(
+        "--simulations", type=int, default=None, help="simulations per run (default: the paper's)"
+    )
+    p.add_argument(
+        "--no-baseline", action="store_true", help="do not run the v1 defaults (no variant)"
+    )
+    p.add_argument("--list", action="store_true", help="print the switches and exit")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="print the ablation table from --out (runs nothing): per switch VOOT's and"
+        " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
+    )
+    p.add_argument("--markdown", help="--table: also write the table here")
+    p.add_argument("--workers", type=int, default=None, help="processes (default: every CPU)")
+    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
+    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
+    p.add_argument(
+        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
+    )
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--estimate", action="store_true", help="print the estimated CPU-hours and exit")
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
+    )
+    p.add_argument("--dry-run", action="store_true", help="list the runs and exit")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--compact", action="store_true", help="create --out as a compact store (as plan)"
+    )
+    _add_compact_options(p, "compact-")
+    p.set_defaults(func=cmd_ablation)
+
+    p = sub.add_parser(
         "compact",
         help="copy a result store into a compact one (resumable; the source is only read)",
         description="Every row of SRC into the compact store DST: best_so_far and"
@@ -1216,6 +1335,12 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="START:STOP",
         help="select each planner's setting on these seeds and judge the claims on every"
         " other seed (as plot --tuning-seeds; default: the paper's same-seed selection)",
+    )
+    p.add_argument(
+        "--ablation",
+        action="store_true",
+        help="the ablation's table instead (a store of voot-bench ablation): per switch"
+        " VOOT's and PW-UCT's claim metrics, verdicts and flips, and VOOT minus PW-UCT",
     )
     p.add_argument("--markdown", help="also write the table here")
     p.set_defaults(func=cmd_claims)
