@@ -59,6 +59,7 @@ from voot.envs.task_env import (
     add_marker_box,
     denormalize,
     env_config,
+    is_count,
     pose_tuple,
     preset_config,
     replace,
@@ -306,6 +307,19 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
 
     def _initial_task(self) -> ConveyorTask:
         return ConveyorTask(steps=0, placed=0, done=False)
+
+    def _task_error(self, task: ConveyorTask) -> str | None:
+        """What no episode of this conveyor reaches in ``task`` (see ``set_state``), or None:
+        the counts within their bounds, and done exactly when every box is placed."""
+        if not is_count(task.steps, 0, self.config.horizon):
+            horizon = self.config.horizon
+            return f"steps must be an int in 0..{horizon} (the horizon), got {task.steps!r}"
+        if not is_count(task.placed, 0, self.n):
+            return f"placed must be an int in 0..{self.n} (the boxes), got {task.placed!r}"
+        if type(task.done) is not bool or task.done != (task.placed == self.n):
+            full = task.placed == self.n
+            return f"done must be {full} when placed is {task.placed}, got {task.done!r}"
+        return None
 
     def _observation(self) -> FloatArray:
         t = self.task

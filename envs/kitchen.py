@@ -67,6 +67,7 @@ from voot import validation as V
 from voot.envs.base_planner import BasePath, BasePlannerConfig, Box2D, DiscProbe
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
 from voot.envs.robot import (
+    ARM_JOINTS,
     ARM_REACH,
     BASE_HALF,
     ROBOT_DISC,
@@ -95,6 +96,8 @@ from voot.envs.task_env import (
     denormalize,
     denormalize_floats,
     env_config,
+    is_count,
+    is_finite_tuple,
     pose_tuple,
     preset_config,
     replace,
@@ -413,6 +416,8 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
         self._path = path
         self._path_probe = PathProbe(path.waypoints, cfg.robot_radius)
         self._order = self._handling_order()
+        #: Each object's position in the handling order (for checking task records).
+        self._order_rank = {i: k for k, i in enumerate(self._order)}
         self.task = self._initial_task()
         if not self.task.on_path:
             raise ValueError("no object is on the path at the start: nothing to clear")
@@ -519,6 +524,53 @@ class KitchenClearingEnv(ManipulationEnv[KitchenTask]):
             "objects_left": len(self.task.on_path),
             "next_object": self.next_object_name,
         }
+
+    def _task_error(self, task: KitchenTask) -> str | None:
+        """What no episode of this kitchen reaches in ``task`` (see ``set_state``), or None.
+
+        An episode alternates pick (nothing held: ``held`` -1) and place (``held`` an
+        object index, its pose in the base frame and the arm's 7 joints finite); the
+        obstacles left are distinct objects in the handling order, and the episode is
+        done exactly when none is left.
+        """
+        n = len(self.objects)
+        if not is_count(task.steps, 0, self.config.horizon):
+            horizon = self.config.horizon
+            return f"steps must be an int in 0..{horizon} (the horizon), got {task.steps!r}"
+        if task.operator == "pick":
+            if task.held != -1 or type(task.held) is not int:
+                return f"held must be -1 before a pick (nothing in the gripper), got {task.held!r}"
+        elif task.operator == "place":
+            if not is_count(task.held, 0, n - 1):
+                return (
+                    f"held must be an object index in 0..{n - 1} before a place, got {task.held!r}"
+                )
+            if not is_finite_tuple(task.held_rel, 3):
+                return f"held_rel must be 3 finite numbers (x, y, yaw), got {task.held_rel!r}"
+            if not is_finite_tuple(task.grasp_q, len(ARM_JOINTS)):
+                return (
+                    f"grasp_q must be {len(ARM_JOINTS)} finite joint values at a place,"
+                    f" got {task.grasp_q!r}"
+                )
+        else:
+            return f"operator must be 'pick' or 'place', got {task.operator!r}"
+        on_path = task.on_path
+        rank = self._order_rank
+        if type(on_path) is not tuple or any(type(i) is not int or i not in rank for i in on_path):
+            return f"on_path must be a tuple of object indices in 0..{n - 1}, got {on_path!r}"
+        if any(rank[a] >= rank[b] for a, b in itertools.pairwise(on_path)):
+            return (
+                f"on_path must list distinct objects in the handling order {self._order},"
+                f" got {on_path!r}"
+            )
+        if type(task.last_place_cleared) is not bool or type(task.done) is not bool:
+            return (
+                "last_place_cleared and done must be bools, got"
+                f" {task.last_place_cleared!r} and {task.done!r}"
+            )
+        if task.done != (not on_path):
+            return f"done must be {not on_path} when on_path is {on_path!r}, got {task.done!r}"
+        return None
 
     @property
     def objects_left(self) -> int:

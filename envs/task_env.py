@@ -192,6 +192,27 @@ def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray
 _F64 = np.dtype(np.float64)
 
 
+def is_count(value: object, low: int, high: int) -> bool:
+    """Whether ``value`` is an ``int`` (not a bool) in ``low..high``: a task record's count
+    or index, as the envs write them."""
+    return type(value) is int and low <= value <= high
+
+
+def is_finite_tuple(value: object, length: int) -> bool:
+    """Whether ``value`` is a tuple of ``length`` finite real numbers (not bools).
+
+    What a task record's poses and joint values are (the envs write Python floats).
+    """
+    if type(value) is not tuple or len(value) != length:
+        return False
+    for v in value:
+        if type(v) is not float and (isinstance(v, bool) or not isinstance(v, int | float)):
+            return False
+        if not math.isfinite(v):
+            return False
+    return True
+
+
 def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
 
@@ -361,10 +382,28 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         # the generator state of the last snapshot, shared by the snapshots after it while
         # it does not change (see _rng_snapshot)
         self._rng_shared: Mapping[str, Any] | None = None
+        # task records set_state has found possible, by id (records are immutable, and a
+        # search restores each snapshot many times): _task_error runs once per record
+        self._checked_tasks: dict[int, Any] = {}
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
         #: The class of this env's task record: what a snapshot's ``task`` must be.
         self._task_type: type = type(self.task)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The env for :mod:`pickle` and :func:`copy.deepcopy`: a copy steps as the env.
+
+        From the same snapshot, a copy (in this process or unpickled in another) gives
+        bit-identical observations, rewards and infos. Left out: the renderer (an OpenGL
+        context, which neither pickles nor copies; the copy opens its own when it first
+        renders) and the memo of checked task records (it only saves time). The
+        collision checker re-aliases its buffer views itself
+        (:meth:`voot.envs.feasibility.CollisionChecker.__getstate__`).
+        """
+        state = self.__dict__.copy()
+        state["_renderer"] = None
+        state["_checked_tasks"] = {}
+        return state
 
     # ----- to implement --------------------------------------------------------------------
     def _initial_task(self) -> TaskT:
@@ -378,6 +417,17 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
     def _info_reset(self) -> dict[str, Any]:
         raise NotImplementedError
+
+    def _task_error(self, task: TaskT) -> str | None:
+        """What makes ``task`` (a record of this env's class) impossible here, or None.
+
+        :meth:`set_state` asks before it changes anything: a record no episode of this
+        env can reach (an unknown operator, an object index out of range, a count past
+        its bounds) would otherwise fail deep inside the next step, or index the wrong
+        object silently (Python takes ``objects[-3]``). Subclasses check every field a
+        step or an observation reads; the base class accepts any record.
+        """
+        return None
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (planner's view)."""
@@ -551,12 +601,14 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         The whole snapshot is checked before anything is applied: an :class:`EnvState`,
         physics of this env's signature and size, all finite (a NaN would otherwise
         surface deep in the base planner, or as a NaN observation), a task record of this
-        env's class (not None, not the other environment's), and a generator state that
-        this env's bit generator takes. The generator is set first, since only numpy can
-        refuse a state (it reads a whole state before it sets one); the physics and the
-        task, already checked, follow and cannot fail. A bad snapshot is a ValueError
-        naming the field and leaves the env as it was. The checks cost about two
-        microseconds (the search restores a snapshot at every new action).
+        env's class (not None, not the other environment's) whose contents this env can
+        reach (:meth:`_task_error`: a known operator, object indices in range; checked
+        once per record, which is immutable), and a generator state that this env's bit
+        generator takes. The generator is set first, since only numpy can refuse a state
+        (it reads a whole state before it sets one); the physics and the task, already
+        checked, follow and cannot fail. A bad snapshot is a ValueError naming the field
+        and leaves the env as it was. The checks cost about two microseconds (the search
+        restores a snapshot at every new action).
         """
         if not isinstance(state, EnvState):
             raise ValueError(
@@ -586,6 +638,18 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
                 f"state.task must be a {self._task_type.__name__} (this environment's task"
                 f" record), got {type(state.task).__name__}"
             )
+        task = state.task
+        checked = self._checked_tasks
+        if checked.get(id(task)) is not task:
+            problem = self._task_error(task)
+            if problem is not None:
+                raise ValueError(
+                    f"state.task is not a {self._task_type.__name__} this environment can"
+                    f" reach: {problem}; the env is unchanged"
+                )
+            if len(checked) >= 4096:
+                checked.clear()
+            checked[id(task)] = task  # held, so that its id is not reused while it is here
         bg = self.np_random.bit_generator
         shared = isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM)
         try:
@@ -599,7 +663,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if shared:
             self._rng_shared = state.rng_state
         mujoco.mj_setState(self.model, self.data, physics, self.STATE_SIGNATURE)
-        self.task = state.task
+        self.task = task
 
     # ----- gymnasium API -------------------------------------------------------------------
     def reset(
