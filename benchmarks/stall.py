@@ -57,6 +57,11 @@ class Trace:
     #: (simulation, node id, exploitation radius) at every new action of a VOO node.
     radius: list[tuple[int, int, float]] = field(default_factory=list)
     curve: list[float] = field(default_factory=list)
+    #: New actions drawn at a VOO node that has a feasible action (where VOO may exploit
+    #: its best point), and how many of them found the best value tied between several
+    #: points (where the authors' random tie-break and voot's first argmax could differ).
+    exploiting_draws: int = 0
+    tied_best_draws: int = 0
 
 
 class _TracedProblem:
@@ -118,6 +123,9 @@ class _TracedMCTS(MCTS):
         self.trace.draws.append(Draw(self.n_simulations, node.id, stage, cause, distance))
         exploits = getattr(node.sampler, "_n_feasible", 1) > 0  # VOO draws uniformly before
         if stage != "precheck" and opt is not None and opt.n_told >= 2 and exploits:
+            values = opt.values
+            self.trace.exploiting_draws += 1
+            self.trace.tied_best_draws += int(np.sum(values == values[opt.best_index]) > 1)
             xs = opt.xs
             d = np.linalg.norm(xs - xs[opt.best_index], axis=1)
             d[opt.best_index] = np.inf
@@ -169,6 +177,7 @@ class StallSummary:
     feasible: int
     radius_first: float
     radius_last: float
+    voo: bool = True
 
 
 def summarize(seed: int, trace: Trace, mcts: MCTS) -> StallSummary:
@@ -209,6 +218,7 @@ def summarize(seed: int, trace: Trace, mcts: MCTS) -> StallSummary:
         feasible=sum(d.stage == "feasible" for d in at_root),
         radius_first=radius[0] if radius else float("nan"),
         radius_last=radius[-1] if radius else float("nan"),
+        voo=hasattr(root.sampler, "optimizer"),
     )
 
 
@@ -245,7 +255,15 @@ def _share(counts: Mapping[str, int], total: int) -> str:
     return ", ".join(f"{k} {100 * v / total:.0f}%" for k, v in counts.items())
 
 
+def _parent(s: StallSummary) -> str:
+    if s.root_depth == 0:
+        return "(back at the original root after a goal)"
+    return f"{s.parent_visits}, {s.parent_counted}, {s.tied_children}"
+
+
 def _radius(s: StallSummary) -> str:
+    if not s.voo:
+        return "- (no VOO)"
     if np.isnan(s.radius_first):
         return "no exploitation (no feasible action)"
     return f"{s.radius_first:.3g}, {s.radius_last:.3g}"
@@ -268,8 +286,7 @@ def stall_table(summaries: Sequence[StallSummary]) -> str:
         feasible += s.feasible
         lines.append(
             f"| {s.seed} | {s.last_improvement} | {s.committed_at}, {s.root_depth},"
-            f" {s.root_operator}, {s.objects_left_at_root} |"
-            f" {s.parent_visits}, {s.parent_counted}, {s.tied_children} | {s.draws} |"
+            f" {s.root_operator}, {s.objects_left_at_root} | {_parent(s)} | {s.draws} |"
             f" {n_pre} ({_share(s.precheck, n_pre)}) | {n_exe} ({_share(s.execution, n_exe)}) |"
             f" {s.feasible} | {_radius(s)} |"
         )

@@ -42,9 +42,12 @@ def main() -> None:
     evidence = {}
     for planner, params in SELECTED.items():
         summaries, events = [], []
+        exploiting = tied = 0
         for seed in SEEDS:
             trace, mcts = trace_search(PlanSpec(KITCHEN, None, (), planner, params, 2000, seed))
             summaries.append(summarize(seed, trace, mcts))
+            exploiting += trace.exploiting_draws
+            tied += trace.tied_best_draws
             events += commitments(trace, mcts)
             print(f"{planner} seed {seed} done", file=sys.stderr)
         evidence[planner] = events
@@ -60,6 +63,11 @@ def main() -> None:
             f" {tied.sum()} ({100 * tied.mean():.0f}%); into a dead end: {dead.sum()}"
             f" ({100 * dead.mean():.0f}%)"
         )
+        if planner == "voot":
+            print(
+                f"\nvoot: {exploiting} new actions at VOO nodes with a feasible action; the best"
+                f" value tied between several points at {tied} of them"
+            )
     fig, ax = plt.subplots(1, 2, figsize=(10, 3.6))
     for planner, events in evidence.items():
         v = [e.parent_visits for e in events]
