@@ -22,9 +22,9 @@ import numpy as np
 
 from voot.bench.ablation import ABLATION_PLANNERS, BASELINE, SWITCHES
 from voot.bench.claims import NO_DATA, PAPER_CLAIMS, ClaimResult, measure
-from voot.bench.plan_plot import PlannerRuns, mean_ci, plan_data
+from voot.bench.plan_runs import PlannerRuns, mean_ci, plan_data
 from voot.bench.select import planner_label
-from voot.bench.store import Row
+from voot.bench.store_format import Row
 from voot.bench.tuning import tuning_sentence
 
 #: The paired comparison's metric and checkpoints per problem (the paper's).

@@ -58,7 +58,7 @@ import numpy as np
 
 from voot import validation as V
 from voot.bench import problems as P
-from voot.bench.store import Row, make_row, make_run_id
+from voot.bench.store_format import Row, make_row, make_run_id
 from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread, register_runner
 
 #: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.

@@ -29,7 +29,7 @@ import numpy as np
 
 from voot.bench.plan_sweep import PLAN_PLANNERS
 from voot.bench.problems import ALIASES, CHAINS, problem_label
-from voot.bench.store import Row
+from voot.bench.store_format import Row
 from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, instance_of, params_key
 
 #: (function, dim, budget, method); for plan rows (problem, dim or 0, simulations, planner)

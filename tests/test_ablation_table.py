@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from voot.bench.ablation_table import ablation_table
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 
 SIMS = 2000
 KITCHEN = "voot/KitchenClearing-v1"

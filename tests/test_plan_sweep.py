@@ -28,7 +28,8 @@ from voot.bench.plan_sweep import (
     strip_timings,
     summarize_plan_specs,
 )
-from voot.bench.store import ResultStore, Row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row
 from voot.bench.sweep import ProcessBackend, SerialBackend, run_sweep
 
 

@@ -14,7 +14,7 @@ from voot.bench.select import (
     selected_rows,
     selection_table,
 )
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 
 
 def fake_row(

@@ -17,7 +17,9 @@ import pytest
 
 from voot.bench import shipped
 from voot.bench.compact import CompactConfig
-from voot.bench.store import INDEX_NAME, ResultStore, Row, StoreError, make_row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row, StoreError, make_row
+from voot.bench.store_index import INDEX_NAME
 
 DATA = Path(__file__).resolve().parents[1] / shipped.DATA_DIR
 STORES = [p.name for p in shipped.store_dirs(DATA)]
