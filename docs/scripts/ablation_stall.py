@@ -10,14 +10,19 @@ seeds (docs/data/protocol-v1), and prints
   children tied at the chosen Q, and the share of commitments into a dead end (a root that
   never gets a feasible action);
 
-and draws ``docs/figures/ablation/stall.png``.
+and writes them between the ``<!-- ablation-v1:stall -->`` markers of
+``docs/results-planning.md``, and draws ``docs/figures/ablation/stall.png``:
 
-    python docs/scripts/ablation_stall.py > stall.md
+    python docs/scripts/ablation_stall.py
 """
 
 from __future__ import annotations
 
+import contextlib
+import importlib.util
+import io
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -34,6 +39,21 @@ SEEDS = range(20)
 
 
 def main() -> None:
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        measure()
+    spec = importlib.util.spec_from_file_location(
+        "ablation_docs", Path(__file__).with_name("ablation_docs.py")
+    )
+    assert spec is not None and spec.loader is not None
+    docs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(docs)
+    page = docs.PAGE.read_text()
+    docs.PAGE.write_text(docs.replace(page, "stall", out.getvalue().strip() + "\n"))
+    print(out.getvalue())
+
+
+def measure() -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -42,16 +62,16 @@ def main() -> None:
     evidence = {}
     for planner, params in SELECTED.items():
         summaries, events = [], []
-        exploiting = tied = 0
+        exploiting = tied_draws = 0
         for seed in SEEDS:
             trace, mcts = trace_search(PlanSpec(KITCHEN, None, (), planner, params, 2000, seed))
             summaries.append(summarize(seed, trace, mcts))
             exploiting += trace.exploiting_draws
-            tied += trace.tied_best_draws
+            tied_draws += trace.tied_best_draws
             events += commitments(trace, mcts)
             print(f"{planner} seed {seed} done", file=sys.stderr)
         evidence[planner] = events
-        print(f"\n#### {planner}: the last root of each search\n")
+        print(f"\n##### {planner}: the last root of each search\n")
         print(stall_table(summaries))
         visits = np.array([e.parent_visits for e in events])
         tied = np.array([e.tied_children == e.feasible_children for e in events])
@@ -66,7 +86,7 @@ def main() -> None:
         if planner == "voot":
             print(
                 f"\nvoot: {exploiting} new actions at VOO nodes with a feasible action; the best"
-                f" value tied between several points at {tied} of them"
+                f" value tied between several points at {tied_draws} of them"
             )
     fig, ax = plt.subplots(1, 2, figsize=(10, 3.6))
     for planner, events in evidence.items():
