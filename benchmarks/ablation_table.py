@@ -132,9 +132,12 @@ def ranking_rows(runs: dict[tuple[str, str], PlannerRuns]) -> list[str]:
     return lines
 
 
-def ablation_table(rows: Iterable[Row], tuning_seeds: Collection[int]) -> str:
-    """Both tables as markdown, from the store's rows (settings selected on ``tuning_seeds``)."""
-    data = plan_data(list(rows), tuning_seeds=tuning_seeds)
+def ablation_table(
+    rows: Iterable[Row], tuning_seeds: Collection[int], problems: Sequence[str] | None = None
+) -> str:
+    """Both tables as markdown, from the store's rows (settings selected on ``tuning_seeds``;
+    only ``problems``, display names such as ``kitchen_v1``, if given)."""
+    data = plan_data(list(rows), tuning_seeds=tuning_seeds, problems=problems)
     runs = {(d.problem, d.planner): d for d in data if not d.dim}
     if not runs:
         raise ValueError("no tuned plan runs of the ablation in these rows")

@@ -35,7 +35,8 @@ def cmd_ablation(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise CLIError(str(exc)) from None
     if args.table:
-        return print_ablation_table(args.out, args.tuning_seeds, args.markdown)
+        problems = split_list(args.problems) or None
+        return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
         raise CLIError("--address and --max-tries go with --backend ray")
     if args.probe_simulations < 1:

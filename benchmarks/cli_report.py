@@ -209,13 +209,18 @@ def cmd_plot(args: argparse.Namespace) -> int:
     return 0
 
 
-def print_ablation_table(path: str, tuning_seeds: str, markdown: str | None) -> int:
+def print_ablation_table(
+    path: str, tuning_seeds: str, markdown: str | None, problems: Sequence[str] | None = None
+) -> int:
     """Print (and write to ``markdown``) the ablation's table of the store at ``path``
-    (:mod:`voot.bench.ablation_table`), settings selected on ``tuning_seeds``."""
+    (:mod:`voot.bench.ablation_table`), settings selected on ``tuning_seeds``, of
+    ``problems`` only if given."""
     from voot.bench.ablation_table import ablation_table
+    from voot.bench.problems import normalize_problem, problem_label
 
     _, rows = load_rows(path, "plan")
-    text = ablation_table(rows, parse_range(tuning_seeds, "--tuning-seeds"))
+    labels = [problem_label(normalize_problem(p)) for p in problems] if problems else None
+    text = ablation_table(rows, parse_range(tuning_seeds, "--tuning-seeds"), labels)
     print(text)
     if markdown:
         md = Path(markdown)

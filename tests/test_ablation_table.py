@@ -77,3 +77,10 @@ def test_flips_and_ranking_are_measured_per_switch() -> None:
 def test_no_tuned_runs_is_an_error() -> None:
     with pytest.raises(ValueError, match="no tuned plan runs"):
         ablation_table([r for r in rows() if r["config"]["seed"] < 1000], range(1000, 1003))
+
+
+def test_problems_filter_keeps_only_those_problems() -> None:
+    text = ablation_table(rows(), range(1000, 1003), problems=["kitchen_v1"])
+    assert "| v1 | kitchen_v1 | voot |" in text
+    with pytest.raises(ValueError, match="no tuned plan runs"):
+        ablation_table(rows(), range(1000, 1003), problems=["conveyor_v1"])
