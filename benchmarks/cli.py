@@ -34,7 +34,7 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from voot import validation as V
+from voot.bench.cli_types import seed_argument
 from voot.bench.store import ResultStore, Row, StoreError
 from voot.bench.sweep import Spec
 from voot.rl.train import MissingExtraError
@@ -942,7 +942,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
     p.add_argument("--simulations", type=int, default=None, help="default: 1000")
     p.add_argument(
-        "--seed", type=V.seed_argument, default=None, help="default: the documented demo seed"
+        "--seed", type=seed_argument, default=None, help="default: the documented demo seed"
     )
     p.add_argument("--planner", default="voot")
     p.add_argument("--no-video", action="store_true", help="skip the GIF")
@@ -959,7 +959,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="the paper's Figure 5 on the kitchen: placements sampled at the first place node",
     )
     p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"], metavar="NAME")
     p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
     p.add_argument("--max-simulations", type=int, default=2000)
@@ -976,7 +976,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dim", type=int, default=20)
     p.add_argument("--method", default="voo")
     p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.set_defaults(func=cmd_demo_voo)
 
     p = sub.add_parser("bbfo", help="run the black-box sweep of Figure 3 (resumable)")
@@ -1229,7 +1229,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--dim", type=int, default=20)
     p.add_argument("--repeats", type=int, default=5)
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.set_defaults(func=cmd_speed)
 
     p = sub.add_parser(
@@ -1242,7 +1242,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--samples", type=int, default=2000, help="uniform actions per node type")
     p.add_argument("--rollouts", type=int, default=200, help="random rollouts per environment")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--markdown", default=None, help="also write the tables to this file")
     p.set_defaults(func=cmd_difficulty)
 
