@@ -907,6 +907,7 @@ PASSTHROUGH: dict[str, tuple[str, str]] = {
         "recordings, Figure-5 panels and a GIF on the tiny pick-and-place demo",
     ),
     "env-speed": ("voot.bench.env_speed:main", "step costs and sparsity of the robot domains"),
+    "voo-speed": ("voot.bench.speed:voo_main", "VOO's cost per ask + tell on several objectives"),
     "env-figures": ("voot.bench.env_figures:main", "render the environment figures of the docs"),
     "root-parallel": (
         "voot.bench.root_parallel_bench:main",
