@@ -703,3 +703,63 @@ def test_first_inside_equals_the_reference_with_ties_and_moves(
     # (every point tested) where there is one
     assert calls["_gather"] > 0
     assert opt.n_told <= NEAR or calls["_whole"] > calls["_full"]
+
+
+def test_near_set_invariants() -> None:
+    """After every ask: the near set's distances and offsets are exact, every point outside
+    it and the tail lies at least lb2 away, and the whole-set buffer (when valid) is exact."""
+    rng = np.random.default_rng(3)
+    box = Bounds.cube(-1.0, 1.0, 4)
+    opt = VOO(box, VOOConfig(omega=0.05), seed=3)
+    for i in range(3 * NEAR):
+        x = opt.ask()
+        value = -float(x @ x) if i % 50 else float(rng.normal())
+        opt.tell(x, value)
+        if i % 97 == 96:  # a far jump of x*, as revalue in tree search does
+            opt.revalue(int(rng.integers(opt.n_told)), opt.best_value + 1.0)
+        if i % 9:
+            continue
+        cell = opt._best_cell()
+        cell.first_inside(opt._xs, np.full((1, 4), 2.0))  # a far proposal: the exact test
+        cell._sort(opt._xs)
+        xs, best = opt.xs, opt.xs[opt.best_index]
+        assert cell.best.tobytes() == best.tobytes() and cell.n == opt.n_told
+        v = xs[cell.near] - best
+        assert cell.vs.tobytes() == v.tobytes()
+        assert cell.d2s.tobytes() == np.einsum("ij,ij->i", v, v).tobytes()
+        assert np.all(np.diff(cell.d2s) >= 0) and cell.ordered
+        outside = np.setdiff1d(np.arange(cell.tail), cell.near)
+        d2 = np.sum((xs[outside] - best) ** 2, axis=1)
+        assert np.all(d2 >= cell.lb2 * (1.0 - 1e-9))
+        t = xs[cell.tail :] - best
+        assert np.array_equal(cell.td2[: len(t)], np.einsum("ij,ij->i", t, t))
+        w = cell.whole
+        assert cell.buf[:w].tobytes() == (xs[:w] - best).tobytes()
+    assert opt.n_told > 2 * NEAR
+
+
+def test_a_move_of_the_best_point_finds_a_point_outside_the_old_near_set() -> None:
+    """x* = 0 with NEAR points on the unit circle near +-60 degrees (its near set) and P at
+    (1.01, 0), just outside it. A new best z = (0.5, 0) is 0.51 from P, nearer than any
+    point of the old near set (0.87 or more): the bound carried over (1.01 - 0.5) must
+    send the rebuild to every point, and P must reject z + (0.3, 0), which is nearer to it
+    (0.21) than to z (0.3)."""
+    rng = np.random.default_rng(0)
+    angle = np.deg2rad(rng.uniform(50.0, 70.0, NEAR)) * rng.choice([-1.0, 1.0], NEAR)
+    radius = rng.uniform(1.0, 1.005, NEAR)
+    ring = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=1)
+    p = np.array([1.01, 0.0])
+    opt = told(
+        np.vstack([np.zeros(2), ring, p]), np.r_[1.0, np.zeros(NEAR + 1)], Bounds.cube(-2, 2, 2)
+    )
+    cell = opt._best_cell()
+    assert np.count_nonzero(cell.d2s) == NEAR and cell.lb2 == pytest.approx(1.01**2)  # P: out
+    z = np.array([0.5, 0.0])
+    opt.tell(z, 2.0)
+    cell = opt._best_cell()
+    assert cell.best.tolist() == z.tolist()
+    assert np.any(np.abs(cell.k2[: cell.count] - 0.51**2) < 1e-12)  # P is a neighbour
+    q = np.array([[0.3, 0.0]])
+    assert reference_first_inside(opt.xs, opt.best_index, q) == -1
+    assert opt._first_inside(cell, q) == -1
+    assert opt._first_inside(cell, np.array([[0.3, 0.0], [0.2, 0.0]])) == 1

@@ -157,24 +157,27 @@ class _BestCell:
     VOO's best neighbours reach the floating-point resolution of ``x*`` within a few
     thousand evaluations in 20-D).
 
-    One object serves the whole run; :meth:`center` moves it to a new best point. Only a
-    *full pass* over the :math:`n` points (:meth:`_full`) costs :math:`O(nd)`, and it is
-    needed only when the near set below cannot vouch for every point that matters:
+    One object serves the whole run; :meth:`center` moves it to a new best point. It
+    keeps, besides the neighbour cache:
 
-    * the *near set*: the :data:`NEAR` points nearest to ``x*`` (exactly; more after a
-      full pass for a far proposal), and the copies of ``x*``, with their offsets,
-      sorted on demand;
+    * the *near set*: the :data:`NEAR` points nearest to ``x*`` (exactly) and the copies
+      of ``x*``, with their offsets, sorted on demand;
     * ``lb2``: a lower bound on the squared distance to ``x*`` of every point outside the
       near set and the tail (the points told since the near set was last sorted).
+
+    Only two steps cost :math:`O(nd)`: a *full pass* (:meth:`_full`), when the near set
+    cannot vouch for the new best point's neighbours, and the first exact check of a
+    proposal that reaches past ``lb2`` for a given ``x*`` (every point is then tested,
+    from the buffer :meth:`_whole` keeps up to date for that ``x*``).
 
     When ``x*`` moves by :math:`s` to ``z`` (a better point, nearly always one just told
     in the old best cell), the triangle inequality gives :math:`d(x_i, z) \\ge
     \\sqrt{lb2} - s` for every point outside, so the new near set is built from the old
     near set and tail alone (:math:`O(\\text{NEAR} \\cdot d)`) whenever that bound
-    still certifies the :data:`NEIGHBOURS` + 1 nearest points of ``z``. This is what makes
-    an objective on which ``x*`` keeps improving (a sphere) cost about the same per ask as
-    one on which it settles; rebuilding from every point at each improvement made VOO
-    several times slower there.
+    still certifies the :data:`NEIGHBOURS` + 1 nearest points of ``z``. Rebuilding from
+    every point at each improvement made VOO two to four times slower per ask on an
+    objective where ``x*`` keeps improving (a sphere) than on one where it has settled;
+    now the difference is about 1.5x (``voot-bench voo-speed``, docs/voo.md).
 
     Attributes:
         v, h, k2: the (up to) :data:`NEIGHBOURS` points nearest to ``x*`` other than its
@@ -182,8 +185,9 @@ class _BestCell:
             exactly: the cache every proposal is tested against first.
         out2: squared distance of the nearest point *not* in that cache (``inf`` if none).
         near, d2s, vs, hs: the near set (indices, squared distances, offsets, halves),
-            sorted by distance when ``ordered``. Copies of ``x*`` (distance 0) are in it
-            but not in the cache: they cannot reject a proposal (0 <= 0).
+            sorted by distance when ``ordered``. Copies of ``x*`` (distance 0; the
+            first ``z0`` entries once sorted) are in it, for when ``x*`` moves, but are
+            skipped by the tests and the cache: they cannot reject a proposal (0 <= 0).
         lb2: the lower bound above (``inf``: no such point).
         tail, td2: the points ``tail .. n-1``, told since the last sort and tested
             unsorted, and their squared distances.
@@ -213,6 +217,7 @@ class _BestCell:
         "v",
         "vs",
         "whole",
+        "z0",
     )
 
     #: Points told after the sort that :meth:`check` tests unsorted before re-sorting.
@@ -234,6 +239,7 @@ class _BestCell:
         self.d2s = self.hs = np.empty(0)
         self.vs = np.empty((0, d))
         self.ordered = True
+        self.z0 = 0
         self.lb2 = math.inf
         self.tail = 0
         self.td2 = np.empty(16)
@@ -385,9 +391,10 @@ class _BestCell:
         if 4.0 * float(first @ first) * (1.0 + 1e-9) < self.out2:
             return int(survivors[0])
         self._sort(xs)
-        m = min(SECOND_TIER, self.d2s.size)
+        z = self.z0
+        m = min(SECOND_TIER, self.d2s.size - z)
         if m > self.count and survivors.size > 1:
-            keep = (q[survivors] @ self.vs[:m].T <= self.hs[:m]).all(axis=1)
+            keep = (q[survivors] @ self.vs[z : z + m].T <= self.hs[z : z + m]).all(axis=1)
             survivors = survivors[keep]
         for j in survivors.tolist():
             if self.check(xs, q[j]):
@@ -412,8 +419,8 @@ class _BestCell:
         if lim >= self.lb2:  # beyond the near set: test every point
             self._whole(xs, n)
             return bool((self.buf[:n] @ q <= 0.5 * self.bd2[:n]).all())
-        c = int(np.searchsorted(self.d2s, lim, side="right"))
-        if c and not (self.vs[:c] @ q <= self.hs[:c]).all():
+        c, z = int(np.searchsorted(self.d2s, lim, side="right")), self.z0
+        if c > z and not (self.vs[z:c] @ q <= self.hs[z:c]).all():
             return False
         if self.tail < n:
             v = xs[self.tail : n] - self.best
@@ -438,6 +445,7 @@ class _BestCell:
             self.vs = self.vs[order]
             self.hs = 0.5 * self.d2s
             self.ordered = True
+            self.z0 = int(np.searchsorted(self.d2s, 0.0, side="right"))
 
     def extend(self, xs: FloatArray) -> None:
         """Incorporate the points ``xs[self.n:]`` told since (``x*`` unchanged)."""
