@@ -9,8 +9,8 @@ import sys
 import time
 from typing import TYPE_CHECKING
 
-from voot import validation as V
 from voot.bench.cli_common import CLIError
+from voot.bench.cli_types import seed_argument
 
 if TYPE_CHECKING:
     from voot.bench.cli_common import Subparsers
@@ -97,7 +97,7 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
     p.add_argument("--simulations", type=int, default=None, help="default: 1000")
     p.add_argument(
-        "--seed", type=V.seed_argument, default=None, help="default: the documented demo seed"
+        "--seed", type=seed_argument, default=None, help="default: the documented demo seed"
     )
     p.add_argument("--planner", default="voot")
     p.add_argument("--no-video", action="store_true", help="skip the GIF")
@@ -114,7 +114,7 @@ def register(sub: Subparsers) -> None:
         help="the paper's Figure 5 on the kitchen: placements sampled at the first place node",
     )
     p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"], metavar="NAME")
     p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
     p.add_argument("--max-simulations", type=int, default=2000)
@@ -131,5 +131,5 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--dim", type=int, default=20)
     p.add_argument("--method", default="voo")
     p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.set_defaults(func=cmd_demo_voo)

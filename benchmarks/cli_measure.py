@@ -9,8 +9,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot import validation as V
 from voot.bench.cli_common import CLIError, split_list
+from voot.bench.cli_types import seed_argument
 
 if TYPE_CHECKING:
     from voot.bench.cli_common import Subparsers
@@ -99,7 +99,7 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument("--dim", type=int, default=20)
     p.add_argument("--repeats", type=int, default=5)
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.set_defaults(func=cmd_speed)
 
     p = sub.add_parser(
@@ -112,6 +112,6 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument("--samples", type=int, default=2000, help="uniform actions per node type")
     p.add_argument("--rollouts", type=int, default=200, help="random rollouts per environment")
-    p.add_argument("--seed", type=V.seed_argument, default=0)
+    p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--markdown", default=None, help="also write the tables to this file")
     p.set_defaults(func=cmd_difficulty)

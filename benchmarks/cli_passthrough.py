@@ -27,6 +27,7 @@ PASSTHROUGH: dict[str, tuple[str, str]] = {
         "voot.bench.root_parallel_bench:main",
         "root-parallel search: speed-up and quality against one tree",
     ),
+    "voo-speed": ("voot.bench.speed:voo_main", "VOO's cost per ask + tell on several objectives"),
 }
 
 

@@ -22,6 +22,7 @@ def test_every_entry_names_a_function_and_a_help_line() -> None:
         "env-speed",
         "env-figures",
         "root-parallel",
+        "voo-speed",
     ]
     for name, (target, text) in PASSTHROUGH.items():
         module, function = target.split(":")
