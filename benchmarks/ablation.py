@@ -24,6 +24,7 @@ voo_centered_uniform    VOO's best-cell sampler: uniform (switching to gaussian 
                         tries) -> centered_uniform (their synthetic default)
 voo_gaussian            -> gaussian from the start
 voo_uniform_no_switch   -> uniform without the switch to gaussian
+voo_random_ties         VOO's best point among ties: the first -> drawn at random
 kappa_off               re-evaluation decay :math:`\kappa_r`: 0.8 (paper) -> 1 (the code: off)
 reevaluations_5         re-evaluations tuned in {2, 5} -> fixed at the original's 5
 commit_off              root commitment -> off
@@ -87,6 +88,7 @@ _AUTHORS_VOOT = {
     **_HYBRID,
     "kappa_r": 1.0,
     "commit_reset_trigger": "root_goal_child",
+    "tie_break": "random",
 }
 
 SWITCHES: Mapping[str, Switch] = MappingProxyType(
@@ -118,6 +120,11 @@ SWITCHES: Mapping[str, Switch] = MappingProxyType(
                 "voo_uniform_no_switch",
                 "VOO's uniform best-cell sampler without the switch to gaussian",
                 {"voot": {"sampler.uniform_switch_to_gaussian": False}},
+            ),
+            Switch(
+                "voo_random_ties",
+                "VOO's best point drawn at random among points tied at the best value",
+                {"voot": {"tie_break": "random"}},
             ),
             Switch(
                 "kappa_off",

@@ -763,3 +763,59 @@ def test_a_move_of_the_best_point_finds_a_point_outside_the_old_near_set() -> No
     assert reference_first_inside(opt.xs, opt.best_index, q) == -1
     assert opt._first_inside(cell, q) == -1
     assert opt._first_inside(cell, np.array([[0.3, 0.0], [0.2, 0.0]])) == 1
+
+
+def test_random_tie_break_exploits_every_tied_best_point() -> None:
+    """tie_break="random": x* is drawn among the points sharing the best value (the
+    authors' get_best_evaled_action); "first" always takes the first of them."""
+    from voot.optim.voo import VOO, VOOConfig
+
+    bounds = [[0.0, 1.0]] * 2
+    sites = np.array([[0.1, 0.1], [0.9, 0.9], [0.5, 0.5], [0.1, 0.9]])
+    values = [1.0, 1.0, 0.0, 1.0]  # three points tie at the best value
+
+    def owners(tie_break: str, seed: int) -> set[int]:
+        opt = VOO(bounds, VOOConfig(omega=0.0, sampler="uniform", tie_break=tie_break), seed=seed)
+        for x, v in zip(sites, values, strict=True):
+            opt.tell(x, v)
+        got = set()
+        for _ in range(60):
+            p = opt.sample_best_cell()
+            got.add(int(np.argmin(np.linalg.norm(sites - p, axis=1))))
+        return got
+
+    assert owners("first", 0) == {0}
+    assert owners("random", 0) == {0, 1, 3}
+
+
+def test_random_tie_break_without_ties_changes_nothing() -> None:
+    """Until two points share the best value, "random" asks exactly what "first" asks
+    (it draws no random number)."""
+    from voot.functions import get_function
+    from voot.optim import make_optimizer
+
+    f = get_function("shekel", dim=3)
+    runs = {}
+    for tie_break in ("first", "random"):
+        opt = make_optimizer("voo", f.bounds, seed=3, tie_break=tie_break)
+        xs, values = [], []
+        for _ in range(200):
+            x = opt.ask()
+            xs.append(x)
+            values.append(f(x))
+            opt.tell(x, values[-1])
+        runs[tie_break] = (np.array(xs), np.array(values))
+    xs, values = runs["first"]
+    best = np.maximum.accumulate(values)
+    tied = [i for i in range(len(values)) if np.sum(values[: i + 1] == best[i]) > 1]
+    first_tie = tied[0] if tied else len(values)
+    assert first_tie > 50
+    # the ask after the first tie may differ; every ask up to it is the same
+    np.testing.assert_array_equal(runs["random"][0][: first_tie + 1], xs[: first_tie + 1])
+
+
+def test_unknown_tie_break_names_the_choices() -> None:
+    from voot.optim.voo import VOOConfig
+
+    with pytest.raises(ValueError, match="tie_break must be one of first, random"):
+        VOOConfig(tie_break="last")

@@ -91,6 +91,10 @@ class VOOConfig(OptimizerConfig):
             changes the random stream, not the distribution). The first batch of an ask
             grows to cover the try accepted at the previous ask; later batches double,
             up to 256.
+        tie_break: which of several points sharing the best value is :math:`x^*` for an
+            exploitation ask: ``first`` (the first told; default) or ``random`` (uniform
+            among them, drawn at each such ask: the authors' ``get_best_evaled_action``).
+            With no tie the two are the same and ``random`` draws nothing.
     """
 
     omega: float = 0.001
@@ -100,6 +104,7 @@ class VOOConfig(OptimizerConfig):
     uniform_switch_to_gaussian: bool = True
     metric: Metric | None = None
     batch_size: int = 8
+    tie_break: str = "first"
 
     def __post_init__(self) -> None:
         if not (V.is_number(self.omega) and 0.0 <= float(self.omega) <= 1.0):
@@ -116,11 +121,15 @@ class VOOConfig(OptimizerConfig):
             V.integer(value, name, 1)
         if self.metric is not None and not callable(self.metric):
             raise ValueError("metric must be callable metric(points, y) -> distances, or None")
+        V.one_of(self.tie_break, "tie_break", TIE_BREAKS)
 
     @classmethod
     def paper_grid(cls) -> dict[str, list[Any]]:
         return {"omega": [0.001, 0.01, 0.05, 0.1, 0.3, 0.5]}
 
+
+#: Valid :attr:`VOOConfig.tie_break` values.
+TIE_BREAKS: tuple[str, ...] = ("first", "random")
 
 #: Size of the cached set of x*'s nearest neighbours that every proposal is tested against
 #: first (speed only: the test stays exact, see :meth:`VOO.sample_best_cell`).
@@ -509,15 +518,16 @@ class VOO(Optimizer):
         return self.sample_best_cell()
 
     # ----- best-cell sampling ---------------------------------------------------------
-    def in_best_cell(self, proposals: ArrayLike) -> np.ndarray:
+    def in_best_cell(self, proposals: ArrayLike, b: int | None = None) -> np.ndarray:
         """Boolean mask: is each row of ``proposals`` (m, d) in the best point's cell?
 
         Brute force against every told point (ties count as inside, as x* is the first
-        point of its cell).
+        point of its cell). ``b``: the index of the cell's site (default: the best point).
         """
         props = np.atleast_2d(np.asarray(proposals, dtype=np.float64))
         xs = self._xs[: self._n]
-        b = self._best_index
+        if b is None:
+            b = self._best_index
         metric = self.config.metric
         if metric is not None:
             pairwise = getattr(metric, "pairwise", None)
@@ -534,14 +544,26 @@ class VOO(Optimizer):
         q = props - xs[b]
         return np.all(q @ v.T <= 0.5 * np.einsum("ij,ij->i", v, v), axis=1)
 
+    def _exploited_index(self) -> int:
+        """The index of :math:`x^*` for this ask: the best point, or with
+        ``tie_break="random"`` one of the points sharing its value, drawn uniformly."""
+        b = self._best_index
+        if self.config.tie_break == "random":
+            values = self._values[: self._n]
+            tied = np.flatnonzero(values == values[b])
+            if tied.size > 1:
+                b = int(tied[self.rng.integers(tied.size)])
+        return b
+
     def _best_cell(self) -> _BestCell:
         """The best-cell cache, moved when x* changed, extended by new points."""
         cell = self._cell
         n = self._n
         if cell is None:
             cell = self._cell = _BestCell(self._lower, self._upper)
-        if cell.b != self._best_index:
-            cell.center(self._xs[:n], self._best_index)
+        b = self._exploited_index()
+        if cell.b != b:
+            cell.center(self._xs[:n], b)
         elif cell.n < n:
             cell.extend(self._xs[:n])
         return cell
@@ -565,7 +587,7 @@ class VOO(Optimizer):
         """Index of the first proposal (row of ``q``) inside the best cell, or -1."""
         metric = self.config.metric
         if metric is not None:
-            hits = np.flatnonzero(self.in_best_cell(q + cell.best))
+            hits = np.flatnonzero(self.in_best_cell(q + cell.best, cell.b))
             return int(hits[0]) if hits.size else -1
         return cell.first_inside(self._xs, q)
 
