@@ -32,9 +32,10 @@ import numpy as np
 
 from voot.bench.cli_types import seed_argument
 from voot.envs.conveyor import ConveyorPackingEnv
+from voot.envs.env_state import EnvState
 from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.scripted import conveyor_actions, kitchen_actions
-from voot.envs.task_env import EnvState, ManipulationEnv
+from voot.envs.task_env import ManipulationEnv
 
 
 @dataclass

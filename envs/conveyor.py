@@ -40,8 +40,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.action_units import denormalize
 from voot.envs.base_planner import BasePath, BasePlannerConfig
+from voot.envs.env_state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.feasibility import IKConfig, rot_z, set_object_pose, side_grasp
+from voot.envs.presets import env_config, preset_config
+from voot.envs.rendering import add_marker_box
 from voot.envs.robot import (
     BASE_HALF,
     ROBOT_RADIUS,
@@ -53,17 +57,7 @@ from voot.envs.robot import (
     compose_inverse_tuple,
 )
 from voot.envs.scene import object_footprint, rect_inside
-from voot.envs.task_env import (
-    ManipulationEnv,
-    StepTiming,
-    add_marker_box,
-    denormalize,
-    env_config,
-    is_count,
-    pose_tuple,
-    preset_config,
-    replace,
-)
+from voot.envs.task_env import ManipulationEnv
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
@@ -164,7 +158,7 @@ class ConveyorConfig:
 
 
 #: Named versions of the domain: :class:`ConveyorConfig` overrides (see
-#: :data:`voot.envs.kitchen.KITCHEN_PRESETS`).
+#: :data:`voot.envs.kitchen_config.KITCHEN_PRESETS`).
 CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
     {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
 )

@@ -1,4 +1,5 @@
-"""What the two robot envs share (voot.envs.task_env): the helpers of the lean step path."""
+"""The shared env base (voot.envs.task_env): snapshots restored all or nothing, the
+task-record check on restore, action validation, the footprints' memory."""
 
 from __future__ import annotations
 
@@ -9,28 +10,12 @@ from typing import Any
 import numpy as np
 import pytest
 
-from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig, KitchenTask
-from voot.envs.task_env import StepTiming, denormalize, normalize, pose_tuple, replace
+from voot.envs.kitchen import KitchenClearingEnv
 
 
 @pytest.fixture(scope="module")
 def kitchen() -> KitchenClearingEnv:
     return KitchenClearingEnv()
-
-
-def test_replace_matches_dataclasses_replace() -> None:
-    t = KitchenTask(3, "pick", -1, (0.0, 0.0, 0.0), (), (1, 2), False, False)
-    for changes in ({"steps": 4}, {"operator": "place", "held": 2}, {}):
-        a, b = replace(t, **changes), dataclasses.replace(t, **changes)
-        assert a == b and hash(a) == hash(b) and vars(a) == vars(b) and type(a) is KitchenTask
-    assert replace(StepTiming(1.0), total=2.0) == StepTiming(1.0, 0.0, 0.0, 2.0)
-    with pytest.raises(TypeError):
-        replace(t, nope=1)
-    # a dataclass with __post_init__ still validates
-    with pytest.raises(ValueError, match="horizon"):
-        replace(KitchenConfig(), horizon=0)
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        replace(t, steps=1).steps = 2  # type: ignore[misc]
 
 
 def test_snapshots_share_the_unchanged_generator_state(kitchen: KitchenClearingEnv) -> None:
@@ -70,26 +55,9 @@ def test_validate_action_fast_path(kitchen: KitchenClearingEnv) -> None:
             kitchen._validate_action(bad)
 
 
-def test_denormalize_and_pose_tuple() -> None:
-    ranges = ((-2.0, 6.0), (-4.0, 4.0), (0.0, 6.283185307179586))
-    a = np.array([0.1, -0.7, 0.3])
-    lo = np.array([r[0] for r in ranges])
-    hi = np.array([r[1] for r in ranges])
-    ref = lo + 0.5 * (a + 1.0) * (hi - lo)
-    assert denormalize(a, ranges).tobytes() == ref.tobytes()
-    assert denormalize(a, list(ranges)).tobytes() == ref.tobytes()
-    assert np.allclose(normalize(ref, ranges), a)
-    out = denormalize(a, ranges)
-    out[0] = 9.0  # a fresh array: the cached ranges are not touched
-    assert denormalize(a, ranges).tobytes() == ref.tobytes()
-    assert pose_tuple(np.array([1.0, 2.0, 3.0])) == (1.0, 2.0, 3.0)
-    assert pose_tuple([1, 2, 3]) == (1.0, 2.0, 3.0)
-    assert all(type(v) is float for v in pose_tuple(np.array([1.0, 2.0, 3.0])))
-
-
 # ----- set_state: the whole snapshot is checked, then applied (all or nothing) ----------
 def _bad_snapshots(env: Any, other: Any) -> list[tuple[Any, str]]:
-    from voot.envs.task_env import EnvState
+    from voot.envs.env_state import EnvState
 
     s = env.get_state()
     nan_physics = s.physics.copy()
@@ -137,17 +105,6 @@ def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> Non
         assert np.array_equal(env._observation(), obs_here)
     env.set_state(start)  # a good snapshot still restores exactly
     assert env.get_state() == start
-
-
-def test_denormalize_floats_is_denormalize() -> None:
-    from voot.envs.task_env import denormalize_floats
-
-    ranges = ((-0.3, 1.7), (0.5, 1.0), (-np.pi, np.pi))
-    rng = np.random.default_rng(8)
-    for a in [*rng.uniform(-1, 1, (500, 3)), np.array([-1.0, 1.0, 0.0])]:
-        ref = denormalize(a, ranges).tolist()
-        assert denormalize_floats(a.tolist(), ranges) == ref
-        assert denormalize_floats(a.tolist(), [list(r) for r in ranges]) == ref  # unhashable
 
 
 def test_plain_action_is_the_validated_action_or_none(kitchen: KitchenClearingEnv) -> None:
