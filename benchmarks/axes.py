@@ -10,7 +10,7 @@ of the full protocol is drawn three times (issue 14):
     kinematic pre-checks after every simulation (:mod:`voot.bench.plan_sweep`). Both are
     counted as one call each although a pre-check (IK, collisions, regions) costs less
     than an executed step; the table of steps against pre-checks
-    (:func:`voot.bench.plan_plot.calls_table`) says how the calls split.
+    (:func:`voot.bench.plan_tables.calls_table`) says how the calls split.
 ``cpu``
     CPU seconds of the search's process (``cpu_elapsed``, :func:`time.process_time`),
     which, unlike wall-clock time, does not grow when other jobs share the cores.

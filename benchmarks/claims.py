@@ -20,7 +20,7 @@ adds a claim by adding a record to :data:`PAPER_CLAIMS` (or passing its own list
 ``simulations_to_clear``
     simulations until the best plan first handles every object (a seed that never does
     within the budget counts as infinitely many); median, distribution-free interval
-    from order statistics (binomial, :func:`voot.bench.plan_plot.median_ci`).
+    from order statistics (binomial, :func:`voot.bench.plan_runs.median_ci`).
     ``checkpoint`` is ignored.
 
 The paper reports means over seeds (its curves), so its claims use the mean metrics;
@@ -36,7 +36,7 @@ with our 95% interval ``[low, high]``:
 * **no data**: no evaluation runs of the planner on the problem, runs shorter than the
   checkpoint, no object counts, or fewer than 2 seeds (no interval).
 
-The data are those :func:`voot.bench.plan_plot.plan_data` gives, so the claims honour
+The data are those :func:`voot.bench.plan_runs.plan_data` gives, so the claims honour
 the same selection as the figures: the paper's same-seed rule by default, or settings
 selected on tuning seeds (``tuning_seeds``) with the evaluation seeds reported.
 """
@@ -48,7 +48,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 
 from voot import validation as V
-from voot.bench.plan_plot import PlannerRuns, first_reach, mean_ci, median_ci
+from voot.bench.plan_runs import PlannerRuns, first_reach, mean_ci, median_ci
 
 #: Metrics a claim can be about (see the module docstring).
 METRICS: tuple[str, ...] = ("return", "objects_left", "objects_handled", "simulations_to_clear")
@@ -296,7 +296,7 @@ def measure(claim: Claim, planner: str, runs: PlannerRuns | None) -> ClaimResult
 def evaluate(
     data: Sequence[PlannerRuns], claims: Iterable[Claim] = PAPER_CLAIMS
 ) -> list[ClaimResult]:
-    """Every claim's lines, one per planner, from :func:`voot.bench.plan_plot.plan_data`."""
+    """Every claim's lines, one per planner, from :func:`voot.bench.plan_runs.plan_data`."""
     runs = {(d.problem, d.planner): d for d in data if not d.dim}
     out = []
     for c in claims:

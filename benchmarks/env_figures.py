@@ -23,8 +23,8 @@ import numpy as np
 
 from voot.envs.conveyor import ConveyorPackingEnv
 from voot.envs.kitchen import KitchenClearingEnv
+from voot.envs.rendering import ensure_headless_gl
 from voot.envs.scripted import conveyor_actions, kitchen_actions
-from voot.envs.task_env import ensure_headless_gl
 
 SIZE = (1280, 960)
 

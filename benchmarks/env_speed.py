@@ -30,11 +30,12 @@ from typing import Any
 
 import numpy as np
 
-from voot import validation as V
+from voot.bench.cli_types import seed_argument
 from voot.envs.conveyor import ConveyorPackingEnv
+from voot.envs.env_state import EnvState
 from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.scripted import conveyor_actions, kitchen_actions
-from voot.envs.task_env import EnvState, ManipulationEnv
+from voot.envs.task_env import ManipulationEnv
 
 
 @dataclass
@@ -189,9 +190,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--n", type=int, default=1000, help="random actions per operator (default 1000)"
     )
-    parser.add_argument(
-        "--seed", type=V.seed_argument, default=0, help="seed of the random actions"
-    )
+    parser.add_argument("--seed", type=seed_argument, default=0, help="seed of the random actions")
     args = parser.parse_args(argv)
     if args.n < 1:
         parser.error("--n must be >= 1")

@@ -29,7 +29,7 @@ from typing import Any
 
 from voot import validation as V
 from voot.bench.select import cell_of, function_order, method_order
-from voot.bench.store import Row
+from voot.bench.store_format import Row
 
 #: Simulations of a probe run (a pair without rows in the store).
 PROBE_SIMULATIONS = 20

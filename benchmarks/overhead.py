@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
+from voot.bench.cli_types import seed_argument
 from voot.record.config import RecorderConfig
 from voot.record.recorder import SearchRecorder
 from voot.tree.chains import chain_planner_options, make_chain
@@ -76,7 +77,7 @@ def tree_main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--dims", nargs="+", type=int, default=[6, 9])
     parser.add_argument("--simulations", nargs="+", type=int, default=[1000, 10000])
     parser.add_argument("--depth", type=int, default=5)
-    parser.add_argument("--seed", type=V.seed_argument, default=0)
+    parser.add_argument("--seed", type=seed_argument, default=0)
     args = parser.parse_args(argv)
     header = (
         f"{'planner':<11} {'dim':>3} {'sims':>6} {'visits':>7} {'nodes':>7} {'steps':>7}"
@@ -198,7 +199,7 @@ def record_main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--dim", type=int, default=10)
     parser.add_argument("--simulations", type=int, default=1000)
     parser.add_argument("--planner", default="voot")
-    parser.add_argument("--seed", type=V.seed_argument, default=0)
+    parser.add_argument("--seed", type=seed_argument, default=0)
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args(argv)
     print(

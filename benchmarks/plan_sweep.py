@@ -58,7 +58,7 @@ import numpy as np
 
 from voot import validation as V
 from voot.bench import problems as P
-from voot.bench.store import Row, make_row, make_run_id
+from voot.bench.store_format import Row, make_row, make_run_id
 from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread, register_runner
 
 #: Version of the plan-run protocol (problem set-up and seeding rules); in every run id.
@@ -276,7 +276,10 @@ class PlanSpec:
     ``env_kwargs`` for an env), ``simulations`` simulations, ``seed``.
 
     ``record`` (a ``.rrd`` path, or None) asks for a rerun recording of the search; it is
-    not part of the run's identity.
+    not part of the run's identity. ``variant`` names a set of planner options that is
+    not tuned but compared (an ablation switch, :mod:`voot.bench.ablation`): the planner
+    with a variant is a planner of its own in selections, figures and tables
+    (``voot[variant]``); empty for a plain run, whose config and run id are as before.
     """
 
     problem: str
@@ -287,6 +290,7 @@ class PlanSpec:
     simulations: int
     seed: int
     record: str | None = field(default=None, compare=False)
+    variant: str = ""
 
     kind: ClassVar[str] = "plan"
 
@@ -310,7 +314,7 @@ class PlanSpec:
 
     def config(self) -> dict[str, Any]:
         """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
-        return {
+        out = {
             "problem": self.problem,
             "dim": self.dim,
             "env_kwargs": self.env_kwargs_dict,
@@ -320,6 +324,9 @@ class PlanSpec:
             "seed": self.seed,
             "protocol": PLAN_PROTOCOL,
         }
+        if self.variant:
+            out["variant"] = self.variant
+        return out
 
     @property
     def run_id(self) -> str:

@@ -39,7 +39,7 @@ from voot.bench.select import (
     select_hyperparameters,
     selected_rows,
 )
-from voot.bench.store import Row, curves
+from voot.bench.store_format import Row, curves
 from voot.bench.sweep import PAPER_METHODS
 
 #: Confidence level of the intervals.

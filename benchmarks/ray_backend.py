@@ -45,7 +45,7 @@ from collections.abc import Callable, Generator, Iterator, Sequence
 from typing import Any, TypeVar, cast
 
 from voot import validation as V
-from voot.bench.store import Row, failed_row
+from voot.bench.store_format import Row, failed_row
 
 #: Tries per run when its worker dies (the first try included).
 DEFAULT_MAX_TRIES = 3
@@ -99,7 +99,7 @@ class RayBackend:
         max_tries: tries per run when its worker dies (>= 1).
         init_options: extra keywords of ``ray.init`` (when this backend starts Ray).
         on_lost: ``on_lost(item, error, tries=n)`` makes the row of a run whose worker
-            died ``max_tries`` times (default :func:`voot.bench.store.failed_row`).
+            died ``max_tries`` times (default :func:`voot.bench.store_format.failed_row`).
         reap_on_driver_death: with a local instance this backend starts, run a
             :class:`~voot.bench.ray_reaper.RayReaper` that stops the instance if the
             driver dies without shutting it down (needs ``psutil``).

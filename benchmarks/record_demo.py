@@ -10,7 +10,7 @@ import argparse
 from collections.abc import Sequence
 from pathlib import Path
 
-from voot import validation as V
+from voot.bench.cli_types import seed_argument
 from voot.envs.pick_place_demo import DEMO_VIEW, DemoPickPlace
 
 
@@ -24,7 +24,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="voot-bench record-demo", description=main.__doc__)
     parser.add_argument("--out", default=".", help="output folder")
     parser.add_argument("--simulations", type=int, default=300)
-    parser.add_argument("--seed", type=V.seed_argument, default=0)
+    parser.add_argument("--seed", type=seed_argument, default=0)
     parser.add_argument("--planners", nargs="+", default=["voot", "pw_uct"])
     parser.add_argument(
         "--watch",

@@ -229,7 +229,7 @@ def rl_row_fields(spec: Any) -> dict[str, Any]:
 
 def run_rl_spec(spec: Any) -> dict[str, Any]:
     """The row of the RL spec (called by :func:`voot.bench.plan_sweep.run_plan_spec`)."""
-    from voot.bench.store import make_row
+    from voot.bench.store_format import make_row
     from voot.bench.sweep import exception_row
 
     start = time.perf_counter()

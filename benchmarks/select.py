@@ -29,7 +29,7 @@ import numpy as np
 
 from voot.bench.plan_sweep import PLAN_PLANNERS
 from voot.bench.problems import ALIASES, CHAINS, problem_label
-from voot.bench.store import Row
+from voot.bench.store_format import Row
 from voot.bench.sweep import PAPER_FUNCTIONS, PAPER_METHODS, instance_of, params_key
 
 #: (function, dim, budget, method); for plan rows (problem, dim or 0, simulations, planner)
@@ -39,13 +39,21 @@ CellKey = tuple[str, int, int, str]
 PLAN_PROBLEMS: tuple[str, ...] = (*ALIASES, *CHAINS)
 
 
+def planner_label(planner: str, variant: str | None = None) -> str:
+    """A plan row's planner as cells name it: ``voot``, or ``voot[variant]`` for a run of
+    an ablation variant (:mod:`voot.bench.ablation`)."""
+    return f"{planner}[{variant}]" if variant else planner
+
+
 def cell_of(row: Row) -> CellKey:
     """The cell of a row: ``(function, dim, budget, method)`` of a bbfo row, or
-    ``(problem label, dim or 0, simulations, planner)`` of a plan row."""
+    ``(problem label, dim or 0, simulations, planner)`` of a plan row (the planner with
+    its ablation variant, :func:`planner_label`)."""
     cfg = row["config"]
     if row.get("kind") == "plan":
         label = problem_label(str(cfg["problem"]), cfg.get("env_kwargs"))
-        return (label, int(cfg.get("dim") or 0), int(cfg["simulations"]), str(cfg["planner"]))
+        planner = planner_label(str(cfg["planner"]), cfg.get("variant"))
+        return (label, int(cfg.get("dim") or 0), int(cfg["simulations"]), planner)
     return (str(cfg["function"]), int(cfg["dim"]), int(cfg["budget"]), str(cfg["method"]))
 
 

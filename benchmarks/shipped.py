@@ -28,7 +28,9 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from voot.bench.store import CHECKSUM_KEY, HEADER_NAME, INDEX_NAME, ResultStore, StoreError
+from voot.bench.store import ResultStore
+from voot.bench.store_format import CHECKSUM_KEY, HEADER_NAME, StoreError
+from voot.bench.store_index import INDEX_NAME
 
 #: The manifest's file name, in the folder that holds the stores.
 MANIFEST_NAME = "stores.json"

@@ -120,7 +120,10 @@ if spec["split"]:
     if callable(getattr(u, "precheck", None)):  # v1: the kinematic pre-check, timed apart
         u.precheck = stopwatch(u.precheck, 4)
     for name in ("certainly_infeasible", "certainly_infeasible_values"):
-        if name in vars(type(u)):  # v0: the env's exact pre-screen (either entry), timed apart
+        # v0: the env's exact pre-screen (either entry), timed apart; defined by the env's
+        # class or a layer of it (the kitchen's: voot.envs.kitchen_screen), not the base's
+        owner = next((k for k in type(u).__mro__ if name in vars(k)), None)
+        if owner is not None and owner.__name__ != "ManipulationEnv":
             setattr(u, name, stopwatch(getattr(u, name), 5))
 options = domain_options(spec["env_id"], None, spec["planner"])
 wall, cpu = time.perf_counter(), time.process_time()

@@ -1,22 +1,7 @@
 """The result store: one JSON file per finished run, in a directory with a header.
 
-Every benchmark (the black-box sweep of ``voot-bench bbfo`` now, the tree-search sweeps
-of ``voot-bench plan`` later, local or on Ray) writes the same kind of *row*, one per run::
-
-    {
-      "schema": 1,
-      "run_id": "3f1c...",            # stable hash of kind + config (the seed is in config)
-      "kind": "bbfo",                 # "bbfo" | "plan" | ...
-      "config": {"function": "shekel", "dim": 20, "method": "voo",
-                 "params": {"omega": 0.001}, "budget": 5000, "seed": 7, ...},
-      "status": "ok",                 # or "failed"
-      "error": null,                  # "ValueError: ..." when failed
-      "wall_time": 2.61,              # seconds spent in the run
-      "best_so_far": [0.01, 0.01, ...],  # best value after every evaluation
-      "versions": {"voot": "0.1.0", "numpy": "2.4.0", "python": "3.11.9"},
-      "finished_at": "2025-01-01T12:00:00+00:00",
-      ...                             # optional extras (best_x, traceback, ...)
-    }
+Every benchmark (``voot-bench bbfo``, ``voot-bench plan``, local or on Ray) writes one
+*row* per run (its format: :mod:`voot.bench.store_format`) into a :class:`ResultStore`.
 
 Layout on disk (chosen over an append-only JSONL because a rename is atomic on every
 POSIX file system, so there is no recovery rule to get wrong)::
@@ -38,18 +23,18 @@ Guarantees:
   fixed since.
 * **Never clobber foreign data.** A directory that exists, is not empty and has no
   header, a header of another format or a newer schema, or a row file that does not
-  parse, raises :class:`StoreError` naming the file, before anything is written.
-  Nothing in this module ever deletes or rewrites a file it did not just create.
+  parse, raises :class:`~voot.bench.store_format.StoreError` naming the file, before
+  anything is written. Nothing in this module ever deletes or rewrites a file it did not
+  just create.
 
-* **Checksummed rows.** Every row file ends with a ``"checksum"`` key: ``"sha256:"`` and
-  the SHA-256 of the file's bytes as they would be without that key (the row's compact
-  JSON), verified on every parse of the file (:func:`row_bytes`, :func:`verify_row_bytes`).
-  A row changed in place, even to bytes of the same size with its mtime restored, is a
-  :class:`StoreError` naming the file. The index (below) does not re-read unchanged
-  files: it keys each one on its size, mtime, *ctime* and inode, and the kernel sets
-  ctime to "now" on every write and every ``utime``, so restoring the mtime does not
-  hide a change; a changed file is parsed and its checksum verified.
-  :meth:`ResultStore.verify` re-hashes every file regardless (a full audit).
+* **Checksummed rows.** Every row file ends with a ``"checksum"`` key, verified on every
+  parse of the file (:mod:`voot.bench.store_format`). A row changed in place, even to
+  bytes of the same size with its mtime restored, is a ``StoreError`` naming the file.
+  The index (:mod:`voot.bench.store_index`) does not re-read unchanged files: it keys
+  each one on its size, mtime, *ctime* and inode, and the kernel sets ctime to "now" on
+  every write and every ``utime``, so restoring the mtime does not hide a change; a
+  changed file is parsed and its checksum verified. :meth:`ResultStore.verify` re-hashes
+  every file regardless (a full audit).
 * **Old stores.** A store created before checksums (its header has no
   ``"row_checksum"``) still loads: its rows without a checksum are parsed and validated
   as before, and the rows written to it from now on carry one. In a store created with
@@ -57,307 +42,43 @@ Guarantees:
 
 Loading reads every row file (``json.loads`` on bytes; about 1 s per 100 MB of rows)
 once, then keeps an index (a cache of parsed rows; the per-step lists named in
-:data:`CURVE_KEYS` are held there as NumPy arrays); :func:`curves` turns rows into a
-NumPy array for plotting.
+:data:`~voot.bench.store_format.CURVE_KEYS` are held there as NumPy arrays);
+:func:`~voot.bench.store_format.curves` turns rows into a NumPy array for plotting.
+:func:`compact_store` copies a store into a compact one (:mod:`voot.bench.compact`).
 """
 
 from __future__ import annotations
 
 import datetime as _dt
-import functools
-import hashlib
-import importlib.metadata
-import io
 import json
-import math
 import os
-import platform
-import tempfile
-import time
-import traceback
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
-
-import numpy as np
-from numpy.typing import NDArray
 
 from voot.bench.compact import (
     COMPACT_KEY,
     INTERPOLATED_KEY,
-    SAMPLED_KEYS,
-    STEP_KEYS,
     CompactConfig,
-    check_compact,
     check_roundtrip,
     compact_row,
     expand_row,
 )
-
-#: Name written in the header; anything else is a foreign directory.
-FORMAT_NAME = "voot-results"
-#: Version of the header and row layout. Bump on incompatible changes.
-SCHEMA_VERSION = 1
-#: Header file name inside the store directory.
-HEADER_NAME = "voot-results.json"
-#: The row checksum of new stores (recorded in the header as ``row_checksum``).
-ROW_CHECKSUM = "sha256"
-#: Row key holding the checksum, always the last key of a row file.
-CHECKSUM_KEY = "checksum"
-_CHECKSUM_HEAD = b',"checksum":"sha256:'
-_CHECKSUM_TAIL = b'"}\n'
-_CHECKSUM_LEN = len(_CHECKSUM_HEAD) + 64 + len(_CHECKSUM_TAIL)
-#: Cache of parsed rows (derived data, rebuilt when missing or unreadable).
-INDEX_NAME = ".index-v2.npz"
-#: Files changed less than this long (ns) before the index scan are read again at the
-#: next load (see :meth:`ResultStore._read_index`): 2 s covers the coarsest file
-#: timestamps (FAT's 2 s; ext4 and tmpfs tick in milliseconds).
-RACY_NS = 2_000_000_000
-#: Folder with one ``<run_id>.json`` per finished run.
-RUNS_DIR = "runs"
-#: Keys every row must have.
-REQUIRED_KEYS = (
-    "schema",
-    "run_id",
-    "kind",
-    "config",
-    "status",
-    "wall_time",
-    "best_so_far",
-    "versions",
+from voot.bench.store_format import (
+    CHECKSUM_KEY,
+    FORMAT_NAME,
+    HEADER_NAME,
+    ROW_CHECKSUM,
+    RUNS_DIR,
+    SCHEMA_VERSION,
+    Row,
+    StoreError,
+    check_row,
+    row_bytes,
+    verify_row_bytes,
+    versions,
 )
-#: Allowed values of a row's ``status``.
-STATUSES = ("ok", "failed")
-#: Row keys holding one number per step (per evaluation or simulation). The index keeps
-#: them as float64 arrays; ``best_so_far`` is required, the others optional (``elapsed``:
-#: seconds after every simulation, ``cpu_elapsed`` the same in CPU time; ``calls_curve``:
-#: simulator calls so far; ``objects_left``: objects still to handle at the best
-#: leaf, ``null`` where unknown, which becomes NaN in arrays). A compact store
-#: (:mod:`voot.bench.compact`) stores them in a row's ``"compact"`` object instead.
-CURVE_KEYS = (*STEP_KEYS, *SAMPLED_KEYS)
-#: Curves of whole counts: read back as lists of ``int`` (the index holds float64).
-INTEGER_CURVE_KEYS = ("calls_curve",)
-
-Row = dict[str, Any]
-
-_EMPTY: NDArray[np.float64] = np.empty(0, dtype=np.float64)
-
-
-def _to_list(key: str, curve: NDArray[np.float64]) -> list[float | None]:
-    """A curve back as the list its row file holds (NaN -> None except in best_so_far)."""
-    if key in INTEGER_CURVE_KEYS and not np.isnan(curve).any():
-        return [int(v) for v in curve.tolist()]  # type: ignore[misc]
-    values: list[float | None] = curve.tolist()
-    if key != "best_so_far" and np.isnan(curve).any():
-        values = [None if v is not None and math.isnan(v) else v for v in values]
-    return values
-
-
-class StoreError(ValueError):
-    """A result store (or one of its files) is corrupt, foreign or incompatible."""
-
-
-def _canonical(obj: Any) -> str:
-    return json.dumps(obj, sort_keys=True, separators=(",", ":"), allow_nan=False)
-
-
-def make_run_id(kind: str, config: Mapping[str, Any]) -> str:
-    """Stable id of a run: the first 20 hex digits of SHA-256 of ``kind`` and ``config``.
-
-    ``config`` must be JSON-serialisable and include the seed. Keys are sorted, so the id
-    does not depend on dict order, Python's hash seed or the process.
-    """
-    return hashlib.sha256(_canonical({"kind": kind, "config": dict(config)}).encode()).hexdigest()[
-        :20
-    ]
-
-
-@functools.cache
-def versions() -> dict[str, str]:
-    """Versions recorded with every row: voot, numpy, python, and scipy and cma if installed.
-
-    Read from the package metadata, so recording them imports nothing heavy.
-    """
-    import voot
-
-    out = {"voot": voot.__version__, "numpy": np.__version__, "python": platform.python_version()}
-    for name in ("scipy", "cma"):
-        try:
-            out[name] = importlib.metadata.version(name)
-        except importlib.metadata.PackageNotFoundError:  # pragma: no cover - core dependencies
-            continue
-    return out
-
-
-def make_row(
-    kind: str,
-    config: Mapping[str, Any],
-    *,
-    status: str,
-    wall_time: float,
-    best_so_far: Sequence[float] | NDArray[np.float64],
-    error: str | None = None,
-    **extra: Any,
-) -> Row:
-    """Assemble a row with its run id, versions and finish time (see the module docstring)."""
-    if status not in STATUSES:
-        raise ValueError(f"status must be one of {STATUSES}, got {status!r}")
-    row: Row = {
-        "schema": SCHEMA_VERSION,
-        "run_id": make_run_id(kind, config),
-        "kind": kind,
-        "config": dict(config),
-        "status": status,
-        "error": error,
-        "wall_time": float(wall_time),
-        "best_so_far": [float(v) for v in np.asarray(best_so_far, dtype=np.float64)],
-        "versions": dict(versions()),
-        "finished_at": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-    }
-    row.update(extra)
-    return row
-
-
-def failed_row(
-    spec: Any,
-    error: str,
-    *,
-    wall_time: float = 0.0,
-    best_so_far: Sequence[float] = (),
-    **extra: Any,
-) -> Row:
-    """The row of a run that failed: status ``"failed"``, with what it had recorded."""
-    return make_row(
-        spec.kind,
-        spec.config(),
-        status="failed",
-        wall_time=wall_time,
-        best_so_far=list(best_so_far),
-        error=error,
-        **extra,
-    )
-
-
-def exception_row(
-    spec: Any, exc: Exception, start: float, best: Sequence[float], **extra: Any
-) -> Row:
-    """The row of a run that raised ``exc`` (called inside its ``except`` block)."""
-    return failed_row(
-        spec,
-        f"{type(exc).__name__}: {exc}",
-        wall_time=time.perf_counter() - start,
-        best_so_far=best,
-        traceback=traceback.format_exc(limit=20),
-        **extra,
-    )
-
-
-def row_bytes(row: Row) -> bytes:
-    """The bytes of ``row``'s file: its compact JSON with the checksum as the last key.
-
-    The checksum is ``sha256`` of the compact JSON without it (``{...}``), so a reader
-    verifies a file from its bytes alone, with no re-serialisation: strip the last key,
-    close the brace, hash (:func:`verify_row_bytes`). The file stays plain JSON.
-    """
-    body = {k: v for k, v in row.items() if k != CHECKSUM_KEY}
-    payload = json.dumps(body, separators=(",", ":")).encode()
-    digest = hashlib.sha256(payload).hexdigest().encode()
-    return payload[:-1] + _CHECKSUM_HEAD + digest + _CHECKSUM_TAIL
-
-
-def verify_row_bytes(data: bytes, source: str = "row", *, required: bool = True) -> bool:
-    """Check the checksum of a row file's bytes; True if it had one.
-
-    Raises :class:`StoreError` naming ``source`` if the checksum does not match the
-    bytes, or if there is none and ``required`` (a row of a checksummed store). A file
-    without a checksum (an older store's row) passes when not ``required``.
-    """
-    head = len(data) - _CHECKSUM_LEN
-    if head <= 0 or data[head : head + len(_CHECKSUM_HEAD)] != _CHECKSUM_HEAD:
-        if required:
-            raise StoreError(
-                f"{source}: result row without its checksum (rows of this store carry one);"
-                " it was changed or truncated: move or delete this file to rerun that run"
-            )
-        return False
-    if not data.endswith(_CHECKSUM_TAIL):
-        raise StoreError(f"{source}: result row with a malformed checksum")
-    stored = data[head + len(_CHECKSUM_HEAD) : len(data) - len(_CHECKSUM_TAIL)]
-    actual = hashlib.sha256(data[:head] + b"}").hexdigest().encode()
-    if stored != actual:
-        raise StoreError(
-            f"{source}: result row changed since it was written (checksum"
-            f" {stored.decode(errors='replace')[:12]}..., content {actual.decode()[:12]}...);"
-            " move or delete this file to rerun that run"
-        )
-    return True
-
-
-def check_row(row: Any, source: str = "row") -> Row:
-    """Return ``row`` if it has the row layout, else raise :class:`StoreError` naming ``source``."""
-    if not isinstance(row, dict):
-        raise StoreError(f"{source}: a row must be a JSON object, got {type(row).__name__}")
-    compact = COMPACT_KEY in row
-    missing = [k for k in REQUIRED_KEYS if k not in row and not (compact and k == "best_so_far")]
-    if missing:
-        raise StoreError(f"{source}: not a voot result row (missing keys {missing})")
-    if row["schema"] != SCHEMA_VERSION:
-        raise StoreError(
-            f"{source}: row schema {row['schema']!r}, this voot reads schema {SCHEMA_VERSION}"
-        )
-    if row["status"] not in STATUSES:
-        raise StoreError(f"{source}: status {row['status']!r} is not one of {STATUSES}")
-    if compact:
-        try:
-            check_compact(row[COMPACT_KEY])
-        except ValueError as exc:
-            raise StoreError(
-                f"{source}: corrupt compact result row ({exc}); move or delete this file to"
-                " rerun that run"
-            ) from None
-        if not isinstance(row["config"], dict):
-            raise StoreError(f"{source}: 'config' must be an object")
-        return row
-    if not isinstance(row["config"], dict) or not isinstance(row["best_so_far"], list):
-        raise StoreError(f"{source}: 'config' must be an object and 'best_so_far' a list")
-    return row
-
-
-def _current_umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
-_UMASK = _current_umask()
-
-
-def _write_atomic(path: Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` via a fsynced temporary file and :func:`os.replace`."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp makes 0600; rows are ordinary files
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    try:  # make the rename itself durable
-        dir_fd = os.open(path.parent, os.O_RDONLY)
-    except OSError:  # pragma: no cover - e.g. platforms without directory fds
-        return
-    try:
-        os.fsync(dir_fd)
-    except OSError:  # pragma: no cover
-        pass
-    finally:
-        os.close(dir_fd)
+from voot.bench.store_index import load_indexed, write_atomic
 
 
 class ResultStore:
@@ -425,7 +146,7 @@ class ResultStore:
         }
         if compact is not None:
             header[COMPACT_KEY] = compact.to_dict()
-        _write_atomic(self.header_path, (json.dumps(header, indent=1) + "\n").encode())
+        write_atomic(self.header_path, (json.dumps(header, indent=1) + "\n").encode())
 
     def _read_header(self) -> dict[str, Any]:
         try:
@@ -484,7 +205,7 @@ class ResultStore:
         path = self.row_path(str(row["run_id"]))
         if path.exists() and self._read_row(path)["status"] == "ok":
             return path
-        _write_atomic(path, row_bytes(row))
+        write_atomic(path, row_bytes(row))
         return path
 
     def _read_row(self, path: Path) -> Row:
@@ -533,7 +254,7 @@ class ResultStore:
     ) -> list[Row]:
         """All rows of ``kind`` (any if None) with ``status`` (any if None), in file order.
 
-        With ``arrays`` each curve (:data:`CURVE_KEYS`: ``best_so_far`` and, when present,
+        With ``arrays`` each curve (:data:`~voot.bench.store_format.CURVE_KEYS`: ``best_so_far`` and, when present,
         ``elapsed``, ``objects_left`` ...) is a read-only float64 array (no list copy).
         Compact rows come expanded to full length (:func:`~voot.bench.compact.expand_row`:
         step curves exact, cost curves interpolated and named in ``"interpolated"``), so
@@ -551,7 +272,6 @@ class ResultStore:
             rows = [expand_row(r, arrays=arrays) if COMPACT_KEY in r else r for r in rows]
         return rows
 
-    # ----- index: a cache of parsed rows -----------------------------------------------
     def verify(self) -> int:
         """Re-read every row file and verify its checksum and layout; the number of rows.
 
@@ -565,113 +285,9 @@ class ResultStore:
             n += 1
         return n
 
-    def _scan(self) -> list[tuple[str, tuple[int, int, int, int]]]:
-        """(file name, (size, mtime_ns, ctime_ns, inode)) of every row file, by name.
-
-        ctime is in the key because nobody but the kernel sets it: an in-place rewrite
-        whose mtime was put back with ``utime`` still changes it."""
-        if not self.runs_path.is_dir():
-            return []
-        out = []
-        with os.scandir(self.runs_path) as it:
-            for e in it:
-                if e.name.endswith(".json") and not e.name.startswith(".") and e.is_file():
-                    st = e.stat()
-                    out.append((e.name, (st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino)))
-        out.sort()
-        return out
-
-    def _read_index(self) -> dict[str, tuple[list[int], Row, dict[str, NDArray[np.float64]]]]:
-        """The index as ``name -> (stat, row without curves, {curve key: array})``; empty if
-        it is missing or unreadable (it is derived data and is then rebuilt).
-
-        Entries of files whose ctime lies within :data:`RACY_NS` of the scan that built
-        the index are left out, so that those files are read again: a rewrite right after
-        that scan may carry the very same ctime on a file system with coarse timestamps
-        (git's "racily clean" entries)."""
-        path = self.path / INDEX_NAME
-        try:
-            with np.load(path, allow_pickle=False) as data:
-                meta = json.loads(data["meta"].tobytes())
-                columns = {k: (data[f"offsets_{k}"], data[f"values_{k}"]) for k in CURVE_KEYS}
-                racy_from = int(data["scanned_ns"][0]) - RACY_NS
-            for offsets, values in columns.values():
-                if len(meta) + 1 != offsets.size or offsets[-1] != values.size:
-                    return {}
-                values.setflags(write=False)
-            out = {}
-            for i, m in enumerate(meta):
-                arrays = {}
-                for k in m["curves"]:
-                    offsets, values = columns[k]
-                    arrays[k] = values[offsets[i] : offsets[i + 1]]
-                if m["stat"][2] < racy_from:
-                    out[m["file"]] = (m["stat"], m["row"], arrays)
-            return out
-        except (OSError, ValueError, KeyError, TypeError):
-            return {}
-
-    def _write_index(
-        self,
-        entries: list[tuple[str, list[int], Row, dict[str, NDArray[np.float64]]]],
-        scanned_ns: int,
-    ) -> None:
-        meta = [
-            {"file": name, "stat": stat, "row": row, "curves": sorted(arrays)}
-            for name, stat, row, arrays in entries
-        ]
-        columns: dict[str, Any] = {}
-        for k in CURVE_KEYS:
-            parts = [arrays.get(k, _EMPTY) for *_, arrays in entries]
-            offsets = np.zeros(len(entries) + 1, dtype=np.int64)
-            np.cumsum([p.size for p in parts], out=offsets[1:])
-            columns[f"offsets_{k}"] = offsets
-            columns[f"values_{k}"] = np.concatenate(parts) if parts else _EMPTY
-        buf = io.BytesIO()
-        np.savez(
-            buf,
-            meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
-            scanned_ns=np.array([scanned_ns], dtype=np.int64),
-            **columns,
-        )
-        try:
-            _write_atomic(self.path / INDEX_NAME, buf.getvalue())
-        except OSError:  # e.g. a read-only copy of a store: loading still works
-            pass
-
     def _load_indexed(self, arrays: bool) -> list[Row]:
-        """Rows via the index (:data:`INDEX_NAME`): a cache of every parsed row keyed by its
-        file's (size, mtime, ctime, inode). Unchanged files come from the cache; new or
-        changed ones are checksum-verified, parsed and validated, and the index is rewritten
-        atomically (an index of an older voot, keyed without ctime, is rebuilt once). Row files
-        stay the source of truth: deleting the index only costs one slow load."""
-        index = self._read_index()
-        entries: list[tuple[str, list[int], Row, dict[str, NDArray[np.float64]]]] = []
-        changed = False
-        scanned_ns = time.time_ns()
-        for name, stat in self._scan():
-            cached = index.get(name)
-            if cached is not None and list(cached[0]) == list(stat):
-                entries.append((name, list(stat), cached[1], cached[2]))
-                continue
-            row = self._read_row(self.runs_path / name)
-            found = {}
-            for k in CURVE_KEYS:
-                if isinstance(row.get(k), list):
-                    curve = np.array(row.pop(k), dtype=np.float64)  # None -> NaN
-                    curve.setflags(write=False)
-                    found[k] = curve
-            entries.append((name, list(stat), row, found))
-            changed = True
-        if changed or len(entries) != len(index):
-            self._write_index(entries, scanned_ns)
-        out = []
-        for _, _, row, found in entries:
-            full = dict(row)
-            for k, curve in found.items():
-                full[k] = curve if arrays else _to_list(k, curve)
-            out.append(full)
-        return out
+        """Every row through the index (:func:`voot.bench.store_index.load_indexed`)."""
+        return load_indexed(self.path, self.runs_path, self._read_row, arrays)
 
     def get(self, run_id: str) -> Row | None:
         """The row of ``run_id``, or None."""
@@ -745,118 +361,3 @@ def compact_store(
         return sum(p.stat().st_size for p in store.row_files())
 
     return {"rows": rows, "copied": copied, "src_bytes": size(source), "dst_bytes": size(target)}
-
-
-def curves(rows: Iterable[Row]) -> NDArray[np.float64]:
-    """Stack the rows' best-so-far lists into an ``(n_rows, max_len)`` array.
-
-    Shorter curves (smaller budgets) are padded with NaN.
-    """
-    lists = [r["best_so_far"] for r in rows]
-    if not lists:
-        return np.empty((0, 0))
-    width = max(len(c) for c in lists)
-    if all(len(c) == width for c in lists):
-        return np.array(lists, dtype=np.float64).reshape(len(lists), width)
-    out = np.full((len(lists), width), np.nan)
-    for i, c in enumerate(lists):
-        out[i, : len(c)] = c
-    return out
-
-
-def synthetic_plan_row(i: int, length: int, rng: np.random.Generator) -> Row:
-    """A plan-like row for the store benchmarks: step curves (``best_so_far``,
-    ``objects_left``) that change at a few dozen simulations, and cost curves
-    (``elapsed``, ``cpu_elapsed``, ``calls_curve``) that rise at every one."""
-    jumps = rng.random(length) < min(1.0, 40.0 / length)
-    jumps[0] = True
-    best = np.cumsum(np.where(jumps, rng.random(length), 0.0)) - 2.0
-    left = np.maximum(20 - np.cumsum(jumps), 0).astype(np.float64)
-    step = rng.uniform(0.002, 0.02, length)
-    elapsed = np.round(np.cumsum(step), 6)
-    config = {"problem": "conveyor_v1", "planner": "voot", "simulations": length, "seed": i}
-    return make_row(
-        "plan",
-        config,
-        status="ok",
-        wall_time=float(elapsed[-1]),
-        best_so_far=best,
-        objects_left=left.tolist(),
-        elapsed=elapsed.tolist(),
-        cpu_elapsed=np.round(0.97 * elapsed, 6).tolist(),
-        calls_curve=np.cumsum(rng.integers(1, 60, length)).tolist(),
-    )
-
-
-def time_load(
-    n_rows: int = 1000,
-    length: int = 1000,
-    repeats: int = 3,
-    path: str | None = None,
-    *,
-    plan: bool = False,
-    compact: CompactConfig | None = None,
-) -> dict[str, float]:
-    """Seconds to :meth:`ResultStore.load` a store of ``n_rows`` rows, cold and warm.
-
-    Builds the store in a temporary directory (or in ``path``, which must not exist),
-    each row a ``bbfo``-like run with a ``length``-step ``best_so_far`` curve. *Cold* is
-    the first load (every row file parsed, the index written), *warm* the best of
-    ``repeats`` later loads (through the index; ``warm_arrays`` the same with
-    ``arrays=True``, as ``voot-bench plot`` reads), of a store at rest (rows written
-    within :data:`RACY_NS` of a load are re-read, so the benchmark waits that long
-    after writing, outside the timings). Also returns ``write`` (seconds to
-    write all rows), ``verify`` (best :meth:`ResultStore.verify`, the full audit) and
-    ``mb`` (megabytes of row files).
-
-    With ``plan`` the rows are plan-like (:func:`synthetic_plan_row`: five curves of
-    ``length`` entries); with ``compact`` the store is a compact one of that config (its
-    loads include expanding every row to full length).
-    """
-    import shutil
-
-    if n_rows < 1 or length < 1 or repeats < 1:
-        raise ValueError("n_rows, length and repeats must be >= 1")
-    root = Path(tempfile.mkdtemp(prefix="voot-store-bench-")) if path is None else Path(path)
-    try:
-        store = ResultStore(root / "store", compact=compact)
-        rng = np.random.default_rng(0)
-        t0 = time.perf_counter()
-        for i in range(n_rows):
-            if plan:
-                store.write(synthetic_plan_row(i, length, rng))
-                continue
-            curve = np.maximum.accumulate(rng.standard_normal(length))
-            config = {"function": "shekel", "dim": 20, "method": "voo", "seed": i}
-            store.write(make_row("bbfo", config, status="ok", wall_time=1.0, best_so_far=curve))
-        written = time.perf_counter() - t0
-        size = sum(p.stat().st_size for p in store.row_files())
-        time.sleep(RACY_NS / 1e9)  # a store at rest: no row is "racily" new at its first load
-        t0 = time.perf_counter()
-        rows = ResultStore(root / "store", create=False).load()
-        cold = time.perf_counter() - t0
-        assert len(rows) == n_rows
-        warm = warm_arrays = audit = math.inf
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            ResultStore(root / "store", create=False).load()
-            warm = min(warm, time.perf_counter() - t0)
-            t0 = time.perf_counter()
-            ResultStore(root / "store", create=False).load(arrays=True)
-            warm_arrays = min(warm_arrays, time.perf_counter() - t0)
-        verify = getattr(store, "verify", None)
-        for _ in range(repeats if callable(verify) else 0):
-            t0 = time.perf_counter()
-            verify()  # type: ignore[misc]
-            audit = min(audit, time.perf_counter() - t0)
-        return {
-            "write": written,
-            "cold": cold,
-            "warm": warm,
-            "warm_arrays": warm_arrays,
-            "verify": audit,
-            "mb": size / 1e6,
-        }
-    finally:
-        if path is None:
-            shutil.rmtree(root, ignore_errors=True)

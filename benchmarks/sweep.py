@@ -57,8 +57,8 @@ from voot.bench.backends import (  # re-exported: voot.bench.sweep.make_backend 
     SerialBackend,
     make_backend,  # noqa: F401
 )
-from voot.bench.store import (  # failed_row, exception_row: re-exported
-    ResultStore,
+from voot.bench.store import ResultStore
+from voot.bench.store_format import (  # failed_row, exception_row: re-exported
     Row,
     exception_row,
     failed_row,  # noqa: F401 - re-exported (voot.bench.sweep.failed_row)

@@ -31,7 +31,7 @@ from voot.bench.select import (
     select_hyperparameters,
     selected_rows,
 )
-from voot.bench.store import Row
+from voot.bench.store_format import Row
 from voot.bench.sweep import params_key
 
 

@@ -99,6 +99,23 @@ class CollisionChecker:
                     mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
                 )
 
+    def __getstate__(self) -> dict[str, object]:
+        """The checker without its two buffer views, for :mod:`pickle` and :mod:`copy`.
+
+        The views alias the buffers of :attr:`model` and :attr:`data`; copied, they would
+        be arrays of their own, so a copy's checks would write the configuration where
+        MuJoCo never reads it (and report collisions of a stale one). They are fetched
+        again from the copy's model and data (:meth:`__setstate__`).
+        """
+        state = self.__dict__.copy()
+        del state["_affinity_view"], state["_qpos_view"]
+        return state
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        self.__dict__.update(state)
+        self._affinity_view = self.model.geom_conaffinity
+        self._qpos_view = self.data.qpos
+
     def check(
         self,
         qpos: FloatArray,

@@ -40,10 +40,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.action_units import denormalize
 from voot.envs.arm_ik import IKConfig
-from voot.envs.base_planner import BasePlannerConfig
+from voot.envs.base_planner import BasePath, BasePlannerConfig
+from voot.envs.env_state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.grasp import side_grasp
-from voot.envs.planar import BasePath
+from voot.envs.presets import env_config, preset_config
+from voot.envs.rendering import add_marker_box
 from voot.envs.robot import (
     BASE_HALF,
     ROBOT_RADIUS,
@@ -56,16 +59,7 @@ from voot.envs.robot import (
 )
 from voot.envs.rotations import rot_z
 from voot.envs.scene import object_footprint, rect_inside, set_object_pose
-from voot.envs.task_env import (
-    ManipulationEnv,
-    StepTiming,
-    add_marker_box,
-    denormalize,
-    env_config,
-    pose_tuple,
-    preset_config,
-    replace,
-)
+from voot.envs.task_env import ManipulationEnv
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
@@ -166,7 +160,7 @@ class ConveyorConfig:
 
 
 #: Named versions of the domain: :class:`ConveyorConfig` overrides (see
-#: :data:`voot.envs.kitchen.KITCHEN_PRESETS`).
+#: :data:`voot.envs.kitchen_config.KITCHEN_PRESETS`).
 CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
     {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
 )
@@ -309,6 +303,19 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
 
     def _initial_task(self) -> ConveyorTask:
         return ConveyorTask(steps=0, placed=0, done=False)
+
+    def _task_error(self, task: ConveyorTask) -> str | None:
+        """What no episode of this conveyor reaches in ``task`` (see ``set_state``), or None:
+        the counts within their bounds, and done exactly when every box is placed."""
+        if not is_count(task.steps, 0, self.config.horizon):
+            horizon = self.config.horizon
+            return f"steps must be an int in 0..{horizon} (the horizon), got {task.steps!r}"
+        if not is_count(task.placed, 0, self.n):
+            return f"placed must be an int in 0..{self.n} (the boxes), got {task.placed!r}"
+        if type(task.done) is not bool or task.done != (task.placed == self.n):
+            full = task.placed == self.n
+            return f"done must be {full} when placed is {task.placed}, got {task.done!r}"
+        return None
 
     def _observation(self) -> FloatArray:
         t = self.task

@@ -54,10 +54,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.action_units import normalize
 from voot.envs.conveyor import OBJECTS_PER_ACTION, ConveyorPackingEnv
+from voot.envs.env_state import EnvState
 from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.metrics import pick_distance, place_distance, to_action_units
-from voot.envs.task_env import EnvState, ManipulationEnv, normalize
+from voot.envs.task_env import ManipulationEnv
 from voot.optim.base import Bounds
 from voot.tree.problem import ActionDistance, StepResult
 

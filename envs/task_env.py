@@ -1,15 +1,16 @@
-"""What the two benchmark environments share: scene, robot, checks, actions, snapshots.
+"""The shared env base: scene, robot, checks, action validation, snapshots, rendering.
 
 :class:`ManipulationEnv` is a :class:`gymnasium.Env` over one MuJoCo scene with the
 mobile manipulator. It is a *kinematic task planner*: actions teleport the robot and
 the objects to feasible configurations (an object being carried moves rigidly with the
 gripper); MuJoCo is used for its kinematics, collision detection and rendering, never to
-integrate dynamics (no ``mj_step``).
+integrate dynamics (no ``mj_step``). The kitchen (:mod:`voot.envs.kitchen`) and the
+conveyor (:mod:`voot.envs.conveyor`) subclass it with their task.
 
 Actions are vectors in normalised units ``[-1, 1]^d`` mapped affinely to the paper's
-parameter ranges (:func:`denormalize`). Out-of-range entries are clipped to ``[-1, 1]``
-(``info["action_clipped"]`` says so); a NaN or infinite entry, or a wrong shape, raises
-:class:`ValueError`.
+parameter ranges (:func:`voot.envs.action_units.denormalize`). Out-of-range entries are
+clipped to ``[-1, 1]`` (``info["action_clipped"]`` says so); a NaN or infinite entry, or
+a wrong shape, raises :class:`ValueError`.
 
 Every step's ``info`` carries the poses a recording draws (:mod:`voot.record.samples`):
 ``base_pose``, the robot base ``(x, y, theta)`` of the action, and ``placement``, the
@@ -17,10 +18,10 @@ placed object's ``(x, y, theta)`` (None for a pick). They are filled in for infe
 actions too, since both follow from the state and the action alone.
 
 Snapshots (:meth:`ManipulationEnv.get_state` / :meth:`~ManipulationEnv.set_state`) are
-immutable :class:`EnvState` values holding the physics (``mujoco.mj_getState`` with the
-``mjSTATE_INTEGRATION`` signature, recorded in the snapshot), the task's progress (an
-immutable dataclass of the subclass, including the held object and its grasp) and the
-state of the env's random generator. Restoring a snapshot and applying the same action
+immutable :class:`~voot.envs.env_state.EnvState` values holding the physics
+(``mujoco.mj_getState`` with the ``mjSTATE_INTEGRATION`` signature, recorded in the
+snapshot), the task's progress (an immutable dataclass of the subclass, including the held
+object and its grasp) and the state of the env's random generator. Restoring a snapshot and applying the same action
 gives bit-identical observation, reward and info, also in another process: every check
 (IK, collision, base planning) is a deterministic function of the state and the action.
 No step draws from the env's generator, so consecutive snapshots share one copy of its
@@ -30,29 +31,30 @@ state (a plain dict that nobody may mutate) instead of deep-copying it every tim
 terminated, truncated and info, bit-identical to :meth:`~ManipulationEnv.step`'s. A
 planner's feasibility checks (:class:`voot.envs.planning.EnvProblem`) never read the
 observation, and building it (every object's pose) cost about a tenth of a check.
+
+What the class is made of lives beside it, one concept a module: the snapshot and
+task-record types with their checks (:mod:`voot.envs.env_state`), the action units
+(:mod:`voot.envs.action_units`), the named versions of a config (:mod:`voot.envs.presets`)
+and the rendering helpers (:mod:`voot.envs.rendering`).
 """
 
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
-import os
-import sys
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
-from typing import Any, ClassVar, Generic, TypeVar
+from typing import Any, ClassVar, Generic
 
 import gymnasium as gym
 import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from voot import validation as V
 from voot.envs.arm_ik import ArmIK, IKConfig
-from voot.envs.base_planner import BasePlanner, BasePlannerConfig
+from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.collision import CollisionChecker
-from voot.envs.planar import Box2D
+from voot.envs.env_state import EnvState, StepTiming, TaskT
+from voot.envs.rendering import CAMERAS, RENDER_MODES, ensure_headless_gl
 from voot.envs.robot import TUCK, Robot
 from voot.envs.scene import (
     load_model,
@@ -64,237 +66,6 @@ from voot.envs.scene import (
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
-
-#: Cameras every scene defines, for ``render_camera``.
-CAMERAS = ("perspective", "top_down")
-#: Render modes.
-RENDER_MODES = ("rgb_array",)
-
-
-def ensure_headless_gl() -> None:
-    """Use EGL for off-screen rendering on a Linux machine without a display.
-
-    MuJoCo picks its OpenGL backend from ``MUJOCO_GL`` when it is first imported
-    (``voot.envs`` sets ``MUJOCO_GL=egl`` if it is imported first). If MuJoCo was imported
-    earlier with the default GLFW backend and there is no display, GLFW cannot create a
-    context; this switches the renderer's context class to EGL instead.
-    """
-    if not sys.platform.startswith("linux") or os.environ.get("DISPLAY"):
-        return
-    from mujoco.rendering.classic import gl_context
-
-    if getattr(gl_context, "_MUJOCO_GL", "") in ("egl", "osmesa"):
-        return
-    from mujoco.egl import GLContext
-
-    gl_context.GLContext = GLContext  # type: ignore[attr-defined]
-
-
-_PLAIN_DATACLASSES: dict[type, tuple[str, ...] | None] = {}
-
-
-def replace(obj: Any, /, **changes: Any) -> Any:
-    """:func:`dataclasses.replace`, minus its generic cost for plain dataclasses.
-
-    A *plain* dataclass (every field an ``__init__`` argument, no ``__post_init__``, no
-    slots, such as the task-progress records and :class:`StepTiming`) is copied field
-    by field with the changes applied, which is what ``dataclasses.replace`` does through
-    ``__init__``; anything else, or an unknown field name, goes to
-    ``dataclasses.replace`` itself. The envs replace their task record at every step.
-    """
-    cls = type(obj)
-    names = _PLAIN_DATACLASSES.get(cls, ())
-    if names == ():
-        names = _plain_fields(cls)
-        _PLAIN_DATACLASSES[cls] = names
-    state = obj.__dict__
-    if names is None or len(state) != len(names) or not changes.keys() <= state.keys():
-        return dataclasses.replace(obj, **changes)
-    new = object.__new__(cls)
-    new.__dict__.update(state)  # exactly the fields (as many, every change one of them)
-    new.__dict__.update(changes)
-    return new
-
-
-def _plain_fields(cls: type) -> tuple[str, ...] | None:
-    """The field names of a plain dataclass (see :func:`replace`), or None."""
-    if not dataclasses.is_dataclass(cls) or hasattr(cls, "__post_init__"):
-        return None
-    if "__slots__" in cls.__dict__:
-        return None
-    fields = dataclasses.fields(cls)
-    if any(not f.init for f in fields) or len(fields) != len(cls.__dataclass_fields__):
-        return None
-    return tuple(f.name for f in fields)
-
-
-def denormalize(a: FloatArray, ranges: Sequence[tuple[float, float]]) -> FloatArray:
-    """Map ``a`` in ``[-1, 1]^d`` to the box ``ranges`` (``d`` pairs ``(low, high)``)."""
-    lo, width = _range_arrays(ranges)
-    out: FloatArray = lo + 0.5 * (a + 1.0) * width
-    return out
-
-
-#: ``(low, high - low)`` arrays of the ranges :func:`denormalize` has seen.
-_RANGE_ARRAYS: dict[tuple[tuple[float, float], ...], tuple[FloatArray, FloatArray]] = {}
-
-
-def _range_arrays(ranges: Sequence[tuple[float, float]]) -> tuple[FloatArray, FloatArray]:
-    """The read-only ``low`` and ``high - low`` arrays of ``ranges`` (built once per ranges)."""
-    try:
-        hit = _RANGE_ARRAYS.get(ranges)  # type: ignore[call-overload]
-    except TypeError:  # not hashable (lists)
-        hit = None
-    if hit is None:
-        key = tuple((r[0], r[1]) for r in ranges)
-        lo = np.array([r[0] for r in key], dtype=np.float64)
-        hi = np.array([r[1] for r in key], dtype=np.float64)
-        width = hi - lo
-        lo.setflags(write=False)
-        width.setflags(write=False)
-        if len(_RANGE_ARRAYS) >= 64:
-            _RANGE_ARRAYS.clear()
-        hit = _RANGE_ARRAYS[key] = (lo, width)
-    return hit
-
-
-def denormalize_floats(a: Sequence[float], ranges: Sequence[tuple[float, float]]) -> list[float]:
-    """:func:`denormalize` on Python floats: the same numbers, without the arrays.
-
-    Each entry is ``low + 0.5 * (a + 1.0) * (high - low)``, the IEEE operations numpy
-    applies elementwise, in its order; for the envs' pre-screens, which read the
-    parameters one by one.
-    """
-    lo, width = _range_lists(ranges)
-    return [lo_i + 0.5 * (a_i + 1.0) * w_i for lo_i, a_i, w_i in zip(lo, a, width, strict=True)]
-
-
-#: ``(low, high - low)`` lists of the ranges :func:`denormalize_floats` has seen.
-_RANGE_LISTS: dict[Any, tuple[list[float], list[float]]] = {}
-
-
-def _range_lists(ranges: Sequence[tuple[float, float]]) -> tuple[list[float], list[float]]:
-    """:func:`_range_arrays` as lists of Python floats (the same numbers)."""
-    try:
-        hit = _RANGE_LISTS.get(ranges)
-    except TypeError:  # not hashable (lists)
-        lo, width = _range_arrays(ranges)
-        return lo.tolist(), width.tolist()
-    if hit is None:
-        lo, width = _range_arrays(ranges)
-        hit = (lo.tolist(), width.tolist())
-        if len(_RANGE_LISTS) >= 64:
-            _RANGE_LISTS.clear()
-        _RANGE_LISTS[ranges] = hit
-    return hit
-
-
-def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray:
-    """Inverse of :func:`denormalize`: parameters in the paper's units to ``[-1, 1]^d``."""
-    lo = np.array([r[0] for r in ranges], dtype=np.float64)
-    hi = np.array([r[1] for r in ranges], dtype=np.float64)
-    out: FloatArray = 2.0 * (np.asarray(x, dtype=np.float64) - lo) / (hi - lo) - 1.0
-    return out
-
-
-_F64 = np.dtype(np.float64)
-
-
-def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
-    """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
-
-    Tuples of floats are immutable, compare exactly and pickle small, which suits the
-    step infos a tree search keeps for each of its nodes.
-    """
-    if type(pose) is np.ndarray and pose.dtype is _F64 and pose.shape == (3,):
-        x, y, theta = pose.tolist()
-        return x, y, theta
-    x, y, theta = (float(v) for v in np.asarray(pose, dtype=np.float64).reshape(3))
-    return x, y, theta
-
-
-def preset_config(
-    config_class: Any, presets: Mapping[str, Mapping[str, Any]], preset: str, **overrides: Any
-) -> Any:
-    """``config_class`` at a named preset (a domain version), some fields overridden."""
-    if preset not in presets:
-        raise ValueError(f"unknown preset {preset!r}; valid presets are: {', '.join(presets)}")
-    V.config_options(config_class, overrides)
-    return config_class(**{**presets[preset], **overrides})
-
-
-def env_config(
-    config_class: Any,
-    presets: Mapping[str, Mapping[str, Any]],
-    config: Any,
-    preset: str,
-    options: Mapping[str, Any],
-) -> Any:
-    """An env constructor's config: ``config`` (default: the ``preset``'s), ``options`` applied.
-
-    Raises ValueError for a config of the wrong class, an unknown preset or option.
-    """
-    if config is None:
-        config = preset_config(config_class, presets, preset)
-    if not isinstance(config, config_class):
-        raise ValueError(f"config must be a {config_class.__name__}, got {type(config).__name__}")
-    if options:
-        V.config_options(config_class, options)
-        config = replace(config, **options)
-    return config
-
-
-TaskT = TypeVar("TaskT")
-
-
-@dataclass(frozen=True, eq=False)
-class EnvState(Generic[TaskT]):
-    """An immutable snapshot of a :class:`ManipulationEnv`.
-
-    Attributes:
-        physics: The ``mj_getState`` vector (read-only float64 array).
-        signature: Its ``mjtState`` signature (``mjSTATE_INTEGRATION``).
-        task: The task's progress (an immutable dataclass of the environment).
-        rng_state: The env's ``np_random`` bit-generator state.
-    """
-
-    physics: FloatArray
-    signature: int
-    task: TaskT
-    rng_state: Mapping[str, Any]
-
-    def __eq__(self, other: object) -> bool:
-        return (
-            isinstance(other, EnvState)
-            and self.signature == other.signature
-            and np.array_equal(self.physics, other.physics)
-            and self.task == other.task
-            and self.rng_state == other.rng_state
-        )
-
-    __hash__ = None  # type: ignore[assignment]
-
-    def with_task(self, task: TaskT) -> EnvState[TaskT]:
-        """This snapshot with another task record, sharing the physics and generator state.
-
-        What an action that changed only the task progress leads to (an infeasible one);
-        built without the dataclass ``__init__`` (the other fields are this snapshot's).
-        """
-        out: EnvState[TaskT] = object.__new__(EnvState)
-        out.__dict__.update(
-            physics=self.physics, signature=self.signature, task=task, rng_state=self.rng_state
-        )
-        return out
-
-
-@dataclass(frozen=True)
-class StepTiming:
-    """Wall-clock seconds spent in the last step's checks (for :mod:`voot.bench.env_speed`)."""
-
-    ik: float = 0.0
-    collision: float = 0.0
-    planning: float = 0.0
-    total: float = 0.0
 
 
 class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
@@ -369,10 +140,28 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         # the generator state of the last snapshot, shared by the snapshots after it while
         # it does not change (see _rng_snapshot)
         self._rng_shared: Mapping[str, Any] | None = None
+        # task records set_state has found possible, by id (records are immutable, and a
+        # search restores each snapshot many times): _task_error runs once per record
+        self._checked_tasks: dict[int, Any] = {}
         self.last_timing = StepTiming()
         self.task: TaskT = self._initial_task()
         #: The class of this env's task record: what a snapshot's ``task`` must be.
         self._task_type: type = type(self.task)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The env for :mod:`pickle` and :func:`copy.deepcopy`: a copy steps as the env.
+
+        From the same snapshot, a copy (in this process or unpickled in another) gives
+        bit-identical observations, rewards and infos. Left out: the renderer (an OpenGL
+        context, which neither pickles nor copies; the copy opens its own when it first
+        renders) and the memo of checked task records (it only saves time). The
+        collision checker re-aliases its buffer views itself
+        (:meth:`voot.envs.collision.CollisionChecker.__getstate__`).
+        """
+        state = self.__dict__.copy()
+        state["_renderer"] = None
+        state["_checked_tasks"] = {}
+        return state
 
     # ----- to implement --------------------------------------------------------------------
     def _initial_task(self) -> TaskT:
@@ -386,6 +175,17 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
     def _info_reset(self) -> dict[str, Any]:
         raise NotImplementedError
+
+    def _task_error(self, task: TaskT) -> str | None:
+        """What makes ``task`` (a record of this env's class) impossible here, or None.
+
+        :meth:`set_state` asks before it changes anything: a record no episode of this
+        env can reach (an unknown operator, an object index out of range, a count past
+        its bounds) would otherwise fail deep inside the next step, or index the wrong
+        object silently (Python takes ``objects[-3]``). Subclasses check every field a
+        step or an observation reads; the base class accepts any record.
+        """
+        return None
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (planner's view)."""
@@ -559,12 +359,14 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         The whole snapshot is checked before anything is applied: an :class:`EnvState`,
         physics of this env's signature and size, all finite (a NaN would otherwise
         surface deep in the base planner, or as a NaN observation), a task record of this
-        env's class (not None, not the other environment's), and a generator state that
-        this env's bit generator takes. The generator is set first, since only numpy can
-        refuse a state (it reads a whole state before it sets one); the physics and the
-        task, already checked, follow and cannot fail. A bad snapshot is a ValueError
-        naming the field and leaves the env as it was. The checks cost about two
-        microseconds (the search restores a snapshot at every new action).
+        env's class (not None, not the other environment's) whose contents this env can
+        reach (:meth:`_task_error`: a known operator, object indices in range; checked
+        once per record, which is immutable), and a generator state that this env's bit
+        generator takes. The generator is set first, since only numpy can refuse a state
+        (it reads a whole state before it sets one); the physics and the task, already
+        checked, follow and cannot fail. A bad snapshot is a ValueError naming the field
+        and leaves the env as it was. The checks cost about two microseconds (the search
+        restores a snapshot at every new action).
         """
         if not isinstance(state, EnvState):
             raise ValueError(
@@ -594,6 +396,18 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
                 f"state.task must be a {self._task_type.__name__} (this environment's task"
                 f" record), got {type(state.task).__name__}"
             )
+        task = state.task
+        checked = self._checked_tasks
+        if checked.get(id(task)) is not task:
+            problem = self._task_error(task)
+            if problem is not None:
+                raise ValueError(
+                    f"state.task is not a {self._task_type.__name__} this environment can"
+                    f" reach: {problem}; the env is unchanged"
+                )
+            if len(checked) >= 4096:
+                checked.clear()
+            checked[id(task)] = task  # held, so that its id is not reused while it is here
         bg = self.np_random.bit_generator
         shared = isinstance(bg, np.random.PCG64 | np.random.PCG64DXSM)
         try:
@@ -607,7 +421,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if shared:
             self._rng_shared = state.rng_state
         mujoco.mj_setState(self.model, self.data, physics, self.STATE_SIGNATURE)
-        self.task = state.task
+        self.task = task
 
     # ----- gymnasium API -------------------------------------------------------------------
     def reset(
@@ -656,44 +470,3 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None
-
-
-def add_marker_box(
-    scene: mujoco.MjvScene,
-    center: ArrayLike,
-    half: ArrayLike,
-    yaw: float,
-    rgba: ArrayLike,
-) -> None:
-    """Append a flat, visual-only box to a render scene (if it has room)."""
-    if scene.ngeom >= scene.maxgeom:
-        return
-    c, s = math.cos(yaw), math.sin(yaw)
-    mat = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).reshape(-1)
-    mujoco.mjv_initGeom(
-        scene.geoms[scene.ngeom],
-        int(mujoco.mjtGeom.mjGEOM_BOX),
-        np.asarray(half, dtype=np.float64),
-        np.asarray(center, dtype=np.float64),
-        mat,
-        np.asarray(rgba, dtype=np.float32),
-    )
-    scene.ngeom += 1
-
-
-def add_marker_segment(
-    scene: mujoco.MjvScene, a: ArrayLike, b: ArrayLike, width: float, rgba: ArrayLike
-) -> None:
-    """Append a flat strip from ``a`` to ``b`` (``(x, y, z)`` points) to a render scene."""
-    pa, pb = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
-    d = pb - pa
-    length = float(np.hypot(d[0], d[1]))
-    if length < 1e-9:
-        return
-    add_marker_box(
-        scene,
-        0.5 * (pa + pb),
-        (0.5 * length, 0.5 * width, 0.002),
-        math.atan2(d[1], d[0]),
-        rgba,
-    )

@@ -17,8 +17,8 @@ from voot.bench.claims import (
     evaluate,
     verdict,
 )
-from voot.bench.plan_plot import plan_data
-from voot.bench.store import Row, make_row
+from voot.bench.plan_runs import plan_data
+from voot.bench.store_format import Row, make_row
 
 SIMS = 3000
 CONVEYOR = "voot/ConveyorPacking-v1"

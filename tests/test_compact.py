@@ -21,7 +21,8 @@ from voot.bench.compact import (
     is_compact,
     kept_indices,
 )
-from voot.bench.store import make_row, synthetic_plan_row
+from voot.bench.store_format import make_row
+from voot.bench.store_speed import synthetic_plan_row
 
 
 def plan_row(n: int = 3000, seed: int = 0) -> dict:

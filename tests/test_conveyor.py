@@ -12,9 +12,9 @@ from gymnasium.utils.env_checker import check_env, data_equivalence
 from gymnasium.utils.env_match import check_environments_match
 
 import voot  # noqa: F401  (registers the ids)
+from voot.envs.action_units import normalize
 from voot.envs.conveyor import ConveyorConfig, ConveyorPackingEnv
 from voot.envs.scripted import CONVEYOR_SOLUTION, conveyor_actions
-from voot.envs.task_env import normalize
 
 DOOR = 1.62  # the first room's door (models/generate_scenes.py)
 

@@ -16,7 +16,7 @@ from voot.bench.estimate import (
     stored_cost,
 )
 from voot.bench.plan_sweep import build_plan_specs
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 
 
 def stored(spec: Any, search_time: float, simulations: int | None = None) -> Row:

@@ -2,7 +2,9 @@
 
 The hashes are the committed ``tools/behaviour_hashes.json`` (recomputed by
 ``python tools/behaviour_hashes.py record``); this test recomputes the fast ones: black-box
-runs of VOO, DOO and CMA-ES, and tree searches on the Shekel chain and on both kitchens.
+runs of VOO and DOO, and tree searches on the Shekel chain and on both kitchens; and
+CMA-ES's curve (``tools/behaviour_curves.json``) within a relative tolerance, since its last
+bits depend on the CPU's BLAS kernel.
 """
 
 from __future__ import annotations
@@ -32,3 +34,20 @@ def test_optimiser_and_tree_search_fingerprints(hashes: object) -> None:
     assert got.keys() <= pinned.keys()
     changed = {k: (pinned[k], v) for k, v in got.items() if pinned[k] != v}
     assert not changed, f"behaviour changed (pinned, now): {changed}"
+
+
+def test_cmaes_curve_within_the_blas_tolerance(hashes: object) -> None:
+    pinned = json.loads((ROOT / "tools" / "behaviour_curves.json").read_text())["bbfo/cmaes"]
+    got = hashes.cmaes_curve()  # type: ignore[attr-defined]
+    moved = hashes.cmaes_curve_changes(pinned, got)  # type: ignore[attr-defined]
+    assert not moved, f"CMA-ES's curve moved at evaluations {moved[:5]}"
+
+
+def test_the_cmaes_tolerance_catches_a_real_change(hashes: object) -> None:
+    pinned = json.loads((ROOT / "tools" / "behaviour_curves.json").read_text())["bbfo/cmaes"]
+    nudged = [v * (1 + 1e-12) for v in pinned]  # a BLAS kernel's size of difference
+    assert hashes.cmaes_curve_changes(pinned, nudged) == []  # type: ignore[attr-defined]
+    changed = list(pinned)
+    changed[100] *= 1 + 1e-6
+    assert hashes.cmaes_curve_changes(pinned, changed) == [100]  # type: ignore[attr-defined]
+    assert hashes.cmaes_curve_changes(pinned, pinned[:-1])  # type: ignore[attr-defined]

@@ -1,8 +1,11 @@
-"""voot/KitchenClearing-v0: task structure, scripted solution, rewards, snapshots, API checks."""
+"""voot/KitchenClearing-v0 (voot.envs.kitchen): the env's step, rewards, snapshots, API checks.
+
+The layers it is built of have their own test modules (test_kitchen_config, _task,
+_path, _poses, _screen, _checks); test_kitchen_v1 covers the v1 preset's options.
+"""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import pickle
 import subprocess
@@ -15,23 +18,17 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env, data_equivalence
 from gymnasium.utils.env_match import check_environments_match
+from kitchen_fixtures import place_action
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig
 from voot.envs.robot import compose2d, inverse2d
 from voot.envs.scripted import kitchen_actions
-from voot.envs.task_env import denormalize, normalize
 
 
 @pytest.fixture(scope="module")
 def env() -> KitchenClearingEnv:
     return KitchenClearingEnv()
-
-
-def _place_action(env: KitchenClearingEnv, x: float, y: float, theta: float) -> np.ndarray:
-    a = np.zeros(6)
-    a[:3] = normalize([x, y, theta], env.config.place_ranges)
-    return a
 
 
 def test_initial_task(env: KitchenClearingEnv) -> None:
@@ -116,7 +113,7 @@ def test_infeasible_infos_carry_the_poses(env: KitchenClearingEnv) -> None:
     held_rel = env.task.held_rel
     before = env.get_state()
     for x, y in ((4.0, 2.0), (-1.95, 0.0)):  # a forbidden room; half outside the house
-        _, r, _, _, info = env.step(_place_action(env, x, y, 0.5))
+        _, r, _, _, info = env.step(place_action(env, x, y, 0.5))
         env.set_state(before)
         assert not info["feasible"] and r == -2.0
         np.testing.assert_allclose(info["placement"], (x, y, 0.5), atol=1e-12)
@@ -132,77 +129,11 @@ def test_non_clearing_place_is_penalised(env: KitchenClearingEnv) -> None:
     env.step(acts[0])
     # put box1 back where it stands (rotated slightly): still on the path
     x, y, _, yaw = env.object_pose(env.task.held)
-    _, r, _, _, info = env.step(_place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
+    _, r, _, _, info = env.step(place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
     assert info["feasible"] and info["objects_left"] == 7
     assert r == pytest.approx(max(-info["base_path_length"], -2.0))
     _, r, _, _, info = env.step(acts[0])  # the next pick: no clearing before it
     assert info["operator"] == "pick" and r == 0.0
-
-
-def test_placements_in_the_large_rooms_are_infeasible(env: KitchenClearingEnv) -> None:
-    env.reset(seed=0)
-    env.step(kitchen_actions(env)[0])
-    before = env.get_state()
-    obs0 = env._observation()
-    for x, y in ((4.0, 2.0), (4.5, -2.0), (3.2, 1.0)):
-        _, r, _, _, info = env.step(_place_action(env, x, y, 0.0))
-        assert not info["feasible"] and r == -2.0
-        assert info["reason"].startswith("forbidden room")
-        env.set_state(before)
-    # the robot cannot pass the 0.9 m door at all
-    assert env.planner.plan(env.config.start, (4.4, 2.0, 0.0), env.config.robot_radius) is None
-    # infeasible actions change nothing but the step counter
-    _, _, _, _, info = env.step(_place_action(env, 4.0, 2.0, 0.0))
-    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])
-
-
-def test_infeasible_pick_reasons(env: KitchenClearingEnv) -> None:
-    env.reset(seed=0)
-    reasons = set()
-    rng = np.random.default_rng(0)
-    for _ in range(300):
-        s = env.get_state()
-        _, r, _, _, info = env.step(rng.uniform(-1, 1, 6))
-        if not info["feasible"]:
-            assert r == -2.0
-            reasons.add(info["reason"].split(":")[0])
-        env.set_state(s)
-    assert {"collision", "IK failed", "outside region"} <= reasons
-
-
-#: A first pick (paper units: radians, fractions) that passes IK, collision and region
-#: checks but leaves the carry disc (robot + held box) overlapping the chair next to it.
-DEAD_END_PICK = (2.4075, 0.6945, 0.2081, 0.7607, 3.3009, -0.1987)
-
-
-def test_pick_requires_a_free_carry_disc(env: KitchenClearingEnv) -> None:
-    env.reset(seed=0)
-    assert env.config.pick_requires_free_carry  # the default
-    s = env.get_state()
-    obs0 = env._observation()
-    a = normalize(DEAD_END_PICK, env.config.pick_ranges)
-    _, r, _, _, info = env.step(a)
-    assert not info["feasible"] and r == -2.0
-    assert info["reason"] == "carry footprint collides with obj_chair1"
-    assert env.task.operator == "pick" and env.task.held == -1
-    np.testing.assert_array_equal(env._observation()[:-1], obs0[:-1])
-    env.set_state(s)
-
-    # option off (through gym.make's kwargs): the old check accepts the pick, and the
-    # place step's planner then starts in collision (every place: "no base path")
-    off = gym.make("voot/KitchenClearing-v0", pick_requires_free_carry=False).unwrapped
-    assert isinstance(off, KitchenClearingEnv) and not off.config.pick_requires_free_carry
-    off.reset(seed=0)
-    _, r, _, _, info = off.step(a)
-    assert info["feasible"] and info["reason"] == "" and r == 0.0
-    disc = off.held_disc()
-    base = off.robot.base_pose(off.data)
-    boxes = off.object_boxes(exclude=(off.task.held,))
-    assert not off.planner.is_free(disc.center(base), disc.radius, boxes)
-    assert off.planner.colliding(disc.center(base), disc.radius, boxes) == ["obj_chair1"]
-    _, _, _, _, info = off.step(_place_action(off, 1.0, -3.0, 0.0))
-    assert not info["feasible"] and info["reason"] == "no base path"
-    off.close()
 
 
 def test_bad_actions(env: KitchenClearingEnv) -> None:
@@ -232,7 +163,7 @@ def test_out_of_range_actions_are_clipped(env: KitchenClearingEnv) -> None:
 def test_truncation_at_the_horizon() -> None:
     env = KitchenClearingEnv(KitchenConfig(horizon=2))
     env.reset(seed=0)
-    bad = _place_action(env, 4.0, 2.0, 0.0)  # a pick here: infeasible (IK/collision/region)
+    bad = place_action(env, 4.0, 2.0, 0.0)  # a pick here: infeasible (IK/collision/region)
     bad[:] = 1.0
     _, _, term, trunc, _ = env.step(bad)
     assert not term and not trunc
@@ -243,26 +174,6 @@ def test_truncation_at_the_horizon() -> None:
         env.step(bad)
     with pytest.raises(ValueError, match="ended"):
         env.precheck(bad)
-
-
-@pytest.mark.parametrize(
-    ("kwargs", "match"),
-    [
-        ({"horizon": 0}, "horizon"),
-        ({"robot_radius": -1.0}, "robot_radius"),
-        ({"grasp_angle": (2.0, 1.0)}, "grasp_angle"),
-        ({"house": (0, 1, 2)}, "house"),
-        ({"infeasible_reward": 1.0}, "infeasible_reward"),
-        ({"pick_requires_free_carry": "yes"}, "pick_requires_free_carry"),
-        ({"pick_reward": True}, "pick_reward must be a number, got True"),
-        ({"infeasible_reward": True}, "infeasible_reward must be a finite number < 0, got True"),
-        ({"infeasible_reward": "x"}, "infeasible_reward must be a finite number < 0"),
-        ({"house": (0, 1, True, 2)}, "house"),
-    ],
-)
-def test_config_validation(kwargs: dict[str, object], match: str) -> None:
-    with pytest.raises(ValueError, match=match):
-        KitchenConfig(**kwargs)  # type: ignore[arg-type]
 
 
 def test_snapshot_restore_is_bit_identical(env: KitchenClearingEnv) -> None:
@@ -371,7 +282,7 @@ def test_place_rewards_reach_their_caps() -> None:
         assert r_clear == pytest.approx(min(1.0 / length, env.config.max_place_reward))
         env.set_state(state)
         x, y, _, yaw = env.object_pose(env.task.held)
-        _, r_stay, _, _, info = env.step(_place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
+        _, r_stay, _, _, info = env.step(place_action(env, x, y, (yaw + 0.05) % (2 * math.pi)))
         assert info["feasible"] and info["objects_left"] == 7
         assert r_stay == pytest.approx(
             max(-info["base_path_length"], -env.config.max_place_penalty)
@@ -388,7 +299,7 @@ def test_a_short_clearing_place_earns_one_over_its_length_below_the_cap(
     env.step(kitchen_actions(env)[0])
     x, y, _, yaw = env.object_pose(env.task.held)
     # box1 set down 0.7 m east of where it stood: off the path, a 0.7 m drive
-    _, r, _, _, info = env.step(_place_action(env, x + 0.7, y, yaw))
+    _, r, _, _, info = env.step(place_action(env, x + 0.7, y, yaw))
     assert info["feasible"] and info["objects_left"] == 6  # it cleared box1
     length = info["base_path_length"]
     assert 1.0 / env.config.max_place_reward < length < 1.0
@@ -438,7 +349,7 @@ def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
     s = env.get_state()
     # places: outside the house, in a forbidden room, feasible
     for x, y in ((-1.95, 0.0), (4.0, 2.0)):
-        step(_place_action(env, x, y, 0.5))
+        step(place_action(env, x, y, 0.5))
         env.set_state(s)
     step(acts[1])
     # a pick with its base path planned (pick_base_path): the planning time is counted
@@ -446,114 +357,3 @@ def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
     env.reset(seed=0)
     _, _, _, _, info = step(kitchen_actions(env)[0])
     assert info["feasible"] and env.last_timing.planning > 0.0
-
-
-def test_precheck_infos_and_the_state_after_a_place(env: KitchenClearingEnv) -> None:
-    env.reset(seed=0)
-    acts = kitchen_actions(env)
-    ok, info = env.precheck(acts[0])
-    assert ok and info["feasible"] and info["reason"] == ""
-    assert info["operator"] == "pick" and info["object"] == "obj_box1"
-    bad = np.ones(6)
-    ok, info = env.precheck(bad)
-    assert not ok and not info["feasible"] and info["reason"]
-    env.step(acts[0])
-    ok, info = env.precheck(_place_action(env, -1.95, 0.0, 0.5))  # half outside the house
-    assert not ok and not info["feasible"] and info["reason"].startswith("outside region")
-    assert info["operator"] == "place" and info["object"] == "obj_box1"
-    ok, info = env.precheck(acts[1])
-    assert ok and info["feasible"] and info["object"] == "obj_box1"
-    env.step(acts[1])
-    # after a place the robot holds nothing
-    t = env.task
-    assert t.operator == "pick" and t.held == -1
-    assert t.held_rel == (0.0, 0.0, 0.0) and t.grasp_q == ()
-
-
-def _screen_against_the_step(env: KitchenClearingEnv, actions: np.ndarray) -> dict[str, int]:
-    """certainly_infeasible of each action vs the step's verdict; counts of the outcomes."""
-    counts = {"screened": 0, "infeasible": 0, "feasible": 0}
-    for a in actions:
-        before = env.get_state()
-        screened = env.certainly_infeasible(a)
-        assert env.get_state() == before  # the screen changes nothing
-        assert env.certainly_infeasible_values(a.tolist()) is screened  # the float entry
-        _, _, _, info = env.transition(a)
-        env.set_state(before)
-        if info["feasible"]:
-            assert not screened, info  # never a feasible action
-            counts["feasible"] += 1
-        else:
-            counts["infeasible"] += 1
-            counts["screened"] += screened
-    return counts
-
-
-@pytest.mark.parametrize("carry", [True, False])
-def test_certainly_infeasible_is_exact(carry: bool) -> None:
-    """The pre-screen never rejects a feasible step, and settles most infeasible ones."""
-    env = KitchenClearingEnv(config=KitchenConfig(pick_requires_free_carry=carry))
-    env.reset(seed=0)
-    rng = np.random.default_rng(11)
-    totals = {"pick": [0, 0], "place": [0, 0]}  # screened, infeasible
-    for good in kitchen_actions(env)[:4]:
-        op = env.task.operator
-        dim = 6 if op == "pick" else 3
-        props = np.zeros((150, 6))
-        props[:, :dim] = rng.uniform(-1, 1, (150, dim))
-        c = _screen_against_the_step(env, props)
-        totals[op][0] += c["screened"]
-        totals[op][1] += c["infeasible"]
-        env.transition(good)
-    for op, (screened, infeasible) in totals.items():
-        assert infeasible > 100 and screened > 0.6 * infeasible, (op, screened, infeasible)
-
-
-def test_certainly_infeasible_leaves_odd_cases_to_the_step(env: KitchenClearingEnv) -> None:
-    env.reset(seed=0)
-    far = np.full(6, 1.0)  # the robot leaves the house
-    assert env.certainly_infeasible(far)
-    assert not env.certainly_infeasible(far * 3.0)  # to be clipped: the step decides
-    assert not env.certainly_infeasible(np.full(6, np.nan))  # the step raises
-    assert not env.certainly_infeasible(far[:3])
-    env.task = dataclasses.replace(env.task, done=True)
-    assert not env.certainly_infeasible(far)  # the step raises: the episode has ended
-    env.reset(seed=0)
-
-
-def test_carry_verdict_on_floats_is_the_carry_test(env: KitchenClearingEnv) -> None:
-    """The pick screen's float carry test answers as _carry_blocked, or abstains."""
-    from voot.envs.kitchen import _held_rel_floats
-
-    env.reset(seed=0)
-    rng = np.random.default_rng(12)
-    ctx = env._screen_context()
-    seen = set()
-    for a in rng.uniform(-1, 1, (600, 6)):
-        base = env.pick_base_pose(ctx.obj, denormalize(a, ctx.ranges))
-        bx, by, heading = base.tolist()
-        held_rel = _held_rel_floats(bx, by, heading, ctx.pose_xyyaw)
-        assert held_rel == env._held_rel(base, ctx.pose)
-        verdict = env._carry_verdict(ctx, held_rel, bx, by, heading)
-        assert verdict is not None
-        assert verdict is bool(env._carry_blocked(ctx.obj, held_rel, base))
-        seen.add(verdict)
-    assert seen == {True, False}
-
-
-def test_on_path_memory_gives_the_swept_volume_answers() -> None:
-    from voot.envs.swept_volume import obstacles_on_path
-
-    env = KitchenClearingEnv()
-    env.reset(seed=0)
-    assert env._path is not None
-    for a in kitchen_actions(env):
-        env.transition(a)
-        names = set(
-            obstacles_on_path(env._path.waypoints, env.config.robot_radius, env.object_boxes())
-        )
-        expect = tuple(i for i in env._order if env.objects[i].name in names)
-        assert env._on_path() == expect
-        if env.task.operator == "pick" and not env.task.done:
-            assert env.task.on_path == expect
-    assert env._on_path_memo  # answers were remembered

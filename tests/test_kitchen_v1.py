@@ -1,6 +1,6 @@
 """voot/KitchenClearing-v1: the authors' two-stage feasibility on the kitchen.
 
-(envs/kitchen.py has two test modules: test_kitchen.py for the domain, this one for the
+(voot.envs.kitchen has two test modules: test_kitchen.py for the domain, this one for the
 v1 preset's options.)
 """
 
@@ -17,11 +17,11 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import voot  # noqa: F401  (registers the ids)
+from voot.envs.action_units import denormalize, normalize
 from voot.envs.kitchen import KITCHEN_PRESETS, KitchenClearingEnv, kitchen_config
 from voot.envs.planning import EnvProblem
 from voot.envs.scene import object_footprint, rect_overlaps
 from voot.envs.scripted import kitchen_actions
-from voot.envs.task_env import denormalize, normalize
 from voot.tree import MCTS, planner_config
 
 

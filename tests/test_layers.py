@@ -38,6 +38,15 @@ def test_optim_functions_tree_load_no_mujoco_envs_or_bench() -> None:
     assert offending(modules, "mujoco", "voot.envs", "voot.bench", "voot.record", "voot.rl") == []
 
 
+def test_the_library_loads_no_argparse() -> None:
+    # argparse converters (voot.bench.cli_types) belong to the command line; the
+    # library's checks (voot.validation) raise ValueError and need no argparse
+    modules = loaded_after(
+        "voot.validation", "voot.optim", "voot.tree", "voot.functions", "voot.parallel"
+    )
+    assert "voot.validation" in modules and "argparse" not in modules
+
+
 def test_parallel_loads_nothing_of_the_layers_above() -> None:
     modules = loaded_after("voot.parallel")
     assert offending(modules, "mujoco", "voot.tree", "voot.envs", "voot.bench", "ray") == []

@@ -28,7 +28,8 @@ from voot.bench.plan_sweep import (
     strip_timings,
     summarize_plan_specs,
 )
-from voot.bench.store import ResultStore, Row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row
 from voot.bench.sweep import ProcessBackend, SerialBackend, run_sweep
 
 
@@ -395,3 +396,19 @@ def test_interrupted_sweep_into_a_compact_store_resumes_and_then_runs_nothing(
         assert r.get("objects_left") == want.get("objects_left")
         assert len(r["elapsed"]) == 40 and np.all(np.diff(r["elapsed"]) >= 0)  # timings differ
         assert set(r["interpolated"]) == {"elapsed", "cpu_elapsed", "calls_curve"}
+
+
+def test_a_variant_is_in_the_config_and_run_id_only_when_set() -> None:
+    from voot.bench.plan_sweep import PlanSpec
+
+    plain = PlanSpec("voot/KitchenClearing-v1", None, (), "voot", (("omega", 0.3),), 10, 0)
+    tagged = PlanSpec(
+        "voot/KitchenClearing-v1", None, (), "voot", (("omega", 0.3),), 10, 0, variant="x"
+    )
+    assert "variant" not in plain.config() and tagged.config()["variant"] == "x"
+    assert plain.run_id != tagged.run_id
+    from voot.bench.plan_sweep import search_seed
+
+    # common random numbers: a variant searches with the plain run's seed
+    assert search_seed(plain).entropy == search_seed(tagged).entropy
+    assert search_seed(plain).spawn_key == search_seed(tagged).spawn_key

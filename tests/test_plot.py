@@ -16,7 +16,7 @@ from voot.bench.plot import (
     settings_table,
     t_interval,
 )
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 from voot.functions import get_function
 
 

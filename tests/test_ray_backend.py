@@ -17,7 +17,8 @@ from typing import Any
 import pytest
 
 from voot.bench.plan_sweep import PlanSpec, build_plan_specs, run_plan_spec, strip_timings
-from voot.bench.store import ResultStore, Row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row
 from voot.bench.sweep import SerialBackend, make_backend, run_sweep
 
 ray = pytest.importorskip("ray")

@@ -83,8 +83,8 @@ def test_float_se2_helpers_match_numpy() -> None:
 
 
 def test_compose_inverse_tuple_is_pose_tuple_of_the_array() -> None:
+    from voot.envs.env_state import pose_tuple
     from voot.envs.robot import compose_inverse_tuple
-    from voot.envs.task_env import pose_tuple
 
     rng = np.random.default_rng(1)
     for a, b in rng.uniform(-7, 7, (300, 2, 3)):

@@ -14,7 +14,7 @@ from voot.bench.select import (
     selected_rows,
     selection_table,
 )
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 
 
 def fake_row(
@@ -155,3 +155,14 @@ def test_instances_are_never_mixed() -> None:
 
 def _rest(row: Row) -> dict[str, Any]:
     return {"status": "ok", "wall_time": 0.1, "best_so_far": list(row["best_so_far"])}
+
+
+def test_a_plan_rows_variant_names_its_planner() -> None:
+    from voot.bench.select import cell_of, planner_label
+
+    assert planner_label("voot") == "voot" and planner_label("voot", "") == "voot"
+    assert planner_label("pw_uct", "pw_authors") == "pw_uct[pw_authors]"
+    config = {"problem": "voot/KitchenClearing-v1", "dim": None, "simulations": 5}
+    plain = {"kind": "plan", "config": {**config, "planner": "voot"}}
+    tagged = {"kind": "plan", "config": {**config, "planner": "voot", "variant": "kappa_off"}}
+    assert cell_of(plain)[3] == "voot" and cell_of(tagged)[3] == "voot[kappa_off]"

@@ -17,7 +17,9 @@ import pytest
 
 from voot.bench import shipped
 from voot.bench.compact import CompactConfig
-from voot.bench.store import INDEX_NAME, ResultStore, Row, StoreError, make_row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row, StoreError, make_row
+from voot.bench.store_index import INDEX_NAME
 
 DATA = Path(__file__).resolve().parents[1] / shipped.DATA_DIR
 STORES = [p.name for p in shipped.store_dirs(DATA)]
@@ -58,6 +60,7 @@ def documented_sweeps() -> dict[str, list[Any]]:
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
     return {
         "protocol-v1": protocol_v1_sweep(),
+        "ablation-v1": ablation_kitchen_sweep(),
         "protocol-v1-same-seed": build_plan_specs(
             ["kitchen_v1", "conveyor_v1"], planners=PROTOCOL_V1_PLANNERS
         ),
@@ -114,6 +117,53 @@ def protocol_v1_sweep() -> list[Any]:
         for seed in seeds
     ]
     return [*tuning, *evaluation, *rl]
+
+
+def ablation_kitchen_sweep() -> list[Any]:
+    """The ablation's kitchen half as ``voot-bench ablation --problems kitchen_v1`` runs it:
+    every variant's grid on the tuning seeds, its selected setting on seeds 0-19."""
+    from voot.bench.ablation import ablation_specs, check_switches
+    from voot.bench.tuning import selected_specs, tuning_selections
+
+    switches = check_switches(None)
+    tuning = ablation_specs(switches, range(1000, 1005), problems=["kitchen_v1"])
+    rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan")
+    evaluation = selected_specs(
+        ablation_specs(switches, range(20), problems=["kitchen_v1"]),
+        tuning_selections(tuning, rows),
+    )
+    return [*tuning, *evaluation]
+
+
+def test_the_ablations_v1_rows_are_the_protocol_stores_rows() -> None:
+    """v1 defaults unchanged: the ablation re-ran the protocol's VOOT and PW-UCT runs (same
+    run ids) and got the same curves bit for bit."""
+    protocol = {
+        r["run_id"]: r for r in ResultStore(DATA / "protocol-v1", create=False).load(kind="plan")
+    }
+    rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan", status="ok")
+    shared = [r for r in rows if "variant" not in r["config"]]
+    assert len(shared) >= 100  # at least the kitchen's 60 tuning and 40 evaluation runs
+    for r in shared:
+        old = protocol[r["run_id"]]
+        for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):
+            assert r.get(key) == old.get(key), (r["run_id"], key)
+
+
+def test_the_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
+    import importlib.util
+
+    root = DATA.parents[1]
+    path = root / "docs" / "scripts" / "ablation_docs.py"
+    spec = importlib.util.spec_from_file_location("ablation_docs", path)
+    assert spec is not None and spec.loader is not None
+    docs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(docs)
+    with shipped.store_copy(DATA / "ablation-v1") as copy:
+        blocks = docs.render(copy)
+    page = (root / "docs" / "results-planning.md").read_text()
+    for name, body in blocks.items():
+        assert docs.marked(page, name) == body, f"run python docs/scripts/ablation_docs.py ({name})"
 
 
 @pytest.mark.parametrize("name", sorted(documented_sweeps()))

@@ -188,6 +188,52 @@ def test_bonus_counts_in_the_objective_not_in_the_return() -> None:
     assert len(res.actions) == 1  # terminal after one step
 
 
+class BadReward(NullProblem):
+    """Reward (and bonus) ``reward`` and ``bonus`` from step ``after + 1`` on."""
+
+    def __init__(self, reward: float, bonus: float = 0.0, after: int = 0) -> None:
+        super().__init__(2)
+        self.bad_reward, self.bad_bonus, self.after, self.calls = reward, bonus, after, 0
+
+    def step(self, action: np.ndarray) -> StepResult:
+        self.calls += 1
+        if self.calls > self.after:
+            return StepResult(self.bad_reward, bonus=self.bad_bonus)
+        return super().step(action)
+
+
+@pytest.mark.parametrize("planner", PLANNERS)
+@pytest.mark.parametrize(
+    ("reward", "bonus", "what"),
+    [
+        (math.nan, 0.0, "reward=nan"),
+        (math.inf, 0.0, "reward=inf"),
+        (-math.inf, 0.0, "reward=-inf"),
+        (0.5, math.nan, "goal bonus=nan"),
+        (0.5, math.inf, "goal bonus=inf"),
+    ],
+)
+def test_non_finite_reward_or_bonus_stops_every_planner(
+    planner: str, reward: float, bonus: float, what: str
+) -> None:
+    """The tree search's error, naming the step; the cut rollout leaves no trace."""
+    problem = BadReward(reward, bonus, after=7)
+    shooter = ShootingPlanner(problem, shooting_config(planner, horizon=3), seed=0)
+    with pytest.raises(
+        ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}"
+    ) as err:
+        shooter.search(20)
+    assert "must be finite" in str(err.value)
+    assert shooter.n_simulations == 2  # 2 rollouts of 3 steps; the 8th step was bad
+    assert len(shooter.best_return_curve) == 2
+    assert all(math.isfinite(v) for v in shooter.best_return_curve)
+    assert math.isfinite(shooter.best_return)
+    with pytest.raises(ValueError, match="must be finite"):
+        shooter.search(1)
+    with pytest.raises(ValueError, match="must be finite"):
+        plan(BadReward(reward, bonus), planner, n_simulations=5, seed=0, horizon=2)
+
+
 def test_callback_stops_and_record_info() -> None:
     class Info(Quadratic):
         def step(self, action: np.ndarray) -> StepResult:

@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 
 from voot.bench import speedup
-from voot.bench.cli import main
 from voot.bench.speedup import SpeedupError, Workload
 
 
@@ -96,11 +95,6 @@ def test_compare_tiny_workloads() -> None:
     assert "v0 pre-screens" not in speedup.split_line(conveyor.current)
     data = speedup.report_json(full, current, comparisons)
     assert [w["curve_identical"] for w in data["workloads"]] == [True, True]
-
-
-def test_cli_errors(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["speedup", "--workloads", "nope"]) == 2
-    assert "unknown workload" in capsys.readouterr().err
 
 
 def test_compare_repeats_alternate_and_keep_the_fastest() -> None:

@@ -14,7 +14,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from voot.bench.store import ResultStore, Row
+from voot.bench.store import ResultStore
+from voot.bench.store_format import Row
 from voot.bench.sweep import (
     PAPER_METHODS,
     ProcessBackend,

@@ -1,4 +1,5 @@
-"""What the two robot envs share (voot.envs.task_env): the helpers of the lean step path."""
+"""The shared env base (voot.envs.task_env): snapshots restored all or nothing, the
+task-record check on restore, action validation, the footprints' memory."""
 
 from __future__ import annotations
 
@@ -9,28 +10,12 @@ from typing import Any
 import numpy as np
 import pytest
 
-from voot.envs.kitchen import KitchenClearingEnv, KitchenConfig, KitchenTask
-from voot.envs.task_env import StepTiming, denormalize, normalize, pose_tuple, replace
+from voot.envs.kitchen import KitchenClearingEnv
 
 
 @pytest.fixture(scope="module")
 def kitchen() -> KitchenClearingEnv:
     return KitchenClearingEnv()
-
-
-def test_replace_matches_dataclasses_replace() -> None:
-    t = KitchenTask(3, "pick", -1, (0.0, 0.0, 0.0), (), (1, 2), False, False)
-    for changes in ({"steps": 4}, {"operator": "place", "held": 2}, {}):
-        a, b = replace(t, **changes), dataclasses.replace(t, **changes)
-        assert a == b and hash(a) == hash(b) and vars(a) == vars(b) and type(a) is KitchenTask
-    assert replace(StepTiming(1.0), total=2.0) == StepTiming(1.0, 0.0, 0.0, 2.0)
-    with pytest.raises(TypeError):
-        replace(t, nope=1)
-    # a dataclass with __post_init__ still validates
-    with pytest.raises(ValueError, match="horizon"):
-        replace(KitchenConfig(), horizon=0)
-    with pytest.raises(dataclasses.FrozenInstanceError):
-        replace(t, steps=1).steps = 2  # type: ignore[misc]
 
 
 def test_snapshots_share_the_unchanged_generator_state(kitchen: KitchenClearingEnv) -> None:
@@ -70,26 +55,9 @@ def test_validate_action_fast_path(kitchen: KitchenClearingEnv) -> None:
             kitchen._validate_action(bad)
 
 
-def test_denormalize_and_pose_tuple() -> None:
-    ranges = ((-2.0, 6.0), (-4.0, 4.0), (0.0, 6.283185307179586))
-    a = np.array([0.1, -0.7, 0.3])
-    lo = np.array([r[0] for r in ranges])
-    hi = np.array([r[1] for r in ranges])
-    ref = lo + 0.5 * (a + 1.0) * (hi - lo)
-    assert denormalize(a, ranges).tobytes() == ref.tobytes()
-    assert denormalize(a, list(ranges)).tobytes() == ref.tobytes()
-    assert np.allclose(normalize(ref, ranges), a)
-    out = denormalize(a, ranges)
-    out[0] = 9.0  # a fresh array: the cached ranges are not touched
-    assert denormalize(a, ranges).tobytes() == ref.tobytes()
-    assert pose_tuple(np.array([1.0, 2.0, 3.0])) == (1.0, 2.0, 3.0)
-    assert pose_tuple([1, 2, 3]) == (1.0, 2.0, 3.0)
-    assert all(type(v) is float for v in pose_tuple(np.array([1.0, 2.0, 3.0])))
-
-
 # ----- set_state: the whole snapshot is checked, then applied (all or nothing) ----------
 def _bad_snapshots(env: Any, other: Any) -> list[tuple[Any, str]]:
-    from voot.envs.task_env import EnvState
+    from voot.envs.env_state import EnvState
 
     s = env.get_state()
     nan_physics = s.physics.copy()
@@ -139,17 +107,6 @@ def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> Non
     assert env.get_state() == start
 
 
-def test_denormalize_floats_is_denormalize() -> None:
-    from voot.envs.task_env import denormalize_floats
-
-    ranges = ((-0.3, 1.7), (0.5, 1.0), (-np.pi, np.pi))
-    rng = np.random.default_rng(8)
-    for a in [*rng.uniform(-1, 1, (500, 3)), np.array([-1.0, 1.0, 0.0])]:
-        ref = denormalize(a, ranges).tolist()
-        assert denormalize_floats(a.tolist(), ranges) == ref
-        assert denormalize_floats(a.tolist(), [list(r) for r in ranges]) == ref  # unhashable
-
-
 def test_plain_action_is_the_validated_action_or_none(kitchen: KitchenClearingEnv) -> None:
     a = np.linspace(-1.0, 1.0, kitchen.action_dim)
     assert kitchen._plain_action(a) is a
@@ -170,3 +127,104 @@ def test_object_boxes_follow_the_state(kitchen: KitchenClearingEnv) -> None:
     assert abs(moved[0].cx - (boxes[0].cx + 0.25)) < 1e-12 and moved[1:] == boxes[1:]
     kitchen.set_state(s)
     assert kitchen.object_boxes() == boxes
+
+
+# ----- set_state: a task record no episode reaches is refused (issue 27) ---------------
+def _impossible_tasks(which: str) -> tuple[Any, list[tuple[Any, Any, str]]]:
+    """An env, and (snapshot, task record no episode of it reaches, error) triples."""
+    from voot.envs.conveyor import ConveyorPackingEnv
+    from voot.envs.scripted import kitchen_actions
+
+    R = dataclasses.replace
+    if which == "conveyor":
+        env = ConveyorPackingEnv()
+        env.reset(seed=0)
+        s = env.get_state()
+        t = s.task
+        return env, [
+            (s, R(t, steps=-1), r"steps must be an int in 0\.\.20 \(the horizon\), got -1"),
+            (s, R(t, steps=21), "got 21"),
+            (s, R(t, steps=np.int64(2)), "steps must be an int"),
+            (s, R(t, placed=env.n + 1), rf"placed must be an int in 0\.\.{env.n} \(the boxes\)"),
+            (s, R(t, placed=-3), "placed must be"),
+            (s, R(t, done=True), "done must be False when placed is 0, got True"),
+            (s, R(t, placed=env.n), f"done must be True when placed is {env.n}, got False"),
+        ]
+    env = KitchenClearingEnv()
+    env.reset(seed=0)
+    pick = env.get_state()
+    _, _, _, _, info = env.step(kitchen_actions(env)[0])
+    assert info["feasible"] and env.task.operator == "place"
+    place = env.get_state()
+    p, q = pick.task, place.task
+    n = len(env.objects)
+    first, second = p.on_path[:2]
+    return env, [
+        (pick, R(p, operator="drop"), "operator must be 'pick' or 'place', got 'drop'"),
+        (pick, R(p, held=2), r"held must be -1 before a pick \(nothing in the gripper\), got 2"),
+        (place, R(q, held=n), rf"held must be an object index in 0\.\.{n - 1} before a place"),
+        (place, R(q, held=-3), "before a place, got -3"),
+        (place, R(q, held=True), "before a place, got True"),
+        (place, R(q, grasp_q=()), "grasp_q must be 7 finite joint values at a place, got ()"),
+        (place, R(q, grasp_q=(*q.grasp_q[:6], np.nan)), "grasp_q must be 7"),
+        (place, R(q, held_rel=(0.0, np.inf, 0.0)), r"held_rel must be 3 finite numbers"),
+        (place, R(q, held_rel=None), "held_rel must be"),
+        (pick, R(p, on_path=(n,)), rf"on_path must be a tuple of object indices in 0\.\.{n - 1}"),
+        (pick, R(p, on_path=[first]), "on_path must be a tuple"),
+        (pick, R(p, on_path=(second, first)), "on_path must list distinct objects in the"),
+        (pick, R(p, on_path=(first, first)), "handling order"),
+        (pick, R(p, on_path=()), r"done must be True when on_path is \(\), got False"),
+        (pick, R(p, done=True), "done must be False"),
+        (pick, R(p, last_place_cleared=1), "last_place_cleared and done must be bools"),
+        (pick, R(p, steps=-1), r"steps must be an int in 0\.\.50 \(the horizon\), got -1"),
+        (pick, R(p, steps=51), "got 51"),
+    ]
+
+
+@pytest.mark.parametrize("which", ["kitchen", "conveyor"])
+def test_set_state_refuses_a_task_record_no_episode_reaches(which: str) -> None:
+    """Checked on restore, before anything changes (the next step failed deep inside
+    with an IndexError or a broadcast error, or handled the wrong object)."""
+    env, cases = _impossible_tasks(which)
+    here = env.get_state()
+    obs_here = env._observation()
+    for snapshot, task, match in cases:
+        bad = snapshot.with_task(task)
+        with pytest.raises(ValueError, match=match) as err:
+            env.set_state(bad)
+        assert "this environment can reach" in str(err.value)
+        assert str(err.value).endswith("the env is unchanged")
+        assert env.get_state() == here
+        assert np.array_equal(env._observation(), obs_here)
+        with pytest.raises(ValueError, match=match):  # refused again: not remembered
+            env.set_state(bad)
+    for snapshot, _, _ in cases:  # the records episodes reach still restore
+        env.set_state(snapshot)
+        assert env.get_state() == snapshot
+
+
+def test_set_state_checks_each_task_record_once(kitchen: KitchenClearingEnv) -> None:
+    """A search restores each snapshot many times: the record's check runs once."""
+    kitchen.reset(seed=0)
+    a = kitchen.get_state()
+    kitchen.step(np.zeros(6))
+    b = kitchen.get_state()
+    seen: list[Any] = []
+    check = kitchen._task_error
+
+    def counting(task: Any) -> str | None:
+        seen.append(task)
+        return check(task)
+
+    kitchen._task_error = counting  # type: ignore[method-assign]
+    try:
+        for _ in range(3):
+            kitchen.set_state(a)
+            kitchen.set_state(b)
+        # an equal record that is another object is checked (the memo is by identity)
+        kitchen.set_state(a.with_task(dataclasses.replace(a.task)))
+    finally:
+        del kitchen._task_error
+    assert [t is a.task for t in seen] == [True, False, False]
+    assert seen[1] is b.task and seen[2] == a.task
+    kitchen.reset(seed=0)

@@ -874,3 +874,48 @@ def test_the_voo_sampler_sees_every_q_hat_change(backup: str) -> None:
             continue
         told = node.sampler.optimizer.values
         assert np.array_equal(told, np.array(node.q)), (backup, node.id)
+
+
+def test_authors_widening_adds_an_action_every_visit_below_k_one() -> None:
+    """The original's PW with w < 1: UCB never runs, every simulation adds a root action."""
+    cfg = planner_config(
+        "pw_uct", pw_k=0.8, widening="authors", depth_limit=2, root_commitment=None
+    )
+    res = plan(Counter(dim=1), cfg, 40, seed=0)
+    assert res.mcts is not None and len(res.mcts.root.actions) == 40
+    # w = 1: once the root has a feasible action it is never widened again
+    cfg1 = cfg.replace(pw_k=1.0)
+    res1 = plan(Counter(dim=1, infeasible_below=0.5), cfg1, 40, seed=0)
+    assert res1.mcts is not None
+    root = res1.mcts.root
+    assert root.n_feasible == 1 and root.feasible[-1]
+    # standard widening at the same k keeps re-evaluating: far fewer root actions
+    std = plan(Counter(dim=1), cfg.replace(widening="standard"), 40, seed=0)
+    assert std.mcts is not None and len(std.mcts.root.actions) < 20
+
+
+def test_commit_reset_trigger_root_goal_child_ignores_deeper_goals() -> None:
+    """The authors' rule returns to the original root only when the current root has a
+    goal child; voot's v1 rule as soon as any goal leaf exists."""
+    cfg = planner_config("uniform_t", root_commitment=2, commit_reset_on_goal=True)
+    runs = {}
+    for trigger in ("goal_found", "root_goal_child"):
+        mcts = MCTS(
+            Counter(dim=1, infeasible_below=0.5, goal_depth=6),
+            cfg.replace(commit_reset_trigger=trigger),
+            seed=1,
+        )
+        seen: list[tuple[bool, int]] = []
+        mcts.search(
+            400,
+            callback=lambda m, i, seen=seen: seen.append((m._goal_found, m.current_root.depth)),
+        )
+        runs[trigger] = seen
+    first_goal = next(i for i, s in enumerate(runs["goal_found"]) if s[0])
+    # identical until the first goal (same seed, same rule so far)
+    assert runs["goal_found"][: first_goal + 1] == runs["root_goal_child"][: first_goal + 1]
+    # afterwards the v1 rule is back at the original root at some point, while the
+    # authors' rule keeps descending until the root is the goal's parent (depth 5)
+    assert any(d == 0 for _, d in runs["goal_found"][first_goal + 1 :])
+    deepest = max(d for _, d in runs["root_goal_child"])
+    assert deepest == 5

@@ -39,3 +39,20 @@ def test_ucb_skips_infeasible_edges_and_breaks_ties_first() -> None:
 def test_unknown_selection_is_rejected() -> None:
     with pytest.raises(ValueError, match="valid choices are"):
         planner_config("voot", selection="greedy")
+
+
+def test_authors_widening_is_the_inverted_linear_test() -> None:
+    standard = ProgressiveWidening(planner_config("pw_uct", pw_k=1.0, pw_alpha=0.5))
+    authors = ProgressiveWidening(planner_config("pw_uct", pw_k=0.5, widening="authors"))
+    # standard: widen while |A| <= k sqrt(N)
+    assert standard.widens(3, 9) and not standard.widens(4, 9)
+    # the authors': widen while |A| > k N (so with k < 1, |A| = N always widens)
+    assert authors.widens(10, 10) and authors.widens(6, 11)
+    assert not authors.widens(5, 10) and not authors.widens(2, 10)
+    one = ProgressiveWidening(planner_config("pw_uct", pw_k=1.0, widening="authors"))
+    assert one.widens(1, 0) and not one.widens(1, 1) and not one.widens(3, 7)
+
+
+def test_unknown_widening_names_the_choices() -> None:
+    with pytest.raises(ValueError, match="valid choices are: standard, authors"):
+        planner_config("pw_uct", widening="inverted")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from voot.bench.plan_sweep import build_plan_specs
-from voot.bench.store import Row, make_row
+from voot.bench.store_format import Row, make_row
 from voot.bench.tuning import (
     check_disjoint,
     seeds_text,

@@ -7,8 +7,8 @@ import pytest
 from scipy import stats
 
 from voot.functions import get_function
-from voot.optim import Bounds, make_optimizer, maximize
-from voot.optim.voo import NEIGHBOURS, VOO, BestCellSampler, VOOConfig
+from voot.optim import Bounds, make_optimizer, maximize, voo
+from voot.optim.voo import NEAR, NEIGHBOURS, VOO, BestCellSampler, VOOConfig
 
 SAMPLERS = [s.value for s in BestCellSampler]
 
@@ -112,7 +112,7 @@ def test_fast_test_matches_brute_force(make) -> None:  # type: ignore[no-untyped
             inside = [brute_in_cell(xs, b, xs[b] + qi) for qi in batch]
             expected = inside.index(True) if any(inside) else -1
             assert opt._first_inside(cell, batch) == expected
-        sorted_used.append(cell.sorted_n > 0)
+        sorted_used.append(cell.ordered)
         # tell more points (and sometimes a new best) and test the updated cache again
         for x in xs[b] + q[:5] * 0.3:
             opt.tell(x, float(opt.values.min()) - 1.0)
@@ -176,10 +176,10 @@ def test_rejection_by_a_point_told_after_the_sort() -> None:
     opt = told(np.vstack([np.zeros(d), close]), np.r_[1.0, np.zeros(100)], box)
     cell = opt._best_cell()
     assert opt._first_inside(cell, np.array([[-0.5, 0.0, 0.0]])) == 0
-    assert cell.sorted_n == opt.n_told  # the exact check sorted the points
+    assert cell.ordered and cell.tail == opt.n_told  # the exact check sorted the points
     opt.tell(-2.0 * np.eye(d)[0], 0.0)
     cell = opt._best_cell()
-    assert cell.sorted_n < cell.n == opt.n_told
+    assert cell.tail < cell.n == opt.n_told
     q = np.array([[-1.2, 0.0, 0.0], [-0.9, 0.0, 0.0]])
     assert [brute_in_cell(opt.xs, 0, x) for x in q] == [False, True]
     assert opt._first_inside(cell, q[:1]) == -1
@@ -554,3 +554,268 @@ def test_gaussian_scale_uses_the_larger_side_of_an_asymmetric_box() -> None:
     d = np.array(draws)
     left = (8.0 - d[d < 8.0]) / (8.0 / np.e)
     assert stats.kstest(left, stats.halfnorm.cdf).pvalue > 1e-3
+
+
+# ----- the pruned test accepts exactly what the brute-force test accepts ------------------
+def reference_first_inside(xs: np.ndarray, b: int, q: np.ndarray) -> int:
+    """The first row of ``q`` with ``q . v_i <= |v_i|^2 / 2`` for every told point (the
+    definition of the best cell relative to x*, with ties inside), or -1. No pruning."""
+    v = xs - xs[b]
+    h = 0.5 * np.einsum("ij,ij->i", v, v)
+    hits = np.flatnonzero((q @ v.T <= h).all(axis=1))
+    return int(hits[0]) if hits.size else -1
+
+
+class ReferenceVOO(VOO):
+    """VOO whose acceptance test is :func:`reference_first_inside`: everything else (the
+    random stream, batches, caps) is VOO's own, so both must ask the same points."""
+
+    def _first_inside(self, cell: voo._BestCell, q: np.ndarray) -> int:
+        return reference_first_inside(self.xs, self.best_index, q)
+
+
+def spy(monkeypatch: pytest.MonkeyPatch, names: list[str]) -> dict[str, int]:
+    """Count calls of the named _BestCell methods (which paths a run exercised)."""
+    calls = dict.fromkeys(names, 0)
+    for name in names:
+        method = getattr(voo._BestCell, name)
+
+        def counted(*args: object, _m=method, _n=name, **kwargs: object) -> object:  # type: ignore[no-untyped-def]
+            calls[_n] += 1
+            return _m(*args, **kwargs)
+
+        monkeypatch.setattr(voo._BestCell, name, counted)
+    return calls
+
+
+def run_both(f, box: Bounds, n: int, seed: int, revalue: bool = False, **options: object) -> None:  # type: ignore[no-untyped-def]
+    fast = VOO(box, VOOConfig(**options), seed=seed)  # type: ignore[arg-type]
+    ref = ReferenceVOO(box, VOOConfig(**options), seed=seed)  # type: ignore[arg-type]
+    rng = np.random.default_rng(seed)
+    for i in range(n):
+        x, y = fast.ask(), ref.ask()
+        assert x.tobytes() == y.tobytes(), f"ask {i} differs"
+        v = f(x)
+        fast.tell(x, v)
+        ref.tell(y, v)
+        if revalue and i % 3 == 2:  # as the tree search does: any point may become x*
+            j = int(rng.integers(fast.n_told))
+            w = float(rng.normal())
+            fast.revalue(j, w)
+            ref.revalue(j, w)
+    assert (fast.n_rejected, fast.n_fallbacks) == (ref.n_rejected, ref.n_fallbacks)
+
+
+@pytest.mark.parametrize(
+    ("name", "dim", "n", "sampler"),
+    [
+        ("sphere", 20, 1500, "centered_uniform"),  # x* improves all the time
+        ("shekel", 20, 1500, "centered_uniform"),  # x* settles
+        ("rastrigin", 20, 600, "centered_uniform"),  # x* jumps between basins
+        ("griewank", 10, 600, "gaussian"),
+        ("griewank", 3, 1200, "uniform"),  # the uniform sampler, then its gaussian switch
+    ],
+)
+def test_fast_voo_asks_the_points_of_the_brute_force_reference(
+    monkeypatch: pytest.MonkeyPatch, name: str, dim: int, n: int, sampler: str
+) -> None:
+    """Whole runs, bit for bit: the same proposals accepted in the same order."""
+    calls = spy(monkeypatch, ["_gather", "_full", "_sort", "check"])
+    if name == "sphere":
+        box = Bounds.cube(-1.0, 1.0, dim)
+        f = lambda x: -float(x @ x)  # noqa: E731 - optimum at the box centre
+    else:
+        g = get_function(name, dim)
+        box, f = g.bounds, g.value
+    run_both(f, box, n, seed=1, sampler=sampler, omega=0.01)
+    # the pruned paths ran: x* moved with (and without) a full pass; near set sorted
+    # the pruned paths ran: x* moved from the near set alone (gather) and from every
+    # point (full pass, also at the start); proposals needed the exact check
+    assert calls["_gather"] > 0 and calls["_full"] > 1
+    assert dim < 10 or (calls["check"] > 0 and calls["_sort"] > 0)
+
+
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_fast_voo_matches_the_reference_under_revalue(sampler: str) -> None:
+    """Tree-search use: few points, and x* moves anywhere (revalue) every third ask."""
+    f = get_function("shekel", 3)
+    for seed in range(8):
+        run_both(f.value, f.bounds, 80, seed=seed, revalue=True, sampler=sampler, omega=0.3)
+
+
+def lattice_state(n: int, d: int, seed: int, half: int = 6) -> VOO:
+    """n points of the integer lattice in [-half, half]^d, repeats (copies) included:
+    with proposals on the half-integer lattice, q . v = |v|^2 / 2 holds exactly for many
+    pairs, so ties (inside, by definition) are common and computed without rounding."""
+    rng = np.random.default_rng(seed)
+    xs = rng.integers(-half, half + 1, size=(n, d)).astype(float)
+    box = Bounds.cube(-2.0 * half, 2.0 * half, d)
+    return told(xs, rng.normal(size=n), box, seed=seed)
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: lattice_state(40, 2, seed=0),  # fewer points than the neighbour cache
+        lambda: lattice_state(3 * NEAR, 3, seed=1),  # more than the near set
+        lambda: lattice_state(2 * NEAR, 4, seed=2),
+        lambda: clustered_state(3 * NEAR, 6, 1e-13, seed=3),  # at the resolution of x*
+    ],
+)
+def test_first_inside_equals_the_reference_with_ties_and_moves(
+    monkeypatch: pytest.MonkeyPatch,
+    make,  # type: ignore[no-untyped-def]
+) -> None:
+    """Batches at every scale, including exact ties; then x* moves (a better point told
+    near it, a copy of it told, a far point revalued best) and again."""
+    opt = make()
+    calls = spy(monkeypatch, ["_gather", "_full", "_whole"])
+    rng = np.random.default_rng(7)
+    ties = 0
+    for step in range(6):
+        cell = opt._best_cell()
+        xs, b = opt.xs.copy(), opt.best_index
+        spread = float(np.max(np.abs(xs - xs[b]))) or 1.0
+        for _ in range(30):
+            m = int(rng.integers(1, 40))
+            scale = spread * 2.0 ** rng.integers(-6, 2)
+            if opt.bounds.width[0] > 1.0:  # the lattice: half-integer proposals
+                q = np.round(rng.uniform(-1, 1, (m, xs.shape[1])) * scale * 2.0) / 2.0
+                v = xs - xs[b]
+                ties += int(np.sum(q @ v.T == 0.5 * np.einsum("ij,ij->i", v, v)))
+            else:
+                q = rng.standard_normal((m, xs.shape[1])) * scale
+            q = q[np.argsort(np.linalg.norm(q, axis=1), kind="stable")[::-1]]
+            assert opt._first_inside(cell, q) == reference_first_inside(xs, b, q)
+        x_b = opt.xs[opt.best_index]
+        if step % 3 == 0:  # a better point in the best cell: x* moves a little
+            q = np.round(rng.uniform(-1, 1, x_b.size)) / 2.0 if ties else 1e-3 * spread
+            opt.tell(np.clip(x_b + q, opt.bounds.lower, opt.bounds.upper), opt.best_value + 1.0)
+        elif step % 3 == 1:  # a copy of x*, and points around it
+            opt.tell(x_b.copy(), opt.best_value - 1.0)
+            for x in x_b + rng.standard_normal((5, x_b.size)) * spread:
+                opt.tell(np.clip(x, opt.bounds.lower, opt.bounds.upper), -100.0)
+        else:  # the worst point becomes the best: x* jumps
+            opt.revalue(int(np.argmin(opt.values)), opt.best_value + 1.0)
+    if opt.bounds.width[0] > 1.0:
+        assert ties > 0  # ties were exercised
+    # x* moved with the near set alone; and some proposals reached past the near set
+    # (every point tested) where there is one
+    assert calls["_gather"] > 0
+    assert opt.n_told <= NEAR or calls["_whole"] > calls["_full"]
+
+
+def test_near_set_invariants() -> None:
+    """After every ask: the near set's distances and offsets are exact, every point outside
+    it and the tail lies at least lb2 away, and the whole-set buffer (when valid) is exact."""
+    rng = np.random.default_rng(3)
+    box = Bounds.cube(-1.0, 1.0, 4)
+    opt = VOO(box, VOOConfig(omega=0.05), seed=3)
+    for i in range(3 * NEAR):
+        x = opt.ask()
+        value = -float(x @ x) if i % 50 else float(rng.normal())
+        opt.tell(x, value)
+        if i % 97 == 96:  # a far jump of x*, as revalue in tree search does
+            opt.revalue(int(rng.integers(opt.n_told)), opt.best_value + 1.0)
+        if i % 9:
+            continue
+        cell = opt._best_cell()
+        cell.first_inside(opt._xs, np.full((1, 4), 2.0))  # a far proposal: the exact test
+        cell._sort(opt._xs)
+        xs, best = opt.xs, opt.xs[opt.best_index]
+        assert cell.best.tobytes() == best.tobytes() and cell.n == opt.n_told
+        v = xs[cell.near] - best
+        assert cell.vs.tobytes() == v.tobytes()
+        assert cell.d2s.tobytes() == np.einsum("ij,ij->i", v, v).tobytes()
+        assert np.all(np.diff(cell.d2s) >= 0) and cell.ordered
+        outside = np.setdiff1d(np.arange(cell.tail), cell.near)
+        d2 = np.sum((xs[outside] - best) ** 2, axis=1)
+        assert np.all(d2 >= cell.lb2 * (1.0 - 1e-9))
+        t = xs[cell.tail :] - best
+        assert np.array_equal(cell.td2[: len(t)], np.einsum("ij,ij->i", t, t))
+        w = cell.whole
+        assert cell.buf[:w].tobytes() == (xs[:w] - best).tobytes()
+    assert opt.n_told > 2 * NEAR
+
+
+def test_a_move_of_the_best_point_finds_a_point_outside_the_old_near_set() -> None:
+    """x* = 0 with NEAR points on the unit circle near +-60 degrees (its near set) and P at
+    (1.01, 0), just outside it. A new best z = (0.5, 0) is 0.51 from P, nearer than any
+    point of the old near set (0.87 or more): the bound carried over (1.01 - 0.5) must
+    send the rebuild to every point, and P must reject z + (0.3, 0), which is nearer to it
+    (0.21) than to z (0.3)."""
+    rng = np.random.default_rng(0)
+    angle = np.deg2rad(rng.uniform(50.0, 70.0, NEAR)) * rng.choice([-1.0, 1.0], NEAR)
+    radius = rng.uniform(1.0, 1.005, NEAR)
+    ring = np.stack([radius * np.cos(angle), radius * np.sin(angle)], axis=1)
+    p = np.array([1.01, 0.0])
+    opt = told(
+        np.vstack([np.zeros(2), ring, p]), np.r_[1.0, np.zeros(NEAR + 1)], Bounds.cube(-2, 2, 2)
+    )
+    cell = opt._best_cell()
+    assert np.count_nonzero(cell.d2s) == NEAR and cell.lb2 == pytest.approx(1.01**2)  # P: out
+    z = np.array([0.5, 0.0])
+    opt.tell(z, 2.0)
+    cell = opt._best_cell()
+    assert cell.best.tolist() == z.tolist()
+    assert np.any(np.abs(cell.k2[: cell.count] - 0.51**2) < 1e-12)  # P is a neighbour
+    q = np.array([[0.3, 0.0]])
+    assert reference_first_inside(opt.xs, opt.best_index, q) == -1
+    assert opt._first_inside(cell, q) == -1
+    assert opt._first_inside(cell, np.array([[0.3, 0.0], [0.2, 0.0]])) == 1
+
+
+def test_random_tie_break_exploits_every_tied_best_point() -> None:
+    """tie_break="random": x* is drawn among the points sharing the best value (the
+    authors' get_best_evaled_action); "first" always takes the first of them."""
+    from voot.optim.voo import VOO, VOOConfig
+
+    bounds = [[0.0, 1.0]] * 2
+    sites = np.array([[0.1, 0.1], [0.9, 0.9], [0.5, 0.5], [0.1, 0.9]])
+    values = [1.0, 1.0, 0.0, 1.0]  # three points tie at the best value
+
+    def owners(tie_break: str, seed: int) -> set[int]:
+        opt = VOO(bounds, VOOConfig(omega=0.0, sampler="uniform", tie_break=tie_break), seed=seed)
+        for x, v in zip(sites, values, strict=True):
+            opt.tell(x, v)
+        got = set()
+        for _ in range(60):
+            p = opt.sample_best_cell()
+            got.add(int(np.argmin(np.linalg.norm(sites - p, axis=1))))
+        return got
+
+    assert owners("first", 0) == {0}
+    assert owners("random", 0) == {0, 1, 3}
+
+
+def test_random_tie_break_without_ties_changes_nothing() -> None:
+    """Until two points share the best value, "random" asks exactly what "first" asks
+    (it draws no random number)."""
+    from voot.functions import get_function
+    from voot.optim import make_optimizer
+
+    f = get_function("shekel", dim=3)
+    runs = {}
+    for tie_break in ("first", "random"):
+        opt = make_optimizer("voo", f.bounds, seed=3, tie_break=tie_break)
+        xs, values = [], []
+        for _ in range(200):
+            x = opt.ask()
+            xs.append(x)
+            values.append(f(x))
+            opt.tell(x, values[-1])
+        runs[tie_break] = (np.array(xs), np.array(values))
+    xs, values = runs["first"]
+    best = np.maximum.accumulate(values)
+    tied = [i for i in range(len(values)) if np.sum(values[: i + 1] == best[i]) > 1]
+    first_tie = tied[0] if tied else len(values)
+    assert first_tie > 50
+    # the ask after the first tie may differ; every ask up to it is the same
+    np.testing.assert_array_equal(runs["random"][0][: first_tie + 1], xs[: first_tie + 1])
+
+
+def test_unknown_tie_break_names_the_choices() -> None:
+    from voot.optim.voo import VOOConfig
+
+    with pytest.raises(ValueError, match="tie_break must be one of first, random"):
+        VOOConfig(tie_break="last")

@@ -29,8 +29,8 @@ package must be installed editable (``pip install -e .``) so the tests import th
 mutated file::
 
     python tools/mutation.py voot/optim/voo.py tests/test_voo.py tests/test_registry.py
-    python tools/mutation.py envs/kitchen.py tests/test_kitchen.py \\
-        --functions _pick_kinematics,_pick,_place_checks,_place,precheck,transition
+    python tools/mutation.py envs/kitchen_checks.py tests/test_kitchen_checks.py \\
+        --functions _pick_kinematics,_place_checks,precheck
     python tools/mutation.py benchmarks/store.py tests/test_store.py --sample 150 --seed 0
 
 ``--list`` prints the mutants without running anything; ``--only 3,17`` runs the

@@ -9,7 +9,6 @@ integer and float scalars are accepted like Python's.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import math
 from collections.abc import Iterable, Mapping
@@ -131,21 +130,6 @@ def seed(value: object, name: str = "seed") -> Any:
             f"{name} must be None, an integer >= 0 or a numpy SeedSequence, got {value!r}"
         )
     return v
-
-
-def seed_argument(text: str) -> int:
-    """An argparse ``type=`` for every ``--seed`` option: an integer >= 0.
-
-    argparse then reports ``argument --seed: must be an integer >= 0, got '-1'``, the
-    same for every command, instead of numpy's message from deep inside a run.
-    """
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text!r}")
-    return value
 
 
 def choice(enum: type[E], value: object, name: str) -> E:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from voot.bench.plan_plot import plan_data
+from voot.bench.plan_runs import plan_data
 from voot.bench.store import ResultStore
 
 

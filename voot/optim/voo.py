@@ -18,12 +18,16 @@ authors' code (:class:`BestCellSampler`).
 
 Speed (exact): only points within :math:`2\|q\|` of :math:`x^*` can reject :math:`p`
 (triangle inequality). The :data:`NEIGHBOURS` points nearest to :math:`x^*` are cached
-(updated in O(d) per tell, rebuilt in O(nd) when :math:`x^*` changes) and a whole batch
-of tries is tested against them with one matrix product; a surviving proposal is
-accepted at once if no other point lies within :math:`2\|q\|`, and checked against
-those points otherwise. Working relative to :math:`x^*` keeps the test accurate when
-the points cluster far below the scale of the box, which VOO's exploitation does: its
-best cell shrinks geometrically with the evaluations spent in it.
+(updated in O(d) per tell) and a whole batch of tries is tested against them with one
+matrix product; a surviving proposal is accepted at once if no other point lies within
+:math:`2\|q\|`, and checked against those points otherwise, found among the
+:data:`NEAR` points nearest to :math:`x^*`. When :math:`x^*` improves, these sets move
+to the new best point from the old near set alone whenever a distance bound shows that
+suffices, in O(NEAR d) rather than O(nd) (see :class:`_BestCell`), so the cost per ask
+hardly depends on how often the best point improves. Working relative to :math:`x^*`
+keeps the test accurate when the points cluster far below the scale of the box, which
+VOO's exploitation does: its best cell shrinks geometrically with the evaluations spent
+in it.
 """
 
 from __future__ import annotations
@@ -87,6 +91,10 @@ class VOOConfig(OptimizerConfig):
             changes the random stream, not the distribution). The first batch of an ask
             grows to cover the try accepted at the previous ask; later batches double,
             up to 256.
+        tie_break: which of several points sharing the best value is :math:`x^*` for an
+            exploitation ask: ``first`` (the first told; default) or ``random`` (uniform
+            among them, drawn at each such ask: the authors' ``get_best_evaled_action``).
+            With no tie the two are the same and ``random`` draws nothing.
     """
 
     omega: float = 0.001
@@ -96,6 +104,7 @@ class VOOConfig(OptimizerConfig):
     uniform_switch_to_gaussian: bool = True
     metric: Metric | None = None
     batch_size: int = 8
+    tie_break: str = "first"
 
     def __post_init__(self) -> None:
         if not (V.is_number(self.omega) and 0.0 <= float(self.omega) <= 1.0):
@@ -112,18 +121,31 @@ class VOOConfig(OptimizerConfig):
             V.integer(value, name, 1)
         if self.metric is not None and not callable(self.metric):
             raise ValueError("metric must be callable metric(points, y) -> distances, or None")
+        V.one_of(self.tie_break, "tie_break", TIE_BREAKS)
 
     @classmethod
     def paper_grid(cls) -> dict[str, list[Any]]:
         return {"omega": [0.001, 0.01, 0.05, 0.1, 0.3, 0.5]}
 
 
+#: Valid :attr:`VOOConfig.tie_break` values.
+TIE_BREAKS: tuple[str, ...] = ("first", "random")
+
 #: Size of the cached set of x*'s nearest neighbours that every proposal is tested against
 #: first (speed only: the test stays exact, see :meth:`VOO.sample_best_cell`).
 NEIGHBOURS = 64
-#: Number of x*'s nearest points (from a sorted copy, built on demand) that proposals
-#: surviving the first test are filtered with, before the exact test (speed only).
+#: Number of x*'s nearest points (from the sorted near set) that proposals surviving the
+#: first test are filtered with, before the exact test (speed only).
 SECOND_TIER = 256
+#: Number of x*'s nearest points kept sorted, with their offsets, for the exact test: the
+#: *near set*. Every other point is known to lie at least a certified distance away, so
+#: the exact test, and the next best point's sets, are built from the near set alone
+#: (speed only; see :class:`_BestCell`).
+NEAR = 512
+
+#: Relative slack of the lower bounds carried from one best point to the next (far above
+#: the rounding error of a squared distance of 20-odd terms, far below any real gap).
+_SLACK = 1e-12
 
 
 @functools.lru_cache(maxsize=8)
@@ -144,75 +166,231 @@ class _BestCell:
     VOO's best neighbours reach the floating-point resolution of ``x*`` within a few
     thousand evaluations in 20-D).
 
+    One object serves the whole run; :meth:`center` moves it to a new best point. It
+    keeps, besides the neighbour cache:
+
+    * the *near set*: the :data:`NEAR` points nearest to ``x*`` (exactly) and the copies
+      of ``x*``, with their offsets, sorted on demand;
+    * ``lb2``: a lower bound on the squared distance to ``x*`` of every point outside the
+      near set and the tail (the points told since the near set was last sorted).
+
+    Only two steps cost :math:`O(nd)`: a *full pass* (:meth:`_full`), when the near set
+    cannot vouch for the new best point's neighbours, and the first exact check of a
+    proposal that reaches past ``lb2`` for a given ``x*`` (every point is then tested,
+    from the buffer :meth:`_whole` keeps up to date for that ``x*``).
+
+    When ``x*`` moves by :math:`s` to ``z`` (a better point, nearly always one just told
+    in the old best cell), the triangle inequality gives :math:`d(x_i, z) \\ge
+    \\sqrt{lb2} - s` for every point outside, so the new near set is built from the old
+    near set and tail alone (:math:`O(\\text{NEAR} \\cdot d)`) whenever that bound
+    still certifies the :data:`NEIGHBOURS` + 1 nearest points of ``z``. Rebuilding from
+    every point at each improvement made VOO two to four times slower per ask on an
+    objective where ``x*`` keeps improving (a sphere) than on one where it has settled;
+    now the difference is about 1.5x (``voot-bench voo-speed``, docs/voo.md).
+
     Attributes:
-        d2: squared distance of every incorporated point to ``x*`` (``inf`` for ``x*``
-            and its exact copies, which cannot reject anything).
-        v, h, k2: the (up to) :data:`NEIGHBOURS` other points nearest to ``x*`` (offsets
-            :math:`v_i`, :math:`\\|v_i\\|^2/2`, :math:`\\|v_i\\|^2`), exactly.
-        out2: squared distance of the nearest point *not* in that set (``inf`` if none).
-        sorted_n, d2s, vs, hs: built on demand by :meth:`check`: the first ``sorted_n``
-            points sorted by distance to ``x*`` (squared distances, offsets, halves).
+        v, h, k2: the (up to) :data:`NEIGHBOURS` points nearest to ``x*`` other than its
+            copies (offsets :math:`v_i`, :math:`\\|v_i\\|^2/2`, :math:`\\|v_i\\|^2`),
+            exactly: the cache every proposal is tested against first.
+        out2: squared distance of the nearest point *not* in that cache (``inf`` if none).
+        near, d2s, vs, hs: the near set (indices, squared distances, offsets, halves),
+            sorted by distance when ``ordered``. Copies of ``x*`` (distance 0; the
+            first ``z0`` entries once sorted) are in it, for when ``x*`` moves, but are
+            skipped by the tests and the cache: they cannot reject a proposal (0 <= 0).
+        lb2: the lower bound above (``inf``: no such point).
+        tail, td2: the points ``tail .. n-1``, told since the last sort and tested
+            unsorted, and their squared distances.
     """
 
     __slots__ = (
         "a",
         "b",
+        "bd2",
         "best",
+        "buf",
         "c",
         "count",
-        "d2",
         "d2s",
         "h",
         "hs",
         "k2",
+        "lb2",
+        "lower",
         "n",
+        "near",
+        "ordered",
         "out2",
-        "sorted_n",
+        "tail",
+        "td2",
+        "upper",
         "v",
         "vs",
+        "whole",
+        "z0",
     )
 
     #: Points told after the sort that :meth:`check` tests unsorted before re-sorting.
     UNSORTED_MAX = 128
 
-    def __init__(self, xs: FloatArray, b: int, lower: FloatArray, upper: FloatArray) -> None:
+    def __init__(self, lower: FloatArray, upper: FloatArray) -> None:
+        d = lower.shape[0]
+        self.lower = lower
+        self.upper = upper
+        self.b = -1
+        self.n = 0
+        self.best = self.a = self.c = np.empty(d)
+        self.v = np.empty((NEIGHBOURS, d))
+        self.k2 = np.empty(NEIGHBOURS)
+        self.h = np.empty(NEIGHBOURS)
+        self.count = 0
+        self.out2 = math.inf
+        self.near = np.empty(0, dtype=np.intp)
+        self.d2s = self.hs = np.empty(0)
+        self.vs = np.empty((0, d))
+        self.ordered = True
+        self.z0 = 0
+        self.lb2 = math.inf
+        self.tail = 0
+        self.td2 = np.empty(16)
+        # offsets and squared distances of the points [0, whole) from x*, for a full pass
+        # or a proposal that reaches past the near set; kept between uses, as a fresh
+        # (n, d) array costs more in page faults than the subtraction written into it
+        self.buf = np.empty((0, d))
+        self.bd2 = np.empty(0)
+        self.whole = 0
+
+    # ----- moving to a new best point -----------------------------------------------------
+    def center(self, xs: FloatArray, b: int) -> None:
+        """Make ``xs[b]`` the best point (``xs`` are all told points)."""
+        self.whole = 0
+        if self.b >= 0 and self.lb2 > 0.0:
+            step = xs[b] - self.best
+            s = math.sqrt(float(step @ step))
+            near, lb2 = self.near, self.lb2
+            if near.size > NEAR:
+                near, lb2 = self._nearest(near, self.d2s, NEAR + self._zeros(self.d2s), lb2)
+            lb = math.sqrt(lb2) * (1.0 - _SLACK) - s * (1.0 + _SLACK)
+            if lb > 0.0:
+                tail = np.arange(self.tail, xs.shape[0], dtype=np.intp)
+                if self._gather(xs, b, np.concatenate((near, tail)), lb * lb * (1.0 - _SLACK)):
+                    return
+        self._full(xs, b)
+
+    def _gather(self, xs: FloatArray, b: int, cand: np.ndarray, lb2: float) -> bool:
+        """Rebuild around ``xs[b]`` from the points ``cand`` (all others at ``>= lb2``).
+
+        Returns False (and changes nothing) when ``lb2`` does not certify the
+        :data:`NEIGHBOURS` + 1 nearest points: then only a full pass can find them.
+        """
+        best = xs[b].copy()
+        diff = np.take(xs, cand, axis=0)
+        diff -= best
+        d2 = np.einsum("ij,ij->i", diff, diff)
+        cache, out2 = self._cache_of(d2)
+        if lb2 < out2:
+            return False
+        self._commit(xs.shape[0], b, best, cand, d2, diff, lb2)
+        self._fill_cache(cache, out2)
+        return True
+
+    def _full(self, xs: FloatArray, b: int) -> None:
+        """Make ``xs[b]`` the best point from every point (:math:`O(nd)`): the near set is
+        its :data:`NEAR` nearest, and :meth:`_whole` stays valid for it."""
         n = xs.shape[0]
+        best = xs[b].copy()
+        self.best = best
+        self.whole = 0
+        self._whole(xs, n)
+        diff, d2 = self.buf[:n], self.bd2[:n]
+        near, lb2 = self._nearest(np.arange(n), d2, NEAR + self._zeros(d2), math.inf)
+        self._commit(n, b, best, near, d2[near], diff[near], lb2)
+        self._fill_cache(*self._cache_of(self.d2s))
+
+    def _whole(self, xs: FloatArray, n: int) -> None:
+        """Offsets and squared distances of all points ``xs[:n]`` in ``buf`` and ``bd2``
+        (extended from the ``whole`` rows already there, which belong to ``x*``)."""
+        w = self.whole
+        if w >= n:
+            return
+        if self.buf.shape[0] < n:
+            buf, bd2 = np.empty((2 * n, self.buf.shape[1])), np.empty(2 * n)
+            buf[:w] = self.buf[:w]
+            bd2[:w] = self.bd2[:w]
+            self.buf, self.bd2 = buf, bd2
+        diff = self.buf[w:n]
+        np.subtract(xs[w:n], self.best, out=diff)
+        np.einsum("ij,ij->i", diff, diff, out=self.bd2[w:n])
+        self.whole = n
+
+    @staticmethod
+    def _nearest(idx: np.ndarray, d2: FloatArray, m: int, lb2: float) -> tuple[np.ndarray, float]:
+        """The (at most) ``m`` entries of ``idx`` nearest by ``d2`` (unsorted), and the
+        lower bound ``lb2`` lowered to the nearest entry left out."""
+        if idx.size > m:
+            part = np.argpartition(d2, m)
+            cut = float(d2[part[m]])
+            if cut < math.inf:  # (overflowed distances are never left out)
+                return idx[part[:m]], min(lb2, cut)
+        return idx, lb2
+
+    def _commit(
+        self,
+        n: int,
+        b: int,
+        best: FloatArray,
+        near: np.ndarray,
+        d2s: FloatArray,
+        vs: FloatArray,
+        lb2: float,
+    ) -> None:
         self.b = b
         self.n = n
-        self.best = xs[b].copy()
-        self.a = lower - self.best  # the box, relative to x*
-        self.c = upper - self.best
-        diff = xs - self.best
-        d2 = np.einsum("ij,ij->i", diff, diff)
-        # x* and exact copies of it never reject a proposal (0 <= 0): leave them out
-        d2[d2 == 0.0] = math.inf
-        self.d2 = np.empty(max(16, 2 * n))
-        self.d2[:n] = d2
-        finite = np.flatnonzero(d2 < math.inf)
-        if finite.size > NEIGHBOURS:
-            part = np.argpartition(d2, NEIGHBOURS)
-            idx = part[:NEIGHBOURS]
-            self.out2 = float(d2[part[NEIGHBOURS]])
-        else:
-            idx = finite
-            self.out2 = math.inf
-        self.count = idx.size
-        self.v = np.empty((NEIGHBOURS, xs.shape[1]))
-        self.v[: self.count] = diff[idx]
-        self.k2 = np.empty(NEIGHBOURS)
-        self.k2[: self.count] = d2[idx]
-        self.h = 0.5 * self.k2
-        self.sorted_n = 0
-        self.d2s = self.hs = np.empty(0)
-        self.vs = np.empty((0, xs.shape[1]))
+        self.best = best
+        self.a = self.lower - best  # the box, relative to x*
+        self.c = self.upper - best
+        self.near = near
+        self.d2s = d2s
+        self.vs = vs
+        self.hs = 0.5 * d2s
+        self.ordered = False
+        self.lb2 = lb2
+        self.tail = n
 
+    @staticmethod
+    def _zeros(d2: FloatArray) -> int:
+        """Number of copies of x* (distance 0) among ``d2``."""
+        return int(np.count_nonzero(d2 == 0.0))
+
+    @staticmethod
+    def _cache_of(d2: FloatArray) -> tuple[np.ndarray, float]:
+        """Positions of the :data:`NEIGHBOURS` smallest ``d2`` other than 0 (copies of x*)
+        and inf (overflow), and the next smallest such ``d2`` (``inf`` if none)."""
+        if d2.size > NEIGHBOURS:
+            k = NEIGHBOURS + _BestCell._zeros(d2)
+            if d2.size > k:
+                part = np.argpartition(d2, k)
+                sel = part[:k]
+                v = d2[sel]
+                return sel[(v > 0.0) & (v < math.inf)], float(d2[part[k]])
+        return np.flatnonzero((d2 > 0.0) & (d2 < math.inf)), math.inf
+
+    def _fill_cache(self, sel: np.ndarray, out2: float) -> None:
+        """The neighbour cache: entries ``sel`` of the near set."""
+        count = sel.size
+        self.count = count
+        self.v[:count] = self.vs[sel]
+        self.k2[:count] = self.d2s[sel]
+        self.h = 0.5 * self.k2
+        self.out2 = out2
+
+    # ----- the test ---------------------------------------------------------------------
     def first_inside(self, xs: FloatArray, q: FloatArray) -> int:
         """Index of the first proposal ``x* + q[i]`` inside the best cell, or -1.
 
         ``xs`` are all told points (``xs[:self.n]`` are incorporated). The whole batch is
         tested against the cached neighbours; survivors (if they need it) against the
-        :data:`SECOND_TIER` nearest points of the sorted structure, a cheap filter that
-        settles most of them at once; then, in order, exactly by :meth:`check`.
+        :data:`SECOND_TIER` nearest points of the near set, a cheap filter that settles
+        most of them at once; then, in order, exactly by :meth:`check`.
         """
         ok = (q @ self.v[: self.count].T <= self.h[: self.count]).all(axis=1)
         survivors = np.flatnonzero(ok)
@@ -222,9 +400,10 @@ class _BestCell:
         if 4.0 * float(first @ first) * (1.0 + 1e-9) < self.out2:
             return int(survivors[0])
         self._sort(xs)
-        m = min(SECOND_TIER, self.d2s.size)
+        z = self.z0
+        m = min(SECOND_TIER, self.d2s.size - z)
         if m > self.count and survivors.size > 1:
-            keep = (q[survivors] @ self.vs[:m].T <= self.hs[:m]).all(axis=1)
+            keep = (q[survivors] @ self.vs[z : z + m].T <= self.hs[z : z + m]).all(axis=1)
             survivors = survivors[keep]
         for j in survivors.tolist():
             if self.check(xs, q[j]):
@@ -236,46 +415,60 @@ class _BestCell:
 
         Only points within :math:`2\\|q\\|` of ``x*`` can be closer to ``x* + q`` than
         ``x*`` is (triangle inequality): if the cached neighbours include them all, the
-        proposal is inside; otherwise it is tested against the points sorted by distance
-        up to that radius, and against every point told since the sort (testing more
-        points than needed does not change the answer).
+        proposal is inside; otherwise it is tested against the near set up to that radius
+        and against every point told since the sort, or, if the radius reaches past
+        ``lb2``, against every point (testing more points than needed does not change the
+        answer).
         """
         lim = 4.0 * float(q @ q) * (1.0 + 1e-9)
         if lim < self.out2:
             return True
-        self._sort(xs)
-        c = int(np.searchsorted(self.d2s, lim, side="right"))
-        if c and not (self.vs[:c] @ q <= self.hs[:c]).all():
-            return False
         n = self.n
-        if self.sorted_n < n:
-            v = xs[self.sorted_n : n] - self.best
-            return bool((v @ q <= 0.5 * self.d2[self.sorted_n : n]).all())
+        self._sort(xs)
+        if lim >= self.lb2:  # beyond the near set: test every point
+            self._whole(xs, n)
+            return bool((self.buf[:n] @ q <= 0.5 * self.bd2[:n]).all())
+        c, z = int(np.searchsorted(self.d2s, lim, side="right")), self.z0
+        if c > z and not (self.vs[z:c] @ q <= self.hs[z:c]).all():
+            return False
+        if self.tail < n:
+            v = xs[self.tail : n] - self.best
+            return bool((v @ q <= 0.5 * self.td2[: n - self.tail]).all())
         return True
 
     def _sort(self, xs: FloatArray) -> None:
-        """(Re)build the sorted structure if too many points were told since the last."""
-        n = self.n
-        if n - self.sorted_n > self.UNSORTED_MAX or self.sorted_n == 0:
-            order = np.argsort(self.d2[:n], kind="stable")
-            self.d2s = self.d2[order]
-            self.vs = xs[order] - self.best
+        """Sort the near set by distance, with the tail if it holds more than
+        :attr:`UNSORTED_MAX` points (keeping the :data:`NEAR` nearest, or as many as
+        before if more)."""
+        n, t = self.n, self.tail
+        if n - t > self.UNSORTED_MAX:
+            idx = np.concatenate((self.near, np.arange(t, n)))
+            d2 = np.concatenate((self.d2s, self.td2[: n - t]))
+            vs = np.concatenate((self.vs, xs[t:n] - self.best))
+            keep, lb2 = self._nearest(np.arange(idx.size), d2, NEAR + self._zeros(d2), self.lb2)
+            self._commit(n, self.b, self.best, idx[keep], d2[keep], vs[keep], lb2)
+        if not self.ordered:
+            order = np.argsort(self.d2s, kind="stable")
+            self.near = self.near[order]
+            self.d2s = self.d2s[order]
+            self.vs = self.vs[order]
             self.hs = 0.5 * self.d2s
-            self.sorted_n = n
+            self.ordered = True
+            self.z0 = int(np.searchsorted(self.d2s, 0.0, side="right"))
 
     def extend(self, xs: FloatArray) -> None:
         """Incorporate the points ``xs[self.n:]`` told since (``x*`` unchanged)."""
         n0, n = self.n, xs.shape[0]
         diff = xs[n0:] - self.best
         d2 = np.einsum("ij,ij->i", diff, diff)
-        d2[d2 == 0.0] = math.inf  # copies of x*
-        if self.d2.shape[0] < n:
-            grown = np.empty(2 * n)
-            grown[:n0] = self.d2[:n0]
-            self.d2 = grown
-        self.d2[n0:n] = d2
+        t = self.tail
+        if self.td2.shape[0] < n - t:
+            grown = np.empty(2 * (n - t))
+            grown[: n0 - t] = self.td2[: n0 - t]
+            self.td2 = grown
+        self.td2[n0 - t : n - t] = d2
         for j, dj in enumerate(d2.tolist()):
-            if dj == math.inf:
+            if dj == 0.0 or dj == math.inf:  # copies of x* (and overflowed distances)
                 continue
             if self.count < NEIGHBOURS:
                 slot = self.count
@@ -325,15 +518,16 @@ class VOO(Optimizer):
         return self.sample_best_cell()
 
     # ----- best-cell sampling ---------------------------------------------------------
-    def in_best_cell(self, proposals: ArrayLike) -> np.ndarray:
+    def in_best_cell(self, proposals: ArrayLike, b: int | None = None) -> np.ndarray:
         """Boolean mask: is each row of ``proposals`` (m, d) in the best point's cell?
 
         Brute force against every told point (ties count as inside, as x* is the first
-        point of its cell).
+        point of its cell). ``b``: the index of the cell's site (default: the best point).
         """
         props = np.atleast_2d(np.asarray(proposals, dtype=np.float64))
         xs = self._xs[: self._n]
-        b = self._best_index
+        if b is None:
+            b = self._best_index
         metric = self.config.metric
         if metric is not None:
             pairwise = getattr(metric, "pairwise", None)
@@ -350,12 +544,26 @@ class VOO(Optimizer):
         q = props - xs[b]
         return np.all(q @ v.T <= 0.5 * np.einsum("ij,ij->i", v, v), axis=1)
 
+    def _exploited_index(self) -> int:
+        """The index of :math:`x^*` for this ask: the best point, or with
+        ``tie_break="random"`` one of the points sharing its value, drawn uniformly."""
+        b = self._best_index
+        if self.config.tie_break == "random":
+            values = self._values[: self._n]
+            tied = np.flatnonzero(values == values[b])
+            if tied.size > 1:
+                b = int(tied[self.rng.integers(tied.size)])
+        return b
+
     def _best_cell(self) -> _BestCell:
-        """The best-cell cache, rebuilt when x* changed, extended by new points."""
+        """The best-cell cache, moved when x* changed, extended by new points."""
         cell = self._cell
         n = self._n
-        if cell is None or cell.b != self._best_index:
-            cell = self._cell = _BestCell(self._xs[:n], self._best_index, self._lower, self._upper)
+        if cell is None:
+            cell = self._cell = _BestCell(self._lower, self._upper)
+        b = self._exploited_index()
+        if cell.b != b:
+            cell.center(self._xs[:n], b)
         elif cell.n < n:
             cell.extend(self._xs[:n])
         return cell
@@ -379,7 +587,7 @@ class VOO(Optimizer):
         """Index of the first proposal (row of ``q``) inside the best cell, or -1."""
         metric = self.config.metric
         if metric is not None:
-            hits = np.flatnonzero(self.in_best_cell(q + cell.best))
+            hits = np.flatnonzero(self.in_best_cell(q + cell.best, cell.b))
             return int(hits[0]) if hits.size else -1
         return cell.first_inside(self._xs, q)
 

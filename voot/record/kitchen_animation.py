@@ -176,7 +176,7 @@ class _KitchenRenderer:
     def __init__(self, env: Any, size: tuple[int, int], view: dict[str, Any]) -> None:
         import mujoco
 
-        from voot.envs.task_env import ensure_headless_gl
+        from voot.envs.rendering import ensure_headless_gl
         from voot.record.video import FREE_CAMERA_KEYS
 
         w, h = (int(v) for v in size)

@@ -53,6 +53,39 @@ class Selection(StrEnum):
     HOO = "hoo"
 
 
+class Widening(StrEnum):
+    """When progressive widening adds a new action at a node visited :math:`N` times.
+
+    ``standard``
+        A new action when :math:`|A(s)| \\le k\\,N(s)^{\\alpha}` (Couëtoux et al.; the
+        fair baseline voot runs by default).
+    ``authors``
+        The authors' code: a re-evaluation (UCB) when :math:`|A(s)| \\le k\\,N(s)`,
+        a new action otherwise: linear in :math:`N`, no :math:`\\alpha`, and inverted.
+        Their runs asserted :math:`0 < k \\le 1`; with :math:`k < 1` every visit adds a
+        new action (:math:`|A| = N > kN`) and UCB never runs, with :math:`k = 1` a node
+        keeps its first feasible action for good (:math:`|A| \\le N` always after it).
+    """
+
+    STANDARD = "standard"
+    AUTHORS = "authors"
+
+
+class CommitReset(StrEnum):
+    """When ``commit_reset_on_goal`` returns the root to the original root.
+
+    ``goal_found``
+        At a commitment check, once any goal leaf exists in the tree (voot's v1 rule).
+    ``root_goal_child``
+        At a commitment check, when the current root has a goal child (the authors'
+        ``choose_child_node_to_descend_to``); a goal found deeper below the current root
+        does not stop the descent.
+    """
+
+    GOAL_FOUND = "goal_found"
+    ROOT_GOAL_CHILD = "root_goal_child"
+
+
 class Backup(StrEnum):
     """How :math:`\\hat Q(s, a)` absorbs a new return :math:`G`.
 
@@ -151,8 +184,11 @@ class MCTSConfig:
         voo_uniform_until_feasible: with the ``voo`` sampler, draw new actions uniformly
             in the box until the node has a feasible action (the authors' VOO sampler).
         pw_k: progressive-widening coefficient :math:`k > 0` (not given in the paper).
-        pw_alpha: progressive-widening exponent :math:`\\alpha \\in [0, 1]`. The authors'
-            PW test was linear and inverted; this is the standard rule.
+        pw_alpha: progressive-widening exponent :math:`\\alpha \\in [0, 1]` (``standard``
+            widening only).
+        widening: the progressive-widening test, see :class:`Widening`: ``standard``
+            (default) or ``authors`` (the original's linear, inverted test, with
+            ``pw_k`` as its ``w``).
         ucb_c: UCB exploration constant :math:`c \\ge 0` (the authors' code used
             :math:`2c` with a swept :math:`c`).
         best_return_over: paths the reported best return is a maximum over, see
@@ -164,6 +200,9 @@ class MCTSConfig:
         commit_reset_on_goal: once a terminal leaf (the goal) has been found, a
             commitment returns the root to the original root and doubles the threshold,
             instead of moving down (the authors' code). Off: the root keeps moving down.
+        commit_reset_trigger: what counts as "a goal" for ``commit_reset_on_goal``, see
+            :class:`CommitReset` (default ``goal_found``; the authors' code:
+            ``root_goal_child``).
         use_problem_metric: the per-node optimiser measures distances with the
             problem's ``action_metric()`` for the node's state (e.g. the authors'
             per-operator distance: places compare x, y only). Needs a sampler with a
@@ -186,10 +225,12 @@ class MCTSConfig:
     voo_uniform_until_feasible: bool = True
     pw_k: float = 1.0
     pw_alpha: float = 0.5
+    widening: Widening | str = Widening.STANDARD
     ucb_c: float = 1.0
     best_return_over: BestReturnOver | str = BestReturnOver.LEAVES
     commit_min_reward: float | None = None
     commit_reset_on_goal: bool = False
+    commit_reset_trigger: CommitReset | str = CommitReset.GOAL_FOUND
     use_problem_metric: bool = False
 
     def __post_init__(self) -> None:
@@ -247,6 +288,12 @@ class MCTSConfig:
             raise ValueError(f"pw_k must be > 0, got {self.pw_k!r}")
         object.__setattr__(self, "pw_k", pw_k)
         object.__setattr__(self, "pw_alpha", V.number(self.pw_alpha, "pw_alpha", 0.0, 1.0))
+        object.__setattr__(self, "widening", V.choice(Widening, self.widening, "widening"))
+        object.__setattr__(
+            self,
+            "commit_reset_trigger",
+            V.choice(CommitReset, self.commit_reset_trigger, "commit_reset_trigger"),
+        )
         object.__setattr__(self, "ucb_c", V.number(self.ucb_c, "ucb_c", 0.0))
         object.__setattr__(
             self,

@@ -42,6 +42,7 @@ from voot.optim.base import Bounds, FloatArray
 from voot.tree.config import (
     Backup,
     BestReturnOver,
+    CommitReset,
     FinalAction,
     MCTSConfig,
     planner_config,
@@ -609,13 +610,20 @@ class MCTS:
 
         With ``commit_reset_on_goal``, once a goal leaf exists the root goes back to the
         original root instead (and the threshold doubles), so that the search improves
-        the whole plan rather than only its tail.
+        the whole plan rather than only its tail; with ``commit_reset_trigger=
+        "root_goal_child"`` (the authors' code) only a goal child of the current root
+        sends it back.
         """
         threshold = self._commit_threshold
         root = self.current_root
         if threshold is None or root.n_commit_actions < threshold:
             return
-        if self.config.commit_reset_on_goal and self._goal_found:
+        cfg = self.config
+        if cfg.commit_reset_on_goal and (
+            root.n_terminal_children
+            if cfg.commit_reset_trigger is CommitReset.ROOT_GOAL_CHILD
+            else self._goal_found
+        ):
             self._commit_threshold = 2 * threshold
             self._prefix.clear()
             self.current_root = self.root

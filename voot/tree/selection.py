@@ -10,7 +10,9 @@ the search has one loop, one feasibility-retry loop and no rule-specific switche
     Paper Algorithm 2: re-evaluate the newest action until it has been tried
     :math:`1 + w\,\kappa_r^h` times at relative depth :math:`h`, then sample a new one.
 ``progressive_widening`` (:class:`ProgressiveWidening`)
-    A new action when :math:`|A(s)| \le k\,N(s)^\alpha`, else UCB over feasible actions.
+    A new action when :math:`|A(s)| \le k\,N(s)^\alpha`, else UCB over feasible actions
+    (or, with ``widening="authors"``, the original's inverted linear test: UCB when
+    :math:`|A(s)| \le k\,N(s)`, else a new action).
 ``hoo`` (:class:`HOOSelection`)
     A HOO bandit over the action box chooses every action and is told every return.
 """
@@ -23,7 +25,7 @@ from typing import TYPE_CHECKING, Protocol
 import numpy as np
 
 from voot.optim.base import FloatArray
-from voot.tree.config import MCTSConfig, Selection
+from voot.tree.config import MCTSConfig, Selection, Widening
 from voot.tree.node import Node
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -96,6 +98,17 @@ class ProgressiveWidening:
 
     def __init__(self, config: MCTSConfig) -> None:
         self.config = config
+        self.authors = config.widening is Widening.AUTHORS
+
+    def widens(self, n_actions: int, visits: int) -> bool:
+        """Whether a node with ``n_actions`` tried actions and ``visits`` visits adds one.
+
+        Standard: :math:`|A| \\le k N^\\alpha`; the authors' code: :math:`|A| > k N`.
+        """
+        cfg = self.config
+        if self.authors:
+            return n_actions > cfg.pw_k * visits
+        return n_actions <= cfg.pw_k * visits**cfg.pw_alpha
 
     def select(self, search: MCTS, node: Node, depth: int) -> int:
         k = len(node.actions)
@@ -104,7 +117,7 @@ class ProgressiveWidening:
             k == 0
             or node.n_feasible == 0
             or (node.n_terminal_children and cfg.terminal_child_forces_new)
-            or k <= cfg.pw_k * node.visits**cfg.pw_alpha
+            or self.widens(k, node.visits)
         ):
             return search.new_action(node)
         return self.ucb(node)

@@ -21,6 +21,11 @@ current iteration gain draws for them (those samples never used them). Coordinat
 rollout did not use (steps after its end, entries beyond a step's :math:`d`) are still
 draws of the distribution, so a refit treats them as uninformative noise.
 
+**Rewards and goal bonuses must be finite**: a step returning NaN or an infinity raises
+the tree search's ValueError (:func:`voot.tree.mcts.non_finite_step_error`, naming the
+step's action and value); the rollout it cut short is discarded, and a later ``search``
+starts again from the root.
+
 **Infeasible actions** are executed, earn their reward (-2 on the robot domains and the
 chains) and end the rollout, as in the tree search. The problem's optional pre-check
 (``is_feasible``) is not used: a Gaussian over whole sequences has no notion of
@@ -79,7 +84,12 @@ import numpy as np
 
 from voot import validation as V
 from voot.optim.base import FloatArray
-from voot.tree.mcts import PlanResult, check_n_simulations, problem_bounds
+from voot.tree.mcts import (
+    PlanResult,
+    check_n_simulations,
+    non_finite_step_error,
+    problem_bounds,
+)
 from voot.tree.problem import PlanningProblem, StepResult
 
 #: ``callback(planner, simulation_index)`` after every simulation; True stops early.
@@ -427,6 +437,11 @@ class ShootingPlanner:
                     f" got {type(res).__name__}"
                 )
             reward, bonus = float(res.reward), float(res.bonus)
+            if not (math.isfinite(reward) and math.isfinite(bonus)):
+                # the tree search's error: a NaN objective has no order (the elites, the
+                # weights and the best rollout would be arbitrary) and an infinite one
+                # makes every MPPI weight NaN; the rollout is discarded
+                raise non_finite_step_error(problem, action, reward, bonus)
             out.ret += discount * reward
             out.objective += discount * (reward + bonus)
             out.actions.append(action)

@@ -1,0 +1,119 @@
+"""``voot-bench ablation``: one departure from the authors' code at a time (issue 23).
+
+Builds the runs of :mod:`voot.bench.ablation` (the v1 defaults and every switch's variant
+of VOOT and PW-UCT) and runs them as ``voot-bench plan --tuning-seeds`` does
+(:func:`voot.bench.cli_plan.plan_tuned`): every variant's grid on the tuning seeds, then
+its selected setting on the evaluation seeds; resumable at any point. ``--table`` draws
+the ablation's table from the store (as ``voot-bench claims --ablation``).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from voot.bench.backends import BACKENDS
+from voot.bench.cli_common import CLIError, add_compact_options, parse_range, split_list
+from voot.bench.cli_plan import plan_tuned
+from voot.bench.cli_report import print_ablation_table
+from voot.bench.plan_sweep import PlanSpec
+
+if TYPE_CHECKING:
+    from voot.bench.cli_common import Subparsers
+
+
+def cmd_ablation(args: argparse.Namespace) -> int:
+    """Run (or, with ``--list``/``--table``, describe) the ablation."""
+    from voot.bench import ablation as A
+
+    if args.list:
+        print(A.switch_list())
+        return 0
+    try:
+        switches = A.check_switches(split_list(args.switches) or None)
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
+    if args.table:
+        problems = split_list(args.problems) or None
+        return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
+    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
+        raise CLIError("--address and --max-tries go with --backend ray")
+    if args.probe_simulations < 1:
+        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+    problems = split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+
+    def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
+        return A.ablation_specs(
+            switches,
+            seeds,
+            problems=problems,
+            include_baseline=not args.no_baseline,
+            simulations=args.simulations,
+        )
+
+    tuning = specs_of(parse_range(args.tuning_seeds, "--tuning-seeds"))
+    evaluation = specs_of(parse_range(args.seeds, "--seeds"))
+    args.record = None
+    return plan_tuned(args, tuning, evaluation)
+
+
+def register(sub: Subparsers) -> None:
+    """Add ``ablation``."""
+    p = sub.add_parser(
+        "ablation",
+        help="one switch at a time from the v1 defaults to the authors' code, for VOOT and"
+        " PW-UCT (tuned as the protocol; resumable); --table draws its table",
+        description="The ablation of issue 23: every departure of voot's v1 defaults from the"
+        " authors' code as a variant of VOOT and PW-UCT (one switch at a time, and all at"
+        " once), each variant's grid on the tuning seeds, its selected setting on the"
+        " evaluation seeds of both v1 domains. --list prints the switches.",
+    )
+    p.add_argument(
+        "--out", default="results/ablation-v1", help="result store directory (%(default)s)"
+    )
+    p.add_argument("--switches", nargs="+", metavar="NAME", help="switches (default: all)")
+    p.add_argument(
+        "--problems", nargs="+", metavar="NAME", help="kitchen_v1 and/or conveyor_v1 (both)"
+    )
+    p.add_argument("--seeds", default="0:20", help="evaluation seeds (default: %(default)s)")
+    p.add_argument(
+        "--tuning-seeds", default="1000:1005", help="tuning seeds (default: %(default)s)"
+    )
+    p.add_argument(
+        "--simulations", type=int, default=None, help="simulations per run (default: the paper's)"
+    )
+    p.add_argument(
+        "--no-baseline", action="store_true", help="do not run the v1 defaults (no variant)"
+    )
+    p.add_argument("--list", action="store_true", help="print the switches and exit")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="print the ablation table from --out (runs nothing): per switch VOOT's and"
+        " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
+    )
+    p.add_argument("--markdown", help="--table: also write the table here")
+    p.add_argument("--workers", type=int, default=None, help="processes (default: every CPU)")
+    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
+    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
+    p.add_argument(
+        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
+    )
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--estimate", action="store_true", help="print the estimated CPU-hours and exit")
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
+    )
+    p.add_argument("--dry-run", action="store_true", help="list the runs and exit")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--compact", action="store_true", help="create --out as a compact store (as plan)"
+    )
+    add_compact_options(p, "compact-")
+    p.set_defaults(func=cmd_ablation)

@@ -1,0 +1,83 @@
+"""Rendering helpers of the envs: cameras, headless OpenGL, visual-only markers.
+
+The envs render with :class:`mujoco.Renderer` from the cameras every scene defines
+(:data:`CAMERAS`). :func:`ensure_headless_gl` makes that work on a machine without a
+display; :func:`add_marker_box` and :func:`add_marker_segment` draw overlays (the
+kitchen's swept corridor and forbidden rooms, the conveyor's regions) into a render's
+scene without touching the model, so rendering never changes a state.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike
+
+#: Cameras every scene defines, for ``render_camera``.
+CAMERAS = ("perspective", "top_down")
+#: Render modes.
+RENDER_MODES = ("rgb_array",)
+
+
+def ensure_headless_gl() -> None:
+    """Use EGL for off-screen rendering on a Linux machine without a display.
+
+    MuJoCo picks its OpenGL backend from ``MUJOCO_GL`` when it is first imported
+    (``voot.envs`` sets ``MUJOCO_GL=egl`` if it is imported first). If MuJoCo was imported
+    earlier with the default GLFW backend and there is no display, GLFW cannot create a
+    context; this switches the renderer's context class to EGL instead.
+    """
+    if not sys.platform.startswith("linux") or os.environ.get("DISPLAY"):
+        return
+    from mujoco.rendering.classic import gl_context
+
+    if getattr(gl_context, "_MUJOCO_GL", "") in ("egl", "osmesa"):
+        return
+    from mujoco.egl import GLContext
+
+    gl_context.GLContext = GLContext  # type: ignore[attr-defined]
+
+
+def add_marker_box(
+    scene: mujoco.MjvScene,
+    center: ArrayLike,
+    half: ArrayLike,
+    yaw: float,
+    rgba: ArrayLike,
+) -> None:
+    """Append a flat, visual-only box to a render scene (if it has room)."""
+    if scene.ngeom >= scene.maxgeom:
+        return
+    c, s = math.cos(yaw), math.sin(yaw)
+    mat = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).reshape(-1)
+    mujoco.mjv_initGeom(
+        scene.geoms[scene.ngeom],
+        int(mujoco.mjtGeom.mjGEOM_BOX),
+        np.asarray(half, dtype=np.float64),
+        np.asarray(center, dtype=np.float64),
+        mat,
+        np.asarray(rgba, dtype=np.float32),
+    )
+    scene.ngeom += 1
+
+
+def add_marker_segment(
+    scene: mujoco.MjvScene, a: ArrayLike, b: ArrayLike, width: float, rgba: ArrayLike
+) -> None:
+    """Append a flat strip from ``a`` to ``b`` (``(x, y, z)`` points) to a render scene."""
+    pa, pb = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    d = pb - pa
+    length = float(np.hypot(d[0], d[1]))
+    if length < 1e-9:
+        return
+    add_marker_box(
+        scene,
+        0.5 * (pa + pb),
+        (0.5 * length, 0.5 * width, 0.002),
+        math.atan2(d[1], d[0]),
+        rgba,
+    )

@@ -1,0 +1,81 @@
+"""Synthetic plan rows shared by the tests of voot.bench.plan_runs, plan_plot and
+plan_tables (a helper, not a test module)."""
+
+from __future__ import annotations
+
+from voot.bench.store_format import Row, make_row
+
+
+def plan_row(
+    returns: list[float],
+    *,
+    planner: str,
+    seed: int,
+    problem: str = "voot/KitchenClearing-v0",
+    dim: int | None = None,
+    params: dict | None = None,
+    left: list[float | None] | None = None,
+    initial: float | None = 7.0,
+    ms: float = 10.0,
+) -> Row:
+    config = {
+        "problem": problem,
+        "dim": dim,
+        "env_kwargs": {},
+        "planner": planner,
+        "params": params or {},
+        "simulations": len(returns),
+        "seed": seed,
+        "protocol": 1,
+    }
+    extra: dict = {
+        "elapsed": [ms / 1000.0 * (i + 1) for i in range(len(returns))],
+        "simulator_calls": 2 * len(returns),
+    }
+    if left is not None:
+        extra.update(objects_left=left, objects_initial=initial)
+    return make_row("plan", config, status="ok", wall_time=1.0, best_so_far=returns, **extra)
+
+
+def kitchen_rows() -> list[Row]:
+    rows = []
+    for seed in range(3):
+        # voot: two settings, omega=0.1 is better; it clears everything at simulation 2 or 3
+        rows.append(
+            plan_row(
+                [0.0, 1.0, 2.0 + seed, 3.0],
+                planner="voot",
+                seed=seed,
+                params={"omega": 0.1},
+                left=[None, 3.0, 0.0 if seed else 1.0, 0.0],
+            )
+        )
+        rows.append(
+            plan_row(
+                [0.0, 0.0, 0.0, 0.5],
+                planner="voot",
+                seed=seed,
+                params={"omega": 0.3},
+                left=[7.0, 7.0, 7.0, 6.0],
+            )
+        )
+        # pw_uct never clears the path and takes twice as long per simulation
+        rows.append(
+            plan_row([0.0, 0.5, 0.5, 1.0], planner="pw_uct", seed=seed, left=[7, 6, 5, 5], ms=20.0)
+        )
+        rows.append(
+            plan_row(
+                [-1.0, -0.5, -0.2, -0.1], planner="voot", seed=seed, problem="shekel_chain", dim=10
+            )
+        )
+    return rows
+
+
+def with_costs(r: Row, calls_per_sim: int, cpu_per_sim: float) -> Row:
+    n = len(r["best_so_far"])
+    out = dict(r)
+    out["calls_curve"] = [calls_per_sim * (i + 1) for i in range(n)]
+    out["cpu_elapsed"] = [cpu_per_sim * (i + 1) for i in range(n)]
+    out["n_steps"] = n
+    out["n_feasibility_checks"] = (calls_per_sim - 1) * n
+    return out

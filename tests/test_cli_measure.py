@@ -1,0 +1,48 @@
+"""Tests of voot.bench.cli_measure: ``voot-bench speed`` and its cases (``difficulty``:
+tests/test_difficulty.py)."""
+
+from __future__ import annotations
+
+import sys
+import types
+
+import pytest
+
+from voot.bench.cli import main
+from voot.bench.cli_common import CLIError
+from voot.bench.cli_measure import SPEED_CASES, parse_cases
+
+
+def test_speed_table(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    calls = []
+
+    def measure_ask_cost(method: str, n: int, dim: int, repeats: int, seed: int) -> float:
+        calls.append((method, n, dim, repeats, seed))
+        if method == "gp_ucb":
+            raise RuntimeError("too slow today")
+        return 0.002
+
+    fake = types.ModuleType("voot.bench.speed")
+    fake.measure_ask_cost = measure_ask_cost  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "voot.bench.speed", fake)
+    assert main(["speed", "--repeats", "2"]) == 1  # one case failed
+    out = capsys.readouterr().out
+    assert calls[0] == ("voo", 1000, 20, 2, 0) and ("voo", 5000, 20, 2, 0) in calls
+    assert {c[0] for c in calls} == {"voo", "cmaes", "gp_ucb"}
+    assert "| voo | 1000 | 2.000 |" in out
+    assert "| gp_ucb | 100 | error: RuntimeError: too slow today |" in out
+    assert main(["speed", "--cases", "voo:10", "--dim", "3"]) == 0
+    assert calls[-1] == ("voo", 10, 3, 5, 0)
+
+
+def test_parse_cases() -> None:
+    assert parse_cases(None) == list(SPEED_CASES)
+    assert parse_cases(["VOO:10,cmaes:5", "gp-ucb:2"]) == [
+        ("voo", 10),
+        ("cmaes", 5),
+        ("gp_ucb", 2),
+    ]
+    with pytest.raises(CLIError, match="N must be >= 1 in 'voo:0'"):
+        parse_cases(["voo:0"])
+    with pytest.raises(ValueError, match="unknown method"):
+        parse_cases(["nope:3"])

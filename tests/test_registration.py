@@ -1,0 +1,130 @@
+"""Tests of the gymnasium ids (voot._registration): every id, and copies of its env.
+
+A copy of an env (``copy.deepcopy``, or ``pickle`` in this process or another) must step
+as the env: from the same snapshot, the same action gives bit-identical observation,
+reward, flags and info. Each env is copied mid-episode, its caches warm (the kitchen with
+an object in the gripper, whose collision filter a check switches), then the original
+and each copy replay the same probes: their next action from where they stand, then
+every probe action from each snapshot of the walk that led there.
+"""
+
+from __future__ import annotations
+
+import copy
+import inspect
+import pickle
+import subprocess
+import sys
+import textwrap
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import data_equivalence
+
+import voot  # noqa: F401  (registers the ids)
+from voot._registration import ENV_IDS, ENV_KWARGS
+
+IDS = sorted(ENV_IDS)
+
+
+def test_every_id_is_registered_with_its_entry_point_and_kwargs() -> None:
+    for env_id in IDS:
+        spec = gym.spec(env_id)
+        assert spec.entry_point == ENV_IDS[env_id]
+        assert spec.kwargs == ENV_KWARGS.get(env_id, {})
+
+
+def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
+    """``env_id`` made and walked a few steps; the snapshots on the way, the probes of
+    each, and the walk's next action last (the first thing a replay takes)."""
+    env = gym.make(env_id)
+    env.reset(seed=3)
+    u = env.unwrapped
+    rng = np.random.default_rng(11)
+    space = env.action_space
+    lo, hi = space.low, space.high
+    if env_id.startswith("voot/KitchenClearing"):
+        from voot.envs.scripted import kitchen_actions
+
+        script = kitchen_actions(u)[:4]  # pick, place, pick: then an object is held
+    elif env_id.startswith("voot/ConveyorPacking"):
+        from voot.envs.scripted import conveyor_actions
+
+        script = conveyor_actions(u)[:3]
+    else:
+        script = [rng.uniform(lo, hi) for _ in range(4)]
+    states, probes = [], []
+    for a in script[:-1]:
+        states.append(u.get_state())
+        near = [np.clip(a + rng.normal(0.0, 0.05 * (hi - lo), a.shape), lo, hi) for _ in range(2)]
+        probes.append([a, *near, rng.uniform(lo, hi)])
+        env.step(a)
+    probes.append([script[-1]])
+    return env, states, probes
+
+
+def _replay(env: Any, states: list[Any], probes: list[list[Any]]) -> list[Any]:
+    """The steps of ``env``: the last probe from where it stands, then every probe of
+    each snapshot from that snapshot (in the child process too: sent as source)."""
+    out = [env.step(probes[-1][0])]
+    for state, actions in zip(states, probes, strict=False):
+        for a in actions:
+            env.unwrapped.set_state(state)
+            out.append(env.step(a))
+    return out
+
+
+@pytest.mark.filterwarnings("ignore:.*is out of date.*:DeprecationWarning")
+def test_copies_of_every_env_step_as_the_env_also_in_another_process() -> None:
+    cases, copies, blobs = {}, {}, {}
+    for env_id in IDS:
+        env, states, probes = _walk(env_id)
+        blobs[env_id] = pickle.dumps(env)
+        copies[env_id] = [copy.deepcopy(env), pickle.loads(blobs[env_id])]
+        cases[env_id] = (env, states, probes)
+    child = textwrap.dedent(inspect.getsource(_replay)) + textwrap.dedent(
+        """
+        import pickle, sys
+        import voot
+        cases = pickle.load(sys.stdin.buffer)
+        out = {k: _replay(pickle.loads(blob), s, p) for k, (blob, s, p) in cases.items()}
+        sys.stdout.buffer.write(pickle.dumps(out))
+        """
+    )
+    payload = {k: (blobs[k], cases[k][1], cases[k][2]) for k in IDS}
+    proc = subprocess.run(
+        [sys.executable, "-c", f"from typing import Any\n{child}"],
+        input=pickle.dumps(payload),
+        capture_output=True,
+        timeout=300,
+    )
+    assert proc.returncode == 0, proc.stderr.decode()[-2000:]
+    remote = pickle.loads(proc.stdout)
+    for env_id in IDS:
+        env, states, probes = cases[env_id]
+        local = _replay(env, states, probes)
+        for how, steps in [
+            ("deepcopy", _replay(copies[env_id][0], states, probes)),
+            ("pickle", _replay(copies[env_id][1], states, probes)),
+            ("pickle, another process", remote[env_id]),
+        ]:
+            assert len(steps) == len(local)
+            for k, (a, b) in enumerate(zip(local, steps, strict=True)):
+                assert data_equivalence(a, b, exact=True), (env_id, how, k, a[1:], b[1:])
+        if "Chain" not in env_id:  # the probes meet feasible and infeasible actions
+            feasible = [s[4]["feasible"] for s in local]
+            assert any(feasible) and not all(feasible), (env_id, feasible)
+
+
+def test_a_copy_made_after_rendering_renders_the_same() -> None:
+    """The renderer (an OpenGL context) is not copied: a copy opens its own."""
+    env = gym.make("voot/KitchenClearing-v1", render_mode="rgb_array", render_size=(64, 48))
+    env.reset(seed=0)
+    image = env.render()
+    for twin in (copy.deepcopy(env), pickle.loads(pickle.dumps(env))):
+        assert twin.unwrapped._renderer is None
+        assert np.array_equal(twin.render(), image)
+        twin.close()
+    env.close()
