@@ -92,7 +92,11 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             "--regret, --log, --functions, --dims and --methods apply to bbfo runs;"
             " for plan runs filter with --problems and --planners"
         )
-    planners = [normalize_planner(p) for p in split_list(args.planners)] or None
+    # a planner name, or an ablation variant's label (``voot[kappa_off]``)
+    planners = [
+        normalize_planner(base) + sep + rest
+        for base, sep, rest in (p.partition("[") for p in split_list(args.planners))
+    ] or None
     tuning = _tuning_seeds(args.tuning_seeds)
     data = plan_data(
         rows,

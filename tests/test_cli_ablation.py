@@ -54,3 +54,17 @@ def test_a_tiny_ablation_runs_resumes_and_draws_its_table(
     assert "| commit_off | kitchen_v1 | voot |" in text  # no data: 15 < 750 simulations
     assert "runs of 15 simulations" in text
     assert "voot[commit_off] vs pw_uct[commit_off] | no data" in text
+    # plot takes a variant's label as a planner filter
+    md = tmp_path / "plot.md"
+    plot = [
+        "plot",
+        str(out),
+        "--tuning-seeds",
+        "1000:1001",
+        "--planners",
+        "voot",
+        "voot[commit_off]",
+    ]
+    assert main([*plot, "--markdown", str(md)]) == 0
+    table = md.read_text()
+    assert "voot[commit_off]" in table and "pw_uct" not in table
