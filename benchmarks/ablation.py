@@ -32,6 +32,8 @@ commit_no_return        after a goal, return to the original root -> keep descen
 commit_root_goal_child  return when any goal leaf exists -> when the root has a goal child
 commit_10               conveyor only: commitment after 1 root action -> after 10
 authors                 all of the above as the authors coded them, at once
+authors_commit_10       conveyor only: ``authors`` with commitment after 10 root actions
+                        (the stored test script's ``n_switch`` for the conveyor)
 ======================  ===================================================================
 """
 
@@ -90,6 +92,7 @@ _AUTHORS_VOOT = {
     "commit_reset_trigger": "root_goal_child",
     "tie_break": "random",
 }
+_AUTHORS_PW_UCT = {**_HYBRID, "widening": "authors", "commit_reset_trigger": "root_goal_child"}
 
 SWITCHES: Mapping[str, Switch] = MappingProxyType(
     {
@@ -167,15 +170,18 @@ SWITCHES: Mapping[str, Switch] = MappingProxyType(
             Switch(
                 "authors",
                 "everything as the authors coded it, at once",
+                {"voot": _AUTHORS_VOOT, "pw_uct": _AUTHORS_PW_UCT},
+                {"voot": {"reevaluations": (5,)}, "pw_uct": _AUTHORS_PW_AXES},
+            ),
+            Switch(
+                "authors_commit_10",
+                "conveyor: everything as coded, with commitment after 10 root actions",
                 {
-                    "voot": _AUTHORS_VOOT,
-                    "pw_uct": {
-                        **_HYBRID,
-                        "widening": "authors",
-                        "commit_reset_trigger": "root_goal_child",
-                    },
+                    "voot": {**_AUTHORS_VOOT, "root_commitment": 10},
+                    "pw_uct": {**_AUTHORS_PW_UCT, "root_commitment": 10},
                 },
                 {"voot": {"reevaluations": (5,)}, "pw_uct": _AUTHORS_PW_AXES},
+                problems=("voot/ConveyorPacking-v1",),
             ),
         )
     }

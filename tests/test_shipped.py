@@ -60,7 +60,7 @@ def documented_sweeps() -> dict[str, list[Any]]:
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
     return {
         "protocol-v1": protocol_v1_sweep(),
-        "ablation-v1": ablation_kitchen_sweep(),
+        "ablation-v1": ablation_sweep(),
         "protocol-v1-same-seed": build_plan_specs(
             ["kitchen_v1", "conveyor_v1"], planners=PROTOCOL_V1_PLANNERS
         ),
@@ -119,18 +119,17 @@ def protocol_v1_sweep() -> list[Any]:
     return [*tuning, *evaluation, *rl]
 
 
-def ablation_kitchen_sweep() -> list[Any]:
-    """The ablation's kitchen half as ``voot-bench ablation --problems kitchen_v1`` runs it:
-    every variant's grid on the tuning seeds, its selected setting on seeds 0-19."""
+def ablation_sweep() -> list[Any]:
+    """The ablation as ``voot-bench ablation`` runs it: every variant's grid on the tuning
+    seeds 1000-1004, its selected setting on seeds 0-19, on both v1 domains."""
     from voot.bench.ablation import ablation_specs, check_switches
     from voot.bench.tuning import selected_specs, tuning_selections
 
     switches = check_switches(None)
-    tuning = ablation_specs(switches, range(1000, 1005), problems=["kitchen_v1"])
+    tuning = ablation_specs(switches, range(1000, 1005))
     rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan")
     evaluation = selected_specs(
-        ablation_specs(switches, range(20), problems=["kitchen_v1"]),
-        tuning_selections(tuning, rows),
+        ablation_specs(switches, range(20)), tuning_selections(tuning, rows)
     )
     return [*tuning, *evaluation]
 
@@ -143,7 +142,7 @@ def test_the_ablations_v1_rows_are_the_protocol_stores_rows() -> None:
     }
     rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan", status="ok")
     shared = [r for r in rows if "variant" not in r["config"]]
-    assert len(shared) >= 100  # at least the kitchen's 60 tuning and 40 evaluation runs
+    assert len(shared) == 200  # both domains' 120 tuning and 80 evaluation runs
     for r in shared:
         old = protocol[r["run_id"]]
         for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):

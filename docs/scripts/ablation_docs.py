@@ -21,8 +21,8 @@ from voot.bench.cli import main as bench
 STORE = "docs/data/ablation-v1"
 PAGE = Path("docs/results-planning.md")
 TUNING = "1000:1005"
-#: The problems whose ablation runs are all in the store (the conveyor's are still running).
-PROBLEMS = ("kitchen_v1",)
+#: The problems whose ablation runs are all in the store.
+PROBLEMS = ("kitchen_v1", "conveyor_v1")
 
 
 def _block(name: str) -> re.Pattern[str]:
