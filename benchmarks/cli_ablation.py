@@ -13,8 +13,14 @@ import argparse
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from voot.bench.backends import BACKENDS
-from voot.bench.cli_common import CLIError, add_compact_options, parse_range, split_list
+from voot.bench.cli_common import (
+    CLIError,
+    add_backend_options,
+    add_compact_options,
+    check_sweep_options,
+    parse_range,
+    split_list,
+)
 from voot.bench.cli_plan import plan_tuned
 from voot.bench.cli_report import print_ablation_table
 from voot.bench.plan_sweep import PlanSpec
@@ -37,10 +43,7 @@ def cmd_ablation(args: argparse.Namespace) -> int:
     if args.table:
         problems = split_list(args.problems) or None
         return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
-    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
-        raise CLIError("--address and --max-tries go with --backend ray")
-    if args.probe_simulations < 1:
-        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+    check_sweep_options(args)
     problems = split_list(args.problems) or list(A.ABLATION_PROBLEMS)
 
     def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
@@ -94,12 +97,7 @@ def register(sub: Subparsers) -> None:
         " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
     )
     p.add_argument("--markdown", help="--table: also write the table here")
-    p.add_argument("--workers", type=int, default=None, help="processes (default: every CPU)")
-    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
-    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
-    p.add_argument(
-        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
-    )
+    add_backend_options(p)
     p.add_argument(
         "--skip-failed", action="store_true", help="do not retry runs that failed before"
     )

@@ -185,3 +185,28 @@ def add_filters(p: argparse.ArgumentParser, defaults: bool) -> None:
     )
     p.add_argument("--dims", nargs="+", metavar="D", help="dimensions" + hint(PAPER_DIMS))
     p.add_argument("--methods", nargs="+", metavar="NAME", help="optimisers" + hint(PAPER_METHODS))
+
+
+def add_backend_options(p: argparse.ArgumentParser) -> None:
+    """``--workers``, ``--backend``, ``--address`` and ``--max-tries`` of a sweep."""
+    from voot.bench.backends import BACKENDS
+
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="processes or Ray actors (default: every CPU)",
+    )
+    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
+    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
+    p.add_argument(
+        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
+    )
+
+
+def check_sweep_options(args: argparse.Namespace) -> None:
+    """The checks of a planning sweep's options (Ray-only options, the probe's length)."""
+    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
+        raise CLIError("--address and --max-tries go with --backend ray")
+    if args.probe_simulations < 1:
+        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")

@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING
 
 from voot.bench.cli_common import (
     CLIError,
+    add_backend_options,
     add_compact_options,
+    check_sweep_options,
     compact_config,
     existing_store,
     open_store,
@@ -36,8 +38,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.plan_sweep import build_plan_specs, summarize_plan_specs
     from voot.bench.problems import DEFAULT_PROBLEMS
 
-    if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
-        raise CLIError("--address and --max-tries go with --backend ray")
+    check_sweep_options(args)
     if args.record is not None:
         if args.backend == "ray":
             raise CLIError(
@@ -52,8 +53,6 @@ def cmd_plan(args: argparse.Namespace) -> int:
                 " extra (pip install 'voot[record]')"
             ) from None
     seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
-    if args.probe_simulations < 1:
-        raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
 
     def specs_of(seed_list: list[int] | None) -> list[PlanSpec]:
         return list(
@@ -212,7 +211,7 @@ def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
 
 def register(sub: Subparsers) -> None:
     """Add ``plan``."""
-    from voot.bench.sweep import BACKENDS, GRIDS
+    from voot.bench.sweep import GRIDS
 
     p = sub.add_parser(
         "plan",
@@ -272,17 +271,7 @@ def register(sub: Subparsers) -> None:
         metavar="NAME=VALUE",
         help="keywords of gymnasium.make for the environments (e.g. dim=3)",
     )
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        help="processes or Ray actors (default: every CPU)",
-    )
-    p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
-    p.add_argument("--address", default=None, help="Ray cluster address (e.g. auto)")
-    p.add_argument(
-        "--max-tries", type=int, default=None, help="Ray: tries of a run whose worker dies (3)"
-    )
+    add_backend_options(p)
     p.add_argument("--record", metavar="RUN.rrd", help="record each run's search with rerun")
     p.add_argument(
         "--skip-failed", action="store_true", help="do not retry runs that failed before"

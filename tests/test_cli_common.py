@@ -73,3 +73,18 @@ def test_sigterm_is_an_interrupt() -> None:
     with pytest.raises(KeyboardInterrupt), sigterm_as_interrupt():
         os.kill(os.getpid(), signal.SIGTERM)
     assert signal.getsignal(signal.SIGTERM) == before
+
+
+def test_sweep_options_are_shared_and_checked() -> None:
+    import argparse
+
+    from voot.bench.cli_common import CLIError, add_backend_options, check_sweep_options
+
+    p = argparse.ArgumentParser()
+    add_backend_options(p)
+    p.add_argument("--probe-simulations", type=int, default=20)
+    check_sweep_options(p.parse_args(["--backend", "ray", "--address", "auto"]))
+    with pytest.raises(CLIError, match="go with --backend ray"):
+        check_sweep_options(p.parse_args(["--address", "auto"]))
+    with pytest.raises(CLIError, match="--probe-simulations must be >= 1"):
+        check_sweep_options(p.parse_args(["--probe-simulations", "0"]))
