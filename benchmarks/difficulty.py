@@ -100,7 +100,7 @@ def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:
     return (max(0.0, centre - half), min(1.0, centre + half))
 
 
-def _short_reason(reason: str) -> str:
+def short_reason(reason: str) -> str:
     """A failure reason without the object names (``collision: robot-wall`` -> ``collision``)."""
     text = reason.split("): ", 1)[-1] if reason.startswith("box ") else reason
     return text.split(":", 1)[0].split(" (", 1)[0]
@@ -154,7 +154,7 @@ def node_stats(env_id: str, samples: int, seed: int = 0) -> list[NodeStats]:
             if res.feasible:
                 executed += 1
             else:
-                failures[_short_reason(StepInfo.of(res.info).reason)] += 1
+                failures[short_reason(StepInfo.of(res.info).reason)] += 1
         problem.restore(snapshot)
         out.append(NodeStats(env_id, name, samples, passed, executed, dict(failures)))
     return out

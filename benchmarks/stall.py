@@ -22,13 +22,13 @@ equal the untraced run's.
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from voot.bench.difficulty import _short_reason
+from voot.bench.difficulty import short_reason
 from voot.bench.plan_sweep import PlanSpec, search_seed
 from voot.tree.mcts import MCTS
 from voot.tree.node import Node
@@ -64,12 +64,16 @@ class Trace:
     tied_best_draws: int = 0
 
 
+#: ``record(stage, cause, action)``: what :class:`_TracedProblem` reports of every draw.
+Recorder = Callable[[str, str, Any], None]
+
+
 class _TracedProblem:
     """The planning problem with its pre-checks and steps recorded (answers unchanged)."""
 
-    def __init__(self, problem: Any, search: _TracedMCTS) -> None:
+    def __init__(self, problem: Any, record: Recorder) -> None:
         self._p = problem
-        self._search = search
+        self._record = record
         check = getattr(problem, "is_feasible", None)
         self.is_feasible = self._is_feasible if callable(check) else None
 
@@ -89,23 +93,25 @@ class _TracedProblem:
         ok = bool(self._p.is_feasible(action))
         if not ok:
             reason = StepInfo.of(self._p.last_check.info).reason
-            self._search.record("precheck", _short_reason(reason), action)
+            self._record("precheck", short_reason(reason), action)
         return ok
 
     def step(self, action: Any) -> Any:
         res = self._p.step(action)
         if res.feasible:
-            self._search.record("feasible", "", action)
+            self._record("feasible", "", action)
         else:
-            self._search.record("execution", _short_reason(StepInfo.of(res.info).reason), action)
+            self._record("execution", short_reason(StepInfo.of(res.info).reason), action)
         return res
 
 
 class _TracedMCTS(MCTS):
     """MCTS that notes the node of every new action (behaviour unchanged)."""
 
-    trace: Trace
-    _node: Node | None
+    def __init__(self, problem: Any, config: Any, seed: Any) -> None:
+        self.trace = Trace()
+        self._node: Node | None = None
+        super().__init__(_TracedProblem(problem, self.record), config, seed=seed)
 
     def new_action(self, node: Node) -> int:
         self._node = node
@@ -121,8 +127,8 @@ class _TracedMCTS(MCTS):
             best = opt.xs[opt.best_index]
             distance = float(np.linalg.norm(np.asarray(action) - best))
         self.trace.draws.append(Draw(self.n_simulations, node.id, stage, cause, distance))
-        exploits = getattr(node.sampler, "_n_feasible", 1) > 0  # VOO draws uniformly before
-        if stage != "precheck" and opt is not None and opt.n_told >= 2 and exploits:
+        # before the node has a feasible action, VOO draws uniformly (both codes)
+        if stage != "precheck" and opt is not None and opt.n_told >= 2 and node.n_feasible:
             values = opt.values
             self.trace.exploiting_draws += 1
             self.trace.tied_best_draws += int(np.sum(values == values[opt.best_index]) > 1)
@@ -138,11 +144,7 @@ def trace_search(spec: PlanSpec) -> tuple[Trace, MCTS]:
 
     config = spec.mcts_config()
     problem = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed).problem
-    mcts = _TracedMCTS.__new__(_TracedMCTS)
-    mcts.trace = Trace()
-    mcts._node = None
-    traced = _TracedProblem(problem, mcts)
-    MCTS.__init__(mcts, traced, config, seed=search_seed(spec))
+    mcts = _TracedMCTS(problem, config, search_seed(spec))
     last_root = None
 
     def watch(m: MCTS, i: int) -> None:
