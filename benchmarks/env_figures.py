@@ -14,6 +14,7 @@
 
 from __future__ import annotations
 
+import argparse
 import sys
 from pathlib import Path
 
@@ -73,5 +74,11 @@ def render_all(out_dir: Path) -> None:
 
 def main(argv: list[str] | None = None) -> None:
     """Command line: ``voot-bench env-figures [out_dir]``."""
-    args = sys.argv[1:] if argv is None else argv
-    render_all(Path(args[0]) if args else Path("docs/figures"))
+    parser = argparse.ArgumentParser(
+        prog="voot-bench env-figures", description="render the environment figures of the docs"
+    )
+    parser.add_argument(
+        "out_dir", nargs="?", default="docs/figures", help="folder of the figures (%(default)s)"
+    )
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    render_all(Path(args.out_dir))
