@@ -46,7 +46,7 @@ from types import MappingProxyType
 from typing import Any
 
 from voot.bench import problems as P
-from voot.bench.plan_sweep import PW_KS, UCB_CS, PlanSpec, planner_grid
+from voot.bench.plan_sweep import UCB_CS, PlanSpec, planner_grid
 
 #: The planners the ablation compares.
 ABLATION_PLANNERS: tuple[str, ...] = ("voot", "pw_uct")
@@ -275,7 +275,6 @@ __all__ = [
     "ABLATION_SEEDS",
     "ABLATION_TUNING_SEEDS",
     "BASELINE",
-    "PW_KS",
     "SWITCHES",
     "Switch",
     "ablation_specs",
