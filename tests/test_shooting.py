@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from problem_fixtures import BadReward
 
 from voot.optim.base import Bounds
 from voot.tree import plan
@@ -186,20 +187,6 @@ def test_bonus_counts_in_the_objective_not_in_the_return() -> None:
     res = plan(Bonus(), "cem", n_simulations=10, seed=0, horizon=3)
     assert res.best_return < 1.0 and np.all(res.bonuses == 1.0)
     assert len(res.actions) == 1  # terminal after one step
-
-
-class BadReward(NullProblem):
-    """Reward (and bonus) ``reward`` and ``bonus`` from step ``after + 1`` on."""
-
-    def __init__(self, reward: float, bonus: float = 0.0, after: int = 0) -> None:
-        super().__init__(2)
-        self.bad_reward, self.bad_bonus, self.after, self.calls = reward, bonus, after, 0
-
-    def step(self, action: np.ndarray) -> StepResult:
-        self.calls += 1
-        if self.calls > self.after:
-            return StepResult(self.bad_reward, bonus=self.bad_bonus)
-        return super().step(action)
 
 
 @pytest.mark.parametrize("planner", PLANNERS)

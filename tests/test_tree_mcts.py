@@ -10,6 +10,7 @@ import time
 
 import numpy as np
 import pytest
+from problem_fixtures import BadReward
 
 from voot.optim.base import Bounds
 from voot.tree import MCTS, MCTSConfig, Node, StepResult, plan, planner_config
@@ -754,20 +755,6 @@ def test_a_search_interrupted_by_a_step_error_continues_on_a_feasible_child() ->
     res = mcts.search(5, callback=lambda m, i: first.append(m.current_root) if not first else None)
     assert first[0] is root.children[1]
     assert res.best_return > 0.0 and mcts.n_steps > 3
-
-
-class BadReward(NullProblem):
-    """A problem whose step earns ``reward`` (and ``bonus``) once ``after`` steps are done."""
-
-    def __init__(self, reward: float, bonus: float = 0.0, after: int = 0) -> None:
-        super().__init__(2)
-        self.bad_reward, self.bad_bonus, self.after, self.calls = reward, bonus, after, 0
-
-    def step(self, action: np.ndarray) -> StepResult:
-        self.calls += 1
-        if self.calls > self.after:
-            return StepResult(self.bad_reward, bonus=self.bad_bonus)
-        return super().step(action)
 
 
 @pytest.mark.parametrize(
