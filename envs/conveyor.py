@@ -224,7 +224,13 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         self.config = env_config(ConveyorConfig, CONVEYOR_PRESETS, config, preset, options)
         cfg = self.config
         super().__init__(
-            "conveyor", cfg.workspace, cfg.ik, cfg.planner, render_mode, render_camera, render_size
+            self._scene_model(),
+            cfg.workspace,
+            cfg.ik,
+            cfg.planner,
+            render_mode,
+            render_camera,
+            render_size,
         )
         if len(self.objects) < cfg.n_objects:  # pragma: no cover - scene drift
             raise ValueError(
@@ -290,6 +296,14 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
                 f"the carry footprint of {obj.name} at the start collides with {', '.join(hits)}"
             )
         return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
+
+    def _scene_model(self) -> str | mujoco.MjModel:
+        """The scene to load: ``voot.models``' fixed ``conveyor.xml`` (the paper's instance).
+
+        A subclass with a generated layout returns its compiled model instead; it is
+        called once, in ``__init__``, after :attr:`config` is set.
+        """
+        return "conveyor"
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------
     def _queue_pose(self, i: int, placed: int) -> tuple[float, float, float, float]:

@@ -114,7 +114,13 @@ class KitchenClearingEnv(KitchenChecks):
         self._screen = None
         self._last_carry = None
         super().__init__(
-            "kitchen", cfg.house, cfg.ik, cfg.planner, render_mode, render_camera, render_size
+            self._scene_model(),
+            cfg.house,
+            cfg.ik,
+            cfg.planner,
+            render_mode,
+            render_camera,
+            render_size,
         )
         self._reset_physics()
         path = self.planner.plan(cfg.start, cfg.goal, cfg.robot_radius, ())
@@ -146,6 +152,14 @@ class KitchenClearingEnv(KitchenChecks):
         if self._clearing is None:
             return ()
         return self._clearing.on_path(self.object_boxes())
+
+    def _scene_model(self) -> str | mujoco.MjModel:
+        """The scene to load: ``voot.models``' fixed ``kitchen.xml`` (the paper's instance).
+
+        A subclass with a generated layout returns its compiled model instead; it is
+        called once, in ``__init__``, after :attr:`config` is set.
+        """
+        return "kitchen"
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------
     def _reset_physics(self) -> None:

@@ -76,7 +76,8 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     :meth:`_observation` and :meth:`_info_reset`.
 
     Args:
-        scene: Scene name in ``voot.models``.
+        scene: Scene name in ``voot.models``, or a compiled model (a generated scene,
+            such as a procedural layout's).
         workspace: The region the robot's base disc must stay in (planner workspace).
         ik: IK settings.
         planner: Base planner settings.
@@ -99,7 +100,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
     def __init__(
         self,
-        scene: str,
+        scene: str | mujoco.MjModel,
         workspace: tuple[float, float, float, float],
         ik: IKConfig,
         planner: BasePlannerConfig,
@@ -123,7 +124,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self.render_mode = render_mode
         self.render_camera = render_camera
         self.render_size = (w, h)
-        self.model = load_model(scene)
+        self.model = scene if isinstance(scene, mujoco.MjModel) else load_model(scene)
         self.data = mujoco.MjData(self.model)
         self.robot = Robot(self.model)
         self.objects = movable_objects(self.model)
