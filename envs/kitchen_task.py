@@ -57,8 +57,10 @@ def task_error(
 ) -> str | None:
     """What no episode of a kitchen reaches in ``task``, or None.
 
-    An episode alternates pick (nothing held: ``held`` -1) and place (``held`` an
-    object index, its pose in the base frame and the arm's 7 joints finite); the
+    An episode alternates pick (nothing held: ``held`` -1, no grasp: ``held_rel``
+    ``(0.0, 0.0, 0.0)`` and ``grasp_q`` ``()``) and place (``held`` an object index, its
+    pose in the base frame and the arm's 7 joints finite); a place that cleared an
+    obstacle (``last_place_cleared``) follows a pick, so comes at step 2 or later; the
     obstacles left are distinct objects in the handling ``order`` (``rank``: each
     object's position in it), and the episode is done exactly when none is left. The
     kitchen has ``n_objects`` objects and truncates after ``horizon`` steps.
@@ -69,6 +71,16 @@ def task_error(
     if task.operator == "pick":
         if task.held != -1 or type(task.held) is not int:
             return f"held must be -1 before a pick (nothing in the gripper), got {task.held!r}"
+        if (
+            type(task.held_rel) is not tuple
+            or task.held_rel != (0.0, 0.0, 0.0)
+            or task.grasp_q != ()
+        ):
+            # what every pick-time record holds (reset and a place write these values)
+            return (
+                "held_rel and grasp_q must be (0.0, 0.0, 0.0) and () before a pick (no grasp),"
+                f" got {task.held_rel!r} and {task.grasp_q!r}"
+            )
     elif task.operator == "place":
         if not is_count(task.held, 0, n - 1):
             return f"held must be an object index in 0..{n - 1} before a place, got {task.held!r}"
@@ -91,6 +103,8 @@ def task_error(
             "last_place_cleared and done must be bools, got"
             f" {task.last_place_cleared!r} and {task.done!r}"
         )
+    if task.last_place_cleared and task.steps < 2:
+        return f"last_place_cleared can be True only after a pick and a place, at step {task.steps}"
     if task.done != (not on_path):
         return f"done must be {not on_path} when on_path is {on_path!r}, got {task.done!r}"
     return None

@@ -54,6 +54,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.action_units import normalize
 from voot.envs.conveyor import OBJECTS_PER_ACTION, ConveyorPackingEnv
 from voot.envs.env_state import EnvState
@@ -156,11 +157,23 @@ class EnvProblem:
         return box
 
     def to_env_action(self, action: ArrayLike) -> FloatArray:
-        """The env's (normalised, full-length) action for a planner's action."""
-        a = np.asarray(action, dtype=np.float64).reshape(-1)
+        """The env's (normalised, full-length) action for a planner's action.
+
+        ``action`` must be a vector of the current operator's length of finite real
+        numbers (see :func:`voot.validation.real_array`), else a ValueError that names the
+        length: the problem's :meth:`step` and :meth:`is_feasible` ask this before they
+        change anything (counts, caches, the env).
+        """
+        a = V.real_array(action, "action")
         dim = self.action_bounds().dim
         if a.shape != (dim,):
-            raise ValueError(f"action must have {dim} entries at this state, got shape {a.shape}")
+            raise ValueError(
+                f"action must have {dim} entries at this state (a vector: the"
+                f" {self._operator()} operator's, {self.units} units), got shape {a.shape}"
+            )
+        if not np.isfinite(a).all():
+            bad = np.flatnonzero(~np.isfinite(a)).tolist()
+            raise ValueError(f"action has NaN or infinite entries at indices {bad}: {a.tolist()}")
         if self.units == "paper":
             a = normalize(a, self._ranges())
         if dim < self._dim:
@@ -231,6 +244,7 @@ class EnvProblem:
         return self._result(*self.unwrapped.transition(env_action))
 
     def step(self, action: ArrayLike) -> StepResult:
+        env_action = self.to_env_action(action)  # a bad action is refused before any change
         key = np.asarray(action, dtype=np.float64).tobytes()
         cache, self._cache = self._cache, None
         screened = self._screened
@@ -245,7 +259,7 @@ class EnvProblem:
             # run now, it is also the check's result
             self._screened = None
             self._here = None
-            res = self._result(*self.unwrapped.transition(self.to_env_action(action)))
+            res = self._result(*self.unwrapped.transition(env_action))
             if self._pending:
                 self._pending = False
                 self._last_check = res
@@ -259,7 +273,7 @@ class EnvProblem:
             self._jump(cache[3], cache[4])
             return cache[2]
         self._here = None
-        return self._transition(self.to_env_action(action))
+        return self._transition(env_action)
 
     def _jump(self, before: EnvState[Any], after: EnvState[Any]) -> None:
         """Go from snapshot ``before`` (the current state) to ``after``.
@@ -277,9 +291,14 @@ class EnvProblem:
     def is_feasible(self, action: ArrayLike) -> bool:
         """Does ``action`` pass the env's pre-check now? (The state is left unchanged.)"""
         u = self.unwrapped
+        # the plain actions' entries, or the env action (a bad action is refused here,
+        # before any count, cache or state changes)
+        values = self._plain_values(action) if self.prescreen and not self._kinematic else None
+        env_action = self.to_env_action(action) if values is None else None
         self._pending = False
         if self._kinematic:
-            ok, info = u.precheck(self.to_env_action(action))
+            assert env_action is not None
+            ok, info = u.precheck(env_action)
             reward = 0.0 if ok else float(u.config.infeasible_reward)
             self._last_check = StepResult(reward=reward, feasible=ok, info=info)
             return ok
@@ -287,16 +306,13 @@ class EnvProblem:
         if before is None or before.task is not u.task:
             before = self.snapshot()
         self._screened = None
-        env_action = None
-        if self.prescreen:
-            values = self._plain_values(action)
-            if values is not None:
-                # the env action's entries in [-1, 1]: the pre-screen of the env action
-                # (zeros after the operator's parameters), without building it
-                screened = u.certainly_infeasible_values(values)
-            else:
-                env_action = self.to_env_action(action)
-                screened = u.certainly_infeasible(env_action)
+        if values is not None:
+            # the env action's entries in [-1, 1]: the pre-screen of the env action
+            # (zeros after the operator's parameters), without building it
+            screened = u.certainly_infeasible_values(values)
+        elif self.prescreen:
+            assert env_action is not None
+            screened = u.certainly_infeasible(env_action)
         else:
             screened = False
         if screened:

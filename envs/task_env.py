@@ -50,6 +50,7 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot import validation as V
 from voot.envs.arm_ik import ArmIK, IKConfig
 from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.collision import CollisionChecker
@@ -268,12 +269,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         """The action as float64 clipped to the space, and whether clipping happened."""
         space = self.action_space
         assert isinstance(space, gym.spaces.Box)
-        try:
-            a = np.asarray(action, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(
-                f"action must be a numeric array of shape {space.shape}, got {action!r}"
-            ) from None
+        a = V.real_array(action, f"action (shape {space.shape}, normalised units in [-1, 1])")
         if a.shape != space.shape:
             raise ValueError(
                 f"action must have shape {space.shape} (normalised units in [-1, 1]), got shape {a.shape}"
@@ -428,10 +424,17 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[FloatArray, dict[str, Any]]:
-        """Back to the scene's initial configuration (deterministic; ``seed`` seeds np_random)."""
+        """Back to the scene's initial configuration (deterministic; ``seed`` seeds np_random).
+
+        ``seed`` is None or an integer >= 0 (numpy's integers too; not a bool); the envs
+        take no ``options`` (None or an empty mapping). Both are checked before anything
+        changes: a refused call leaves the generator, physics and task as they were.
+        """
+        if options is not None and (not isinstance(options, Mapping) or options):
+            shown = list(options) if isinstance(options, Mapping) else repr(options)
+            raise ValueError(f"reset takes no options (None or {{}}), got {shown}")
+        seed = V.optional_integer(seed, "seed", low=0)
         super().reset(seed=seed)
-        if options:
-            raise ValueError(f"reset takes no options, got {sorted(options)}")
         self._reset_physics()
         self.task = self._initial_task()
         return self._observation(), self._info_reset()

@@ -46,6 +46,12 @@ R = dataclasses.replace
         (R(PICK, on_path=(0, 0)), "distinct objects"),
         (R(PICK, done=None), "last_place_cleared and done must be bools"),
         (R(PICK, done=True), "done must be False when on_path is"),
+        # a pick-time record holds no grasp (issue 26: any values were taken)
+        (R(PICK, held_rel=(0.5, -0.1, 1.2)), r"held_rel and grasp_q must be \(0\.0, 0\.0, 0\.0\)"),
+        (R(PICK, grasp_q=(0.1,) * 7), r"and \(\) before a pick \(no grasp\)"),
+        (R(PICK, held_rel="xyz"), "held_rel and grasp_q must be"),
+        (R(PICK, last_place_cleared=True), "only after a pick and a place, at step 0"),
+        (R(PLACE, last_place_cleared=True), "at step 1"),
     ],
 )
 def test_records_no_episode_reaches_are_named(task: KitchenTask, match: str) -> None:

@@ -330,3 +330,44 @@ def test_a_screened_check_is_computed_where_it_was_made(kitchen: KitchenClearing
     res = p.step(bad)
     assert not res.feasible and p.n_simulator_calls == calls and p.last_check is res
     assert kitchen.task.steps == s0.task.steps + 1
+
+
+@pytest.mark.parametrize(
+    "env_id", ["voot/KitchenClearing-v1", "voot/ConveyorPacking-v1", "voot/KitchenClearing-v0"]
+)
+def test_bad_actions_are_refused_before_any_count_cache_or_state_changes(env_id: str) -> None:
+    """step and is_feasible: a (1, d) array was flattened and taken, bools, strings and
+    complex numbers read as numbers, and a NaN action counted a simulator call (and
+    dropped the cached check) before the env refused it."""
+    env = gym.make(env_id, disable_env_checker=True)
+    p = EnvProblem(env, seed=0)
+    d = p.action_bounds().dim
+    good = np.zeros(d)
+    p.is_feasible(good)  # a cached check, which the next step(good) reuses
+    before = p.snapshot()
+    bits = (before.physics.tobytes(), before.task, env.unwrapped.np_random.bit_generator.state)
+    calls = p.n_simulator_calls
+    last = p.last_check
+    for bad, match in [
+        (np.zeros((1, d)), rf"action must have {d} entries at this state"),
+        (np.array(0.5), rf"must have {d} entries"),
+        (np.zeros(d + 1), rf"must have {d} entries"),
+        (np.full(d, np.nan), "NaN or infinite entries"),
+        (np.r_[np.zeros(d - 1), np.inf], rf"NaN or infinite entries at indices \[{d - 1}\]"),
+        (np.zeros(d, dtype=bool), "must be numeric, real numbers"),
+        (np.array(["0.1"] * d), "must be numeric"),
+        (np.full(d, 0.5j), "must be numeric"),
+        (None, "must be numeric"),
+    ]:
+        for entry in (p.step, p.is_feasible):
+            with pytest.raises(ValueError, match=match):
+                entry(bad)
+            s = env.unwrapped.get_state()
+            assert (
+                s.physics.tobytes(),
+                s.task,
+                env.unwrapped.np_random.bit_generator.state,
+            ) == bits
+            assert p.n_simulator_calls == calls and p.last_check is last
+    p.step(good)  # the cached check is still used: no new simulator call
+    assert p.n_simulator_calls == calls + (0 if env_id.endswith("v0") else 1)

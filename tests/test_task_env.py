@@ -176,6 +176,12 @@ def _impossible_tasks(which: str) -> tuple[Any, list[tuple[Any, Any, str]]]:
         (pick, R(p, on_path=()), r"done must be True when on_path is \(\), got False"),
         (pick, R(p, done=True), "done must be False"),
         (pick, R(p, last_place_cleared=1), "last_place_cleared and done must be bools"),
+        (pick, R(p, last_place_cleared=True), "last_place_cleared can be True only after"),
+        (pick, R(p, held_rel=(0.1, 0.0, 0.0)), "held_rel and grasp_q must be .* before a pick"),
+        (pick, R(p, held_rel="x"), "held_rel and grasp_q must be"),
+        (pick, R(p, held_rel=np.zeros(3)), "held_rel and grasp_q must be"),
+        (pick, R(p, grasp_q=q.grasp_q), "held_rel and grasp_q must be"),
+        (pick, R(p, grasp_q=None), "held_rel and grasp_q must be"),
         (pick, R(p, steps=-1), r"steps must be an int in 0\.\.50 \(the horizon\), got -1"),
         (pick, R(p, steps=51), "got 51"),
     ]
@@ -228,3 +234,109 @@ def test_set_state_checks_each_task_record_once(kitchen: KitchenClearingEnv) -> 
     assert [t is a.task for t in seen] == [True, False, False]
     assert seen[1] is b.task and seen[2] == a.task
     kitchen.reset(seed=0)
+
+
+# ----- bad input to the v1 envs' public entries (issue 26) ------------------------------
+def _bits(env: Any) -> tuple[bytes, Any, Any]:
+    """The env's state, bit for bit: physics bytes, task record, generator state."""
+    s = env.unwrapped.get_state()
+    return s.physics.tobytes(), s.task, env.unwrapped.np_random.bit_generator.state
+
+
+def _bad_actions(d: int) -> list[tuple[Any, str]]:
+    """Actions of a ``d``-D env that must be refused, and the error each gets."""
+    numeric = "must be numeric, real numbers"
+    return [
+        (np.zeros(d, dtype=bool), numeric),
+        (np.array(["0.1"] * d), numeric),  # numpy would parse the strings
+        (["0.1"] * d, numeric),
+        (np.full(d, 0.1, dtype=object), numeric),
+        (np.full(d, 0.1 + 0.5j), numeric),  # numpy would drop the imaginary part
+        (np.zeros(d, dtype=complex), numeric),
+        (None, numeric),
+        ({"a": 1}, numeric),
+        ([0.0] * (d - 1) + [[0.0]], numeric),  # ragged
+        (np.full(d, np.nan), "NaN or infinite entries"),
+        (np.r_[np.zeros(d - 1), -np.inf], rf"NaN or infinite entries at indices \[{d - 1}\]"),
+        (np.array(0.1), rf"shape \({d},\)"),
+        (np.zeros((1, d)), rf"shape \({d},\)"),
+        (np.zeros(d - 1), rf"shape \({d},\)"),
+        (np.zeros(d + 1), rf"shape \({d},\)"),
+    ]
+
+
+@pytest.mark.parametrize("env_id", ["voot/KitchenClearing-v1", "voot/ConveyorPacking-v1"])
+def test_v1_entries_refuse_bad_actions_before_any_change(env_id: str) -> None:
+    """step, transition and precheck: a clear error naming the shape, nothing changed
+    (bools, strings, objects and complex numbers used to be read as numbers)."""
+    import gymnasium as gym
+
+    env = gym.make(env_id, disable_env_checker=True)
+    env.reset(seed=3)
+    u: Any = env.unwrapped
+    d = u.action_dim
+    before = _bits(env)
+    for action, match in _bad_actions(d):
+        for entry in (env.step, u.transition, u.precheck):
+            with pytest.raises(ValueError, match=match):
+                entry(action)
+            assert _bits(env) == before, (entry, action)
+        assert u.certainly_infeasible(action) is False  # the pre-screen leaves them to the step
+    # real numbers of any width still step, as float64 would
+    ints = env.step(np.zeros(d, dtype=np.int32))[1:4]
+    env.reset(seed=3)
+    assert env.step(np.zeros(d))[1:4] == ints
+
+
+@pytest.mark.parametrize("env_id", ["voot/KitchenClearing-v1", "voot/ConveyorPacking-v1"])
+def test_v1_reset_refuses_bad_seeds_and_options_before_any_change(env_id: str) -> None:
+    """The options used to be refused after the seed had reseeded the generator."""
+    import gymnasium as gym
+
+    env = gym.make(env_id, disable_env_checker=True)
+    env.reset(seed=3)
+    env.step(np.zeros(env.unwrapped.action_dim))  # away from the reset state
+    before = _bits(env)
+    for options, match in [
+        ({"x": 1}, r"reset takes no options \(None or \{\}\), got \['x'\]"),
+        ({1: 2}, "reset takes no options"),
+        ("str", "got 'str'"),
+        (3, "got 3"),
+    ]:
+        with pytest.raises(ValueError, match=match):
+            env.reset(seed=5, options=options)
+        assert _bits(env) == before
+    for seed in (-1, 1.5, "7", True, [1, 2]):
+        with pytest.raises(ValueError, match="seed must be an integer >= 0 or None"):
+            env.reset(seed=seed)
+        assert _bits(env) == before
+    # numpy's integers are integers; an empty options mapping is no option
+    env.reset(seed=np.int64(5), options={})
+    after_np = _bits(env)
+    assert after_np != before
+    env.reset(seed=5)
+    assert _bits(env) == after_np
+
+
+def test_v1_set_state_of_the_other_domain_or_version() -> None:
+    """Another domain's snapshot is refused whole; a v0 snapshot of the same domain is
+    a state of the same scene and task record, so v1 restores it (the checks are of the
+    scene and the record, not of the version that reached it), exactly."""
+    import gymnasium as gym
+
+    kitchen = gym.make("voot/KitchenClearing-v1", disable_env_checker=True).unwrapped
+    conveyor = gym.make("voot/ConveyorPacking-v1", disable_env_checker=True).unwrapped
+    v0 = gym.make("voot/KitchenClearing-v0", disable_env_checker=True).unwrapped
+    for env, other in ((kitchen, conveyor), (conveyor, kitchen)):
+        env.reset(seed=1)
+        other.reset(seed=1)
+        before = _bits(env)
+        with pytest.raises(ValueError, match="state does not fit this environment"):
+            env.set_state(other.get_state())
+        assert _bits(env) == before
+    kitchen.reset(seed=2)
+    own = kitchen.get_state()
+    v0.reset(seed=2)
+    kitchen.step(np.zeros(6))
+    kitchen.set_state(v0.get_state())
+    assert kitchen.get_state() == own

@@ -89,3 +89,30 @@ def test_tuples_and_positive_numbers_refuse_booleans() -> None:
         V.region("house", (0, True, 0, 1))
     with pytest.raises(ValueError, match=r"\(x, y, theta\)"):
         V.pose("start", (0, 0, np.bool_(True)))
+
+
+def test_real_array_takes_real_numbers_only() -> None:
+    """Bools, complex numbers, strings and objects are refused (numpy would read them as
+    numbers: True as 1, "0.1" parsed, 1+2j with its imaginary part dropped)."""
+    a = np.array([0.5, -1.0])
+    assert V.real_array(a, "x") is a  # float64: as is, no copy
+    for good in ([1, 2], np.array([1, 2], dtype=np.uint8), np.float32([0.5, 2.0]), 3.0):
+        out = V.real_array(good, "x")
+        assert out.dtype == np.float64
+        assert np.array_equal(out, np.asarray(good, dtype=np.float64))
+    nan = V.real_array([math.nan], "x")  # NaN is the caller's to refuse
+    assert math.isnan(nan[0])
+    bad: list[object] = [
+        [True, False],
+        np.array(["0.1"]),
+        ["0.1", "0.2"],
+        np.array([0.1], dtype=object),
+        np.array([1 + 2j]),
+        None,
+        {"a": 1},
+        [0.0, [1.0]],
+        [2**70],
+    ]
+    for value in bad:
+        with pytest.raises(ValueError, match=r"^action must be numeric, real numbers \(ints or"):
+            V.real_array(value, "action")

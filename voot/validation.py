@@ -16,6 +16,7 @@ from enum import Enum
 from typing import Any, TypeVar
 
 import numpy as np
+from numpy.typing import NDArray
 
 E = TypeVar("E", bound=Enum)
 
@@ -149,6 +150,36 @@ def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
             f"{name} must be one of {', '.join(str(v) for v in options)}, got {value!r}"
         )
     return value
+
+
+# ----- arrays (actions) ----------------------------------------------------------------
+_F64 = np.dtype(np.float64)
+#: numpy dtype kinds of real numbers: signed and unsigned integers, floats.
+_REAL_KINDS = "iuf"
+
+
+def real_array(value: object, name: str) -> NDArray[np.float64]:
+    """``value`` as a float64 array whose entries were real numbers (any shape).
+
+    Ints and floats of any width (Python's or numpy's, in lists or arrays) are taken.
+    Booleans, complex numbers (numpy would drop the imaginary part with only a warning),
+    strings (numpy would parse ``"0.1"``), ``None`` and other objects are a ValueError
+    naming ``name``: each would otherwise be read as some number without a word. A
+    float64 array is returned as is (no copy). NaN and infinities are left to the caller.
+    """
+    if type(value) is np.ndarray and value.dtype == _F64:
+        return value
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.dtype.kind not in _REAL_KINDS:
+        kind = "a ragged sequence" if arr is None else f"dtype {arr.dtype}"
+        raise ValueError(
+            f"{name} must be numeric, real numbers (ints or floats; not bools, complex numbers,"
+            f" strings or objects), got {kind}: {value!r}"
+        )
+    return arr.astype(np.float64)
 
 
 # ----- tuples and configs (the environments' settings) ----------------------------------
