@@ -73,3 +73,14 @@ def test_defaults_are_the_installed_sb3_defaults(cls: type) -> None:
     assert params["device"].default == "auto"  # ours is "cpu" on purpose
     if cls is DDPGConfig:
         assert params["action_noise"].default is None  # SB3 has no noise; ours is 0.1
+
+
+def test_inverted_sizes_are_refused() -> None:
+    """A PPO minibatch larger than its rollout, or a DDPG batch larger than its replay
+    buffer: SB3 cuts or repeats without a word."""
+    with pytest.raises(ValueError, match=r"batch_size must be <= n_steps \(32\)"):
+        PPOConfig(n_steps=32)  # batch_size 64
+    assert PPOConfig(n_steps=32, batch_size=32).batch_size == 32
+    with pytest.raises(ValueError, match=r"batch_size must be <= buffer_size \(100\)"):
+        rl_config("ddpg", buffer_size=100)  # batch_size 256
+    assert DDPGConfig(buffer_size=256).buffer_size == 256

@@ -277,6 +277,14 @@ def test_defaults() -> None:
         ("cem", {"smoothing": 1.0}, "smoothing must be"),
         ("cem", {"init_std": 0.0}, "init_std must be"),
         ("cem", {"min_std": -1.0}, "min_std must be"),
+        ("cem", {"init_std": 0.1, "min_std": 0.2}, r"min_std must be <= init_std \(0\.1\)"),
+        ("cem", {"horizon": math.nan}, "horizon must be an integer >= 1"),
+        ("cem", {"population": "50"}, "population must be an integer >= 2"),
+        ("cem", {"init_std": math.inf}, "init_std must be"),
+        ("cem", {"smoothing": -0.1}, "smoothing must be"),
+        ("mppi", {"population": 0}, "population must be an integer >= 1"),
+        ("mppi", {"temperature": -1.0}, "temperature must be"),
+        ("predictive_sampling", {"noise": True}, "noise must be"),
         ("mppi", {"temperature": 0}, "temperature must be"),
         ("mppi", {"noise": float("nan")}, "noise must be"),
         ("predictive_sampling", {"population": 1}, "population must be an integer >= 2"),
@@ -305,3 +313,16 @@ def test_bad_problem_and_config() -> None:
         plan(BadStep(), "cem", n_simulations=1)
     with pytest.raises(ValueError, match="n_simulations must be an integer >= 1"):
         plan(Quadratic(), "mppi", n_simulations=0)
+
+
+def test_planner_seed_and_options_are_checked_by_name() -> None:
+    """A bad seed was numpy's message naming no argument (or, True, taken as seed 1); an
+    unknown option next to a config object was a TypeError from dataclasses.replace."""
+    for seed in (-1, True, 1.5, "3"):
+        with pytest.raises(ValueError, match="seed must be None, an integer >= 0"):
+            ShootingPlanner(Quadratic(), "cem", seed)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"unknown option\(s\) \['bogus'\] for CEMConfig"):
+        plan_shooting(Quadratic(), CEMConfig(), n_simulations=4, bogus=1)
+    assert ShootingPlanner(Quadratic(), "cem", np.int64(3)).rng.random() == (
+        np.random.default_rng(3).random()
+    )

@@ -108,6 +108,12 @@ class PPOConfig(RLConfig):
     def __post_init__(self) -> None:
         super().__post_init__()
         object.__setattr__(self, "n_steps", V.integer(self.n_steps, "n_steps", 2))
+        if self.batch_size > self.n_steps:
+            # SB3 would cut every minibatch down to the one rollout without a word
+            raise ValueError(
+                f"batch_size must be <= n_steps ({self.n_steps}): a minibatch is drawn from"
+                f" one rollout of n_steps env steps, got {self.batch_size!r}"
+            )
         object.__setattr__(self, "n_epochs", V.integer(self.n_epochs, "n_epochs", 1))
         object.__setattr__(self, "gae_lambda", V.number(self.gae_lambda, "gae_lambda", 0.0, 1.0))
         object.__setattr__(self, "clip_range", V.positive(self.clip_range, "clip_range"))
@@ -150,6 +156,12 @@ class DDPGConfig(RLConfig):
     def __post_init__(self) -> None:
         super().__post_init__()
         object.__setattr__(self, "buffer_size", V.integer(self.buffer_size, "buffer_size", 1))
+        if self.batch_size > self.buffer_size:
+            # SB3 would draw every batch with repeats from a buffer smaller than it
+            raise ValueError(
+                f"batch_size must be <= buffer_size ({self.buffer_size}): a batch is drawn"
+                f" from the replay buffer, got {self.batch_size!r}"
+            )
         object.__setattr__(
             self, "learning_starts", V.integer(self.learning_starts, "learning_starts", 0)
         )

@@ -173,7 +173,14 @@ class CEMConfig(ShootingConfig):
             )
         object.__setattr__(self, "elites", elites)
         object.__setattr__(self, "init_std", V.positive(self.init_std, "init_std"))
-        object.__setattr__(self, "min_std", V.positive(self.min_std, "min_std", allow_zero=True))
+        min_std = V.positive(self.min_std, "min_std", allow_zero=True)
+        if min_std > self.init_std:
+            # the floor above the start: the first update would jump the spread up to it
+            raise ValueError(
+                f"min_std must be <= init_std ({self.init_std:g}): it is the standard"
+                f" deviation's floor, got {self.min_std!r}"
+            )
+        object.__setattr__(self, "min_std", min_std)
         object.__setattr__(
             self, "smoothing", V.number(self.smoothing, "smoothing", 0.0, 1.0, open_high=True)
         )
@@ -333,6 +340,7 @@ class ShootingPlanner:
                 raise TypeError(
                     f"{type(problem).__name__} is not a PlanningProblem: it has no {method}()"
                 )
+        seed = V.seed(seed)
         self.problem = problem
         self.config = cfg
         self.rng = np.random.default_rng(seed)
@@ -550,6 +558,7 @@ def plan_shooting(
     """
     check_n_simulations(n_simulations)
     if isinstance(planner, ShootingConfig):
+        V.config_options(type(planner), options)  # a ValueError naming the valid options
         config = planner.replace(**options) if options else planner
     else:
         config = shooting_config(planner, **options)
