@@ -97,7 +97,7 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
         normalize_planner(base) + sep + rest
         for base, sep, rest in (p.partition("[") for p in split_list(args.planners))
     ] or None
-    tuning = _tuning_seeds(args.tuning_seeds)
+    tuning = _tuning_seeds(args.tuning_seeds, rows)
     data = plan_data(
         rows,
         problems=_plan_filter(split_list(args.problems)),
@@ -150,9 +150,20 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     return 0
 
 
-def _tuning_seeds(text: str | None) -> list[int] | None:
-    """``--tuning-seeds`` as a list (None without the option)."""
-    return None if text is None else parse_range(text, "--tuning-seeds")
+def _tuning_seeds(text: str | None, rows: Sequence[Row]) -> list[int] | None:
+    """``--tuning-seeds`` as a list (None without the option), checked against the
+    store's ``rows``: some runs of a tuning seed and some of another seed
+    (:func:`voot.bench.tuning.check_tuning_split`), else a CLIError."""
+    if text is None:
+        return None
+    from voot.bench.tuning import check_tuning_split
+
+    seeds = parse_range(text, "--tuning-seeds")
+    try:
+        check_tuning_split(rows, seeds)
+    except ValueError as exc:
+        raise CLIError(f"--tuning-seeds: {exc}") from None
+    return seeds
 
 
 def _tuning_title(tuning: Sequence[int] | None) -> str | None:
@@ -224,7 +235,9 @@ def print_ablation_table(
 
     _, rows = load_rows(path, "plan")
     labels = [problem_label(normalize_problem(p)) for p in problems] if problems else None
-    text = ablation_table(rows, parse_range(tuning_seeds, "--tuning-seeds"), labels)
+    seeds = _tuning_seeds(tuning_seeds, rows)
+    assert seeds is not None
+    text = ablation_table(rows, seeds, labels)
     print(text)
     if markdown:
         md = Path(markdown)
@@ -249,7 +262,7 @@ def cmd_claims(args: argparse.Namespace) -> int:
             )
         return print_ablation_table(args.results, args.tuning_seeds, args.markdown)
     _, rows = load_rows(args.results, "plan")
-    tuning = _tuning_seeds(args.tuning_seeds)
+    tuning = _tuning_seeds(args.tuning_seeds, rows)
     data = plan_data(rows, tuning_seeds=tuning)
     note = (
         "Settings selected on the same seeds (the paper's rule)."

@@ -71,9 +71,35 @@ def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int])
     both = tuning & set(int(s) for s in evaluation_seeds)
     if both:
         raise ValueError(
-            f"seeds {seeds_text(both)} are both tuning and evaluation seeds; tuning seeds"
-            " must be disjoint from the evaluation seeds (e.g. --tuning-seeds 1000:1005"
-            " --seeds 0:20)"
+            f"seeds {seeds_text(both)} are both tuning and evaluation seeds: that would be"
+            " tuning on the test set (a setting selected on a seed flatters its result"
+            " there); tuning seeds must be disjoint from the evaluation seeds (e.g."
+            " --tuning-seeds 1000:1005 --seeds 0:20)"
+        )
+
+
+def check_tuning_split(rows: Iterable[Row], tuning_seeds: Iterable[int]) -> None:
+    """Raise ValueError unless ``rows`` hold runs of both a tuning seed and another seed.
+
+    Reading a store with tuning seeds (``plot``/``claims --tuning-seeds``) selects on
+    the rows of ``tuning_seeds`` and reports every other seed. Without a tuning row the
+    selection would have nothing to select on (and the caption would claim a tuning
+    that did not happen); without an evaluation row every reported number would come
+    from the seeds the settings were selected on: tuning on the test set. The error
+    names the seeds the store has.
+    """
+    tuning = set(int(s) for s in tuning_seeds)
+    present = {int(r["config"]["seed"]) for r in rows}
+    if not present & tuning:
+        raise ValueError(
+            f"no runs of the tuning seeds {seeds_text(tuning)} in the store (its seeds:"
+            f" {seeds_text(present) or 'none'}): there is nothing to select the settings on"
+        )
+    if not present - tuning:
+        raise ValueError(
+            f"every seed of the store ({seeds_text(present)}) is a tuning seed: no"
+            " evaluation seeds are left, and reporting the seeds the settings were"
+            " selected on would be tuning on the test set"
         )
 
 

@@ -43,3 +43,32 @@ def test_plot_options_of_the_other_kind(tmp_path: Path, capsys: pytest.CaptureFi
     assert main(["bbfo", "--out", str(bbfo), *small, "--budget", "5", "--workers", "1"]) == 0
     assert main(["plot", str(bbfo), "--png-seconds", "x.png"]) == 2
     assert "apply to plan runs" in capsys.readouterr().err
+
+
+def test_claims_and_plot_refuse_tuning_seeds_the_store_cannot_split(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Tuning seeds absent from the store selected on nothing (yet the caption said they
+    were tuned), and tuning seeds covering the whole store reported the selection's own
+    seeds; both went through without a word. Also: a missing store and an empty one."""
+    out = tmp_path / "plan"
+    assert main(["plan", "--out", str(out), *PLAN_TINY]) == 0  # seeds 0 and 1
+    capsys.readouterr()
+    for command in (["claims"], ["plot"]):
+        assert main([*command, str(out), "--tuning-seeds", "1000:1005"]) == 2
+        assert "no runs of the tuning seeds 1000-1004 in the store (its seeds: 0-1)" in (
+            capsys.readouterr().err
+        )
+        assert main([*command, str(out), "--tuning-seeds", "0:2"]) == 2
+        assert "would be tuning on the test set" in capsys.readouterr().err
+    assert main(["claims", str(out), "--tuning-seeds", "0:1"]) == 0
+    assert "Settings selected on tuning seeds 0," in capsys.readouterr().out
+    assert main(["claims", str(out), "--ablation", "--tuning-seeds", "7:9"]) == 2
+    assert "no runs of the tuning seeds 7-8" in capsys.readouterr().err
+    assert main(["claims", str(tmp_path / "nowhere")]) == 2
+    assert "no voot result store here" in capsys.readouterr().err
+    from voot.bench.store import ResultStore
+
+    ResultStore(tmp_path / "empty")
+    assert main(["claims", str(tmp_path / "empty")]) == 2
+    assert "no finished plan runs in this store" in capsys.readouterr().err

@@ -8,6 +8,7 @@ from voot.bench.plan_sweep import build_plan_specs
 from voot.bench.store_format import Row, make_row
 from voot.bench.tuning import (
     check_disjoint,
+    check_tuning_split,
     seeds_text,
     select_on_tuning,
     selected_specs,
@@ -54,6 +55,8 @@ def test_check_disjoint() -> None:
     check_disjoint([1000], [0, 1])
     with pytest.raises(ValueError, match="seeds 1-2 are both tuning and evaluation seeds"):
         check_disjoint([1, 2, 1000], [0, 1, 2])
+    with pytest.raises(ValueError, match="that would be tuning on the test set"):
+        check_disjoint([0], [0])
     with pytest.raises(ValueError, match="no tuning seeds"):
         check_disjoint([], [0])
 
@@ -122,3 +125,20 @@ def test_a_planner_without_a_grid_needs_no_tuning_rows() -> None:
     assert outcome.untuned == (("shekel_chain", 3, 2, "pw_uct"),)
     fixed = [s for s in outcome.selections if s.method == "random_shooting"]
     assert len(fixed) == 1 and fixed[0].params == {} and fixed[0].best.n == 2
+
+
+def test_check_tuning_split_needs_tuning_and_evaluation_rows() -> None:
+    """Reading a store with tuning seeds: none of them in the store (nothing to select
+    on), or all of its seeds tuning seeds (reporting the selection's own seeds)."""
+    check_tuning_split(rows(), [1000, 1001])
+    check_tuning_split(rows(), [1000, 5])  # one of them is enough
+    with pytest.raises(
+        ValueError, match=r"no runs of the tuning seeds 7-8 .*its seeds: 0-2, 1000-1001"
+    ):
+        check_tuning_split(rows(), [7, 8])
+    with pytest.raises(ValueError, match=r"every seed of the store \(0-2, 1000-1001\) is a tuning"):
+        check_tuning_split(rows(), [0, 1, 2, 1000, 1001])
+    with pytest.raises(ValueError, match="tuning on the test set"):
+        check_tuning_split([r for r in rows() if r["config"]["seed"] >= 1000], [1000, 1001])
+    with pytest.raises(ValueError, match="its seeds: none"):
+        check_tuning_split([], [1000])
