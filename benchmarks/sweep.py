@@ -60,6 +60,7 @@ from voot.bench.backends import (  # re-exported: voot.bench.sweep.make_backend 
 from voot.bench.store import ResultStore
 from voot.bench.store_format import (  # failed_row, exception_row: re-exported
     Row,
+    StoreError,
     exception_row,
     failed_row,  # noqa: F401 - re-exported (voot.bench.sweep.failed_row)
     make_row,
@@ -530,7 +531,7 @@ def run_sweep(
     rows = backend.map_unordered(run, todo)
     try:
         for row in rows:
-            store.write(row)
+            write_row(store, row)
             summary.ran += 1
             if row["status"] != "ok":
                 summary.failed += 1
@@ -548,6 +549,27 @@ def run_sweep(
         if bar is not None:
             bar.close()
     return summary
+
+
+def write_row(store: ResultStore, row: Row) -> None:
+    """Write ``row`` into ``store``; a write the file system refuses stops the sweep.
+
+    A full disk (``ENOSPC``), a quota or an I/O error while writing a row is a
+    :class:`~voot.bench.store_format.StoreError` naming the store, the run and the cause
+    (not a traceback, and not a failed row: the run itself did not fail). The store's
+    atomic write leaves no part of that row behind (its temporary file is removed), so
+    the store stays loadable with every row written before; the same command, run again
+    once there is room, redoes that run and those not yet finished, and no other.
+    """
+    try:
+        store.write(row)
+    except OSError as exc:
+        cause = exc.strerror or type(exc).__name__
+        raise StoreError(
+            f"{store.path}: could not write the row of run {row.get('run_id')!r}"
+            f" ({cause}); the sweep stopped. The rows written before are kept; free the"
+            " space (or fix the cause) and run the same command again to resume"
+        ) from exc
 
 
 def summarize_specs(specs: Sequence[RunSpec]) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import os
 import signal
 import subprocess
@@ -15,7 +16,7 @@ import numpy as np
 import pytest
 
 from voot.bench.store import ResultStore
-from voot.bench.store_format import Row
+from voot.bench.store_format import Row, StoreError
 from voot.bench.sweep import (
     PAPER_METHODS,
     ProcessBackend,
@@ -205,6 +206,87 @@ def test_interrupted_sweep_resumes_without_redoing_or_losing(tmp_path: Path) -> 
         assert (store.runs_path / name).read_bytes() == data
     again = run_sweep(specs, store, SerialBackend(), progress=False, run=counting)
     assert again.ran == 0 and again.skipped == len(specs)
+
+
+class _FullDisk:
+    """A file of ``os.fdopen`` whose write puts half the bytes down, then fails ENOSPC."""
+
+    def __init__(self, fh: Any) -> None:
+        self.fh = fh
+
+    def write(self, data: bytes) -> int:
+        self.fh.write(data[: len(data) // 2])
+        self.fh.flush()
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.fh, name)
+
+    def __enter__(self) -> _FullDisk:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.fh.close()
+
+
+@pytest.mark.parametrize("where", ["write", "fsync"])
+def test_a_full_disk_stops_the_sweep_and_a_resume_redoes_only_the_unfinished(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, where: str
+) -> None:
+    """ENOSPC while writing the 4th row (half its bytes down, or all of them before the
+    fsync): a StoreError naming the store, the run and the cause (it was a bare OSError
+    traceback), no trace of that row, every earlier row intact, and a resume that runs
+    that run and the rest exactly once."""
+    specs = tiny_specs()
+    store = ResultStore(tmp_path / "r")
+    rows_written = []
+    real_fdopen, real_fsync = os.fdopen, os.fsync
+
+    def is_row(fd: int) -> bool:
+        return f"{os.sep}runs{os.sep}" in os.readlink(f"/proc/self/fd/{fd}")
+
+    def full(fd: int) -> bool:
+        if not is_row(fd):
+            return False
+        rows_written.append(fd)
+        return len(rows_written) == 4
+
+    def fdopen(fd: int, *args: Any, **kwargs: Any) -> Any:
+        fh = real_fdopen(fd, *args, **kwargs)
+        return _FullDisk(fh) if where == "write" and full(fd) else fh
+
+    def fsync(fd: int) -> None:
+        if where == "fsync" and full(fd):
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        real_fsync(fd)
+
+    monkeypatch.setattr(os, "fdopen", fdopen)
+    monkeypatch.setattr(os, "fsync", fsync)
+    ran: list[str] = []
+
+    def counting(spec: RunSpec) -> Row:
+        ran.append(spec.run_id)
+        return run_spec(spec)
+
+    order = execution_order(specs)
+    with pytest.raises(
+        StoreError, match=r"could not write the row of run .* \(No space left"
+    ) as err:
+        run_sweep(specs, store, SerialBackend(), progress=False, run=counting)
+    assert order[3].run_id in str(err.value) and str(store.path) in str(err.value)
+    assert "run the same command again to resume" in str(err.value)
+    monkeypatch.undo()
+    assert sorted(p.name for p in store.runs_path.iterdir()) == sorted(
+        f"{s.run_id}.json" for s in order[:3]
+    )  # no temporary file, no half row
+    assert ResultStore(store.path).verify() == 3
+    first = {p.name: p.read_bytes() for p in store.row_files()}
+    ran.clear()
+    summary = run_sweep(specs, store, SerialBackend(), progress=False, run=counting)
+    assert summary.skipped == 3 and sorted(ran) == sorted(s.run_id for s in order[3:])
+    assert {r["run_id"] for r in store.load()} == {s.run_id for s in specs}
+    for name, data in first.items():
+        assert (store.runs_path / name).read_bytes() == data
 
 
 def test_failed_runs_are_retried_unless_skipped(tmp_path: Path) -> None:
