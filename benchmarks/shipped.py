@@ -29,8 +29,15 @@ from pathlib import Path
 from typing import Any
 
 from voot.bench.store import ResultStore
-from voot.bench.store_format import CHECKSUM_KEY, HEADER_NAME, StoreError
-from voot.bench.store_index import INDEX_NAME
+from voot.bench.store_format import (
+    CHECKSUM_KEY,
+    HEADER_NAME,
+    ROW_CHECKSUM,
+    StoreError,
+    row_bytes,
+    verify_row_bytes,
+)
+from voot.bench.store_index import INDEX_NAME, write_atomic
 
 #: The manifest's file name, in the folder that holds the stores.
 MANIFEST_NAME = "stores.json"
@@ -100,6 +107,13 @@ def check_store(root: str | Path, name: str) -> dict[str, Any]:
     path = Path(root) / name
     if expected is None:
         raise StoreError(f"{path}: not in {Path(root) / MANIFEST_NAME}; add it with --write")
+    if not ResultStore(path, create=False).checksums_required:
+        # rows without a checksum would be read as they are, edited or not: a committed
+        # store carries them, so that a changed row is an error naming its file
+        raise StoreError(
+            f"{path}: a committed store without row checksums; give its rows one with"
+            " voot-bench shipped --add-checksums, then rewrite the manifest (--write)"
+        )
     with store_copy(path) as copy:
         got = store_digest(copy)
         rows = ResultStore(copy, create=False).load(status=None)
@@ -112,6 +126,37 @@ def check_store(root: str | Path, name: str) -> dict[str, Any]:
                 " lost, added or changed since the manifest was written)"
             )
     return got
+
+
+def add_row_checksums(path: str | Path) -> int:
+    """Give every row of the store at ``path`` its checksum; the number of rows rewritten.
+
+    For a store written before row checksums (:mod:`voot.bench.store`, "Old stores"):
+    each row file without a checksum is parsed and validated, then rewritten atomically
+    as :func:`~voot.bench.store_format.row_bytes` writes rows now (compact JSON, the
+    checksum last): the same row, checked by comparing both files' JSON. The header then
+    gets ``"row_checksum"``, last, so that a store interrupted halfway is still an old
+    store (rows with and without checksums load) and a rerun finishes it. From then on an
+    edited row is a :class:`StoreError` naming its file on every load, where before it
+    was read as it was.
+    """
+    store = ResultStore(path, create=False)
+    n = 0
+    for row_path in store.row_files():
+        data = row_path.read_bytes()
+        row = store._read_row(row_path)  # parsed and validated (a checksum, if any, verified)
+        if verify_row_bytes(data, str(row_path), required=False):
+            continue
+        new = row_bytes(row)
+        body = {k: v for k, v in json.loads(new).items() if k != CHECKSUM_KEY}
+        if json.dumps(body, sort_keys=True) != json.dumps(json.loads(data), sort_keys=True):
+            raise StoreError(f"{row_path}: the row does not survive a rewrite; left as it is")
+        write_atomic(row_path, new)
+        n += 1
+    if not store.checksums_required:
+        header = {**store.header, "row_checksum": ROW_CHECKSUM}
+        write_atomic(store.header_path, (json.dumps(header, indent=1) + "\n").encode())
+    return n
 
 
 @contextmanager

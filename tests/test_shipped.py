@@ -231,6 +231,68 @@ def test_a_corrupt_committed_row_is_a_store_error(tmp_path: Path) -> None:
         shipped.check_store(tmp_path, "s")
 
 
+@pytest.mark.parametrize("name", STORES)
+def test_every_committed_store_names_an_edited_or_truncated_row(name: str, tmp_path: Path) -> None:
+    """Every committed store carries row checksums (the two written before them were
+    given theirs, issue 26): a value edited in the middle of a row, or a row cut short
+    (a crash mid-copy), is a StoreError naming the row's file on load, never read as
+    it is."""
+    copy = tmp_path / name
+    shutil.copytree(DATA / name, copy, ignore=shutil.ignore_patterns(INDEX_NAME))
+    assert ResultStore(copy, create=False).checksums_required
+    row_file = sorted((copy / "runs").iterdir())[len(STORES)]
+    data = row_file.read_bytes()
+    i = data.index(b'"wall_time":') + len(b'"wall_time":')
+    digit = data[i : i + 1]
+    assert digit.isdigit()
+    row_file.write_bytes(data[:i] + (b"1" if digit != b"1" else b"2") + data[i + 1 :])
+    with pytest.raises(StoreError, match=rf"{row_file}: result row changed since it was written"):
+        ResultStore(copy, create=False).load()
+    row_file.write_bytes(data[: len(data) // 2])
+    with pytest.raises(StoreError, match=rf"{row_file}: corrupt result row \(.*line 1 column"):
+        ResultStore(copy, create=False).load()
+
+
+def test_old_stores_get_their_checksums_and_committed_ones_must_have_them(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A store written before row checksums read an edited row as it was; check_store now
+    refuses such a store, and add_row_checksums (voot-bench shipped --add-checksums)
+    gives its rows their checksum, the rows otherwise as they were."""
+    from voot.bench.cli import main
+
+    path = small_store(tmp_path)
+    header = json.loads((path / "voot-results.json").read_text())
+    del header["row_checksum"]
+    (path / "voot-results.json").write_text(json.dumps(header, indent=1) + "\n")
+    for f in (path / "runs").iterdir():  # rows as an old voot wrote them
+        row = json.loads(f.read_bytes())
+        del row["checksum"]
+        f.write_bytes(json.dumps(row, separators=(",", ":")).encode())
+    old = ResultStore(path, create=False)
+    before = old.load()
+    assert not old.checksums_required
+    shipped.write_manifest(tmp_path)
+    with pytest.raises(StoreError, match="a committed store without row checksums"):
+        shipped.check_store(tmp_path, "s")
+    first = sorted((path / "runs").iterdir())[0]
+    edited = first.read_bytes().replace(b'"wall_time":0.1', b'"wall_time":0.2')
+    saved = first.read_bytes()
+    first.write_bytes(edited)
+    assert ResultStore(path, create=False).load()[0]["wall_time"] == 0.2  # read as it is
+    first.write_bytes(saved)
+    assert main(["shipped", "--root", str(tmp_path), "--add-checksums"]) == 0
+    assert "s: 3 rows given a checksum" in capsys.readouterr().out
+    assert shipped.add_row_checksums(path) == 0  # done: nothing more to do
+    new = ResultStore(path, create=False)
+    assert new.checksums_required and new.load() == before and new.verify() == 3
+    shipped.write_manifest(tmp_path)
+    assert shipped.check_store(tmp_path, "s")["rows"] == 3
+    first.write_bytes(first.read_bytes().replace(b'"wall_time":0.1', b'"wall_time":0.2'))
+    with pytest.raises(StoreError, match=f"{first}: result row changed"):
+        ResultStore(path, create=False).load()
+
+
 def test_the_cli_checks_and_redraws(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     pytest.importorskip("matplotlib")
     from voot.bench.cli import main
