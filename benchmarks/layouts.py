@@ -3,8 +3,8 @@ r"""Layout seeds: generated scenes as a sweep axis, and the held-out test set (i
 A generated task family (``voot/KitchenClearing-v2``, ``voot/ConveyorPacking-v2``) builds
 its scene from the gymnasium keyword ``layout_seed``: one id, many layouts. A planner
 tuned and evaluated on one scene measures that scene; the protocol of a generated family
-keeps the layouts it tunes on apart from the layouts it reports, as the suites that
-generate their scenes do (Procgen's train and test levels, robocasa's held-out scenes).
+keeps the layouts it tunes on apart from the layouts it reports, as Procgen keeps its
+training levels apart from its test levels.
 
 **The axis.** ``voot-bench plan --layout-seeds 0:20`` adds ``layout_seed`` to every run's
 ``env_kwargs`` (:func:`with_layout`); a run's id hashes its config, so each layout's runs
@@ -182,12 +182,13 @@ def layout_of(config: Mapping[str, Any]) -> int | None:
 
 
 def takes_layout_seed(problem: str) -> bool:
-    """Whether the registered env ``problem`` accepts ``layout_seed`` (read from the
-    signature of its entry point, without making the env).
+    """Whether the registered env ``problem`` may take ``layout_seed``, read from the
+    signature of its entry point without making the env (which may generate a scene).
 
-    A class is followed up its bases while its ``__init__`` passes ``**kwargs`` on; an
-    entry point that takes ``**kwargs`` and cannot be followed is given the benefit of
-    the doubt (a wrong keyword then fails the run, with the env's own message).
+    True if the entry point (a class's ``__init__``, or a function) names ``layout_seed``
+    or takes ``**kwargs`` (the benefit of the doubt: a constructor may read the keyword
+    from them; a wrong keyword then fails the run with the env's own message); False if
+    it takes neither, or the id is not registered.
     """
     import gymnasium
     from gymnasium.envs.registration import load_env_creator
@@ -201,30 +202,14 @@ def takes_layout_seed(problem: str) -> bool:
         return True
     entry = spec.entry_point
     creator = load_env_creator(entry) if isinstance(entry, str) else entry
-    if inspect.isclass(creator):
-        for cls in creator.__mro__:
-            init = cls.__dict__.get("__init__")
-            if init is None:
-                continue
-            verdict = _accepts(init)
-            if verdict is not None:
-                return verdict
-        return False
-    return _accepts(creator) is not False
-
-
-def _accepts(fn: Any) -> bool | None:
-    """True if ``fn`` names ``layout_seed``, False if it takes no such keyword, None if it
-    passes ``**kwargs`` on (undecided)."""
+    fn = creator.__init__ if inspect.isclass(creator) else creator
     try:
         params = inspect.signature(fn).parameters
     except (TypeError, ValueError):
-        return None
-    if LAYOUT_KEY in params:
-        return True
-    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()):
-        return None
-    return False
+        return True  # no signature to read: let the run tell
+    return LAYOUT_KEY in params or any(
+        p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()
+    )
 
 
 def check_layout_problem(problem: str) -> None:

@@ -446,7 +446,7 @@ def test_the_layout_axis_expands_every_run_per_layout() -> None:
     ("problem", "kwargs", "match"),
     [
         ("shekel_chain", {}, "the shekel_chain has no layouts"),
-        ("voot/ShekelChain-v0", {}, "takes no layout_seed keyword"),
+        ("voot-test/PlainChain-v0", {}, "takes no layout_seed keyword"),
         (None, {"env_kwargs": {"layout_seed": 2}}, "both as an env keyword"),
         (None, {"layout_seeds": []}, "no layout seeds given"),
         (None, {"layout_seeds": [-1]}, "layout seeds must be integers >= 0"),
