@@ -240,7 +240,9 @@ class LayoutOptions:
         """``(problems, layout seeds)`` pairs to build specs of, for the tuning runs
         (``tuning``) or the evaluation runs."""
         if not self.heldout:
-            return [(list(problems), self.tuning if tuning else self.evaluation)]
+            # without tuning layouts both phases run on the evaluation layouts (if any)
+            both = self.evaluation if self.tuning is None else self.tuning
+            return [(list(problems), both if tuning else self.evaluation)]
         from voot.bench.layouts import layout_set
         from voot.bench.problems import normalize_problem
 

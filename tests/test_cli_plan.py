@@ -387,3 +387,7 @@ def test_plan_held_out_protocol_resumes(
     same = ["plan", "--out", str(out), *LAYOUT_TINY, "--layout-seeds", "2", "--tuning-seeds", "0:2"]
     assert main([*same, "--seeds", "1:3", "--dry-run"]) == 2
     assert "seeds 1 are both tuning and evaluation seeds" in capsys.readouterr().err
+    assert main([*same, "--seeds", "5:7", "--dry-run"]) == 0  # tuning on the same layouts
+    assert "on seeds 0-1 x layouts 0-1; evaluation: 8 runs (the selected setting) on seeds 5-6" in (
+        capsys.readouterr().err
+    )
