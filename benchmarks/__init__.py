@@ -7,6 +7,8 @@
 * :mod:`voot.bench.problems`, :mod:`voot.bench.plan_sweep`: the planning sweep (Figure 4);
 * :mod:`voot.bench.ray_backend`: sweeps on a Ray cluster;
 * :mod:`voot.bench.select`: the paper's hyperparameter selection (best mean final value);
+* :mod:`voot.bench.tuning`, :mod:`voot.bench.layouts`: tuning apart from evaluation, on
+  other seeds or on held-out layouts of a generated family;
 * :mod:`voot.bench.plot`: Figure 3 and its tables; :mod:`voot.bench.plan_runs`,
   :mod:`voot.bench.plan_plot`, :mod:`voot.bench.plan_tables`: Figure 4's data, drawing
   and tables;

@@ -22,6 +22,7 @@ import numpy as np
 
 from voot.bench.ablation import ABLATION_PLANNERS, BASELINE, SWITCHES
 from voot.bench.claims import NO_DATA, PAPER_CLAIMS, ClaimResult, measure
+from voot.bench.layouts import layout_means
 from voot.bench.plan_runs import PlannerRuns, mean_ci, plan_data
 from voot.bench.select import planner_label
 from voot.bench.store_format import Row
@@ -93,8 +94,9 @@ def claims_rows(runs: dict[tuple[str, str], PlannerRuns]) -> list[str]:
     return lines
 
 
-def _metric(runs: PlannerRuns, metric: str, k: int) -> dict[int, float]:
-    """Per seed, ``metric`` after simulation ``k`` (empty: runs shorter than ``k``)."""
+def _metric(runs: PlannerRuns, metric: str, k: int) -> dict[tuple[int | None, int], float]:
+    """Per (layout, seed) run, ``metric`` after simulation ``k`` (empty: runs shorter than
+    ``k``); the layout is None for a problem without layouts."""
     if k > runs.returns.shape[1]:
         return {}
     if metric == "return":
@@ -103,7 +105,9 @@ def _metric(runs: PlannerRuns, metric: str, k: int) -> dict[int, float]:
         if runs.objects_left is None or runs.objects_initial is None:
             return {}
         values = runs.objects_initial - runs.objects_left[:, k - 1]
-    return {s: float(v) for s, v in zip(runs.seeds, values, strict=True)}
+    layouts = runs.layouts or (None,) * runs.n_seeds
+    keys = zip(layouts, runs.seeds, strict=True)
+    return {key: float(v) for key, v in zip(keys, values, strict=True)}
 
 
 def ranking_rows(runs: dict[tuple[str, str], PlannerRuns]) -> list[str]:
@@ -124,7 +128,8 @@ def ranking_rows(runs: dict[tuple[str, str], PlannerRuns]) -> list[str]:
                     cells.append("no data")
                     continue
                 diff = np.array([va[s] - vb[s] for s in seeds])[:, None]
-                mean, half, _ = mean_ci(diff)
+                # paired by run; on layouts, the per-layout mean difference is the unit
+                mean, half, _ = mean_ci(layout_means(diff, [s[0] for s in seeds]))
                 m, h = float(mean[0]), float(half[0])
                 who = "VOOT ahead" if m - h > 0 else "PW-UCT ahead" if m + h < 0 else "tied"
                 cells.append(f"{m:+.3g} [{m - h:+.3g}, {m + h:+.3g}] {who}")

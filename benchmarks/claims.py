@@ -39,6 +39,10 @@ with our 95% interval ``[low, high]``:
 The data are those :func:`voot.bench.plan_runs.plan_data` gives, so the claims honour
 the same selection as the figures: the paper's same-seed rule by default, or settings
 selected on tuning seeds (``tuning_seeds``) with the evaluation seeds reported.
+
+On a generated family (runs on layout seeds, :mod:`voot.bench.layouts`) the unit of every
+interval is the layout: the t-interval is over the per-layout means, the order-statistics
+interval over the per-layout medians, and ``n`` counts layouts.
 """
 
 from __future__ import annotations
@@ -270,8 +274,8 @@ def measure(claim: Claim, planner: str, runs: PlannerRuns | None) -> ClaimResult
     if claim.metric == "simulations_to_clear":
         if runs.objects_left is None:
             return _no_data(claim, planner, "no object counts")
-        med, low, high = median_ci(first_reach(runs.objects_left))
-        result = ClaimResult(claim, planner, med, low, high, runs.n_seeds, "order statistics", "")
+        med, low, high = median_ci(runs.unit_medians(first_reach(runs.objects_left)))
+        result = ClaimResult(claim, planner, med, low, high, runs.n_units, "order statistics", "")
     else:
         if k > runs.returns.shape[1]:
             return _no_data(claim, planner, f"runs of {runs.simulations} simulations")
@@ -285,7 +289,7 @@ def measure(claim: Claim, planner: str, runs: PlannerRuns | None) -> ClaimResult
             initial = runs.objects_initial
             assert initial is not None
             values = initial - runs.objects_left[:, k - 1]
-        mean, half, count = mean_ci(values[:, None])
+        mean, half, count = mean_ci(runs.units(values[:, None]))
         m, h = float(mean[0]), float(half[0])
         result = ClaimResult(claim, planner, m, m - h, m + h, int(count[0]), "t", "")
     if result.n < 2 or math.isnan(result.low):

@@ -1,7 +1,9 @@
 """``voot-bench plan``: planners x problems x seeds (the paper's Figure 4), local or on
 Ray, resumable; with ``--tuning-seeds`` the protocol's tuning runs, the selection on them
-and the evaluation runs of the selected setting; ``--estimate`` prints the CPU-hours
-instead of running."""
+and the evaluation runs of the selected setting; with ``--layout-seeds`` a layout axis of
+a generated family, and with ``--tuning-layouts`` (or ``--heldout``) the held-out
+protocol: tuning on training layouts, evaluation on held-out layouts
+(:mod:`voot.bench.layouts`); ``--estimate`` prints the CPU-hours instead of running."""
 
 from __future__ import annotations
 
@@ -9,6 +11,7 @@ import argparse
 import os
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from voot.bench.cli_common import (
@@ -52,12 +55,17 @@ def cmd_plan(args: argparse.Namespace) -> int:
                 f"--record needs the recorder of voot.record ({exc}); install the [record]"
                 " extra (pip install 'voot[record]')"
             ) from None
+    layouts = _layout_options(args)
     seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
+    if seeds is None and layouts.evaluation is not None:
+        seeds = [0]  # on a layout axis the layouts are the samples: one seed each by default
+    problems = split_list(args.problems) or list(DEFAULT_PROBLEMS)
 
-    def specs_of(seed_list: list[int] | None) -> list[PlanSpec]:
-        return list(
-            build_plan_specs(
-                split_list(args.problems) or DEFAULT_PROBLEMS,
+    def specs_of(seed_list: list[int] | None, tuning: bool = False) -> list[PlanSpec]:
+        out: list[PlanSpec] = []
+        for names, layout_list in layouts.groups(problems, tuning):
+            out += build_plan_specs(
+                names,
                 parse_int_list(args.dims, "--dims") or None,
                 split_list(args.planners) or None,
                 seed_list,
@@ -67,15 +75,22 @@ def cmd_plan(args: argparse.Namespace) -> int:
                 fixed=parse_assignments(args.set, "--set"),
                 record=args.record,
                 horizon=args.horizon,
+                layout_seeds=layout_list,
             )
-        )
+        return out
 
-    if args.tuning_seeds is not None:
+    if args.tuning_seeds is not None or layouts.tuning is not None:
         if args.record is not None:
-            raise CLIError("--record records single runs; it does not go with --tuning-seeds")
-        return plan_tuned(
-            args, specs_of(parse_range(args.tuning_seeds, "--tuning-seeds")), specs_of(seeds)
+            raise CLIError(
+                "--record records single runs; it does not go with --tuning-seeds,"
+                " --tuning-layouts or --heldout"
+            )
+        tuning_seeds = (
+            parse_range(args.tuning_seeds, "--tuning-seeds")
+            if args.tuning_seeds is not None
+            else seeds  # held-out layouts: the same seeds on other layouts
         )
+        return plan_tuned(args, specs_of(tuning_seeds, tuning=True), specs_of(seeds))
     specs = specs_of(seeds)
     if args.estimate:
         return _print_estimate(args, specs)
@@ -138,10 +153,10 @@ def plan_tuned(
 ) -> int:
     """``voot-bench plan --tuning-seeds``: the grid on the tuning seeds, the selection on
     them, the selected setting on the evaluation seeds (:mod:`voot.bench.tuning`)."""
+    from voot.bench.layouts import check_protocol
     from voot.bench.plan_sweep import summarize_plan_specs
     from voot.bench.select import selection_table
     from voot.bench.tuning import (
-        check_disjoint,
         seeds_text,
         selected_specs,
         tuning_note,
@@ -149,7 +164,18 @@ def plan_tuned(
     )
 
     tuning_seeds = sorted({s.seed for s in tuning})
-    check_disjoint(tuning_seeds, {s.seed for s in candidates})
+    tuning_layouts = sorted({s.layout for s in tuning if s.layout is not None})
+    eval_layouts = sorted({s.layout for s in candidates if s.layout is not None})
+    held_out = _layout_options(args).tuning is not None
+    try:
+        check_protocol(
+            tuning_seeds,
+            {s.seed for s in candidates},
+            tuning_layouts if held_out else None,
+            eval_layouts,
+        )
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
     existing = existing_store(args.out)
     rows = existing.load(kind="plan", status="ok") if existing is not None else []
     selections = tuning_selections(tuning, rows)
@@ -159,9 +185,15 @@ def plan_tuned(
     else:  # the selection is not known yet: one setting per pair stands in for it
         evaluation = _one_setting_each(candidates)
     eval_seeds = seeds_text({s.seed for s in candidates})
+    on_tuning = f"seeds {seeds_text(tuning_seeds)}"
+    on_eval = f"seeds {eval_seeds}"
+    if tuning_layouts:
+        on_tuning += f" x layouts {seeds_text(tuning_layouts)}"
+    if eval_layouts:
+        on_eval += f" x layouts {seeds_text(eval_layouts)}"
     print(
-        f"tuning: {len(tuning)} runs (every setting) on seeds {seeds_text(tuning_seeds)};"
-        f" evaluation: {len(evaluation)} runs (the selected setting) on seeds {eval_seeds}"
+        f"tuning: {len(tuning)} runs (every setting) on {on_tuning};"
+        f" evaluation: {len(evaluation)} runs (the selected setting) on {on_eval}"
         f"{'' if complete else ', after the tuning runs'}{stored_note(args.out, tuning)}",
         file=sys.stderr,
     )
@@ -184,9 +216,90 @@ def plan_tuned(
         return 1
     selections = tuning_selections(tuning, store.load(kind="plan", status="ok"))
     print(selection_table(selections, kind="plan"), file=sys.stderr)
-    print(f"({tuning_note(tuning_seeds)})", file=sys.stderr)
+    print(f"({tuning_note(tuning_seeds, tuning_layouts if held_out else ())})", file=sys.stderr)
     evaluation = selected_specs(candidates, selections)
     return 1 if _run_plan_specs(args, evaluation, store).failed else 0
+
+
+@dataclass(frozen=True)
+class LayoutOptions:
+    """The layout seeds of ``--layout-seeds``, ``--tuning-layouts`` and ``--heldout``.
+
+    ``evaluation`` and ``tuning`` are the layouts of the evaluation and tuning runs (None:
+    no layout axis, no layout split); with ``heldout`` they come per problem from its
+    held-out set (:func:`voot.bench.layouts.layout_set`).
+    """
+
+    evaluation: list[int] | None = None
+    tuning: list[int] | None = None
+    heldout: bool = False
+
+    def groups(
+        self, problems: Sequence[str], tuning: bool
+    ) -> list[tuple[list[str], list[int] | None]]:
+        """``(problems, layout seeds)`` pairs to build specs of, for the tuning runs
+        (``tuning``) or the evaluation runs."""
+        if not self.heldout:
+            # without tuning layouts both phases run on the evaluation layouts (if any)
+            both = self.evaluation if self.tuning is None else self.tuning
+            return [(list(problems), both if tuning else self.evaluation)]
+        from voot.bench.layouts import layout_set
+        from voot.bench.problems import normalize_problem
+
+        out: list[tuple[list[str], list[int] | None]] = []
+        for name in problems:
+            try:
+                split = layout_set(normalize_problem(name))
+            except ValueError as exc:
+                raise CLIError(f"--heldout: {exc}") from None
+            out.append(([name], list(split.training if tuning else split.heldout)))
+        return out
+
+
+def _layout_options(args: argparse.Namespace) -> LayoutOptions:
+    """Parse ``--layout-seeds``, ``--tuning-layouts`` and ``--heldout`` (errors name the
+    option)."""
+    from voot.bench.layouts import HELDOUT_LAYOUTS, layouts_text
+
+    # commands that share plan_tuned without the layout options (ablation) have none
+    layout_seeds = getattr(args, "layout_seeds", None)
+    tuning_layouts = getattr(args, "tuning_layouts", None)
+    if getattr(args, "heldout", False):
+        if layout_seeds is not None or tuning_layouts is not None:
+            raise CLIError(
+                "--heldout sets the layouts itself (each family's training and held-out"
+                " layouts); give either --heldout or --tuning-layouts with --layout-seeds"
+            )
+        return LayoutOptions(evaluation=[], tuning=[], heldout=True)
+    evaluation = (
+        parse_layout_seeds(layout_seeds, "--layout-seeds") if layout_seeds is not None else None
+    )
+    tuning = (
+        parse_layout_seeds(tuning_layouts, "--tuning-layouts")
+        if tuning_layouts is not None
+        else None
+    )
+    if tuning is not None and evaluation is None:
+        raise CLIError(
+            "--tuning-layouts needs the evaluation layouts: give --layout-seeds (e.g. the"
+            f" held-out layouts {layouts_text(HELDOUT_LAYOUTS)}: --layout-seeds 0:20) or use"
+            " --heldout"
+        )
+    return LayoutOptions(evaluation, tuning)
+
+
+def parse_layout_seeds(values: Sequence[str], what: str) -> list[int]:
+    """Layout seeds: one ``N`` (0 .. N-1) or ``START:STOP``, or a list of seeds and
+    ranges (``3 7 9``, ``0:5,100``); a single layout L is ``L:L+1``."""
+    items = split_list(values)
+    if not items:
+        raise CLIError(f"{what}: no layout seeds given")
+    if len(items) == 1:
+        return parse_range(items[0], what)
+    out = parse_int_list(items, what)
+    if min(out) < 0:
+        raise CLIError(f"{what}: layout seeds must be >= 0, got {min(out)}")
+    return list(dict.fromkeys(out))
 
 
 def _pending(specs: Sequence[PlanSpec], store: ResultStore) -> list[PlanSpec]:
@@ -282,6 +395,30 @@ def register(sub: Subparsers) -> None:
         help="tune first: run every setting of the grid on these seeds, select per problem"
         " and planner the best mean final return, then run only that setting on --seeds"
         " (which must be disjoint); resumable at any point",
+    )
+    p.add_argument(
+        "--layout-seeds",
+        nargs="+",
+        metavar="SEEDS",
+        help="a layout axis of a generated family (an env taking layout_seed, e.g."
+        " voot/KitchenClearing-v2): every run once per layout seed, N (0..N-1), START:STOP"
+        " or a list (3 7 9); with it, --seeds defaults to one seed (0) per layout",
+    )
+    p.add_argument(
+        "--tuning-layouts",
+        nargs="+",
+        metavar="SEEDS",
+        help="the held-out protocol: tune every setting on these layouts (x --tuning-seeds,"
+        " default: --seeds), select per family and planner the best mean final return"
+        " pooled over them, then run that setting on --layout-seeds (which must be"
+        " disjoint: no tuning on the test set); resumable at any point",
+    )
+    p.add_argument(
+        "--heldout",
+        action="store_true",
+        help="the held-out protocol on each family's fixed layout sets: tune on its"
+        " training layouts, evaluate on its held-out layouts (voot.bench.layouts:"
+        " training 1000-1019, held-out 0-19)",
     )
     p.add_argument(
         "--estimate",

@@ -15,6 +15,8 @@ from voot.bench.store_format import Row
 
 if TYPE_CHECKING:
     from voot.bench.cli_common import Subparsers
+    from voot.bench.layouts import TuningLayoutsArg
+    from voot.bench.plan_runs import PlannerRuns
 
 
 KINDS = ("bbfo", "plan")
@@ -97,14 +99,21 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
         normalize_planner(base) + sep + rest
         for base, sep, rest in (p.partition("[") for p in split_list(args.planners))
     ] or None
-    tuning = _tuning_seeds(args.tuning_seeds, rows)
+    layouts = tuning_layouts_of(args, rows)
+    tuning = _tuning_seeds(args.tuning_seeds, rows, split=layouts is None)
     data = plan_data(
         rows,
         problems=_plan_filter(split_list(args.problems)),
         planners=planners,
         tuning_seeds=tuning,
+        tuning_layouts=layouts,
     )
     if not data:
+        if layouts is not None:
+            raise CLIError(
+                "no runs on held-out layouts (layouts other than the tuning layouts) of a"
+                " setting selected on the tuning layouts match --problems/--planners"
+            )
         if tuning is not None:
             raise CLIError(
                 "no evaluation runs (seeds other than --tuning-seeds) of a setting selected"
@@ -129,7 +138,7 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
         lines = ["### Figures", ""]
         for name, axis in AXES.items():
             path = plot_plan_figure(
-                data, Path(args.axes_dir) / axis.png, x=name, note=_tuning_title(tuning)
+                data, Path(args.axes_dir) / axis.png, x=name, note=_tuning_title(tuning, data)
             )
             print(f"figure: {path}", file=sys.stderr)
             lines.append(f"`{axis.png}`: {figure_caption(data, name)}")
@@ -150,15 +159,18 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     return 0
 
 
-def _tuning_seeds(text: str | None, rows: Sequence[Row]) -> list[int] | None:
+def _tuning_seeds(text: str | None, rows: Sequence[Row], split: bool = True) -> list[int] | None:
     """``--tuning-seeds`` as a list (None without the option), checked against the
-    store's ``rows``: some runs of a tuning seed and some of another seed
-    (:func:`voot.bench.tuning.check_tuning_split`), else a CLIError."""
+    store's ``rows`` when ``split``: some runs of a tuning seed and some of another seed
+    (:func:`voot.bench.tuning.check_tuning_split`), else a CLIError. With tuning layouts
+    (``split=False``) the layouts split the store, and the same seeds serve both sides."""
     if text is None:
         return None
     from voot.bench.tuning import check_tuning_split
 
     seeds = parse_range(text, "--tuning-seeds")
+    if not split:
+        return seeds
     try:
         check_tuning_split(rows, seeds)
     except ValueError as exc:
@@ -166,10 +178,37 @@ def _tuning_seeds(text: str | None, rows: Sequence[Row]) -> list[int] | None:
     return seeds
 
 
-def _tuning_title(tuning: Sequence[int] | None) -> str | None:
+def _tuning_title(tuning: Sequence[int] | None, data: Sequence[PlannerRuns]) -> str | None:
+    """The figure's note: how the settings were selected (None: the paper's rule)."""
     from voot.bench.tuning import tuning_note
 
-    return None if tuning is None else tuning_note(tuning)
+    layouts = sorted({v for d in data for v in d.tuning_layouts})
+    if tuning is None and not layouts:
+        return None
+    return tuning_note(tuning or (), layouts)
+
+
+def tuning_layouts_of(args: argparse.Namespace, rows: Sequence[Row]) -> TuningLayoutsArg | None:
+    """The tuning layouts of ``--tuning-layouts`` or ``--heldout`` (None: neither): with
+    ``--heldout``, the training layouts of each family of the rows
+    (:data:`voot.bench.layouts.LAYOUT_SETS`)."""
+    from voot.bench.cli_plan import parse_layout_seeds
+    from voot.bench.layouts import LAYOUT_SETS, layout_of
+
+    if args.heldout and args.tuning_layouts is not None:
+        raise CLIError("give --heldout or --tuning-layouts, not both")
+    if args.tuning_layouts is not None:
+        return parse_layout_seeds(args.tuning_layouts, "--tuning-layouts")
+    if not args.heldout:
+        return None
+    families = {str(r["config"]["problem"]) for r in rows if layout_of(r["config"]) is not None}
+    known = {p: LAYOUT_SETS[p].training for p in sorted(families) if p in LAYOUT_SETS}
+    if not known:
+        raise CLIError(
+            "--heldout: no runs on the layouts of a family with a held-out set"
+            f" ({', '.join(LAYOUT_SETS)}); for another env give --tuning-layouts"
+        )
+    return known
 
 
 def cmd_plot(args: argparse.Namespace) -> int:
@@ -189,10 +228,12 @@ def cmd_plot(args: argparse.Namespace) -> int:
         or args.at
         or args.axes_dir
         or args.tuning_seeds
+        or args.tuning_layouts
+        or args.heldout
     ):
         raise CLIError(
-            "--png-seconds, --axes-dir, --tuning-seeds, --problems, --planners and --at"
-            " apply to plan runs;"
+            "--png-seconds, --axes-dir, --tuning-seeds, --tuning-layouts, --heldout,"
+            " --problems, --planners and --at apply to plan runs;"
             " for bbfo runs filter with --functions, --dims and --methods"
         )
     functions = [f.lower() for f in split_list(args.functions)] or None
@@ -262,13 +303,20 @@ def cmd_claims(args: argparse.Namespace) -> int:
             )
         return print_ablation_table(args.results, args.tuning_seeds, args.markdown)
     _, rows = load_rows(args.results, "plan")
-    tuning = _tuning_seeds(args.tuning_seeds, rows)
-    data = plan_data(rows, tuning_seeds=tuning)
-    note = (
-        "Settings selected on the same seeds (the paper's rule)."
-        if tuning is None
-        else tuning_sentence(tuning) + " The claims are judged on the evaluation seeds."
-    )
+    layouts = tuning_layouts_of(args, rows)
+    tuning = _tuning_seeds(args.tuning_seeds, rows, split=layouts is None)
+    data = plan_data(rows, tuning_seeds=tuning, tuning_layouts=layouts)
+    trained = sorted({v for d in data for v in d.tuning_layouts})
+    if layouts is not None:
+        note = (
+            tuning_sentence(tuning or (), trained)
+            + " The claims are judged on the held-out layouts, the layout being the unit of"
+            " the intervals."
+        )
+    elif tuning is None:
+        note = "Settings selected on the same seeds (the paper's rule)."
+    else:
+        note = tuning_sentence(tuning) + " The claims are judged on the evaluation seeds."
     text = claims_table(evaluate(data), note)
     print(text)
     if args.markdown:
@@ -307,6 +355,7 @@ def register(sub: Subparsers) -> None:
         " return) and draw every other seed (the evaluation seeds) with it (default: select"
         " on the drawn seeds, the paper's rule)",
     )
+    _add_layout_filters(p, "draw")
     p.add_argument("--markdown", help="write the tables here as markdown")
     p.add_argument("--regret", action="store_true", help="plot f* - best instead of best value")
     p.add_argument("--log", action="store_true", help="log y axis (with --regret)")
@@ -338,6 +387,7 @@ def register(sub: Subparsers) -> None:
         help="select each planner's setting on these seeds and judge the claims on every"
         " other seed (as plot --tuning-seeds; default: the paper's same-seed selection)",
     )
+    _add_layout_filters(p, "judge")
     p.add_argument(
         "--ablation",
         action="store_true",
@@ -346,3 +396,20 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument("--markdown", help="also write the table here")
     p.set_defaults(func=cmd_claims)
+
+
+def _add_layout_filters(p: argparse.ArgumentParser, verb: str) -> None:
+    """``--tuning-layouts`` and ``--heldout`` of ``plot`` and ``claims``."""
+    p.add_argument(
+        "--tuning-layouts",
+        nargs="+",
+        metavar="SEEDS",
+        help=f"plan runs on layouts: select each planner's setting on the runs of these"
+        f" layouts (of --tuning-seeds if given), pooled per family, and {verb} the runs of"
+        " every other layout (the held-out layouts) with it",
+    )
+    p.add_argument(
+        "--heldout",
+        action="store_true",
+        help="--tuning-layouts with each family's fixed training layouts (voot.bench.layouts)",
+    )

@@ -18,6 +18,11 @@ captioned by :func:`~voot.bench.plan_tables.figure_caption`. With tuning seeds
 (:func:`~voot.bench.plan_runs.plan_data`'s ``tuning_seeds``) the settings are selected
 on those seeds and the other seeds are drawn (:mod:`voot.bench.tuning`).
 
+On a generated family (rows with layout seeds, :mod:`voot.bench.layouts`) a panel is
+the family: each planner's line is the mean over its (layout, seed) runs and the band
+is the t-interval over the per-layout means (the layout is the unit; with fewer than
+:data:`~voot.bench.plot.MIN_SEEDS_FOR_BAND` layouts the line is dashed, without a band).
+
 The data come from :func:`voot.bench.plan_runs.plan_data`, the tables and the figures'
 captions from :mod:`voot.bench.plan_tables`.
 """
@@ -176,20 +181,22 @@ def plot_plan_figure(
 def _curve(
     d: PlannerRuns, values: NDArray[np.float64], x: str, axis: Axis | None
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | bool:
-    """The x values and per-seed samples of one curve of ``d`` on the axis ``x``; if there
-    is nothing to draw, whether that is because the rows lack the cost axis's data."""
-    from voot.bench.axes import on_cost_grid
+    """The x values and the samples of one curve of ``d`` on the axis ``x``, one row per
+    unit (seed, or layout: :meth:`~voot.bench.plan_runs.PlannerRuns.units`); if there is
+    nothing to draw, whether that is because the rows lack the cost axis's data."""
+    from voot.bench.axes import has_axis_data, on_cost_grid
 
     if x == "seconds":
         xs, samples = on_time_grid(values, d.elapsed)
-        return (xs, samples) if xs.size else False
+        kept = ~np.all(np.isnan(d.elapsed), axis=1)  # the rows on_time_grid keeps
+        return (xs, d.units(samples, kept)) if xs.size else False
     if axis is not None and axis.key is not None:
         cost = d.axis_values(axis.key)
         if cost is None:
             return True
         xs, samples = on_cost_grid(values, cost)
-        return (xs, samples) if xs.size else True
-    return np.arange(1, values.shape[1] + 1), values
+        return (xs, d.units(samples, has_axis_data(cost))) if xs.size else True
+    return np.arange(1, values.shape[1] + 1), d.units(values)
 
 
 def _draw_panel(

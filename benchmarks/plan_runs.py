@@ -7,6 +7,12 @@ and the statistics over seeds that the figure, the tables and the claims
 median with a distribution-free interval (:func:`median_ci`), and when a run first and
 for good handled every object (:func:`first_reach`, :func:`settled_reach`).
 
+On a generated family (rows with a ``layout_seed``, :mod:`voot.bench.layouts`) a
+:class:`PlannerRuns` holds every (layout, seed) run of the family; its curve is the mean
+over them, and its intervals take the layout as the unit (:meth:`PlannerRuns.units`: the
+per-layout means, :func:`voot.bench.layouts.layout_means`), since runs on one layout are
+not independent draws of the family.
+
 The figure is drawn by :mod:`voot.bench.plan_plot`, the tables are written by
 :mod:`voot.bench.plan_tables`.
 """
@@ -20,6 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.bench.layouts import (
+    TuningLayoutsArg,
+    layout_means,
+    layout_medians,
+    layout_of,
+    n_layouts,
+)
 from voot.bench.plot import CONFIDENCE
 from voot.bench.select import (
     cell_of,
@@ -68,6 +81,9 @@ class PlannerRuns:
         n_feasibility_checks: pre-checks per seed.
         tuning_seeds: the seeds its setting was selected on (empty: selected on these
             very seeds, the paper's rule).
+        layouts: the layout seed of every row, in row order (None: a row without one;
+            empty: no row has one).
+        tuning_layouts: the training layouts its setting was selected on (empty: none).
     """
 
     problem: str
@@ -86,6 +102,40 @@ class PlannerRuns:
     n_steps: NDArray[np.float64] | None = None
     n_feasibility_checks: NDArray[np.float64] | None = None
     tuning_seeds: tuple[int, ...] = ()
+    layouts: tuple[int | None, ...] = ()
+    tuning_layouts: tuple[int, ...] = ()
+
+    @property
+    def has_layouts(self) -> bool:
+        """Whether the rows are on layouts of a generated family."""
+        return any(v is not None for v in self.layouts)
+
+    @property
+    def n_layouts(self) -> int:
+        """Distinct layouts of the rows (0 without layouts)."""
+        return n_layouts(self.layouts)
+
+    @property
+    def n_units(self) -> int:
+        """The independent units of the intervals: layouts if the rows have them, else seeds."""
+        return self.n_layouts if self.has_layouts else self.n_seeds
+
+    def units(
+        self, samples: NDArray[np.float64], rows: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.float64]:
+        """``samples`` (one row per run, or per run of ``rows``, a mask of the runs kept)
+        as the units of an interval: the per-layout means on a layout axis, else the runs
+        themselves (:func:`voot.bench.layouts.layout_means`)."""
+        if not self.has_layouts:
+            return samples
+        layouts = list(self.layouts)
+        if rows is not None:
+            layouts = [v for v, keep in zip(layouts, rows, strict=True) if keep]
+        return layout_means(samples, layouts)
+
+    def unit_medians(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
+        """One value per run as the units of a median: per-layout medians on a layout axis."""
+        return layout_medians(values, list(self.layouts)) if self.has_layouts else values
 
     def axis_values(self, key: str | None) -> NDArray[np.float64] | None:
         """The x values of a cost axis (``calls_curve`` or ``cpu_elapsed``); None for the
@@ -161,8 +211,9 @@ def plan_data(
     problems: Sequence[str] | None = None,
     planners: Sequence[str] | None = None,
     tuning_seeds: Collection[int] | None = None,
+    tuning_layouts: TuningLayoutsArg | None = None,
 ) -> list[PlannerRuns]:
-    """The selected runs of every planner per problem.
+    """The selected runs of every planner per problem (per family, on a layout axis).
 
     Rows are filtered to finished ``"plan"`` rows of the given problems (display names,
     e.g. ``kitchen``, ``shekel_chain``) and planners, and to the largest budget per
@@ -170,7 +221,9 @@ def plan_data(
     same seeds (the paper's rule), or, with ``tuning_seeds``, on the rows of those seeds,
     and the runs returned are then those of every other seed (the evaluation seeds) with
     the selected setting (:func:`voot.bench.tuning.select_on_tuning`; planners without
-    tuning rows are left out).
+    tuning rows are left out). With ``tuning_layouts`` (one collection, or per problem
+    id) the settings are selected on the rows of those layouts (of ``tuning_seeds`` if
+    given) and the rows of every other layout are returned: the held-out protocol.
     """
     keep = []
     for r in rows:
@@ -184,21 +237,28 @@ def plan_data(
         keep.append(r)
     keep = largest_budget(keep)
     tuned: tuple[int, ...] = ()
-    if tuning_seeds is None:
+    if tuning_seeds is None and tuning_layouts is None:
         selections = select_hyperparameters(keep)
         chosen = selected_rows(keep, selections)
     else:
         from voot.bench.tuning import select_on_tuning
 
-        tuned = tuple(sorted(set(int(t) for t in tuning_seeds)))
-        outcome = select_on_tuning(keep, tuned)
+        tuned = tuple(sorted(set(int(t) for t in tuning_seeds or ())))
+        outcome = select_on_tuning(
+            keep, tuned if tuning_seeds is not None else None, tuning_layouts
+        )
         selections, chosen = list(outcome.selections), list(outcome.rows)
     out = []
     for s in selections:
         group = [r for r in chosen if cell_of(r) == s.key]
         if not group:  # tuned, but no evaluation runs yet
             continue
-        group.sort(key=lambda r: int(r["config"]["seed"]))
+        group.sort(key=lambda r: (_layout_rank(r), int(r["config"]["seed"])))
+        layouts = tuple(layout_of(r["config"]) for r in group)
+        # the tuning layouts this cell's setting was selected on (those with rows)
+        present = {layout_of(r["config"]) for r in keep if cell_of(r) == s.key}
+        problems = [r["config"]["problem"] for r in group]
+        trained = sorted(v for v in _tuning_layouts_of(tuning_layouts, problems) if v in present)
         width = s.budget
         has_objects = any(r.get("objects_left") is not None for r in group)
         initial = [r.get("objects_initial") for r in group]
@@ -228,9 +288,30 @@ def plan_data(
                     [float(r.get("n_feasibility_checks", np.nan)) for r in group]
                 ),
                 tuning_seeds=tuned,
+                layouts=layouts if any(v is not None for v in layouts) else (),
+                tuning_layouts=tuple(trained),
             )
         )
     return out
+
+
+def _layout_rank(row: Row) -> int:
+    """Sort key of a row's layout (rows without one first)."""
+    layout = layout_of(row["config"])
+    return -1 if layout is None else layout
+
+
+def _tuning_layouts_of(
+    tuning_layouts: TuningLayoutsArg | None, problems: Iterable[str]
+) -> set[int]:
+    """The tuning layouts of ``problems`` (every problem's, given one per problem)."""
+    if tuning_layouts is None:
+        return set()
+    from collections.abc import Mapping
+
+    if isinstance(tuning_layouts, Mapping):
+        return {int(v) for p in set(problems) for v in tuning_layouts.get(p, ())}
+    return {int(v) for v in tuning_layouts}
 
 
 def first_reach(objects_left: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -58,6 +58,13 @@ import numpy as np
 
 from voot import validation as V
 from voot.bench import problems as P
+from voot.bench.layouts import (
+    LAYOUT_KEY,
+    check_layout_problem,
+    family_kwargs,
+    layout_of,
+    with_layout,
+)
 from voot.bench.store_format import Row, make_row, make_run_id
 from voot.bench.sweep import GRIDS, exception_row, name_key, one_blas_thread, register_runner
 
@@ -312,6 +319,17 @@ class PlanSpec:
         base = P.problem_label(self.problem, self.env_kwargs_dict)
         return f"{base}-{self.dim}D" if self.dim is not None else base
 
+    @property
+    def layout(self) -> int | None:
+        """The run's layout seed (``env_kwargs["layout_seed"]``), None if it has none."""
+        return layout_of({"env_kwargs": self.env_kwargs_dict})
+
+    @property
+    def family_label(self) -> str:
+        """:attr:`label` without the layout seed: the display name of the family."""
+        base = P.problem_label(self.problem, family_kwargs(self.env_kwargs_dict))
+        return f"{base}-{self.dim}D" if self.dim is not None else base
+
     def config(self) -> dict[str, Any]:
         """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
         out = {
@@ -397,8 +415,10 @@ def build_plan_specs(
     fixed: Mapping[str, Any] | None = None,
     record: str | None = None,
     horizon: int | None = None,
+    layout_seeds: Iterable[int] | None = None,
 ) -> list[PlanSpec]:
-    """Every run of a planning sweep, in grid order (problem, dim, planner, params, seed).
+    """Every run of a planning sweep, in grid order (problem, dim, planner, params,
+    layout, seed).
 
     Args:
         problems: problem names (see :mod:`voot.bench.problems`; default: the Shekel chain).
@@ -415,10 +435,15 @@ def build_plan_specs(
             planner's ``depth_limit`` (with no root commitment, which would let it recede)
             or a sampling-based planner's ``horizon`` (e.g. for gymnasium's control tasks,
             which do not end by themselves).
+        layout_seeds: layout seeds of a generated family (:mod:`voot.bench.layouts`):
+            every run is made once per layout, with ``layout_seed`` in its ``env_kwargs``
+            (None: no layout axis; the runs and their ids are those of a sweep without it).
 
     Raises:
         ValueError: unknown problem, planner, parameter or grid; bad numbers; a chain
-            dimension without a reference threshold. Messages list the valid choices.
+            dimension without a reference threshold; layout seeds for a problem that
+            takes none, or beside a ``layout_seed`` env keyword. Messages list the valid
+            choices.
     """
     from voot.bench.rl_runs import is_rl_planner
     from voot.tree.shooting import is_shooting_planner
@@ -428,6 +453,9 @@ def build_plan_specs(
         raise ValueError("no problems given")
     dim_list = _int_list(dims, "dims", 1) if dims is not None else list(P.DEFAULT_CHAIN_DIMS)
     seed_list = _int_list(seeds, "seeds", 0) if seeds is not None else None
+    layouts: list[int | None] = (
+        list(_int_list(layout_seeds, "layout seeds", 0)) if layout_seeds is not None else [None]
+    )
     planner_list = [normalize_plan_planner(p) for p in planners] if planners is not None else None
     if planner_list is not None and not planner_list:
         raise ValueError("no planners given")
@@ -460,7 +488,18 @@ def build_plan_specs(
                 f" {problem} takes its dimension from --dims (or use its gymnasium id,"
                 f" e.g. voot/ShekelChain-v0 with --env-kwargs dim=5)"
             )
-        env = () if chain else tuple(sorted(kwargs.items()))
+        if layouts != [None]:
+            if chain:
+                raise ValueError(
+                    f"layout seeds apply to generated environments; the {problem} has no layouts"
+                )
+            if LAYOUT_KEY in kwargs:
+                raise ValueError(
+                    f"{LAYOUT_KEY} is given both as an env keyword ({kwargs[LAYOUT_KEY]!r}) and"
+                    " as layout seeds; give one"
+                )
+            check_layout_problem(problem)
+        envs = [() if chain else tuple(sorted(with_layout(kwargs, lay).items())) for lay in layouts]
         n_sims = simulations if simulations is not None else setup.simulations
         seeds_here = seed_list if seed_list is not None else list(range(setup.seeds))
         for dim in problem_dims:
@@ -474,8 +513,11 @@ def build_plan_specs(
                         run_config(problem, dim, planner, params, kwargs)  # fail early
                         checked.add(key)
                     items = tuple(sorted(params.items()))
-                    for seed in seeds_here:
-                        specs.append(PlanSpec(problem, dim, env, planner, items, int(n_sims), seed))
+                    for env in envs:
+                        for seed in seeds_here:
+                            specs.append(
+                                PlanSpec(problem, dim, env, planner, items, int(n_sims), seed)
+                            )
     if record is not None:
         shooting = sorted(
             {s.planner for s in specs if is_shooting_planner(s.planner) or is_rl_planner(s.planner)}
@@ -507,6 +549,8 @@ def record_paths(specs: Sequence[PlanSpec], template: str) -> list[str]:
     for s in specs:
         parts = [base.stem, s.label, s.planner]
         parts += [f"{k}{v}" for k, v in s.params]
+        if s.layout is not None:
+            parts.append(f"layout{s.layout}")
         parts.append(f"seed{s.seed}")
         name = "-".join(parts)
         safe = "".join(c if c.isalnum() or c in "-_.=" else "_" for c in name)
@@ -617,18 +661,24 @@ register_runner(PlanSpec.kind, run_plan_spec)
 
 
 def summarize_plan_specs(specs: Sequence[PlanSpec]) -> str:
-    """One line per (problem, simulations): runs per planner and the seeds."""
+    """One line per (problem family, simulations): runs per planner, the seeds and, on a
+    layout axis, the layouts."""
     cells: dict[tuple[str, int], dict[str, int]] = {}
     seeds: dict[tuple[str, int], set[int]] = {}
+    layouts: dict[tuple[str, int], set[int]] = {}
     for s in specs:
-        key = (s.label, s.simulations)
+        key = (s.family_label, s.simulations)
         counts = cells.setdefault(key, {})
         counts[s.planner] = counts.get(s.planner, 0) + 1
         seeds.setdefault(key, set()).add(s.seed)
+        if s.layout is not None:
+            layouts.setdefault(key, set()).add(s.layout)
     lines = []
     for (label, sims), counts in cells.items():
         per = ", ".join(f"{m} {n}" for m, n in counts.items())
-        lines.append(f"{label} {sims} simulations, {len(seeds[(label, sims)])} seeds: {per}")
+        n_layouts = len(layouts.get((label, sims), ()))
+        where = f"{n_layouts} layouts x " if n_layouts else ""
+        lines.append(f"{label} {sims} simulations, {where}{len(seeds[(label, sims)])} seeds: {per}")
     return "\n".join(lines)
 
 

@@ -9,6 +9,11 @@ the pre-checks per simulation (:func:`calls_table`).
 :func:`plan_report` puts every table into one markdown document; :func:`figure_caption`
 says what a figure of :mod:`voot.bench.plan_plot` shows. The data come from
 :func:`voot.bench.plan_runs.plan_data`.
+
+On a generated family (rows with layout seeds, :mod:`voot.bench.layouts`) a table's
+problem is the family, its values the mean over the (layout, seed) runs, and its
+intervals are over the per-layout means (medians: per-layout medians), the layout being
+the unit; the notes under the tables say so.
 """
 
 from __future__ import annotations
@@ -69,7 +74,7 @@ def _checkpoint_table(
                 values = values_of(d)  # type: ignore[operator]
                 if values is None or k > values.shape[1] or k < 1:
                     continue
-                mean, half, n = mean_ci(values[:, k - 1 : k])
+                mean, half, n = mean_ci(d.units(values)[:, k - 1 : k])
                 if n[0] > 0:
                     stats[p] = (float(mean[0]), float(half[0]), int(n[0]))
             if not stats:
@@ -85,12 +90,20 @@ def _checkpoint_table(
             lines.append(f"| {title} | {k} | {' | '.join(cols)} |")
     if len(lines) == 2:
         return ""
+    if any(d.has_layouts for d in data):
+        note = _LAYOUT_CI_NOTE
     return "\n".join(lines) + f"\n\n{what}: {note}"
 
 
 _CI_NOTE = (
     "mean ± half-width of the 95% t-interval over seeds (number of seeds), each planner"
     " with its selected hyperparameters; best mean in bold."
+)
+#: The note on a layout axis: the layout is the unit of the interval.
+_LAYOUT_CI_NOTE = (
+    "mean over the (layout, seed) runs ± half-width of the 95% t-interval over the"
+    " per-layout means (number of layouts; a problem without layouts: over seeds), each"
+    " planner with its selected hyperparameters; best mean in bold."
 )
 
 
@@ -141,10 +154,10 @@ def completion_table(data: Sequence[PlannerRuns]) -> str:
         ):
             assert d.objects_left is not None
             first = first_reach(d.objects_left)
-            med, lo, hi = median_ci(first)
+            med, lo, hi = median_ci(d.unit_medians(first))
             got = int(np.isfinite(first).sum())
             settled = settled_reach(d.objects_left)
-            s_med, s_lo, s_hi = median_ci(settled)
+            s_med, s_lo, s_hi = median_ci(d.unit_medians(settled))
             s_got = int(np.isfinite(settled).sum())
 
             def show(v: float, budget: int = d.simulations) -> str:
@@ -164,11 +177,17 @@ def completion_table(data: Sequence[PlannerRuns]) -> str:
             )
     if len(lines) == 2:
         return ""
+    layouts = (
+        " On layouts, the seeds are (layout, seed) runs and the median and its interval"
+        " are over the per-layout medians."
+        if any(d.has_layouts for d in data)
+        else ""
+    )
     return "\n".join(lines) + (
         "\n\nSimulations until the best plan (highest return) first handles every object, and"
         " from which it handles every object for the rest of the budget (the best plan can"
         " change to one that leaves an object); > budget: not within the budget, counted as"
-        " never; interval: order statistics, distribution-free 95%."
+        " never; interval: order statistics, distribution-free 95%." + layouts
     )
 
 
@@ -248,11 +267,15 @@ def figure_caption(data: Sequence[PlannerRuns], x: str) -> str:
     axis = get_axis(x)
     seeds = sorted({d.n_seeds for d in data})
     counts = "/".join(map(str, seeds))
-    parts = [
-        f"Best return (and objects left) against {axis.label}: mean over {counts} seeds"
-        " with a 95% t-interval.",
-        axis.caption,
-    ]
+    if any(d.has_layouts for d in data):
+        n_lay = "/".join(map(str, sorted({d.n_layouts for d in data if d.has_layouts})))
+        what = (
+            f"mean over {counts} (layout, seed) runs on {n_lay} layouts with a 95% t-interval"
+            " over the per-layout means (the layout is the unit)."
+        )
+    else:
+        what = f"mean over {counts} seeds with a 95% t-interval."
+    parts = [f"Best return (and objects left) against {axis.label}: {what}", axis.caption]
     if axis.key is not None:
         parts.append(
             "Each seed's best-so-far curve is a step function of its own cost, carried"
@@ -270,13 +293,28 @@ def figure_caption(data: Sequence[PlannerRuns], x: str) -> str:
                 f"{lacking} of {total} runs lack {axis.key} (written before it was recorded)"
                 " and are left out of this figure."
             )
-    tuned = {d.tuning_seeds for d in data}
-    if tuned == {()}:
+    tuned = {(d.tuning_seeds, d.tuning_layouts) for d in data}
+    if tuned == {((), ())}:
         parts.append("Settings selected on the same seeds (the paper's rule).")
     else:
-        notes = sorted(tuning_note(t) for t in tuned if t)
+        notes = sorted(tuning_note(t, lay) for t, lay in tuned if t or lay)
         parts.append(_sentence("; ".join(notes)))
     return " ".join(parts)
+
+
+def _tuning_notes(data: Sequence[PlannerRuns]) -> list[str]:
+    """The distinct tuning notes of ``data`` (empty: selected on the reported seeds)."""
+    from voot.bench.tuning import tuning_note
+
+    tuned = sorted(
+        {(d.tuning_seeds, d.tuning_layouts) for d in data if d.tuning_seeds or d.tuning_layouts}
+    )
+    return [tuning_note(t, lay) for t, lay in tuned]
+
+
+def _runs_text(d: PlannerRuns) -> str:
+    """The runs of ``d`` for the settings table: seeds, or layouts and runs."""
+    return f"{d.n_layouts} layouts, {d.n_seeds} runs" if d.has_layouts else str(d.n_seeds)
 
 
 def plan_settings_table(data: Sequence[PlannerRuns]) -> str:
@@ -288,25 +326,23 @@ def plan_settings_table(data: Sequence[PlannerRuns]) -> str:
         for d in sorted(
             (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
         ):
-            lines.append(f"| {d.title} | {d.planner} | {d.label} | {d.n_seeds} |")
-    tuned = sorted({d.tuning_seeds for d in data if d.tuning_seeds})
-    if tuned:
-        from voot.bench.tuning import tuning_note
-
+            lines.append(f"| {d.title} | {d.planner} | {d.label} | {_runs_text(d)} |")
+    notes = _tuning_notes(data)
+    if notes:
         lines.append("")
-        lines.append(_sentence("; ".join(tuning_note(t) for t in tuned)))
+        lines.append(_sentence("; ".join(notes)))
     return "\n".join(lines)
 
 
 def plan_report(data: Sequence[PlannerRuns], at: Sequence[int] | None = None) -> str:
     """Every table as one markdown document (sections without data are left out)."""
     parts = [("Best return", returns_table(data, at))]
-    tuned = sorted({d.tuning_seeds for d in data if d.tuning_seeds})
-    if tuned:
-        from voot.bench.tuning import tuning_note
-
-        note = _sentence("; ".join(tuning_note(t) for t in tuned))
-        parts.insert(0, ("Protocol", f"{note} The tables report the evaluation seeds only."))
+    notes = _tuning_notes(data)
+    if notes:
+        held_out = any(d.tuning_layouts for d in data)
+        reported = "the held-out layouts" if held_out else "the evaluation seeds"
+        note = _sentence("; ".join(notes))
+        parts.insert(0, ("Protocol", f"{note} The tables report {reported} only."))
     parts.append(("Objects handled", objects_table(data, at)))
     parts.append(("Simulations to handle every object", completion_table(data)))
     parts.append(("Cost of a simulation", cost_table(data)))

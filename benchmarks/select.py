@@ -17,6 +17,8 @@ instance, and :func:`select_hyperparameters` refuses rows of several.
 The same rule selects the planners' settings of the planning sweep (rows of kind
 ``"plan"``): there a cell is (problem, dim, simulations, planner) and the final value is
 the best return after the last simulation (:func:`cell_of` maps both kinds of row).
+Runs on the layouts of a generated family (:mod:`voot.bench.layouts`) share their
+family's cell: the mean final return of a setting is pooled over its layouts and seeds.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from voot.bench.layouts import family_kwargs
 from voot.bench.plan_sweep import PLAN_PLANNERS
 from voot.bench.problems import ALIASES, CHAINS, problem_label
 from voot.bench.store_format import Row
@@ -48,10 +51,12 @@ def planner_label(planner: str, variant: str | None = None) -> str:
 def cell_of(row: Row) -> CellKey:
     """The cell of a row: ``(function, dim, budget, method)`` of a bbfo row, or
     ``(problem label, dim or 0, simulations, planner)`` of a plan row (the planner with
-    its ablation variant, :func:`planner_label`)."""
+    its ablation variant, :func:`planner_label`). The label is the problem's *family*:
+    its env keywords except ``layout_seed`` (:mod:`voot.bench.layouts`), so the runs of
+    every layout of a generated family share one cell."""
     cfg = row["config"]
     if row.get("kind") == "plan":
-        label = problem_label(str(cfg["problem"]), cfg.get("env_kwargs"))
+        label = problem_label(str(cfg["problem"]), family_kwargs(cfg.get("env_kwargs")))
         planner = planner_label(str(cfg["planner"]), cfg.get("variant"))
         return (label, int(cfg.get("dim") or 0), int(cfg["simulations"]), planner)
     return (str(cfg["function"]), int(cfg["dim"]), int(cfg["budget"]), str(cfg["method"]))

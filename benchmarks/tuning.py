@@ -16,14 +16,23 @@ runs are skipped, the selection is recomputed from them (it is deterministic), a
 evaluation runs already in the store are skipped. ``voot-bench plot --tuning-seeds`` and
 ``voot-bench claims --tuning-seeds`` repeat steps 2 and 3 on a store's rows
 (:func:`select_on_tuning`).
+
+On a generated family the phases differ by **layout** instead (:mod:`voot.bench.layouts`):
+tuning on the tuning seeds x the training layouts, evaluation on the evaluation seeds x
+the held-out layouts (``--tuning-layouts``, ``--heldout``); the selection pools every
+training layout of the family. A row is then a tuning row if its layout is a tuning
+layout (and its seed a tuning seed, when those are given), an evaluation row if its
+layout is not (:func:`split_rows`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from voot.bench.layouts import TuningLayoutsArg as TuningLayouts
+from voot.bench.layouts import layout_of, layouts_text
 from voot.bench.select import (
     CellKey,
     Selection,
@@ -37,29 +46,29 @@ from voot.bench.sweep import params_key
 
 def seeds_text(seeds: Iterable[int]) -> str:
     """Seeds as ranges: ``[1000, 1001, 1002, 7]`` -> ``"7, 1000-1002"``."""
-    values = sorted(set(int(s) for s in seeds))
-    parts: list[str] = []
-    i = 0
-    while i < len(values):
-        j = i
-        while j + 1 < len(values) and values[j + 1] == values[j] + 1:
-            j += 1
-        parts.append(str(values[i]) if i == j else f"{values[i]}-{values[j]}")
-        i = j + 1
-    return ", ".join(parts)
+    return layouts_text(seeds)
 
 
-def tuning_note(tuning_seeds: Iterable[int]) -> str:
-    """The sentence the captions carry when settings were selected on tuning seeds."""
+def tuning_note(tuning_seeds: Iterable[int], tuning_layouts: Iterable[int] = ()) -> str:
+    """The sentence the captions carry when settings were selected on tuning seeds (and,
+    on a generated family, on training layouts disjoint from the reported ones)."""
+    layouts = sorted(set(int(v) for v in tuning_layouts))
+    if layouts:
+        seeds = sorted(set(int(s) for s in tuning_seeds))
+        on_seeds = f" (seeds {seeds_text(seeds)})" if seeds else ""
+        return (
+            f"settings selected on training layouts {layouts_text(layouts)}{on_seeds},"
+            " disjoint from the held-out layouts reported"
+        )
     return (
         f"settings selected on tuning seeds {seeds_text(tuning_seeds)}, disjoint from the"
         " evaluation seeds"
     )
 
 
-def tuning_sentence(tuning_seeds: Iterable[int]) -> str:
+def tuning_sentence(tuning_seeds: Iterable[int], tuning_layouts: Iterable[int] = ()) -> str:
     """:func:`tuning_note` as a sentence (capital letter, full stop)."""
-    note = tuning_note(tuning_seeds)
+    note = tuning_note(tuning_seeds, tuning_layouts)
     return note[:1].upper() + note[1:] + "."
 
 
@@ -103,13 +112,44 @@ def check_tuning_split(rows: Iterable[Row], tuning_seeds: Iterable[int]) -> None
         )
 
 
-def split_rows(rows: Iterable[Row], tuning_seeds: Collection[int]) -> tuple[list[Row], list[Row]]:
-    """``(tuning rows, evaluation rows)``: rows of a tuning seed, and all the others."""
+def _layouts_of_problem(tuning_layouts: TuningLayouts | None, problem: str) -> set[int] | None:
+    """The tuning layouts that apply to ``problem`` (None: no layout split)."""
+    if tuning_layouts is None:
+        return None
+    if isinstance(tuning_layouts, Mapping):
+        chosen = tuning_layouts.get(problem)
+        return None if chosen is None else set(int(v) for v in chosen)
+    return set(int(v) for v in tuning_layouts)
+
+
+def split_rows(
+    rows: Iterable[Row],
+    tuning_seeds: Collection[int] | None,
+    tuning_layouts: TuningLayouts | None = None,
+) -> tuple[list[Row], list[Row]]:
+    """``(tuning rows, evaluation rows)``.
+
+    Without tuning layouts (or for a row without a layout): rows of a tuning seed, and all
+    the others. A row with a layout, given tuning layouts (one collection, or per problem
+    id): a tuning row if its layout is a tuning layout and (when ``tuning_seeds`` are
+    given) its seed a tuning seed; an evaluation row if its layout is not a tuning layout
+    (any seed: another layout is another problem); neither otherwise (a training layout
+    on a seed that is not tuned).
+    """
     tuning: list[Row] = []
     evaluation: list[Row] = []
-    seeds = set(int(s) for s in tuning_seeds)
+    seeds = None if tuning_seeds is None else set(int(s) for s in tuning_seeds)
     for r in rows:
-        (tuning if int(r["config"]["seed"]) in seeds else evaluation).append(r)
+        cfg = r["config"]
+        layout = layout_of(cfg)
+        train = _layouts_of_problem(tuning_layouts, str(cfg.get("problem")))
+        seed_tuned = seeds is not None and int(cfg["seed"]) in seeds
+        if layout is None or train is None:
+            (tuning if seed_tuned else evaluation).append(r)
+        elif layout not in train:
+            evaluation.append(r)
+        elif seeds is None or seed_tuned:
+            tuning.append(r)
     return tuning, evaluation
 
 
@@ -130,14 +170,20 @@ class TunedRows:
     untuned: tuple[CellKey, ...]
 
 
-def select_on_tuning(rows: Iterable[Row], tuning_seeds: Collection[int]) -> TunedRows:
-    """Select each cell's setting on the rows of ``tuning_seeds``; keep the evaluation rows
-    (every other seed) of that setting.
+def select_on_tuning(
+    rows: Iterable[Row],
+    tuning_seeds: Collection[int] | None,
+    tuning_layouts: TuningLayouts | None = None,
+) -> TunedRows:
+    """Select each cell's setting on the tuning rows; keep the evaluation rows of that
+    setting (:func:`split_rows`: every other seed, or every layout that is not a tuning
+    layout).
 
     ``rows`` should already be of one budget per problem
     (:func:`voot.bench.select.largest_budget`), so tuning and evaluation share the cell.
     """
-    tuning, evaluation = split_rows([r for r in rows if r.get("status") == "ok"], tuning_seeds)
+    ok = [r for r in rows if r.get("status") == "ok"]
+    tuning, evaluation = split_rows(ok, tuning_seeds, tuning_layouts)
     selections = select_hyperparameters(tuning)
     selected = {s.key for s in selections}
     missing = {cell_of(r) for r in evaluation} - selected

@@ -17,11 +17,12 @@ def plan_row(
     left: list[float | None] | None = None,
     initial: float | None = 7.0,
     ms: float = 10.0,
+    layout: int | None = None,
 ) -> Row:
     config = {
         "problem": problem,
         "dim": dim,
-        "env_kwargs": {},
+        "env_kwargs": {} if layout is None else {"layout_seed": layout},
         "planner": planner,
         "params": params or {},
         "simulations": len(returns),
@@ -79,3 +80,38 @@ def with_costs(r: Row, calls_per_sim: int, cpu_per_sim: float) -> Row:
     out["n_steps"] = n
     out["n_feasibility_checks"] = (calls_per_sim - 1) * n
     return out
+
+
+#: The generated family of :func:`layout_rows` (no env is made: rows only).
+LAYOUT_PROBLEM = "voot/KitchenClearing-v2"
+#: Final returns of voot's selected setting per held-out layout and seed: per-layout means
+#: 2, 4, 6 (units: mean 4, t-interval half-width 4.303 * 2 / sqrt(3) = 4.968 over 3
+#: layouts; the 6 runs taken as independent would give 2.099).
+LAYOUT_FINALS: dict[int, tuple[float, float]] = {0: (1.0, 3.0), 1: (4.0, 4.0), 2: (5.0, 7.0)}
+
+
+def layout_rows() -> list[Row]:
+    """Rows of a held-out protocol on :data:`LAYOUT_PROBLEM`: voot with two settings on
+    the training layouts 1000-1001 (omega=0.1 wins there) and on the held-out layouts 0-2
+    (omega=0.3 would win there), seeds 0-1; pw_uct (one setting) on both."""
+    rows = []
+    for layout in (1000, 1001):
+        for seed in (0, 1):
+            rows.append(plan_row([0.0, 1.0, 3.0], planner="voot", seed=seed,
+                                 params={"omega": 0.1}, layout=layout, problem=LAYOUT_PROBLEM))  # fmt: skip
+            rows.append(plan_row([0.0, 1.0, 2.0], planner="voot", seed=seed,
+                                 params={"omega": 0.3}, layout=layout, problem=LAYOUT_PROBLEM))  # fmt: skip
+            rows.append(plan_row([0.0, 1.0, 1.0], planner="pw_uct", seed=seed,
+                                 layout=layout, problem=LAYOUT_PROBLEM))  # fmt: skip
+    for layout, finals in LAYOUT_FINALS.items():
+        for seed, final in enumerate(finals):
+            left = [7.0, 3.0, 0.0 if seed == 0 else 1.0]
+            rows.append(plan_row([0.0, final / 2, final], planner="voot", seed=seed,
+                                 params={"omega": 0.1}, layout=layout, problem=LAYOUT_PROBLEM,
+                                 left=left))  # fmt: skip
+            rows.append(plan_row([0.0, 9.0, 9.0], planner="voot", seed=seed,
+                                 params={"omega": 0.3}, layout=layout, problem=LAYOUT_PROBLEM,
+                                 left=[7.0, 0.0, 0.0]))  # fmt: skip
+            rows.append(plan_row([0.0, 0.5, 1.0], planner="pw_uct", seed=seed,
+                                 layout=layout, problem=LAYOUT_PROBLEM, left=[7.0, 6.0, 5.0]))  # fmt: skip
+    return rows

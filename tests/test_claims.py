@@ -170,3 +170,19 @@ def test_claims_honour_the_tuning_seeds() -> None:
     assert same_seeds.n == 5 and same_seeds.verdict == NOT_REPRODUCED
     (tuned,) = evaluate(plan_data(rows, tuning_seeds=[1000, 1001]), [c])
     assert tuned.n == 3 and tuned.value == pytest.approx(3.1) and tuned.verdict == REPRODUCED
+
+
+def test_claims_on_layouts_count_layouts() -> None:
+    """Two layouts x three seeds: n is the number of layouts, the interval is over the
+    per-layout means (here 1 and 3: mean 2, half-width 12.7)."""
+
+    def on_layout(value: float, seed: int, layout: int) -> Row:
+        r = row(value, planner="pw_uct", seed=seed)
+        return {**r, "config": {**r["config"], "env_kwargs": {"layout_seed": layout}}}
+
+    rows = [on_layout(v, s, layout) for layout, v in ((0, 1.0), (1, 3.0)) for s in range(3)]
+    (result,) = evaluate(plan_data(rows), [claim(("pw_uct",), threshold=4.0)])
+    assert result.n == 2 and result.value == pytest.approx(2.0)
+    assert result.high - result.value == pytest.approx(12.7062047, rel=1e-6)
+    # the six runs taken as independent seeds would give [0.85, 3.15]: "reproduced"
+    assert result.verdict == NOT_REPRODUCED

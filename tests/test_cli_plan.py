@@ -3,7 +3,9 @@ errors, tuning seeds and the estimate (with plot and select on its store)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -251,3 +253,141 @@ def test_plan_tuning_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert "apply to plan runs" in capsys.readouterr().err
     assert main(["claims", out]) == 2
     assert "no finished plan runs" in capsys.readouterr().err
+
+
+LAYOUT_TINY = [
+    "--problems",
+    "voot-test/LayoutChain-v0",
+    "--planners",
+    "voot",
+    "pw_uct",
+    "--simulations",
+    "6",
+    "--workers",
+    "1",
+    "--no-progress",
+]
+
+
+def _unique_rows(out: Path) -> list[dict]:
+    rows = ResultStore(out).load(kind="plan")
+    assert len(rows) == len({r["run_id"] for r in rows})  # never a run twice
+    return rows
+
+
+def test_plan_layout_axis(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import layout_fixtures  # noqa: F401 - registers voot-test/LayoutChain-v0
+
+    out = tmp_path / "axis"
+    argv = ["plan", "--out", str(out), *LAYOUT_TINY, "--grid", "default"]
+    assert main([*argv, "--layout-seeds", "3", "--dry-run"]) == 0
+    printed = capsys.readouterr().out
+    # one seed (0) per layout by default on a layout axis
+    assert (
+        "voot-test/LayoutChain-v0 6 simulations, 3 layouts x 1 seeds: voot 3, pw_uct 3" in printed
+    )
+    assert main([*argv, "--layout-seeds", "4", "9", "--seeds", "2"]) == 0
+    assert "8 runs: 0 already in the store, 8 ran (0 failed)" in capsys.readouterr().out
+    rows = _unique_rows(out)
+    assert sorted({r["config"]["env_kwargs"]["layout_seed"] for r in rows}) == [4, 9]
+    assert main([*argv, "--layout-seeds", "4,9", "--seeds", "2"]) == 0  # the same runs
+    assert "8 already in the store, 0 ran" in capsys.readouterr().out
+    assert main(["plot", str(out), "--png", str(tmp_path / "axis.png")]) == 0
+    assert "| voot-test/LayoutChain-v0 | 6 |" in capsys.readouterr().out
+    for bad, message in [
+        (["--layout-seeds", "5:2"], "--layout-seeds: inverted or empty range"),
+        (["--layout-seeds", "1", "x"], "--layout-seeds: 'x' is not an integer"),
+        (["--tuning-layouts", "100:102"], "--tuning-layouts needs the evaluation layouts"),
+        (["--heldout", "--layout-seeds", "3"], "--heldout sets the layouts itself"),
+        (["--heldout"], "--heldout: voot-test/LayoutChain-v0 has no held-out layout set"),
+    ]:
+        assert main([*argv, *bad, "--dry-run"]) == 2, bad
+        assert message in capsys.readouterr().err
+    chain = ["plan", "--out", str(out), *TUNE_TINY, "--layout-seeds", "2", "--dry-run"]
+    assert main(chain) == 2
+    assert "the shekel_chain has no layouts" in capsys.readouterr().err
+
+
+def test_plan_held_out_protocol_resumes(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Tuning on training layouts, evaluation on held-out ones: interrupted in the tuning,
+    rerun, rerun again: every run once, nothing redone, the selection pooled per family."""
+    import layout_fixtures
+
+    from voot.bench import layouts, sweep
+    from voot.bench.cli import EXIT_INTERRUPTED
+
+    class Interrupting:
+        """A serial backend stopped (like Ctrl-C) after ``after`` rows."""
+
+        name = "interrupting"
+
+        def __init__(self, after: int) -> None:
+            self.after = after
+
+        def map_unordered(self, fn: Any, items: Any) -> Iterator[Any]:
+            for i, item in enumerate(items):
+                if i == self.after:
+                    raise KeyboardInterrupt
+                yield fn(item)
+
+    monkeypatch.setitem(
+        layouts.LAYOUT_SETS, layout_fixtures.LAYOUT_ENV_ID, layouts.LayoutSet((100, 101), (0, 1))
+    )
+    out = tmp_path / "heldout"
+    argv = ["plan", "--out", str(out), *LAYOUT_TINY, "--heldout", "--seeds", "2"]
+    assert main([*argv, "--dry-run"]) == 0
+    err = capsys.readouterr().err
+    # voot and pw_uct: 6 settings each, on 2 layouts x 2 seeds
+    assert "tuning: 48 runs (every setting) on seeds 0-1 x layouts 100-101" in err
+    assert "evaluation: 8 runs (the selected setting) on seeds 0-1 x layouts 0-1" in err
+    real = sweep.make_backend
+    monkeypatch.setattr(sweep, "make_backend", lambda *a, **k: Interrupting(after=5))
+    assert main(argv) == EXIT_INTERRUPTED  # stopped in the middle of the tuning
+    capsys.readouterr()
+    assert len(_unique_rows(out)) == 5
+    monkeypatch.setattr(sweep, "make_backend", real)
+    assert main(argv) == 0
+    printed = capsys.readouterr()
+    assert "48 runs: 5 already in the store, 43 ran (0 failed)" in printed.out
+    assert "8 runs: 0 already in the store, 8 ran (0 failed)" in printed.out
+    assert "settings selected on training layouts 100-101 (seeds 0-1)" in printed.err
+    rows = _unique_rows(out)
+    assert len(rows) == 56
+    from voot.bench.select import select_hyperparameters
+
+    tuning = [r for r in rows if r["config"]["env_kwargs"]["layout_seed"] >= 100]
+    evaluation = [r for r in rows if r["config"]["env_kwargs"]["layout_seed"] < 100]
+    chosen = {s.method: s.params for s in select_hyperparameters(tuning)}
+    assert all(s.best.n == 4 for s in select_hyperparameters(tuning))  # 2 layouts x 2 seeds
+    assert all(r["config"]["params"] == chosen[r["config"]["planner"]] for r in evaluation)
+    assert main(argv) == 0  # resume: nothing left
+    printed = capsys.readouterr().out
+    assert (
+        "48 already in the store, 0 ran" in printed and "8 already in the store, 0 ran" in printed
+    )
+    assert len(_unique_rows(out)) == 56
+    assert main(["plot", str(out), "--heldout", "--png", str(tmp_path / "h.png")]) == 0
+    assert "Settings selected on training layouts 100-101" in capsys.readouterr().out
+    # tuning on a held-out layout is refused, naming it
+    bad = [
+        "plan",
+        "--out",
+        str(out),
+        *LAYOUT_TINY,
+        "--tuning-layouts",
+        "1:3",
+        "--layout-seeds",
+        "2",
+    ]
+    assert main([*bad, "--dry-run"]) == 2
+    assert "layout seeds 1 are both training (tuning) and held-out" in capsys.readouterr().err
+    # the same layouts in both phases: the seeds must differ
+    same = ["plan", "--out", str(out), *LAYOUT_TINY, "--layout-seeds", "2", "--tuning-seeds", "0:2"]
+    assert main([*same, "--seeds", "1:3", "--dry-run"]) == 2
+    assert "seeds 1 are both tuning and evaluation seeds" in capsys.readouterr().err
+    assert main([*same, "--seeds", "5:7", "--dry-run"]) == 0  # tuning on the same layouts
+    assert "on seeds 0-1 x layouts 0-1; evaluation: 8 runs (the selected setting) on seeds 5-6" in (
+        capsys.readouterr().err
+    )

@@ -72,3 +72,46 @@ def test_claims_and_plot_refuse_tuning_seeds_the_store_cannot_split(
     ResultStore(tmp_path / "empty")
     assert main(["claims", str(tmp_path / "empty")]) == 2
     assert "no finished plan runs in this store" in capsys.readouterr().err
+
+
+def test_plot_and_claims_redraw_a_store_of_layouts(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A store whose rows have layout seeds (a held-out protocol's) redraws: one curve per
+    family and planner, settings selected on the training layouts, intervals over layouts."""
+    from plan_fixtures import LAYOUT_PROBLEM, layout_rows
+
+    from voot.bench.store import ResultStore
+
+    out = tmp_path / "heldout"
+    store = ResultStore(out)
+    for r in layout_rows():
+        store.write(r)
+    png, md = tmp_path / "fig.png", tmp_path / "tables.md"
+    argv = ["plot", str(out), "--heldout", "--png", str(png), "--markdown", str(md)]
+    assert main([*argv, "--axes-dir", str(tmp_path / "axes")]) == 0
+    printed = capsys.readouterr().out
+    assert png.read_bytes()[:4] == b"\x89PNG" and (tmp_path / "axes" / "plan-calls.png").exists()
+    assert f"| {LAYOUT_PROBLEM} | 3 | **4 ± 4.968 (3)** | 1 ± 0 (3) |" in printed
+    text = md.read_text()
+    assert "Settings selected on training layouts 1000-1001" in text
+    assert f"| {LAYOUT_PROBLEM} | voot | omega=0.1 | 3 layouts, 6 runs |" in text
+    # the same with the layouts named, and without any: every layout pooled, same-seed rule
+    assert main(["plot", str(out), "--tuning-layouts", "1000:1002"]) == 0
+    assert "**4 ± 4.968 (3)**" in capsys.readouterr().out
+    assert main(["plot", str(out)]) == 0
+    assert (
+        f"| {LAYOUT_PROBLEM} | voot | omega=0.3 | 5 layouts, 10 runs |" in capsys.readouterr().out
+    )
+    assert main(["claims", str(out), "--heldout"]) == 0
+    assert "judged on the held-out layouts" in capsys.readouterr().out
+    # errors: both options; --heldout on a store without a family that has a held-out set
+    assert main(["plot", str(out), "--heldout", "--tuning-layouts", "1000:1002"]) == 2
+    assert "not both" in capsys.readouterr().err
+    assert main(["plot", str(out), "--tuning-layouts", "0:3", "1000:1002"]) == 2  # none held out
+    assert "no runs on held-out layouts" in capsys.readouterr().err
+    plain = tmp_path / "plain"
+    assert main(["plan", "--out", str(plain), *PLAN_TINY]) == 0
+    capsys.readouterr()
+    assert main(["plot", str(plain), "--heldout"]) == 2
+    assert "--heldout: no runs on the layouts of a family" in capsys.readouterr().err

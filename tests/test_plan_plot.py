@@ -102,3 +102,14 @@ def test_cost_axes_figures(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> N
     assert any("lack calls_curve" in t for t in texts) and not captured[-1].axes[0].get_lines()
     plot_plan_figure(plan_data(kitchen_rows()), tmp_path / "old-sims.png")
     assert captured[-1].axes[0].get_lines()  # still drawn against simulations
+
+
+def test_figures_of_held_out_layouts(tmp_path: Path) -> None:
+    from plan_fixtures import layout_rows
+
+    rows = [with_costs(r, 2, 0.01) for r in layout_rows()]
+    rows[-1] = {k: v for k, v in rows[-1].items() if k != "calls_curve"}  # one lacks the curve
+    data = plan_data(rows, tuning_layouts=[1000, 1001])
+    for x in ("simulations", "seconds", "calls", "cpu"):
+        png = plot_plan_figure(data, tmp_path / f"{x}.png", x=x)
+        assert png.stat().st_size > 10_000

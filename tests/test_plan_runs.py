@@ -74,3 +74,39 @@ def test_plan_data_reads_the_cost_curves_and_counts() -> None:
     assert voot.calls is not None and voot.calls[0].tolist() == [3.0, 6.0, 9.0, 12.0]
     assert voot.n_feasibility_checks is not None and voot.n_feasibility_checks.tolist() == [8.0] * 3
     assert voot.axis_values("calls_curve") is voot.calls and voot.axis_values(None) is None
+
+
+def test_plan_data_on_held_out_layouts() -> None:
+    from plan_fixtures import LAYOUT_PROBLEM, layout_rows
+
+    data = plan_data(layout_rows(), tuning_layouts=[1000, 1001])
+    by = {d.planner: d for d in data}
+    voot = by["voot"]
+    assert voot.problem == LAYOUT_PROBLEM and voot.label == "omega=0.1"  # tuned on 1000-1001
+    assert voot.layouts == (0, 0, 1, 1, 2, 2) and voot.seeds == (0, 1) * 3
+    assert voot.has_layouts and voot.n_layouts == 3 and voot.n_units == 3 and voot.n_seeds == 6
+    assert voot.tuning_layouts == (1000, 1001) and voot.tuning_seeds == ()
+    units = voot.units(voot.returns)
+    assert units[:, -1].tolist() == [2.0, 4.0, 6.0]  # per-layout means
+    mean, half, n = mean_ci(units[:, -1:])
+    assert mean[0] == 4.0 and n[0] == 3 and half[0] == pytest.approx(4.968, abs=1e-3)
+    # a mask of the rows kept (a cost axis leaves out rows without its data)
+    keep = np.array([True, False, True, True, True, True])
+    assert voot.units(voot.returns[keep], keep)[:, -1].tolist() == [1.0, 4.0, 6.0]
+    assert voot.unit_medians(np.array([1.0, 3.0, 4.0, 4.0, np.inf, np.inf])).tolist() == [
+        2.0,
+        4.0,
+        np.inf,
+    ]
+    # pw_uct: one setting, tuned on the training layouts too
+    assert by["pw_uct"].n_layouts == 3
+    # per problem id, as plot --heldout gives them
+    same = plan_data(layout_rows(), tuning_layouts={LAYOUT_PROBLEM: [1000, 1001]})
+    assert [d.label for d in same] == [d.label for d in data]
+    # the same-seed rule on every layout: one family, every layout pooled
+    (all_voot,) = [d for d in plan_data(layout_rows()) if d.planner == "voot"]
+    assert all_voot.label == "omega=0.3" and all_voot.n_layouts == 5
+    # rows without layouts: the units are the seeds, as before
+    plain = next(d for d in plan_data(kitchen_rows()) if d.planner == "voot")
+    assert not plain.has_layouts and plain.layouts == () and plain.n_units == 3
+    assert plain.units(plain.returns) is plain.returns

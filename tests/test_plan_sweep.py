@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from layout_fixtures import LAYOUT_ENV_ID
 
 from voot.bench import problems as P
 from voot.bench.plan_sweep import (
@@ -412,3 +413,58 @@ def test_a_variant_is_in_the_config_and_run_id_only_when_set() -> None:
     # common random numbers: a variant searches with the plain run's seed
     assert search_seed(plain).entropy == search_seed(tagged).entropy
     assert search_seed(plain).spawn_key == search_seed(tagged).spawn_key
+
+
+def test_the_layout_axis_expands_every_run_per_layout() -> None:
+    args: dict[str, Any] = {"simulations": 5, "grid": "default"}
+    plain = build_plan_specs([LAYOUT_ENV_ID], None, ["voot"], [0, 1], **args)
+    axis = build_plan_specs([LAYOUT_ENV_ID], None, ["voot"], [0, 1], layout_seeds=[7, 3, 7], **args)
+    assert len(plain) == 2 and len(axis) == 4  # repeated layouts are dropped
+    assert [(s.layout, s.seed) for s in axis] == [(7, 0), (7, 1), (3, 0), (3, 1)]
+    assert all(s.env_kwargs_dict == {"layout_seed": s.layout} for s in axis)
+    assert all(s.layout is None for s in plain)
+    assert len({s.run_id for s in axis}) == 4  # one id per (layout, seed)
+    assert not {s.run_id for s in axis} & {s.run_id for s in plain}
+    # without the axis the ids are those of the sweep before it existed
+    assert plain == build_plan_specs([LAYOUT_ENV_ID], None, ["voot"], [0, 1], **args)
+    assert axis[0].label == f"{LAYOUT_ENV_ID}(layout_seed=7)"
+    assert axis[0].family_label == LAYOUT_ENV_ID
+    # other env keywords stay beside the layout, and name the family
+    hard = build_plan_specs(
+        [LAYOUT_ENV_ID], None, ["voot"], [0], layout_seeds=[1],
+        env_kwargs={"difficulty": "easy"}, **args,
+    )  # fmt: skip
+    assert hard[0].env_kwargs_dict == {"difficulty": "easy", "layout_seed": 1}
+    assert hard[0].family_label == f"{LAYOUT_ENV_ID}(difficulty=easy)"
+    text = summarize_plan_specs(axis)
+    assert text == f"{LAYOUT_ENV_ID} 5 simulations, 2 layouts x 2 seeds: voot 4"
+    paths = record_paths(axis, "x/run.rrd")
+    assert paths[0].endswith("-layout7-seed0.rrd") and len(set(paths)) == 4
+
+
+@pytest.mark.parametrize(
+    ("problem", "kwargs", "match"),
+    [
+        ("shekel_chain", {}, "the shekel_chain has no layouts"),
+        ("voot-test/PlainChain-v0", {}, "takes no layout_seed keyword"),
+        (None, {"env_kwargs": {"layout_seed": 2}}, "both as an env keyword"),
+        (None, {"layout_seeds": []}, "no layout seeds given"),
+        (None, {"layout_seeds": [-1]}, "layout seeds must be integers >= 0"),
+    ],
+)
+def test_bad_layout_axes(problem: str | None, kwargs: dict[str, Any], match: str) -> None:
+    args: dict[str, Any] = {"layout_seeds": [0], "simulations": 5, "grid": "default", **kwargs}
+    with pytest.raises(ValueError, match=match):
+        build_plan_specs([problem or LAYOUT_ENV_ID], [3], ["voot"], [0], **args)
+
+
+def test_a_layout_run_builds_its_layout() -> None:
+    specs = build_plan_specs(
+        [LAYOUT_ENV_ID], None, ["voot"], [0], layout_seeds=[0, 1], simulations=5, grid="default"
+    )
+    rows = [run_plan_spec(s) for s in specs]
+    assert all(r["status"] == "ok" for r in rows), [r.get("error") for r in rows]
+    assert [r["config"]["env_kwargs"] for r in rows] == [{"layout_seed": 0}, {"layout_seed": 1}]
+    envs = [P.make_instance(s.problem, None, s.env_kwargs_dict, 0).env.unwrapped for s in specs]
+    assert [e.layout_seed for e in envs] == [0, 1]
+    assert envs[0].chain.threshold != envs[1].chain.threshold  # two layouts, two problems

@@ -166,3 +166,28 @@ def test_a_plan_rows_variant_names_its_planner() -> None:
     plain = {"kind": "plan", "config": {**config, "planner": "voot"}}
     tagged = {"kind": "plan", "config": {**config, "planner": "voot", "variant": "kappa_off"}}
     assert cell_of(plain)[3] == "voot" and cell_of(tagged)[3] == "voot[kappa_off]"
+
+
+def test_the_selection_pools_a_familys_layouts() -> None:
+    """omega=0.1 wins on layout 1 but loses on average over layouts 1-3: the selection is
+    per family (env keywords without the layout seed), pooling every layout."""
+    from plan_fixtures import plan_row
+
+    from voot.bench.select import cell_of
+
+    finals = {0.1: {1: 5.0, 2: 0.0, 3: 0.0}, 0.3: {1: 2.0, 2: 2.0, 3: 2.0}}
+    rows = [
+        plan_row([0.0, f], planner="voot", seed=s, params={"omega": w}, layout=lay)
+        for w, per in finals.items()
+        for lay, f in per.items()
+        for s in (0, 1)
+    ]
+    assert {cell_of(r) for r in rows} == {("kitchen", 0, 2, "voot")}
+    (sel,) = select_hyperparameters(rows)
+    assert sel.best.label == "omega=0.3" and sel.best.n == 6
+    assert sel.candidates[1].mean == pytest.approx(5.0 / 3.0)
+    # a single layout alone would have picked the other setting
+    (one,) = select_hyperparameters(
+        [r for r in rows if r["config"]["env_kwargs"]["layout_seed"] == 1]
+    )
+    assert one.best.label == "omega=0.1"

@@ -142,3 +142,51 @@ def test_check_tuning_split_needs_tuning_and_evaluation_rows() -> None:
         check_tuning_split([r for r in rows() if r["config"]["seed"] >= 1000], [1000, 1001])
     with pytest.raises(ValueError, match="its seeds: none"):
         check_tuning_split([], [1000])
+
+
+def layout_row(final: float, *, seed: int, layout: int, omega: float) -> Row:
+    r = row(final, seed=seed, omega=omega)
+    r["config"] = {**r["config"], "problem": "voot/KitchenClearing-v2", "dim": None,
+                   "env_kwargs": {"layout_seed": layout}}  # fmt: skip
+    return r
+
+
+def test_split_rows_by_layout() -> None:
+    rows = [
+        layout_row(1.0, seed=0, layout=1000, omega=0.1),  # training layout, tuning seed
+        layout_row(1.0, seed=5, layout=1000, omega=0.1),  # training layout, other seed
+        layout_row(1.0, seed=0, layout=3, omega=0.1),  # held-out layout
+        row(1.0, seed=1000, omega=0.1),  # no layout: the seed decides
+        row(1.0, seed=7, omega=0.1),
+    ]
+    tuning, evaluation = split_rows(rows, [0, 1000], [1000])
+    assert tuning == [rows[0], rows[3]] and evaluation == [rows[2], rows[4]]
+    # every seed of a training layout tunes when no tuning seeds are given
+    tuning, evaluation = split_rows(rows, None, [1000])
+    assert tuning == [rows[0], rows[1]] and evaluation == [rows[2], rows[3], rows[4]]
+    # per problem: a problem without an entry splits by seed
+    tuning, evaluation = split_rows(rows, [0], {"voot/KitchenClearing-v2": [1000]})
+    assert tuning == [rows[0]] and evaluation == [rows[2], rows[3], rows[4]]
+    tuning, _ = split_rows(rows, [0], {"other": [1000]})
+    assert tuning == [rows[0], rows[2]]
+
+
+def test_select_on_training_layouts_report_held_out_layouts() -> None:
+    rows = []
+    for layout in (1000, 1001):  # training: omega=0.1 wins pooled over both layouts
+        rows += [layout_row(3.0 - layout + 1000, seed=0, layout=layout, omega=0.1)]
+        rows += [layout_row(1.5, seed=0, layout=layout, omega=0.3)]
+    for layout in (0, 1):  # held out: both settings ran, omega=0.3 would win here
+        rows += [layout_row(0.0, seed=0, layout=layout, omega=0.1)]
+        rows += [layout_row(5.0, seed=0, layout=layout, omega=0.3)]
+    out = select_on_tuning(rows, [0], [1000, 1001])
+    (sel,) = out.selections
+    assert sel.best.label == "omega=0.1" and sel.best.n == 2  # pooled: mean 2.5 > 1.5
+    assert [r["config"]["env_kwargs"]["layout_seed"] for r in out.rows] == [0, 1]
+    assert all(r["config"]["params"] == {"omega": 0.1} for r in out.rows)
+    note = tuning_note([0], [1000, 1001])
+    assert note == (
+        "settings selected on training layouts 1000-1001 (seeds 0), disjoint from the"
+        " held-out layouts reported"
+    )
+    assert tuning_sentence([], [7]).startswith("Settings selected on training layouts 7,")
