@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 from voot.bench.cli_common import CLIError, split_list
 from voot.bench.cli_types import seed_argument
+from voot.bench.ladder import LEVELS as LADDER_LEVELS
 
 if TYPE_CHECKING:
     from voot.bench.cli_common import Subparsers
@@ -88,8 +89,34 @@ def cmd_difficulty(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_ladder(args: argparse.Namespace) -> int:
+    """Print (and optionally write) a generated family's difficulty ladder
+    (:mod:`voot.bench.ladder`)."""
+    from voot.bench import ladder
+    from voot.bench.cli_plan import parse_layout_seeds
+    from voot.bench.problems import normalize_problem
+
+    for name in ("samples", "rollouts"):
+        if getattr(args, name) < 1:
+            raise CLIError(f"--{name} must be >= 1, got {getattr(args, name)}")
+    env_id = normalize_problem(args.env)
+    layouts = parse_layout_seeds(args.layouts, "--layouts")
+    rows: list = []
+    if args.store is not None:
+        from voot.bench.cli_report import load_rows
+
+        _, rows = load_rows(args.store, "plan")
+    text = ladder.ladder_report(
+        env_id, args.levels, layouts, args.samples, args.rollouts, args.seed, rows
+    )
+    print(text)
+    if args.markdown:
+        Path(args.markdown).write_text(text + "\n")
+    return 0
+
+
 def register(sub: Subparsers) -> None:
-    """Add ``speed`` and ``difficulty``."""
+    """Add ``speed``, ``difficulty`` and ``ladder``."""
     p = sub.add_parser("speed", help="cost per ask of VOO, CMA-ES and GP-UCB")
     p.add_argument(
         "--cases",
@@ -115,3 +142,18 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--markdown", default=None, help="also write the tables to this file")
     p.set_defaults(func=cmd_difficulty)
+
+    p = sub.add_parser(
+        "ladder",
+        help="difficulty ladder of a generated family (v2): feasibility by cause and random"
+        " rollouts per level, planner success from a plan store",
+    )
+    p.add_argument("--env", default="voot/KitchenClearing-v2", help="default: %(default)s")
+    p.add_argument("--levels", nargs="+", default=list(LADDER_LEVELS), help="default: %(default)s")
+    p.add_argument("--layouts", nargs="+", default=["0:5"], help="layout seeds (default: 0:5)")
+    p.add_argument("--samples", type=int, default=500, help="uniform actions per node and layout")
+    p.add_argument("--rollouts", type=int, default=40, help="random rollouts per layout")
+    p.add_argument("--seed", type=seed_argument, default=0)
+    p.add_argument("--store", default=None, help="a plan store with runs on the levels")
+    p.add_argument("--markdown", default=None, help="also write the tables to this file")
+    p.set_defaults(func=cmd_ladder)

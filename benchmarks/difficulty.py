@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -106,26 +106,40 @@ def short_reason(reason: str) -> str:
     return text.split(":", 1)[0].split(" (", 1)[0]
 
 
-def _problem(env_id: str) -> Any:
+def _problem(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> Any:
     import gymnasium
 
     import voot  # noqa: F401 - registers the ids
     from voot.envs.planning import EnvProblem
 
-    env = gymnasium.make(env_id, disable_env_checker=True)
+    env = gymnasium.make(env_id, disable_env_checker=True, **dict(env_kwargs or {}))
     return EnvProblem(env.unwrapped, seed=0)
+
+
+def solution_actions(env: Any) -> list[Any]:
+    """A known solution of ``env`` from its start, as normalised actions.
+
+    A generated instance carries the witness its generator proved it solvable with
+    (``witness_actions()``); the fixed v0/v1 scenes have :mod:`voot.envs.scripted`'s.
+    """
+    from voot.envs.kitchen import KitchenClearingEnv
+    from voot.envs.scripted import conveyor_actions, kitchen_actions
+
+    witness = getattr(env, "witness_actions", None)
+    if callable(witness):
+        return list(witness())
+    return kitchen_actions(env) if isinstance(env, KitchenClearingEnv) else conveyor_actions(env)
 
 
 def _nodes(problem: Any) -> list[tuple[str, Any]]:
     """(name, snapshot) of the node types measured: the first pick and place, or place."""
     from voot.envs.kitchen import KitchenClearingEnv
-    from voot.envs.scripted import kitchen_actions
 
     u = problem.unwrapped
     start = problem.snapshot()
     if not isinstance(u, KitchenClearingEnv):
         return [("place (3 boxes)", start)]
-    first_pick = kitchen_actions(u)[0]
+    first_pick = solution_actions(u)[0]
     res = problem.step(first_pick)
     if not res.feasible:  # pragma: no cover - the scripted pick is tested
         raise RuntimeError(f"the scripted first pick is infeasible: {res.info['reason']}")
@@ -134,9 +148,11 @@ def _nodes(problem: Any) -> list[tuple[str, Any]]:
     return [("pick", start), ("place", place_node)]
 
 
-def node_stats(env_id: str, samples: int, seed: int = 0) -> list[NodeStats]:
+def node_stats(
+    env_id: str, samples: int, seed: int = 0, env_kwargs: Mapping[str, Any] | None = None
+) -> list[NodeStats]:
     """Pre-check and execution rates of ``samples`` uniform actions per node type."""
-    problem = _problem(env_id)
+    problem = _problem(env_id, env_kwargs)
     rng = np.random.default_rng(seed)
     out = []
     for name, snapshot in _nodes(problem):
@@ -161,10 +177,14 @@ def node_stats(env_id: str, samples: int, seed: int = 0) -> list[NodeStats]:
 
 
 def rollout_stats(
-    env_id: str, rollouts: int, seed: int = 0, retries: int = RETRIES
+    env_id: str,
+    rollouts: int,
+    seed: int = 0,
+    retries: int = RETRIES,
+    env_kwargs: Mapping[str, Any] | None = None,
 ) -> RolloutStats:
     """Random pre-check-feasible rollouts (see the module docstring)."""
-    problem = _problem(env_id)
+    problem = _problem(env_id, env_kwargs)
     rng = np.random.default_rng(seed)
     start = problem.snapshot()
     initial = int(problem.unwrapped.objects_left)
@@ -189,14 +209,13 @@ def rollout_stats(
     return RolloutStats(env_id, rollouts, solved, handled / rollouts, initial)
 
 
-def scripted_stats(env_id: str) -> ScriptedStats:
-    """Replay :mod:`voot.envs.scripted`'s solution on ``env_id``."""
+def scripted_stats(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> ScriptedStats:
+    """Replay the known solution (:func:`solution_actions`) on ``env_id``."""
     from voot.envs.kitchen import KitchenClearingEnv
-    from voot.envs.scripted import conveyor_actions, kitchen_actions
 
-    problem = _problem(env_id)
+    problem = _problem(env_id, env_kwargs)
     u = problem.unwrapped
-    actions = kitchen_actions(u) if isinstance(u, KitchenClearingEnv) else conveyor_actions(u)
+    actions = solution_actions(u)
     gamma = 0.9 if isinstance(u, KitchenClearingEnv) else 0.99
     total, discount, failure, n = 0.0, 1.0, "", 0
     for a in actions:
