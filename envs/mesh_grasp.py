@@ -19,10 +19,11 @@ grasp angle, the standoff) and looks the surface up, without casting a ray:
   neck misses: ``(None, "grasp misses the object")``);
 * the surface **depth** ``e`` is interpolated bilinearly between the four nodes around
   the point when all four hit, else the nearest node's;
-* the tool point is then :func:`side_grasp`'s with the face moved ``e`` inwards, i.e. on
-  the surface at exactly the requested height and offset (``standoff`` outside it), with
-  :func:`side_grasp`'s rotation. On a box ``e = 0`` everywhere and the pose is
-  :func:`side_grasp`'s, bit for bit.
+* the tool point is then :func:`side_grasp`'s (on the bounding box's face, ``standoff``
+  outside it) moved ``e`` along the approach axis, i.e. on the surface at exactly the
+  requested height and offset, ``standoff`` outside it, with :func:`side_grasp`'s
+  rotation. On a box ``e = 0`` everywhere and the pose is :func:`side_grasp`'s, bit for
+  bit.
 
 A lookup costs about 8 us on this machine (``voot-bench mesh-speed``; side_grasp alone
 about 6 us), within the 20 us target.
@@ -30,14 +31,13 @@ about 6 us), within the 20 us target.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
 
-from voot.envs.grasp import GraspPose, _facing_face, side_grasp
+from voot.envs.grasp import GraspPose, side_grasp
 from voot.envs.meshes import MEMORY_CACHES, ShapeSpec, built_shape, cached_arrays
 from voot.envs.scene import ObjectInfo
 
@@ -79,6 +79,7 @@ class MeshGraspSet:
     depth: FloatArray
     normal: FloatArray
     _info: ObjectInfo = field(init=False, repr=False, compare=False)
+    _tables: tuple[list[list[float]], ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         rows, cols = self.depth.shape[1:]
@@ -97,6 +98,12 @@ class MeshGraspSet:
             height=float(self.height),
         )
         object.__setattr__(self, "_info", info)
+        # nested lists: a Python float per lookup without numpy's scalar indexing
+        object.__setattr__(self, "_tables", tuple(t.tolist() for t in self.depth))
+
+    def __reduce__(self) -> tuple[type[MeshGraspSet], tuple[object, ...]]:
+        """Pickle the fields only (the lookup tables are rebuilt)."""
+        return (MeshGraspSet, (self.spec, self.half, self.height, self.depth, self.normal))
 
     @property
     def hit_fraction(self) -> float:
@@ -159,7 +166,9 @@ def grasp_set(spec: ShapeSpec) -> MeshGraspSet:
     got = _MEMORY.get(spec)
     if got is not None:
         return got
-    arrays, _ = cached_arrays(spec, "grasp", lambda: _build_arrays(spec))
+    arrays, _ = cached_arrays(
+        spec, "grasp", lambda: _build_arrays(spec), ("depth", "normal", "box")
+    )
     ext = arrays["box"]
     out = MeshGraspSet(
         spec=spec,
@@ -172,29 +181,39 @@ def grasp_set(spec: ShapeSpec) -> MeshGraspSet:
     return out
 
 
-def _surface_depth(table: FloatArray, hf: float, df: float) -> float:
+def _surface_depth(table: list[list[float]], hf: float, df: float) -> float:
     """Depth at height fraction ``hf`` and fraction across ``df`` of one face's table.
 
     NaN when the nearest node misses; the bilinear value when the four surrounding nodes
     hit; else the nearest node's.
     """
-    rows, cols = table.shape
+    rows, cols = len(table), len(table[0])
     fi, fj = hf * rows, df * cols
-    i = min(rows - 1, max(0, math.floor(fi)))
-    j = min(cols - 1, max(0, math.floor(fj)))
-    near = float(table[i, j])
-    if math.isnan(near):
+    # int() truncates towards 0, floor() down: they differ only below 0, clamped to 0 anyway
+    i = int(fi) if fi < rows else rows - 1
+    j = int(fj) if fj < cols else cols - 1
+    i = i if i > 0 else 0
+    j = j if j > 0 else 0
+    near = table[i][j]
+    if near != near:  # NaN: the ray misses
         return near
     ci, cj = fi - 0.5, fj - 0.5  # in node coordinates
-    i0 = min(rows - 2, max(0, math.floor(ci)))
-    j0 = min(cols - 2, max(0, math.floor(cj)))
-    wi = min(1.0, max(0.0, ci - i0))
-    wj = min(1.0, max(0.0, cj - j0))
-    d00, d01 = float(table[i0, j0]), float(table[i0, j0 + 1])
-    d10, d11 = float(table[i0 + 1, j0]), float(table[i0 + 1, j0 + 1])
-    if math.isnan(d00 + d01 + d10 + d11):
+    i0 = int(ci) if ci < rows - 2 else rows - 2
+    j0 = int(cj) if cj < cols - 2 else cols - 2
+    i0 = i0 if i0 > 0 else 0
+    j0 = j0 if j0 > 0 else 0
+    wi, wj = ci - i0, cj - j0
+    wi = 0.0 if wi < 0.0 else (1.0 if wi > 1.0 else wi)
+    wj = 0.0 if wj < 0.0 else (1.0 if wj > 1.0 else wj)
+    r0, r1 = table[i0], table[i0 + 1]
+    d00, d01, d10, d11 = r0[j0], r0[j0 + 1], r1[j0], r1[j0 + 1]
+    total = d00 + d01 + d10 + d11
+    if total != total:  # a neighbour misses
         return near
     return (1.0 - wi) * ((1.0 - wj) * d00 + wj * d01) + wi * ((1.0 - wj) * d10 + wj * d11)
+
+
+_FACE_INDEX = {f: k for k, f in enumerate(FACES)}
 
 
 def mesh_side_grasp(
@@ -222,22 +241,6 @@ def mesh_side_grasp(
         ``(pose, "")``, or ``(None, "grasp misses the object")`` when the ray at that
         height and offset passes beside the object.
     """
-    if type(obj_pose) is np.ndarray and obj_pose.shape == (4,):
-        yaw = float(obj_pose[3])
-    else:
-        yaw = float(np.asarray(obj_pose, dtype=np.float64)[3])
-    c, s = math.cos(yaw), math.sin(yaw)
-    hx, hy = grasps.half
-    faces = (
-        ("+x", c, s, hx, hy),
-        ("-x", -c, -s, hx, hy),
-        ("+y", -s, c, hy, hx),
-        ("-y", s, -c, hy, hx),
-    )
-    k = _facing_face(faces, base_heading)
-    e = _surface_depth(grasps.depth[k], float(height_fraction), float(depth_fraction))
-    if math.isnan(e):
-        return None, MISS
     pose = side_grasp(
         grasps._info,
         obj_pose,
@@ -245,6 +248,16 @@ def mesh_side_grasp(
         grasp_angle,
         height_fraction,
         depth_fraction,
-        standoff - e,
+        standoff,
     )
-    return pose, ""
+    table = grasps._tables[_FACE_INDEX[pose.face]]
+    e = _surface_depth(table, float(height_fraction), float(depth_fraction))
+    if e != e:
+        return None, MISS
+    if e == 0.0:
+        return pose, ""
+    # e metres further along the approach axis (the rotation's first column, -n)
+    r = pose.rotation
+    p0, p1, p2 = pose.position.tolist()
+    position = np.array([p0 + e * float(r[0, 0]), p1 + e * float(r[1, 0]), p2])
+    return GraspPose(position, r, pose.face), ""

@@ -109,7 +109,7 @@ DENSITY: dict[str, float] = {
 
 #: Version of the shape generator: part of every cache key, so a change of the shapes
 #: (bump it) never reads an old cache entry.
-GENERATOR_VERSION = 1
+GENERATOR_VERSION = 2
 
 #: Vertices per ring of the round kinds (a multiple of 4: the rings reach the bounding box
 #: exactly on the x and y axes).
@@ -633,16 +633,20 @@ def _read_npz(path: Path) -> dict[str, np.ndarray] | None:
 
 
 def cached_arrays(
-    spec: ShapeSpec, tag: str, build: Callable[[], dict[str, np.ndarray]]
+    spec: ShapeSpec,
+    tag: str,
+    build: Callable[[], dict[str, np.ndarray]],
+    required: Iterable[str] = (),
 ) -> tuple[dict[str, np.ndarray], bool]:
     """The arrays ``build`` makes for ``spec``, from the disk cache if there.
 
-    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically).
-    Returns the arrays and whether they came from the disk.
+    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically). A
+    file that cannot be read, or lacks one of the ``required`` arrays, is rebuilt and
+    replaced. Returns the arrays and whether they came from the disk.
     """
     path = _mesh_dir() / f"{spec.key}.{tag}.npz"
     got = _read_npz(path)
-    if got is not None:
+    if got is not None and all(k in got for k in required):
         return got, True
     arrays = build()
     _write_npz(path, arrays)
@@ -662,18 +666,29 @@ def clear_memory_cache() -> None:
     built_shape.cache_clear()
 
 
+#: The arrays of a mesh cache entry (:func:`_build_arrays`).
+_MESH_ARRAYS = ("stl", "sizes", "inertial")
+
+
 def _build_arrays(spec: ShapeSpec) -> dict[str, np.ndarray]:
+    """A spec's cache entry: its STL files end to end, their sizes, and the inertial.
+
+    Three arrays (``stl``, ``sizes``: the visual mesh's then each part's, ``inertial``:
+    mass, centre of mass, inertia tensor), so that reading it back is three zip members
+    whatever the number of parts.
+    """
     shape = built_shape(spec)
     name = mesh_name(spec)
-    out: dict[str, np.ndarray] = {
-        "visual": np.frombuffer(stl_bytes(shape.visual, name), dtype=np.uint8)
+    blobs = [stl_bytes(shape.visual, name)]
+    blobs += [stl_bytes(p, f"{name}_c{i}") for i, p in enumerate(shape.parts)]
+    inertial = np.concatenate(
+        [[shape.mass], shape.center_of_mass, shape.inertia.reshape(-1)]
+    ).astype(np.float64)
+    return {
+        "stl": np.frombuffer(b"".join(blobs), dtype=np.uint8),
+        "sizes": np.array([len(b) for b in blobs], dtype=np.int64),
+        "inertial": inertial,
     }
-    for i, p in enumerate(shape.parts):
-        out[f"part{i:03d}"] = np.frombuffer(stl_bytes(p, f"{name}_c{i}"), dtype=np.uint8)
-    out["mass"] = np.array(shape.mass)
-    out["com"] = shape.center_of_mass
-    out["inertia"] = shape.inertia
-    return out
 
 
 def _entry(spec: ShapeSpec) -> _Entry:
@@ -681,18 +696,20 @@ def _entry(spec: ShapeSpec) -> _Entry:
     got = _MEMORY.get(spec)
     if got is not None:
         return got
-    arrays, _ = cached_arrays(spec, "mesh", lambda: _build_arrays(spec))
+    arrays, _ = cached_arrays(spec, "mesh", lambda: _build_arrays(spec), _MESH_ARRAYS)
     name = mesh_name(spec)
-    parts = sorted(k for k in arrays if k.startswith("part"))
-    files = {f"{name}.stl": arrays["visual"].tobytes()}
-    for i, k in enumerate(parts):
-        files[f"{name}_c{i}.stl"] = arrays[k].tobytes()
+    data = arrays["stl"].tobytes()
+    ends = np.cumsum(arrays["sizes"]).tolist()
+    starts = [0, *ends[:-1]]
+    names = [f"{name}.stl"] + [f"{name}_c{i}.stl" for i in range(len(ends) - 1)]
+    files = {n: data[a:b] for n, a, b in zip(names, starts, ends, strict=True)}
+    inertial = np.asarray(arrays["inertial"], dtype=np.float64)
     entry = _Entry(
         files=files,
-        n_parts=len(parts),
-        mass=float(arrays["mass"]),
-        center_of_mass=np.asarray(arrays["com"], dtype=np.float64),
-        inertia=np.asarray(arrays["inertia"], dtype=np.float64),
+        n_parts=len(ends) - 1,
+        mass=float(inertial[0]),
+        center_of_mass=inertial[1:4].copy(),
+        inertia=inertial[4:13].reshape(3, 3).copy(),
     )
     _MEMORY[spec] = entry
     return entry

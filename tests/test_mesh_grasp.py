@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from voot.envs import mesh_grasp as MG
 from voot.envs import meshes as M
 from voot.envs.grasp import side_grasp
 from voot.envs.mesh_grasp import (
@@ -42,8 +43,17 @@ def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
 
 
 @pytest.fixture(scope="module")
-def box_info():  # type: ignore[no-untyped-def]
+def box_info(tmp_path_factory: pytest.TempPathFactory):  # type: ignore[no-untyped-def]
     """The box as movable_objects reads it from a compiled scene (MuJoCo's numbers)."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("VOOT_CACHE", str(tmp_path_factory.mktemp("box_cache")))
+        M.clear_memory_cache()
+        info = movable_objects(M.compile_scene(_box_scene(), [BOX]))[0]
+        M.clear_memory_cache()
+    return info
+
+
+def _box_scene() -> str:
     xml = f"""<mujoco><compiler angle="radian"/>
   <asset>{M.shape_assets_xml([BOX])}</asset>
   <default><default class="object"><geom contype="4" conaffinity="7"/></default>
@@ -51,8 +61,7 @@ def box_info():  # type: ignore[no-untyped-def]
   <include file="robot.xml"/>
   <worldbody>{M.object_body_xml("obj_box", BOX, (0.0, 0.0, 0.0, 0.0), "")}</worldbody>
 </mujoco>"""
-    xml = xml.replace(' material=""', "")
-    return movable_objects(M.compile_scene(xml, [BOX]))[0]
+    return xml.replace(' material=""', "")
 
 
 def test_a_box_is_hit_everywhere_on_its_faces() -> None:
@@ -206,3 +215,43 @@ def test_cast_grasp_rays_takes_the_nearest_hit() -> None:
 def test_grasp_set_arrays_are_checked() -> None:
     with pytest.raises(ValueError, match=r"depth must be \(4, rows, cols\)"):
         MeshGraspSet(BOX, (0.05, 0.08), 0.22, np.zeros((3, 2, 2)), np.zeros((3, 2, 2, 3)))
+
+
+def _reference_depth(table: np.ndarray, hf: float, df: float) -> float:
+    """The lookup rule written plainly: nearest node decides, bilinear if 4 neighbours hit."""
+    rows, cols = table.shape
+    i = min(rows - 1, max(0, math.floor(hf * rows)))
+    j = min(cols - 1, max(0, math.floor(df * cols)))
+    if np.isnan(table[i, j]):
+        return math.nan
+    ci, cj = hf * rows - 0.5, df * cols - 0.5
+    i0 = min(rows - 2, max(0, math.floor(ci)))
+    j0 = min(cols - 2, max(0, math.floor(cj)))
+    wi, wj = min(1.0, max(0.0, ci - i0)), min(1.0, max(0.0, cj - j0))
+    q = table[i0 : i0 + 2, j0 : j0 + 2]
+    if np.isnan(q).any():
+        return float(table[i, j])
+    return float(
+        (1 - wi) * ((1 - wj) * q[0, 0] + wj * q[0, 1]) + wi * ((1 - wj) * q[1, 0] + wj * q[1, 1])
+    )
+
+
+def test_the_lookup_is_nearest_for_hits_and_bilinear_for_depth() -> None:
+    table = np.array([[0.0, 1.0, np.nan], [2.0, 3.0, 4.0], [np.nan, 5.0, 6.0]])
+    rows = table.tolist()
+    # node centres: the node's own value
+    assert MG._surface_depth(rows, 0.5 / 3, 0.5 / 3) == 0.0
+    assert MG._surface_depth(rows, 1.5 / 3, 2.5 / 3) == 4.0
+    # halfway between four hitting nodes: their mean
+    assert MG._surface_depth(rows, 1.0 / 3, 1.0 / 3) == pytest.approx(1.5)
+    # next to a missing node: the nearest node's value; on a missing node: NaN
+    assert MG._surface_depth(rows, 0.9 / 3, 1.9 / 3) == 1.0
+    assert math.isnan(MG._surface_depth(rows, 0.2 / 3, 2.9 / 3))
+    # out of [0, 1]: clamped to the border
+    assert MG._surface_depth(rows, -0.5, 0.0) == 0.0 and MG._surface_depth(rows, 2.0, 2.0) == 6.0
+    bottle = grasp_set(BOTTLE).depth[0]
+    rng = np.random.default_rng(3)
+    for hf, df in rng.uniform(-0.2, 1.2, (2000, 2)):
+        got = MG._surface_depth(bottle.tolist(), float(hf), float(df))
+        want = _reference_depth(bottle, float(hf), float(df))
+        assert got == want or (math.isnan(got) and math.isnan(want))

@@ -252,6 +252,17 @@ def test_a_corrupt_cache_file_is_rebuilt(cache: Path) -> None:
     assert path.read_bytes()[:2] == b"PK"  # rewritten
 
 
+def test_a_cache_file_of_another_layout_is_rebuilt(cache: Path) -> None:
+    spec = ShapeSpec("tray", SIZES["tray"])
+    cold = M.mesh_assets([spec])
+    path = cache / "meshes" / f"{spec.key}.mesh.npz"
+    np.savez(path, visual=np.zeros(3, dtype=np.uint8))  # readable, but not an entry
+    M.clear_memory_cache()
+    assert M.mesh_assets([spec]) == cold
+    with np.load(path) as z:
+        assert sorted(z.files) == ["inertial", "sizes", "stl"]
+
+
 def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("VOOT_CACHE", "/some/where")
     assert M.cache_dir() == Path("/some/where")
