@@ -25,8 +25,10 @@ grasp angle, the standoff) and looks the surface up, without casting a ray:
   rotation. On a box ``e = 0`` everywhere and the pose is :func:`side_grasp`'s, bit for
   bit.
 
-A lookup costs about 8 us on this machine (``voot-bench mesh-speed``; side_grasp alone
-about 6 us), within the 20 us target.
+A lookup costs about 7 us of CPU time per call on the project's 2-core machine
+(``voot-bench mesh-speed --cpu``: 6.3-7.5 us over the ten kinds, :func:`side_grasp` alone
+4.9 us; the table lookup itself about 1 us), within the 20 us target; docs/meshes.md has
+the figures.
 """
 
 from __future__ import annotations

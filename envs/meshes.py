@@ -243,8 +243,20 @@ def _sweep(rings: FloatArray) -> trimesh.Trimesh:
 
 
 def _hull(points: FloatArray) -> trimesh.Trimesh:
-    """The convex hull of ``points`` as a mesh (scipy's qhull through trimesh)."""
-    return trimesh.convex.convex_hull(np.asarray(points, dtype=np.float64))
+    """The convex hull of ``points`` as a closed mesh with outward normals.
+
+    trimesh's hull (scipy's qhull) without its generic repair, a quarter of the cost: the
+    faces are turned outwards here directly, each against the centroid of the hull's
+    vertices (inside a convex hull).
+    """
+    hull = trimesh.convex.convex_hull(np.asarray(points, dtype=np.float64), repair=False)
+    v = np.asarray(hull.vertices, dtype=np.float64)
+    f = np.array(hull.faces, dtype=np.int64)
+    tri = v[f]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    inward = np.einsum("ij,ij->i", normal, tri.mean(axis=1) - v.mean(axis=0)) < 0.0
+    f[inward] = f[inward][:, ::-1]
+    return trimesh.Trimesh(v, f, process=False)
 
 
 @dataclass
