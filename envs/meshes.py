@@ -26,7 +26,7 @@ geoms of class ``object``, a visual geom of class ``decor``, the inertial),
 :func:`compile_scene` compiles a scene that includes ``robot.xml`` with them.
 
 Cost: building a shape (sweep, hulls, mass properties, STL bytes and the grasp rays of
-:mod:`voot.envs.mesh_grasp`) takes milliseconds; each spec's result is cached on disk
+:mod:`voot.envs.mesh_grasp`) takes 14-45 ms of CPU; each spec's result is cached on disk
 (:func:`cache_dir`: ``$VOOT_CACHE`` or ``~/.cache/voot``, under ``meshes/``, keyed by a
 hash of the spec and :data:`GENERATOR_VERSION`, written atomically) and in the process.
 The measured figures are in docs/meshes.md (``voot-bench mesh-speed``).
