@@ -179,6 +179,24 @@ def test_specs_are_validated_with_clear_errors() -> None:
         ShapeSpec("box", (0.1, 0.1, 0.1), True)  # type: ignore[arg-type]
 
 
+def test_a_mesh_that_is_not_watertight_is_an_error_naming_the_spec(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def open_box(spec: ShapeSpec) -> M._Build:
+        box = trimesh.creation.box(spec.size)
+        box.update_faces(np.arange(len(box.faces)) != 0)  # one triangle missing
+        return M._Build([box], [box.convex_hull])
+
+    monkeypatch.setitem(M._BUILDERS, "box", open_box)
+    spec = ShapeSpec("box", (0.1, 0.2, 0.3), 4)
+    with pytest.raises(
+        ValueError, match=r"the mesh of ShapeSpec\(kind='box'.*variant=4\) is not watertight"
+    ):
+        build_shape(spec)
+    with pytest.raises(ValueError, match="is not watertight"):
+        M.compile_scene(scene_xml([spec], [(0.0, 0.0, 0.0, 0.0)]), [spec])
+
+
 def test_specs_are_canonical_values_so_equal_specs_share_a_key() -> None:
     a = ShapeSpec("mug", (np.float64(0.1), 0.08, 1), np.int64(2))  # type: ignore[arg-type]
     b = ShapeSpec("mug", (0.1, 0.08, 1.0), 2)
