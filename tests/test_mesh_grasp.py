@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
 import os
 import pickle
@@ -230,6 +231,25 @@ g = grasp_set(ShapeSpec("mug", (0.12, 0.085, 0.1), 1))
 mesh_assets([ShapeSpec("bowl", (0.16, 0.16, 0.07))])
 print(round(g.hit_fraction, 6))
 """
+
+
+_TABLE_DIGEST = """
+import hashlib
+from voot.envs.mesh_grasp import grasp_set
+from voot.envs.meshes import ShapeSpec
+g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+print(hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest())
+"""
+
+
+def test_grasp_tables_are_the_same_in_another_process(tmp_path: Path) -> None:
+    env = {**os.environ, "VOOT_CACHE": str(tmp_path / "other")}
+    out = subprocess.run(
+        [sys.executable, "-c", _TABLE_DIGEST], env=env, capture_output=True, text=True, check=True
+    )
+    g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+    here = hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest()
+    assert out.stdout.strip().splitlines()[-1] == here
 
 
 def test_the_library_needs_no_rtree(tmp_path: Path) -> None:
