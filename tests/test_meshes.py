@@ -144,7 +144,7 @@ def test_mass_and_inertia_are_trimesh_s_and_positive_definite() -> None:
         assert eig[0] + eig[1] >= eig[2] * (1 - 1e-9), kind
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     kind=st.sampled_from(SHAPE_KINDS),
     size=st.tuples(st.floats(0.03, 0.6), st.floats(0.03, 0.6), st.floats(0.02, 0.6)),
@@ -159,6 +159,11 @@ def test_any_size_gives_a_watertight_mesh_of_that_size(
     np.testing.assert_allclose(shape.visual.extents, size, rtol=1e-12, atol=1e-15)
     assert all(p.is_convex for p in shape.parts)
     assert shape.mass > 0 and np.linalg.eigvalsh(shape.inertia).min() > 0
+    # it stands on its base (not on a handle): the vertices at z = 0 span at least 30 %
+    # of the footprint both ways
+    verts = np.asarray(shape.visual.vertices)
+    base = verts[verts[:, 2] < 1e-12]
+    assert np.ptp(base[:, 0]) >= 0.3 * size[0] and np.ptp(base[:, 1]) >= 0.3 * size[1]
 
 
 # ----- specs ------------------------------------------------------------------------------
