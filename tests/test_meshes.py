@@ -356,8 +356,8 @@ def test_a_scene_of_three_mesh_objects_compiles_and_its_objects_are_found() -> N
 
 
 def test_objects_rest_on_the_floor_on_their_collision_parts() -> None:
-    specs = [ShapeSpec(k, SIZES[k]) for k in ("box", "bowl", "mug", "bottle", "tray")]
-    poses = [(1.0 + 0.5 * i, 1.0, 0.002, 0.1 * i) for i in range(len(specs))]
+    specs = [ShapeSpec(k, SIZES[k], v) for k in SHAPE_KINDS for v in (0, 3)]
+    poses = [(1.0 + 0.6 * (i % 10), 1.0 + 0.7 * (i // 10), 0.002, 0.1 * i) for i in range(20)]
     model = M.compile_scene(scene_xml(specs, poses), specs)
     data = mujoco.MjData(model)
     objs = movable_objects(model)
