@@ -286,6 +286,21 @@ def test_a_cache_file_of_another_layout_is_rebuilt(cache: Path) -> None:
         assert sorted(z.files) == ["inertial", "sizes", "stl"]
 
 
+def test_cache_writes_are_atomic(cache: Path) -> None:
+    spec = ShapeSpec("bin", SIZES["bin"])
+
+    def broken(*args: object, **kwargs: object) -> None:
+        raise OSError("disk full")
+
+    with pytest.MonkeyPatch.context() as mp:  # undone on leaving; VOOT_CACHE stays
+        mp.setattr(np, "savez", broken)
+        with pytest.raises(OSError, match="disk full"):
+            M.mesh_assets([spec])
+    assert list((cache / "meshes").iterdir()) == []  # no half file, no temporary left
+    M.mesh_assets([spec])
+    assert [p.name for p in (cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
+
+
 def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("VOOT_CACHE", "/some/where")
     assert M.cache_dir() == Path("/some/where")
