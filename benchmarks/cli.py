@@ -46,6 +46,7 @@ from voot.bench import (
     cli_bbfo,
     cli_demo,
     cli_measure,
+    cli_memory,
     cli_passthrough,
     cli_plan,
     cli_report,
@@ -72,6 +73,7 @@ SUBCOMMANDS: tuple[Callable[[Subparsers], None], ...] = (
     cli_store.register,  # compact, shipped, store-speed
     cli_report.register,  # select, plot, claims
     cli_measure.register,  # speed, difficulty
+    cli_memory.register,  # memory
     cli_passthrough.register,  # overhead, record-overhead, record-demo, env-speed, ...
     cli_speedup.register,  # speedup
 )
