@@ -48,6 +48,7 @@ from voot.bench import (
     cli_bbfo,
     cli_demo,
     cli_measure,
+    cli_memory,
     cli_mesh,
     cli_passthrough,
     cli_plan,
@@ -76,6 +77,7 @@ SUBCOMMANDS: tuple[Callable[[Subparsers], None], ...] = (
     cli_report.register,  # select, plot, claims
     cli_measure.register,  # speed, difficulty
     cli_mesh.register,  # mesh-speed
+    cli_memory.register,  # memory
     cli_passthrough.register,  # overhead, record-overhead, record-demo, env-speed, ...
     cli_speedup.register,  # speedup
 )

@@ -35,6 +35,11 @@ Guarantees:
   every write and every ``utime``, so restoring the mtime does not hide a change; a
   changed file is parsed and its checksum verified. :meth:`ResultStore.verify` re-hashes
   every file regardless (a full audit).
+* **One writer.** A sweep (:func:`~voot.bench.sweep.run_sweep`, so ``plan``, ``bbfo``,
+  ``ablation``) and :func:`compact_store` write inside :meth:`ResultStore.writing`, which
+  holds the store's writer lock (:mod:`voot.bench.store_lock`): a second writer of the
+  same directory is refused with the holder's pid, host, start time and command, and a
+  lock left by a killed writer is taken over (the kernel released it).
 * **Old stores.** A store created before checksums (its header has no
   ``"row_checksum"``) still loads: its rows without a checksum are parsed and validated
   as before, and the rows written to it from now on carry one. In a store created with
@@ -49,6 +54,7 @@ once, then keeps an index (a cache of parsed rows; the per-step lists named in
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
 import json
 import os
@@ -79,6 +85,7 @@ from voot.bench.store_format import (
     versions,
 )
 from voot.bench.store_index import load_indexed, write_atomic
+from voot.bench.store_lock import WriterLock
 
 
 class ResultStore:
@@ -133,6 +140,26 @@ class ResultStore:
                 " without --compact, or convert it into a new store with voot-bench compact"
             )
         self.runs_path.mkdir(exist_ok=True)
+        self._lock: WriterLock | None = None
+
+    @contextlib.contextmanager
+    def writing(self) -> Iterator[WriterLock]:
+        """Hold the store's writer lock for the block (:class:`~voot.bench.store_lock.WriterLock`).
+
+        Raises :class:`~voot.bench.store_lock.StoreBusyError` (a :class:`StoreError`)
+        naming the holder if another process (or another :class:`ResultStore` object)
+        writes the store. Nested use on this object reuses the lock it holds.
+        """
+        if self._lock is not None:
+            yield self._lock
+            return
+        lock = WriterLock(self.path).acquire()
+        self._lock = lock
+        try:
+            yield lock
+        finally:
+            self._lock = None
+            lock.release()
 
     # ----- header ---------------------------------------------------------------------
     def _create(self, compact: CompactConfig | None = None) -> None:
@@ -333,6 +360,18 @@ def compact_store(
     if Path(dst).resolve() == source.path.resolve():
         raise StoreError(f"{dst}: the compact copy must go to another directory than {src}")
     target = ResultStore(dst, compact=config)
+    with target.writing():
+        rows, copied = _copy_rows(source, target, config)
+
+    def size(store: ResultStore) -> int:
+        return sum(p.stat().st_size for p in store.row_files())
+
+    return {"rows": rows, "copied": copied, "src_bytes": size(source), "dst_bytes": size(target)}
+
+
+def _copy_rows(source: ResultStore, target: ResultStore, config: CompactConfig) -> tuple[int, int]:
+    """Copy the rows of ``source`` not yet in ``target`` compact (see :func:`compact_store`);
+    ``(rows in source, rows copied)``."""
     done = {p.stem for p in target.row_files()}
     rows = copied = 0
     for row in source.iter_rows(expand=False):
@@ -356,8 +395,4 @@ def compact_store(
             raise StoreError(f"{source.path}: {exc}") from None
         target.write(small)
         copied += 1
-
-    def size(store: ResultStore) -> int:
-        return sum(p.stat().st_size for p in store.row_files())
-
-    return {"rows": rows, "copied": copied, "src_bytes": size(source), "dst_bytes": size(target)}
+    return rows, copied

@@ -20,6 +20,7 @@ import math
 import os
 import tempfile
 import time
+import zipfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -138,7 +139,9 @@ def read_index(
             if m["stat"][2] < racy_from:
                 out[m["file"]] = (m["stat"], m["row"], arrays)
         return out
-    except (OSError, ValueError, KeyError, TypeError):
+    except (OSError, ValueError, KeyError, TypeError, IndexError, EOFError, zipfile.BadZipFile):
+        # a cut or garbled index (a crash of a file system without atomic renames, an
+        # edit): np.load raises EOFError for an empty file, BadZipFile for a cut one
         return {}
 
 

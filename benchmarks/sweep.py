@@ -66,6 +66,7 @@ from voot.bench.store_format import (  # failed_row, exception_row: re-exported
     make_row,
     make_run_id,
 )
+from voot.bench.store_lock import describe_holder
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
 
@@ -519,8 +520,30 @@ def run_sweep(
     """Run every spec not finished in ``store``, writing each row as its run finishes.
 
     Interrupting (Ctrl-C, an exception, a kill) loses only the runs in flight; calling
-    again with the same specs resumes.
+    again with the same specs resumes. The sweep holds the store's writer lock
+    (:meth:`~voot.bench.store.ResultStore.writing`) from before it reads what is finished
+    until its last row is written: a second sweep on the same store raises
+    :class:`~voot.bench.store_lock.StoreBusyError` naming this one, before running anything.
     """
+    with store.writing() as lock:
+        if lock.stale:
+            print(
+                f"{store.path}: took over the writer lock of a sweep that did not release it"
+                f" ({describe_holder(lock.stale)}; no longer running)",
+                file=sys.stderr,
+            )
+        return _run_pending(specs, store, backend, progress, retry_failed, run)
+
+
+def _run_pending(
+    specs: Sequence[S],
+    store: ResultStore,
+    backend: Backend | None,
+    progress: bool,
+    retry_failed: bool,
+    run: Callable[[Any], Row],
+) -> SweepSummary:
+    """The body of :func:`run_sweep`, under the store's writer lock."""
     backend = backend if backend is not None else SerialBackend()
     unique = {s.run_id for s in specs}
     todo = execution_order(pending_specs(specs, store, retry_failed=retry_failed))

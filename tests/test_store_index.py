@@ -61,6 +61,21 @@ def test_index_cache_tracks_changes_and_survives_damage(tmp_path: Path) -> None:
     assert len(s.load(status=None)) == 4
 
 
+@pytest.mark.parametrize("keep", [0.0, 0.01, 0.3, 0.5, 0.9, 0.999])
+def test_an_index_cut_at_any_byte_is_rebuilt(tmp_path: Path, keep: float) -> None:
+    """A crash (or a file system without atomic renames) may leave the index cut short:
+    an empty file made np.load raise EOFError and a cut one BadZipFile, which escaped."""
+    s = ResultStore(tmp_path)
+    for i in range(3):
+        s.write(row(i))
+    expected = s.load(status=None)
+    data = (tmp_path / INDEX_NAME).read_bytes()
+    (tmp_path / INDEX_NAME).write_bytes(data[: int(len(data) * keep)])
+    assert store_index.read_index(tmp_path) == {}
+    assert ResultStore(tmp_path).load(status=None) == expected
+    assert (tmp_path / INDEX_NAME).read_bytes() != data[: int(len(data) * keep)]  # rebuilt
+
+
 def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
     s = ResultStore(tmp_path)
     r = make_row(

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+import json
 import os
 import signal
 import subprocess
@@ -17,6 +18,7 @@ import pytest
 
 from voot.bench.store import ResultStore
 from voot.bench.store_format import Row, StoreError
+from voot.bench.store_lock import LOCK_NAME, StoreBusyError, WriterLock
 from voot.bench.sweep import (
     PAPER_METHODS,
     ProcessBackend,
@@ -307,6 +309,28 @@ def test_failed_runs_are_retried_unless_skipped(tmp_path: Path) -> None:
     s2 = run_sweep(specs, store, progress=False)
     assert s2.ran == 1 and s2.failed == 0
     assert store.get(bad.run_id)["status"] == "ok"
+
+
+def test_a_sweep_holds_the_writer_lock_and_takes_over_a_stale_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    specs = build_specs(["shekel"], [3], ["voo"], range(2), budget=5, grid="default")
+    store = ResultStore(tmp_path / "r")
+    seen = []
+
+    def run(spec: Any) -> Row:  # the lock is held while the runs go
+        seen.append(json.loads((store.path / LOCK_NAME).read_text())["pid"])
+        return run_spec(spec)
+
+    with WriterLock(store.path), pytest.raises(StoreBusyError, match="another voot-bench"):
+        run_sweep(specs, store, progress=False, run=run)
+    assert len(store) == 0 and seen == []
+    dead = {"pid": 999_999_999, "host": "gone", "started": "then", "command": "voot-bench x"}
+    (store.path / LOCK_NAME).write_text(json.dumps(dead))  # left by a killed sweep
+    assert run_sweep(specs, store, progress=False, run=run).ran == 2
+    assert seen == [os.getpid()] * 2 and not (store.path / LOCK_NAME).exists()
+    err = capsys.readouterr().err
+    assert "took over the writer lock" in err and "pid 999999999 on host gone" in err
 
 
 def test_killed_sweep_process_resumes(tmp_path: Path) -> None:
