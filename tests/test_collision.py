@@ -194,3 +194,20 @@ def test_the_memory_tells_held_objects_apart() -> None:
     assert r2 is not r1 and checker.check(qpos, base, TUCK, held=2) is r2
     r0 = checker.check(qpos, base, TUCK)
     assert r0 is not r2 and checker.check(qpos, base, TUCK) is r0
+
+
+def test_a_check_is_of_the_robot_with_open_fingers() -> None:
+    """Whatever the fingers are in the scene's qpos, the configuration checked (the
+    query's key) has them open, at the base and arm asked for."""
+    from voot.envs.robot import FINGER_OPEN
+
+    model = load_model("kitchen")
+    robot = Robot(model)
+    checker = CollisionChecker(model, robot, movable_objects(model))
+    qpos = model.qpos0.copy()
+    qpos[list(robot.finger_qadr)] = 0.0
+    _, key = checker._configure(qpos, (0.5, -1.0, 0.3), TUCK, None, None)
+    q = np.frombuffer(key)
+    assert q[list(robot.finger_qadr)].tolist() == [FINGER_OPEN] * len(robot.finger_qadr)
+    assert q[list(robot.base_qadr)].tolist() == [0.5, -1.0, 0.3]
+    assert q[list(robot.arm_qadr)].tolist() == list(TUCK)
