@@ -382,3 +382,24 @@ def test_duplicate_specs_run_once(tmp_path: Path) -> None:
     assert len(store.load()) == len(specs)
     again = run_sweep(doubled, store, progress=False, run=run)
     assert again.skipped == len(specs) and again.ran == 0 and len(calls) == len(specs)
+
+
+def test_the_progress_bar_is_on_by_default_and_counts_failures(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    specs = tiny_specs(seeds=[0])
+
+    def failing(spec: RunSpec) -> Row:
+        row = run_spec(spec)
+        row.update(status="failed", error="RuntimeError: no")
+        return row
+
+    run_sweep(specs, ResultStore(tmp_path / "a"), run=failing)
+    bar = capsys.readouterr().err
+    done = f"{len(specs)}/{len(specs)}"
+    assert done in bar and f"failed={len(specs)}" in bar
+    run_sweep(specs, ResultStore(tmp_path / "b"))
+    bar = capsys.readouterr().err
+    assert done in bar and "failed" not in bar
+    run_sweep(tiny_specs(seeds=[1]), ResultStore(tmp_path / "c"), progress=False)
+    assert capsys.readouterr().err == ""
