@@ -403,3 +403,37 @@ def test_the_progress_bar_is_on_by_default_and_counts_failures(
     assert done in bar and "failed" not in bar
     run_sweep(tiny_specs(seeds=[1]), ResultStore(tmp_path / "c"), progress=False)
     assert capsys.readouterr().err == ""
+
+
+class Recording:
+    """A serial backend whose generator records being closed (what cancels the runs
+    that have not started, in the process backends)."""
+
+    name = "recording"
+
+    def __init__(self) -> None:
+        self.closed = False
+        self.started = 0
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        try:
+            for item in items:
+                self.started += 1
+                yield fn(item)
+        finally:
+            self.closed = True
+
+
+def test_a_sweep_stopped_by_an_error_closes_the_backend_at_once(tmp_path: Path) -> None:
+    class Full(ResultStore):
+        def write(self, row: Row) -> Path:
+            raise OSError("no space left on device")
+
+    backend = Recording()
+    specs = tiny_specs()
+    try:
+        run_sweep(specs, Full(tmp_path / "s"), backend, progress=False)
+    except OSError as exc:
+        error = exc  # its traceback keeps run_sweep's frame, and the generator, alive
+    assert "no space" in str(error)
+    assert backend.closed and backend.started == 1  # closed by run_sweep, not by gc
