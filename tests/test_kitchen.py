@@ -108,6 +108,8 @@ def test_infeasible_infos_carry_the_poses(env: KitchenClearingEnv) -> None:
         assert info["placement"] is None
         if not info["feasible"]:
             reasons.add(info["reason"].split(":")[0])
+            # the robot did not move: no base path
+            assert info["base_path_length"] == 0.0 and info["base_path"] is None
     assert {"collision", "IK failed", "outside region"} <= reasons
     env.step(kitchen_actions(env)[0])
     held_rel = env.task.held_rel
