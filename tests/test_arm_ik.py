@@ -127,6 +127,8 @@ def test_ik_step_is_minks_solve_ik(ik: ArmIK) -> None:
     import mink
 
     assert ik._qp_rows is not None  # the daqp path is the one under test
+    generic = ArmIK()
+    generic._qp_rows = None  # mink.build_ik and qpsolvers, as for another solver
     rng = np.random.default_rng(6)
     at_limit = 0
     for k in range(200):
@@ -152,12 +154,10 @@ def test_ik_step_is_minks_solve_ik(ik: ArmIK) -> None:
             limits=ik.limits,
         )
         assert ours.tobytes() == theirs.tobytes()
+        generic.task.set_target(ik.task.transform_target_to_world)
+        generic.configuration.update(q)
+        assert generic._ik_velocity().tobytes() == theirs.tobytes()
     assert at_limit > 50
-    generic = ArmIK()
-    generic._qp_rows = None  # mink.build_ik and qpsolvers, as for another solver
-    generic.task.set_target(ik.task.transform_target_to_world)
-    generic.configuration.update(q)
-    assert generic._ik_velocity().tobytes() == theirs.tobytes()
     # and with a joint at its limit and a far target (the limit rows active)
     q = np.clip(ik.upper + 0.5, ik.lower, ik.upper)
     far = mink.SE3.from_rotation_and_translation(
