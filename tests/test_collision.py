@@ -134,11 +134,17 @@ def test_the_collision_memory_is_keyed_by_the_configuration() -> None:
 
 
 def test_the_first_object_is_named_by_its_body() -> None:
+    """Object 0 too is reported by its body's name, not its geoms' (the chair's geoms
+    are ``obj_chair1_seat``, ``obj_chair1_back``, ...)."""
     model = load_model("kitchen")
-    checker = CollisionChecker(model, Robot(model), movable_objects(model))
-    x, y, _, _ = object_pose(mujoco.MjData(model), checker.objects[0])
+    objects = movable_objects(model)
+    chair = next(o for o in objects if o.name == "obj_chair1")
+    checker = CollisionChecker(
+        model, Robot(model), [chair, *(o for o in objects if o is not chair)]
+    )
+    x, y, _, _ = object_pose(mujoco.MjData(model), chair)
     hits = checker.check(model.qpos0.copy(), (x, y, 0.0), TUCK).hits
-    assert f"robot-{checker.objects[0].name}" in hits
+    assert "robot-obj_chair1" in hits and not any("seat" in h or "leg" in h for h in hits)
 
 
 def test_the_grasp_contacts_are_allowed() -> None:
