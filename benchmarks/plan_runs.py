@@ -164,6 +164,13 @@ def mean_ci(
 
     Where fewer than 2 values are known the half-width is NaN (and the mean NaN where
     none is).
+
+    Coverage (tested in ``tests/test_plan_runs.py``): exact for normal values at every
+    n >= 2; skewed values undercover (at 95%, exponential about 0.89 at n = 5 and 0.94
+    at n = 80, lognormal with sigma = 1 about 0.83 at n = 5 and 0.91 at n = 60); 0/1
+    values (success rates) undercover erratically, to at most 1 - p^n - (1-p)^n (an
+    all-equal sample has a zero-width interval) and within [0.905, 0.970] once
+    n min(p, 1-p) >= 10.
     """
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must be in (0, 1), got {confidence}")
@@ -190,7 +197,9 @@ def median_ci(
     The interval is :math:`[x_{(l)}, x_{(n-l+1)}]` of the sorted values with
     :math:`l` the :math:`(1-c)/2` quantile of :math:`\mathrm{Binomial}(n, 1/2)`, which
     covers the median with probability at least ``confidence``; NaN bounds when ``n`` is
-    too small for one. Censored values (a seed that never got there) enter as ``inf``.
+    too small for one (at 95%: fewer than 6 values). Censored values (a seed that never
+    got there) enter as ``inf``. The coverage holds for any distribution, discrete and
+    censored ones included (tested in ``tests/test_plan_runs.py``).
     """
     x = np.sort(np.asarray(values, dtype=np.float64))
     n = x.size

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -186,3 +187,90 @@ def test_claims_on_layouts_count_layouts() -> None:
     assert result.high - result.value == pytest.approx(12.7062047, rel=1e-6)
     # the six runs taken as independent seeds would give [0.85, 3.15]: "reproduced"
     assert result.verdict == NOT_REPRODUCED
+
+
+def test_the_paper_claims_restate_the_paper() -> None:
+    """Each record's checkpoint, threshold and side, as the paper words them (the
+    thresholds' rules are in the comment above PAPER_CLAIMS)."""
+    got = [(c.problem, c.metric, c.checkpoint, c.threshold, c.side) for c in PAPER_CLAIMS]
+    assert got == [
+        ("kitchen_v1", "objects_left", 750, 1.0, "below"),  # almost every obstacle
+        ("kitchen_v1", "objects_left", 1700, 1.0, "above"),  # the others need > 1,700
+        ("conveyor_v1", "return", 1000, 3.0, "above"),  # a little above 3
+        ("conveyor_v1", "return", 1000, 1.0, "below"),  # below 1
+        ("conveyor_v1", "return", 3000, 3.5, "above"),  # about 4
+        ("conveyor_v1", "return", 3000, 2.0, "below"),  # below 2
+        ("conveyor_v1", "objects_handled", 1000, 14.5, "above"),  # 15 objects
+        ("conveyor_v1", "objects_handled", 3000, 13.5, "below"),  # 12-13 objects
+        ("kitchen_v1", "objects_handled", 2000, 2.5, "below"),  # RL: 1-2 obstacles
+        ("conveyor_v1", "objects_handled", 3000, 8.5, "below"),  # RL: at most 8 boxes
+    ]
+    voot_lines = [c for c in PAPER_CLAIMS if c.planners == ("voot",)]
+    assert len(voot_lines) == 4 and all("voot" not in c.planners for c in PAPER_CLAIMS[1::2][:4])
+
+
+def test_an_interval_touching_the_threshold_settles_nothing() -> None:
+    # the threshold on an end of the interval: neither side holds strictly
+    assert verdict("below", 1.0, 0.5, 1.0) == NOT_REPRODUCED
+    assert verdict("below", 1.0, 1.0, 2.0) == NOT_REPRODUCED
+    assert verdict("above", 3.0, 3.0, 4.0) == NOT_REPRODUCED
+    assert verdict("above", 3.0, 2.0, 3.0) == NOT_REPRODUCED
+    # one missing end is no interval
+    assert verdict("below", 1.0, math.nan, 0.5) == NO_DATA
+    assert verdict("below", 1.0, 0.2, math.nan) == NO_DATA
+
+
+def test_the_checkpoint_reads_that_simulation_of_every_metric() -> None:
+    """The curves change at simulation 500 (index 499): checkpoint 499 reads the value
+    before, 500 the value after, and the runs' last simulation is still data."""
+    rows = [row(2.0, planner="voot", seed=s, left=4.0) for s in range(3)]
+    data = plan_data(rows)
+    cases = {"return": (-2.0, 2.0), "objects_left": (20.0, 4.0), "objects_handled": (0.0, 16.0)}
+    for metric, (before, after) in cases.items():
+        for k, expected in ((499, before), (500, after), (SIMS, after)):
+            (r,) = evaluate(data, [claim(("voot",), metric=metric, checkpoint=k)])
+            assert r.value == pytest.approx(expected), (metric, k)
+            assert r.low == pytest.approx(expected) == r.high and r.verdict != NO_DATA
+
+
+def test_two_seeds_are_enough_for_a_t_interval() -> None:
+    rows = [row(v, planner="voot", seed=s) for s, v in enumerate([0.1, 0.3])]
+    (r,) = evaluate(plan_data(rows), [claim(("voot",), threshold=100.0)])
+    assert r.n == 2 and r.interval == "t" and r.verdict == REPRODUCED
+    # sample standard deviation 0.1 * sqrt(2), so the half-width is t(0.975, 1) * 0.1
+    assert r.low == pytest.approx(0.2 - 12.7062047 * 0.1, rel=1e-6)
+
+
+def test_the_median_needs_six_seeds_and_object_counts() -> None:
+    c = claim(("voot",), metric="simulations_to_clear", threshold=750.0)
+    three = [row(1.0, planner="voot", seed=s, left=0.0) for s in range(3)]
+    (r,) = evaluate(plan_data(three), [c])
+    assert r.verdict == NO_DATA and r.n == 3 and r.note == "3 seeds: no interval"
+    assert math.isnan(r.value)  # no data: not even the median is reported
+    no_objects = [
+        {k: v for k, v in x.items() if k not in ("objects_left", "objects_initial")} for x in three
+    ]
+    (none,) = evaluate(plan_data(no_objects), [c])
+    assert none.verdict == NO_DATA and none.note == "no object counts" and none.n == 0
+
+
+def test_no_runs_is_zero_seeds_and_the_table_spells_infinities() -> None:
+    (r,) = evaluate([], [claim(("voot",))])
+    assert r.n == 0 and r.note == "no runs" and math.isnan(r.value)
+    never = [row(1.0, planner="voot", seed=s, left=2.0) for s in range(8)]  # never cleared
+    c = claim(("voot",), metric="simulations_to_clear", threshold=750.0)
+    (m,) = evaluate(plan_data(never), [c])
+    assert m.value == math.inf and m.verdict == REVERSED
+    table = claims_table([m, replace(m, value=-math.inf, low=-math.inf, high=-math.inf)])
+    first, second = table.splitlines()[2:4]  # the lines under the header, in order
+    assert first.endswith("| never [never, never] (8) | reversed |")
+    assert second.endswith("| -inf [-inf, -inf] (8) | reversed |")
+
+
+def test_a_value_without_an_interval_is_shown_with_its_note() -> None:
+    """evaluate gives no value without an interval, but a caller's own line may have one."""
+    (one,) = evaluate(plan_data([row(0.5, planner="voot", seed=0)]), [claim(("voot",))])
+    assert one.verdict == NO_DATA and math.isnan(one.value) and one.n == 1
+    assert "| — (1 seeds: no interval) | no data |" in claims_table([one])
+    valued = replace(one, value=0.5)
+    assert "| 0.5 (1 seeds: no interval) | no data |" in claims_table([valued])

@@ -131,3 +131,89 @@ def test_the_collision_memory_is_keyed_by_the_configuration() -> None:
     r1 = checker.check(qpos, (x, y, 0.0), TUCK)
     assert checker.check(qpos, (x, y, 0.0), TUCK) is r1
     assert checker.check(qpos, (x, y, 0.0), TUCK, held=i) is not r1
+
+
+def test_the_first_object_is_named_by_its_body() -> None:
+    """Object 0 too is reported by its body's name, not its geoms' (the chair's geoms
+    are ``obj_chair1_seat``, ``obj_chair1_back``, ...)."""
+    model = load_model("kitchen")
+    objects = movable_objects(model)
+    chair = next(o for o in objects if o.name == "obj_chair1")
+    checker = CollisionChecker(
+        model, Robot(model), [chair, *(o for o in objects if o is not chair)]
+    )
+    x, y, _, _ = object_pose(mujoco.MjData(model), chair)
+    hits = checker.check(model.qpos0.copy(), (x, y, 0.0), TUCK).hits
+    assert "robot-obj_chair1" in hits and not any("seat" in h or "leg" in h for h in hits)
+
+
+def test_the_grasp_contacts_are_allowed() -> None:
+    """The held object against the fingers: MuJoCo reports contacts, none of which
+    counts, and collides() says so on the first query (the pair's verdict is computed,
+    then remembered) and on a repeat."""
+    model = load_model("kitchen")
+    checker = CollisionChecker(model, Robot(model), movable_objects(model))
+    qpos = mujoco.MjData(model).qpos
+    base = (0.061980687802519974, -2.1775353804947084, -0.2894935179703122)
+    arm = np.array([0.0, 1.1, 0.0, -2.6, 0.0, -0.6, 0.0])
+    poses = {1: (0.4630080683842436, -2.1954088594082175, 0.4809857907939308, 0.3)}
+    for _ in range(2):
+        checker._last = None
+        assert not checker.collides(qpos, base, arm, held=1, object_poses=poses)
+        assert checker.data.ncon > 0
+    assert checker.check(qpos, base, arm, held=1, object_poses=poses).free
+
+
+def test_a_copied_or_pickled_checker_checks_its_own_configuration() -> None:
+    import copy
+    import pickle
+
+    model = load_model("kitchen")
+    checker = CollisionChecker(model, Robot(model), movable_objects(model))
+    qpos = model.qpos0.copy()
+    for twin in (copy.deepcopy(checker), pickle.loads(pickle.dumps(checker))):
+        assert twin._qpos_view is twin.data.qpos and twin.data is not checker.data
+        assert twin._affinity_view is twin.model.geom_conaffinity
+        assert twin.check(qpos, (-1.9, -1.5, 0.0), TUCK).hits == ["robot-wall_west"]
+        assert twin.check(qpos, (-1.5, -1.5, math.pi / 2), TUCK).free
+
+
+def test_a_tuple_pose_writes_set_object_poses_numbers() -> None:
+    """The fast path for ``(x, y, z, yaw)`` tuples writes what set_object_pose writes."""
+    model = load_model("kitchen")
+    checker = CollisionChecker(model, Robot(model), movable_objects(model))
+    qpos = model.qpos0.copy()
+    for yaw in (0.0, 0.3, -2.0, math.pi):
+        pose = (1.8, -2.5, 0.1, yaw)
+        fast = checker._configure(qpos, (0.0, 0.0, 0.0), TUCK, 2, {2: pose})
+        slow = checker._configure(qpos, (0.0, 0.0, 0.0), TUCK, 2, {2: np.array(pose)})
+        assert fast == slow
+
+
+def test_the_memory_tells_held_objects_apart() -> None:
+    model = load_model("kitchen")
+    checker = CollisionChecker(model, Robot(model), movable_objects(model))
+    qpos = model.qpos0.copy()
+    base = (-1.5, -1.5, math.pi / 2)
+    r1 = checker.check(qpos, base, TUCK, held=1)
+    r2 = checker.check(qpos, base, TUCK, held=2)
+    assert r2 is not r1 and checker.check(qpos, base, TUCK, held=2) is r2
+    r0 = checker.check(qpos, base, TUCK)
+    assert r0 is not r2 and checker.check(qpos, base, TUCK) is r0
+
+
+def test_a_check_is_of_the_robot_with_open_fingers() -> None:
+    """Whatever the fingers are in the scene's qpos, the configuration checked (the
+    query's key) has them open, at the base and arm asked for."""
+    from voot.envs.robot import FINGER_OPEN
+
+    model = load_model("kitchen")
+    robot = Robot(model)
+    checker = CollisionChecker(model, robot, movable_objects(model))
+    qpos = model.qpos0.copy()
+    qpos[list(robot.finger_qadr)] = 0.0
+    _, key = checker._configure(qpos, (0.5, -1.0, 0.3), TUCK, None, None)
+    q = np.frombuffer(key)
+    assert q[list(robot.finger_qadr)].tolist() == [FINGER_OPEN] * len(robot.finger_qadr)
+    assert q[list(robot.base_qadr)].tolist() == [0.5, -1.0, 0.3]
+    assert q[list(robot.arm_qadr)].tolist() == list(TUCK)

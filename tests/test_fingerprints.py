@@ -2,8 +2,9 @@
 
 The hashes are the committed ``tools/behaviour_hashes.json`` (recomputed by
 ``python tools/behaviour_hashes.py record``); this test recomputes the fast ones: black-box
-runs of VOO and DOO, and tree searches on the Shekel chain and on both kitchens; and
-CMA-ES's curve (``tools/behaviour_curves.json``) within a relative tolerance, since its last
+runs of VOO and DOO, and tree searches on the Shekel chain and on both kitchens; a
+60-simulation run of every tree and sampling planner on both v1 domains
+(``tools/v1_fingerprints.json``); and CMA-ES's curve (``tools/behaviour_curves.json``) within a relative tolerance, since its last
 bits depend on the CPU's BLAS kernel.
 """
 
@@ -51,3 +52,16 @@ def test_the_cmaes_tolerance_catches_a_real_change(hashes: object) -> None:
     changed[100] *= 1 + 1e-6
     assert hashes.cmaes_curve_changes(pinned, changed) == [100]  # type: ignore[attr-defined]
     assert hashes.cmaes_curve_changes(pinned, pinned[:-1])  # type: ignore[attr-defined]
+
+
+def test_v1_fingerprints_of_every_planner(hashes: object) -> None:
+    from voot.tree import available_planners, available_shooting_planners
+
+    planners = set(hashes.V1_PLANNERS)  # type: ignore[attr-defined]
+    # every tree and sampling planner is pinned (the RL planners need torch: not here)
+    assert planners == set(available_planners()) | set(available_shooting_planners())
+    pinned = json.loads((ROOT / "tools" / "v1_fingerprints.json").read_text())
+    got = hashes.v1_fingerprints()  # type: ignore[attr-defined]
+    assert set(got) == {f"v1/{p}/{q}" for p in ("kitchen_v1", "conveyor_v1") for q in planners}
+    changed = {k: (pinned.get(k), v) for k, v in got.items() if pinned.get(k) != v}
+    assert not changed, f"v1 behaviour changed (pinned, now): {changed}"

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -65,8 +67,12 @@ def test_side_grasp_is_bit_identical_to_the_numpy_version() -> None:
     rng = np.random.default_rng(5)
     for k in range(800):
         obj = objects[k % len(objects)]
+        if k % 3 == 0:  # a footprint off the body origin (the kitchen's are centred)
+            obj = dataclasses.replace(obj, center=rng.uniform(-0.2, 0.2, 2))
         yaw = float(rng.uniform(-4, 4))
-        pose = (*rng.uniform(-3, 3, 3).tolist(), yaw)
+        pose: Any = (*rng.uniform(-3, 3, 3).tolist(), yaw)
+        if k % 2:  # an array pose takes the fast path
+            pose = np.array(pose)
         # every 4th heading at 45 degrees to the object: two faces tie
         heading = (
             yaw + math.pi / 4 + math.pi / 2 * int(rng.integers(4))
@@ -82,3 +88,15 @@ def test_side_grasp_is_bit_identical_to_the_numpy_version() -> None:
         p, r, face = _side_grasp_numpy(obj, pose, heading, *args, standoff=0.01 * (k % 2))
         assert g.face == face
         assert g.position.tobytes() == p.tobytes() and g.rotation.tobytes() == r.tobytes()
+
+
+def test_an_off_centre_footprint_moves_the_grasp_with_the_body() -> None:
+    model = load_model("kitchen")
+    box = next(o for o in movable_objects(model) if o.name == "obj_box2")
+    shifted = dataclasses.replace(box, center=np.array([0.1, 0.05]))
+    # body turned a quarter: the footprint's centre (0.1, 0.05) is at (-0.05, 0.1)
+    pose = np.array([1.0, 2.0, 0.0, math.pi / 2])
+    g = side_grasp(shifted, pose, 0.0, math.pi / 2, 0.75, 0.5)
+    assert g.face == "+y"  # the body's +y side faces west, towards the robot
+    assert g.position[0] == pytest.approx(1.0 - 0.05 - box.half[1])
+    assert g.position[1] == pytest.approx(2.0 + 0.1)

@@ -108,6 +108,8 @@ def test_infeasible_infos_carry_the_poses(env: KitchenClearingEnv) -> None:
         assert info["placement"] is None
         if not info["feasible"]:
             reasons.add(info["reason"].split(":")[0])
+            # the robot did not move: no base path
+            assert info["base_path_length"] == 0.0 and info["base_path"] is None
     assert {"collision", "IK failed", "outside region"} <= reasons
     env.step(kitchen_actions(env)[0])
     held_rel = env.task.held_rel
@@ -357,3 +359,21 @@ def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
     env.reset(seed=0)
     _, _, _, _, info = step(kitchen_actions(env)[0])
     assert info["feasible"] and env.last_timing.planning > 0.0
+
+
+def test_every_step_counts_and_a_place_empties_the_gripper(env: KitchenClearingEnv) -> None:
+    env.reset(seed=0)
+    assert env.task.steps == 0
+    pick, place = kitchen_actions(env)[:2]
+    env.step(pick)
+    assert env.task.steps == 1 and env.task.operator == "place" and len(env.task.grasp_q) == 7
+    assert env.task.held_rel != (0.0, 0.0, 0.0)
+    _, _, _, _, info = env.step(place)
+    assert info["feasible"]
+    t = env.task
+    assert t.steps == 2 and t.operator == "pick" and t.held == -1
+    assert t.held_rel == (0.0, 0.0, 0.0) and t.grasp_q == ()
+    before = env.get_state()
+    env.step(np.full(6, 0.99))  # any step counts, feasible or not
+    assert env.task.steps == 3
+    env.set_state(before)

@@ -22,13 +22,15 @@ def _error(task: KitchenTask) -> str | None:
     return task_error(task, 4, 50, ORDER, RANK)
 
 
+R = dataclasses.replace
+
+
 def test_records_episodes_reach_pass() -> None:
     assert _error(PICK) is None and _error(PLACE) is None
     done = dataclasses.replace(PICK, steps=50, on_path=(), done=True, last_place_cleared=True)
     assert _error(done) is None
-
-
-R = dataclasses.replace
+    # the first and the last object index may be held at a place
+    assert _error(R(PLACE, held=0)) is None and _error(R(PLACE, held=3)) is None
 
 
 @pytest.mark.parametrize(

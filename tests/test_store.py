@@ -311,3 +311,8 @@ def test_compact_store_converts_resumes_and_keeps_the_source(tmp_path: Path) -> 
         compact_store(tmp_path / "dst", tmp_path / "src")
     with pytest.raises(StoreError, match="no voot result store"):
         compact_store(tmp_path / "missing", tmp_path / "dst4")
+
+
+def test_a_store_is_created_with_its_missing_parent_folders(tmp_path: Path) -> None:
+    store = ResultStore(tmp_path / "results" / "kitchen" / "v1")
+    assert store.header_path.is_file() and store.runs_path.is_dir() and len(store) == 0

@@ -116,3 +116,27 @@ def test_curves_pads_with_nan() -> None:
 def test_curves_of_equal_length() -> None:
     c = curves([{"best_so_far": [1.0, 2.0]}, {"best_so_far": [3.0, 4.0]}])
     assert c.tolist() == [[1.0, 2.0], [3.0, 4.0]]
+
+
+def test_row_bytes_replaces_an_earlier_checksum() -> None:
+    """A row read back (or copied) with its checksum key is re-serialised without it: the
+    file carries exactly one checksum, of the content."""
+    r = row(1)
+    stale = dict(r, **{store_format.CHECKSUM_KEY: "0" * 64})
+    assert store_format.row_bytes(stale) == store_format.row_bytes(r)
+    assert store_format.verify_row_bytes(store_format.row_bytes(stale))
+
+
+def test_check_row_of_a_compact_row() -> None:
+    """A compact row keeps its curves under the compact key, so it may lack best_so_far;
+    a full row may not, and either needs a config object."""
+    from voot.bench.compact import CompactConfig, compact_row
+
+    compact = compact_row(row(1), CompactConfig())
+    assert store_format.COMPACT_KEY in compact and "best_so_far" not in compact
+    assert check_row(compact) is compact
+    with pytest.raises(StoreError, match="'config' must be an object"):
+        check_row(dict(compact, config=[1]))
+    full = {k: v for k, v in row(1).items() if k != "best_so_far"}
+    with pytest.raises(StoreError, match=r"missing keys \['best_so_far'\]"):
+        check_row(full)

@@ -488,3 +488,58 @@ def test_duplicate_specs_run_once(tmp_path: Path) -> None:
     assert len(store.load()) == len(specs)
     again = run_sweep(doubled, store, progress=False, run=run)
     assert again.skipped == len(specs) and again.ran == 0 and len(calls) == len(specs)
+
+
+def test_the_progress_bar_is_on_by_default_and_counts_failures(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    specs = tiny_specs(seeds=[0])
+
+    def failing(spec: RunSpec) -> Row:
+        row = run_spec(spec)
+        row.update(status="failed", error="RuntimeError: no")
+        return row
+
+    run_sweep(specs, ResultStore(tmp_path / "a"), run=failing)
+    bar = capsys.readouterr().err
+    done = f"{len(specs)}/{len(specs)}"
+    assert done in bar and f"failed={len(specs)}" in bar
+    run_sweep(specs, ResultStore(tmp_path / "b"))
+    bar = capsys.readouterr().err
+    assert done in bar and "failed" not in bar
+    run_sweep(tiny_specs(seeds=[1]), ResultStore(tmp_path / "c"), progress=False)
+    assert capsys.readouterr().err == ""
+
+
+class Recording:
+    """A serial backend whose generator records being closed (what cancels the runs
+    that have not started, in the process backends)."""
+
+    name = "recording"
+
+    def __init__(self) -> None:
+        self.closed = False
+        self.started = 0
+
+    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
+        try:
+            for item in items:
+                self.started += 1
+                yield fn(item)
+        finally:
+            self.closed = True
+
+
+def test_a_sweep_stopped_by_an_error_closes_the_backend_at_once(tmp_path: Path) -> None:
+    class Full(ResultStore):
+        def write(self, row: Row) -> Path:
+            raise OSError("no space left on device")
+
+    backend = Recording()
+    specs = tiny_specs()
+    try:
+        run_sweep(specs, Full(tmp_path / "s"), backend, progress=False)
+    except StoreError as exc:  # the write's OSError, named (voot.bench.sweep.write_row)
+        error = exc  # its traceback keeps run_sweep's frame, and the generator, alive
+    assert "no space" in str(error.__cause__)
+    assert backend.closed and backend.started == 1  # closed by run_sweep, not by gc

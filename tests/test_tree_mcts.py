@@ -337,6 +337,15 @@ def test_reroot_keeps_the_subtree() -> None:
     assert res.n_simulations == 10
 
 
+def test_reroot_names_an_edge_out_of_range() -> None:
+    mcts = MCTS(Counter(), planner_config("voot", depth_limit=4, root_commitment=None), seed=0)
+    mcts.search(20)
+    n = len(mcts.root.children)
+    for edge in (n, -1):
+        with pytest.raises(IndexError, match=f"edge {edge} out of range for a root with {n}"):
+            mcts.reroot(edge)
+
+
 def _best_by_brute_force(mcts: MCTS, depth_limit: int) -> float:
     """The best return over the tree's paths as ``best_return_over`` defines them."""
     mode = mcts.config.best_return_over.value

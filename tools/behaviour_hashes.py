@@ -4,6 +4,10 @@
     python tools/behaviour_hashes.py compare tools/behaviour_hashes.json  # after
     python tools/behaviour_hashes.py bbfo-digest voo    # one black-box run's hash
 
+The v1 fingerprints of every planner (a short run of each tree and sampling planner on
+both v1 domains, :func:`v1_fingerprints`) are pinned in ``tools/v1_fingerprints.json``;
+``record`` writes them and ``compare`` checks them on a line of their own.
+
 CMA-ES is pinned by its curve (``tools/behaviour_curves.json``, compared within a relative
 tolerance, see :data:`CMAES_RTOL`): its last bits depend on the CPU's BLAS kernel.
 
@@ -124,6 +128,64 @@ def _plan_rows() -> dict[str, str]:
     return out
 
 
+#: The v1 domains and the planners pinned on them: every tree planner and every sampling
+#: (MPC) planner. The RL planners (``ppo``, ``ddpg``) need torch, which the core and dev
+#: installs do not have, so they are not pinned here.
+V1_PROBLEMS: dict[str, str] = {
+    "kitchen_v1": "voot/KitchenClearing-v1",
+    "conveyor_v1": "voot/ConveyorPacking-v1",
+}
+V1_PLANNERS: tuple[str, ...] = (
+    "voot",
+    "doot",
+    "rand_doot",
+    "pw_uct",
+    "voronoi_pw",
+    "hoot",
+    "uniform_t",
+    "cem",
+    "mppi",
+    "predictive_sampling",
+    "random_shooting",
+)
+#: Simulations of each v1 run: 60 keeps all 22 runs at a few seconds in total.
+V1_SIMULATIONS = 60
+V1_FILE = Path(__file__).with_name("v1_fingerprints.json")
+#: What a v1 fingerprint hashes: the best-so-far and objects-left curves, the simulator
+#: calls per simulation, the best plan (its actions and rewards) and the search's counts.
+#: On the conveyor every planner's best return stays at the infeasible first action's
+#: -2.0 for 60 simulations, so there the calls curve and the counts carry the signal.
+V1_KEYS: tuple[str, ...] = (
+    "best_so_far",
+    "objects_left",
+    "calls_curve",
+    "best_actions",
+    "best_rewards",
+    "n_steps",
+    "n_feasibility_checks",
+    "n_nodes",
+    "status",
+)
+
+
+def v1_fingerprints() -> dict[str, str]:
+    """``{"v1/<problem>/<planner>": hash}``: every planner of :data:`V1_PLANNERS` on both
+    v1 domains, :data:`V1_SIMULATIONS` simulations, seed 0, default parameters.
+
+    Exact hashes: the v1 runs do not go through BLAS in a way that moves bits (their
+    hashes were checked equal under the Prescott, Haswell and SkylakeX OpenBLAS kernels,
+    ``OPENBLAS_CORETYPE``, which move CMA-ES's).
+    """
+    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+
+    out = {}
+    for label, env_id in V1_PROBLEMS.items():
+        for planner in V1_PLANNERS:
+            row = run_plan_spec(PlanSpec(env_id, None, (), planner, (), V1_SIMULATIONS, 0))
+            out[f"v1/{label}/{planner}"] = _digest({k: row.get(k) for k in V1_KEYS})
+    return out
+
+
 def _root_parallel() -> dict[str, str]:
     from voot.tree import make_chain, plan_root_parallel
 
@@ -200,11 +262,21 @@ def main(argv: list[str]) -> int:
     path = Path(argv[1])
     hashes = collect()
     curve = cmaes_curve()
+    v1 = v1_fingerprints()
     if argv[0] == "record":
         path.write_text(json.dumps(hashes, indent=1, sort_keys=True) + "\n")
         CMAES_CURVE_FILE.write_text(json.dumps({"bbfo/cmaes": curve}, indent=1) + "\n")
-        print(f"{len(hashes)} hashes -> {path}, CMA-ES's curve -> {CMAES_CURVE_FILE}")
+        V1_FILE.write_text(json.dumps(v1, indent=1, sort_keys=True) + "\n")
+        print(
+            f"{len(hashes)} hashes -> {path}, CMA-ES's curve -> {CMAES_CURVE_FILE}, "
+            f"{len(v1)} v1 fingerprints -> {V1_FILE}"
+        )
         return 0
+    pinned_v1 = json.loads(V1_FILE.read_text())
+    bad_v1 = sorted(k for k in pinned_v1.keys() | v1.keys() if pinned_v1.get(k) != v1.get(k))
+    for k in bad_v1:
+        print(f"CHANGED {k}: {pinned_v1.get(k)} -> {v1.get(k)}")
+    print(f"{len(pinned_v1) - len(bad_v1)} of {len(pinned_v1)} v1 planner fingerprints unchanged")
     expected = json.loads(path.read_text())
     bad = sorted(k for k in expected.keys() | hashes.keys() if expected.get(k) != hashes.get(k))
     for k in bad:
@@ -214,7 +286,7 @@ def main(argv: list[str]) -> int:
         print(f"CHANGED bbfo/cmaes: the curve moves by more than {CMAES_RTOL} at {moved[:5]}")
     total = len(expected) + 1
     print(f"{total - len(bad) - bool(moved)} of {total} outputs unchanged")
-    return 1 if bad or moved else 0
+    return 1 if bad or moved or bad_v1 else 0
 
 
 if __name__ == "__main__":
