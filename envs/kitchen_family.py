@@ -23,8 +23,9 @@ is drawn (a derived random stream, so the outcome is deterministic), up to
 ``reset()`` (a scripted solution, as :mod:`voot.envs.scripted` is for v1).
 
 Generated kitchens are kept per ``(layout_seed, difficulty, GENERATOR_VERSION)`` in
-this process (:func:`generated_kitchen`): the layout, its MJCF, the compiled model and
-the witness; an env of a kept kitchen copies the model and costs what a v1 env costs.
+this process (:func:`generated_kitchen`, the last :data:`KITCHEN_CACHE_SIZE`): the
+layout, its MJCF, the compiled model and the witness; an env of a kept kitchen copies the
+model and costs what a v1 env costs.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from __future__ import annotations
 import copy
 import math
 import time
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -56,6 +58,7 @@ from voot.envs.presets import env_config
 from voot.envs.scene import object_footprint, rect_inside, rect_overlaps
 
 __all__ = [
+    "KITCHEN_CACHE_SIZE",
     "MAX_ATTEMPTS",
     "PICK_GRID",
     "GeneratedKitchen",
@@ -68,7 +71,8 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
-#: Attempts of a seed before generation gives up (rejections are rare: see the docs).
+#: Attempts of a seed before generation gives up (hard kitchens need about 10 on average,
+#: most of them cheap layout draws that leave no room for an obstacle: see the docs).
 MAX_ATTEMPTS = 60
 #: The config fields a layout sets (an option naming one is an error).
 LAYOUT_FIELDS = ("start", "goal", "house", "forbidden")
@@ -113,7 +117,10 @@ class GeneratedKitchen:
     tries: int
 
 
-_KITCHENS: dict[tuple[int, str, int], GeneratedKitchen] = {}
+#: Generated kitchens kept per process (the least recently used one is forgotten past
+#: this: a kitchen holds its compiled model, about 3 MB).
+KITCHEN_CACHE_SIZE = 64
+_KITCHENS: OrderedDict[tuple[int, str, int], GeneratedKitchen] = OrderedDict()
 
 
 def clear_kitchen_cache() -> None:
@@ -135,6 +142,7 @@ def generated_kitchen(layout_seed: int, difficulty: str) -> GeneratedKitchen:
     key = (int(layout_seed), difficulty, GENERATOR_VERSION)
     hit = _KITCHENS.get(key)
     if hit is not None:
+        _KITCHENS.move_to_end(key)
         return hit
     t0 = time.perf_counter()
     rejections: list[tuple[int, str]] = []
@@ -173,6 +181,8 @@ def generated_kitchen(layout_seed: int, difficulty: str) -> GeneratedKitchen:
             tries=tries,
         )
         _KITCHENS[key] = kitchen
+        while len(_KITCHENS) > KITCHEN_CACHE_SIZE:
+            _KITCHENS.popitem(last=False)
         return kitchen
     raise RuntimeError(
         f"no solvable kitchen for layout_seed={layout_seed}, difficulty={difficulty!r} in"

@@ -14,8 +14,10 @@ import pytest
 from gymnasium.utils.env_checker import check_env, data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
+from voot.envs import kitchen_family as family
 from voot.envs.kitchen_family import (
     GeneratedKitchenEnv,
+    clear_kitchen_cache,
     constructive_solution,
     generated_kitchen,
     placement_candidates,
@@ -57,6 +59,22 @@ def test_generation_counts_rejections_and_caches_the_kitchen() -> None:
     assert [a for a, _ in kitchen.rejections] == list(range(kitchen.layout.attempt))
     assert generated_kitchen(0, "hard") is kitchen
     assert kitchen.tries >= len(kitchen.witness)
+
+
+def test_the_cache_keeps_the_most_recent_kitchens(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(family, "KITCHEN_CACHE_SIZE", 2)
+    clear_kitchen_cache()
+    a = generated_kitchen(0, "easy")
+    generated_kitchen(1, "easy")
+    assert generated_kitchen(0, "easy") is a  # used again: now the most recent
+    generated_kitchen(2, "easy")  # forgets seed 1
+    assert generated_kitchen(0, "easy") is a
+    again = generated_kitchen(1, "easy")
+    assert again.digest == family._KITCHENS[(1, "easy", family.GENERATOR_VERSION)].digest
+    assert len(family._KITCHENS) == 2
+    clear_kitchen_cache()
+    b = generated_kitchen(0, "easy")
+    assert b is not a and b.digest == a.digest and b.witness == a.witness
 
 
 def test_seeds_give_different_scenes_and_the_env_copies_the_model() -> None:
