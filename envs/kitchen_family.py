@@ -44,6 +44,7 @@ from numpy.typing import NDArray
 
 from voot.envs.action_units import normalize
 from voot.envs.env_state import replace
+from voot.envs.grasp import GraspPose
 from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.kitchen_config import KITCHEN_PRESETS, KitchenConfig
 from voot.envs.kitchen_layout import (
@@ -53,7 +54,8 @@ from voot.envs.kitchen_layout import (
     difficulty_level,
     generate_kitchen_layout,
 )
-from voot.envs.kitchen_scene import compile_kitchen, kitchen_layout_xml, scene_digest
+from voot.envs.kitchen_scene import compile_kitchen, kitchen_layout_xml, scene_digest, shape_spec
+from voot.envs.mesh_grasp import MeshGraspSet, grasp_set, mesh_side_grasp
 from voot.envs.presets import env_config
 from voot.envs.scene import object_footprint, rect_inside, rect_overlaps
 
@@ -82,7 +84,7 @@ PICK_GRID: tuple[tuple[float, ...], ...] = tuple(
     (angle, height, 0.5, dist, base_angle, 0.0)
     for dist in (0.6, 0.75, 0.88)
     for base_angle in range(0, 360, 30)
-    for angle, height in ((135.0, 0.8), (90.0, 0.95))
+    for angle, height in ((135.0, 0.8), (90.0, 0.95), (120.0, 0.6))
 )
 #: Spacing (metres) and headings (deg) of the solver's placement grid.
 PLACE_SPACING = 0.3
@@ -153,7 +155,7 @@ def generated_kitchen(layout_seed: int, difficulty: str) -> GeneratedKitchen:
             rejections.append((attempt, f"layout: {exc}"))
             continue
         xml = kitchen_layout_xml(layout)
-        model = compile_kitchen(xml)
+        model = compile_kitchen(xml, layout)
         candidate = GeneratedKitchen(
             layout, xml, scene_digest(xml), model, (), tuple(rejections), 0.0, 0
         )
@@ -234,6 +236,10 @@ class GeneratedKitchenEnv(KitchenClearingEnv):
             forbidden=layout.forbidden,
         )
         self.kitchen = kitchen
+        #: The objects' grasp tables (from their meshes), in object order.
+        self._grasp_sets: tuple[MeshGraspSet, ...] = tuple(
+            grasp_set(shape_spec(o)) for o in layout.objects
+        )
         super().__init__(
             config=cfg,
             render_mode=render_mode,
@@ -251,6 +257,23 @@ class GeneratedKitchenEnv(KitchenClearingEnv):
         """The constructive solver's plan: normalised actions that clear the path from
         ``reset()`` (proof of solvability; a scripted solution for tests)."""
         return [np.array(a, dtype=np.float64) for a in self.kitchen.witness]
+
+    def _grasp_pose(
+        self, obj: int, pose: FloatArray, base_heading: float, params: FloatArray
+    ) -> tuple[GraspPose | None, str]:
+        """The grasp on the object's mesh (:func:`~voot.envs.mesh_grasp.mesh_side_grasp`):
+        the side grasp's parameters with the tool point on the real surface, or None and
+        ``"grasp misses the object"`` where the ray passes beside it (a jug's handle side,
+        a bottle's neck)."""
+        return mesh_side_grasp(
+            self._grasp_sets[obj],
+            pose,
+            base_heading,
+            params[0],
+            params[1],
+            params[2],
+            self.config.grasp_standoff,
+        )
 
     def _scene_model(self) -> str | mujoco.MjModel:
         """A copy of the generated kitchen's compiled model (the env may change its

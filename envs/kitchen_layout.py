@@ -43,12 +43,16 @@ path shape         straight          round an island   through a passage
 passage width      -                 -                 [1.15, 1.4]
 obstacles on path  2-3               3-5               4-5
 clutter off path   0-1               2-3               3-4
-box footprint      [0.30, 0.42]      [0.30, 0.48]      [0.34, 0.52]
-chairs             no                1 in 3 objects    1 in 3 objects
+object kinds       box, crate,       box, crate,       all of
+                   bucket            bucket, bin, jug  the catalogue
+object sizes       small, medium     small to large    medium, large
 =================  ================  ================  ================
 
-Box heights are drawn in [0.45, 0.85] m at every level (the arm reaches grasps at half to
-full height); chairs are v1's (0.46 m square, 0.9 m tall back).
+The objects are meshes (:mod:`voot.envs.meshes`): each is drawn uniformly from the
+entries of :data:`CATALOGUE` of the level's kinds and size classes, floor clutter sized
+for a mobile manipulator (footprints 0.22-0.52 m, heights 0.4-0.75 m: the arm reaches
+grasps at half to full height). A fixed catalogue, not sizes drawn per layout, so the
+meshes are built once and then read from the mesh cache by every layout.
 """
 
 from __future__ import annotations
@@ -65,9 +69,12 @@ from voot.envs.base_planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.robot import ROBOT_RADIUS
 
 __all__ = [
+    "CATALOGUE",
     "DIFFICULTIES",
     "GENERATOR_VERSION",
+    "SIZE_CLASSES",
     "Block",
+    "CatalogueItem",
     "DifficultyLevel",
     "KitchenLayout",
     "LayoutError",
@@ -87,8 +94,49 @@ WALL_T = 0.1
 WALL_HEIGHT = 1.1
 #: Distance of the goal base pose from the front of the north counter (v1: 0.85 m).
 GOAL_SETBACK = 0.85
-#: Chairs' footprint side (``voot.models.generate_scenes``' chair).
-CHAIR_SIDE = 0.46
+
+
+@dataclass(frozen=True)
+class CatalogueItem:
+    """An object a generated kitchen can hold: a mesh shape and its size class.
+
+    Attributes:
+        kind: The shape's kind (one of :data:`voot.envs.meshes.SHAPE_KINDS`).
+        size: Its bounding box ``(x, y, z)`` (metres).
+        variant: The shape's variant (:class:`voot.envs.meshes.ShapeSpec`).
+        size_class: ``"small"``, ``"medium"`` or ``"large"`` (:data:`SIZE_CLASSES`).
+    """
+
+    kind: str
+    size: tuple[float, float, float]
+    variant: int
+    size_class: str
+
+
+#: The size classes of :data:`CATALOGUE`, smallest first.
+SIZE_CLASSES = ("small", "medium", "large")
+#: The objects of generated kitchens (mesh shapes; the levels draw from parts of it).
+CATALOGUE: tuple[CatalogueItem, ...] = tuple(
+    CatalogueItem(kind, size, variant, size_class)
+    for kind, size, variant, size_class in (
+        ("box", (0.30, 0.30, 0.45), 0, "small"),
+        ("box", (0.34, 0.28, 0.55), 1, "small"),
+        ("crate", (0.36, 0.30, 0.40), 0, "small"),
+        ("bucket", (0.30, 0.30, 0.40), 0, "small"),
+        ("jug", (0.24, 0.22, 0.45), 0, "small"),
+        ("bin", (0.32, 0.28, 0.50), 0, "small"),
+        ("box", (0.40, 0.36, 0.60), 2, "medium"),
+        ("crate", (0.44, 0.34, 0.45), 1, "medium"),
+        ("bin", (0.38, 0.32, 0.60), 1, "medium"),
+        ("bucket", (0.36, 0.36, 0.45), 1, "medium"),
+        ("jug", (0.28, 0.26, 0.55), 1, "medium"),
+        ("bottle", (0.26, 0.26, 0.60), 0, "medium"),
+        ("box", (0.48, 0.42, 0.75), 3, "large"),
+        ("crate", (0.52, 0.40, 0.50), 2, "large"),
+        ("bin", (0.46, 0.38, 0.70), 2, "large"),
+        ("bucket", (0.42, 0.42, 0.50), 2, "large"),
+    )
+)
 #: Gap kept between objects, and between an object and the furniture (metres).
 OBJECT_GAP = 0.08
 #: How far beyond the peninsula's sides the passage zone reaches (metres): no object
@@ -118,9 +166,8 @@ class DifficultyLevel:
         passage: Range of the passage's width beside the peninsula (``"passage"`` only).
         on_path: Inclusive range of the number of obstacles on the path.
         clutter: Inclusive range of the number of objects off the path.
-        box_side: Range of a box's footprint sides (metres).
-        box_height: Range of a box's height (metres).
-        chair_share: Probability that an object is a chair instead of a box.
+        kinds: The object kinds drawn (of :data:`CATALOGUE`).
+        sizes: The size classes drawn (of :data:`SIZE_CLASSES`).
     """
 
     name: str
@@ -131,12 +178,11 @@ class DifficultyLevel:
     passage: tuple[float, float]
     on_path: tuple[int, int]
     clutter: tuple[int, int]
-    box_side: tuple[float, float]
-    box_height: tuple[float, float]
-    chair_share: float
+    kinds: tuple[str, ...]
+    sizes: tuple[str, ...]
 
     def __post_init__(self) -> None:
-        for name in ("kitchen_width", "depth", "rooms_width", "box_side", "box_height"):
+        for name in ("kitchen_width", "depth", "rooms_width"):
             V.range_pair(f"DifficultyLevel.{name}", getattr(self, name))
         if self.shape == "passage":
             V.range_pair("DifficultyLevel.passage", self.passage)
@@ -147,7 +193,20 @@ class DifficultyLevel:
             V.integer(hi, f"DifficultyLevel.{name}[1]", lo)
         if self.on_path[0] < 1:
             raise ValueError(f"DifficultyLevel.on_path must start at >= 1, got {self.on_path}")
-        V.probability(self.chair_share, "DifficultyLevel.chair_share")
+        kinds = {item.kind for item in CATALOGUE}
+        for kind in self.kinds:
+            V.one_of(kind, "DifficultyLevel.kinds", sorted(kinds))
+        for size in self.sizes:
+            V.one_of(size, "DifficultyLevel.sizes", SIZE_CLASSES)
+        if not self.items():
+            raise ValueError(
+                f"DifficultyLevel {self.name!r}: no catalogue object is of kinds {self.kinds}"
+                f" and sizes {self.sizes}"
+            )
+
+    def items(self) -> tuple[CatalogueItem, ...]:
+        """The catalogue entries this level draws from."""
+        return tuple(i for i in CATALOGUE if i.kind in self.kinds and i.size_class in self.sizes)
 
 
 #: The path's shapes a level can ask for.
@@ -164,9 +223,8 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             passage=(0.0, 0.0),
             on_path=(2, 3),
             clutter=(0, 1),
-            box_side=(0.30, 0.42),
-            box_height=(0.45, 0.85),
-            chair_share=0.0,
+            kinds=("box", "crate", "bucket"),
+            sizes=("small", "medium"),
         ),
         "medium": DifficultyLevel(
             name="medium",
@@ -177,9 +235,8 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             passage=(0.0, 0.0),
             on_path=(3, 5),
             clutter=(2, 3),
-            box_side=(0.30, 0.48),
-            box_height=(0.45, 0.85),
-            chair_share=1.0 / 3.0,
+            kinds=("box", "crate", "bucket", "bin", "jug"),
+            sizes=SIZE_CLASSES,
         ),
         "hard": DifficultyLevel(
             name="hard",
@@ -190,9 +247,8 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             passage=(1.15, 1.4),
             on_path=(4, 5),
             clutter=(3, 4),
-            box_side=(0.34, 0.52),
-            box_height=(0.45, 0.85),
-            chair_share=1.0 / 3.0,
+            kinds=("box", "crate", "bucket", "bin", "jug", "bottle"),
+            sizes=("medium", "large"),
         ),
     }
 )
@@ -229,8 +285,9 @@ class ObjectSpec:
 
     Attributes:
         name: Body name (``obj_*``).
-        kind: ``"box"`` or ``"chair"``.
+        kind: Its mesh kind (:data:`voot.envs.meshes.SHAPE_KINDS`).
         size: ``(x, y, z)`` extents of its bounding box (metres).
+        variant: Its mesh variant.
         pose: ``(x, y, yaw)`` of its body on the floor.
         on_path: Drawn on the fixed path (an obstacle) or off it (clutter).
     """
@@ -238,6 +295,7 @@ class ObjectSpec:
     name: str
     kind: str
     size: tuple[float, float, float]
+    variant: int
     pose: tuple[float, float, float]
     on_path: bool
 
@@ -506,13 +564,10 @@ def _rect_distance(x: float, y: float, rect: tuple[float, float, float, float]) 
     return math.hypot(dx, dy)
 
 
-def _draw_size(
-    rng: np.random.Generator, level: DifficultyLevel
-) -> tuple[str, tuple[float, float, float]]:
-    if rng.uniform() < level.chair_share:
-        return "chair", (CHAIR_SIDE, CHAIR_SIDE, 0.9)
-    sx, sy = (_r(_uniform(rng, level.box_side)) for _ in range(2))
-    return "box", (sx, sy, _r(_uniform(rng, level.box_height)))
+def _draw_item(rng: np.random.Generator, level: DifficultyLevel) -> CatalogueItem:
+    """One of the level's catalogue entries, uniformly."""
+    items = level.items()
+    return items[int(rng.integers(len(items)))]
 
 
 def _fits(
@@ -560,8 +615,8 @@ def _draw_objects(
     if s_hi <= s_lo:
         raise LayoutError(f"the fixed path is too short ({length:.2f} m) for obstacles")
     for i in range(n_on):
-        kind, size = _draw_size(rng, level)
-        radius = 0.5 * math.hypot(size[0], size[1])
+        item = _draw_item(rng, level)
+        radius = 0.5 * math.hypot(item.size[0], item.size[1])
         for _ in range(200):
             s = float(rng.uniform(s_lo, s_hi))
             k = int(np.clip(np.searchsorted(cum, s) - 1, 0, len(seg) - 1))
@@ -574,13 +629,15 @@ def _draw_objects(
             if math.hypot(x - start[0], y - start[1]) < free_start + radius:
                 continue
             if _fits(x, y, radius, placed, blocks, kitchen):
-                placed.append(ObjectSpec(f"obj_{kind}{i}", kind, size, (_r(x), _r(y), yaw), True))
+                name = f"obj_{item.kind}{i}"
+                pose = (_r(x), _r(y), yaw)
+                placed.append(ObjectSpec(name, item.kind, item.size, item.variant, pose, True))
                 break
         else:
             raise LayoutError(f"no room for obstacle {i} on the path")
     for j in range(n_clutter):
-        kind, size = _draw_size(rng, level)
-        radius = 0.5 * math.hypot(size[0], size[1])
+        item = _draw_item(rng, level)
+        radius = 0.5 * math.hypot(item.size[0], item.size[1])
         x0, x1, y0, y1 = kitchen
         for _ in range(200):
             x, y = float(rng.uniform(x0, x1)), float(rng.uniform(y0, y1))
@@ -590,8 +647,9 @@ def _draw_objects(
             if math.hypot(x - start[0], y - start[1]) < free_start + radius:
                 continue
             if _fits(x, y, radius, placed, blocks, kitchen):
-                name = f"obj_{kind}{n_on + j}"
-                placed.append(ObjectSpec(name, kind, size, (_r(x), _r(y), yaw), False))
+                name = f"obj_{item.kind}{n_on + j}"
+                pose = (_r(x), _r(y), yaw)
+                placed.append(ObjectSpec(name, item.kind, item.size, item.variant, pose, False))
                 break
         else:
             raise LayoutError(f"no room for clutter object {j}")

@@ -3,35 +3,31 @@ to MJCF, and the MJCF compiled.
 
 :func:`kitchen_layout_xml` writes the layout with the v1 scene's building blocks
 (:mod:`voot.models.generate_scenes`: its header with materials and collision classes,
-walls, blocks, movable boxes and chairs, cameras), so a generated kitchen looks and
-collides like the paper's one: static blocks are class ``scene``, the movable objects
-bodies ``obj_*`` with a free joint of class ``object``, the sink, stove and markers
-decoration. :func:`compile_kitchen` compiles the string with ``robot.xml`` (which the
-header includes) from ``voot.models`` in MuJoCo's in-memory assets: no file is written.
+walls and blocks, cameras), so a generated kitchen collides like the paper's one: static
+blocks are class ``scene``, the sink and the markers decoration. The movable objects are
+trimesh meshes (:mod:`voot.envs.meshes`): :func:`shape_spec` names each object's shape,
+:func:`~voot.envs.meshes.object_body_xml` writes its body (a free joint, convex collision
+parts of class ``object``, a visual mesh, the inertia from the mesh) and the mesh
+``<asset>`` entries join the header's. :func:`compile_kitchen` compiles the string with
+``robot.xml`` and the meshes' STL bytes as MuJoCo's in-memory assets
+(:func:`~voot.envs.meshes.compile_scene`; the meshes come from the mesh cache): no file
+is written.
 
-The MJCF is a pure function of the layout (numbers written with 4 decimals), so the same
-layout gives the same bytes in every process: :func:`scene_digest` is its SHA-256.
+The MJCF is a pure function of the layout, so the same layout gives the same bytes in
+every process: :func:`scene_digest` is its SHA-256.
 """
 
 from __future__ import annotations
 
 import hashlib
-from functools import cache
-from importlib import resources
 
 import mujoco
 
 from voot.envs.kitchen_layout import Block, KitchenLayout, ObjectSpec
-from voot.models.generate_scenes import (
-    Rect,
-    _box_object,
-    _cameras,
-    _chair_object,
-    _header,
-    _v,
-)
+from voot.envs.meshes import ShapeSpec, compile_scene, object_body_xml, shape_assets_xml
+from voot.models.generate_scenes import Rect, _cameras, _header, _v
 
-__all__ = ["compile_kitchen", "kitchen_layout_xml", "robot_xml", "scene_digest"]
+__all__ = ["compile_kitchen", "kitchen_layout_xml", "scene_digest", "shape_spec"]
 
 #: The scene material of each block kind.
 BLOCK_MATERIALS = {
@@ -41,6 +37,32 @@ BLOCK_MATERIALS = {
     "island": "wood",
     "furniture": "bed",
 }
+#: Each mesh kind's material (the v1 header's ``cardboard`` or :data:`OBJECT_MATERIALS`).
+KIND_MATERIALS = {
+    "box": "cardboard",
+    "crate": "crate",
+    "tray": "crate",
+    "bin": "bin",
+    "bucket": "bucket",
+    "jug": "jug",
+    "bottle": "jug",
+    "bowl": "ceramic",
+    "plate": "ceramic",
+    "mug": "ceramic",
+}
+#: The objects' materials beside the v1 header's.
+OBJECT_MATERIALS = (
+    '    <material name="crate" rgba="0.25 0.45 0.75 1"/>\n'
+    '    <material name="bin" rgba="0.35 0.62 0.40 1"/>\n'
+    '    <material name="bucket" rgba="0.85 0.55 0.15 1"/>\n'
+    '    <material name="jug" rgba="0.75 0.85 0.92 1"/>\n'
+    '    <material name="ceramic" rgba="0.92 0.90 0.85 1"/>\n'
+)
+
+
+def shape_spec(obj: ObjectSpec) -> ShapeSpec:
+    """The mesh shape of a layout's object."""
+    return ShapeSpec(obj.kind, obj.size, obj.variant)
 
 
 def _block_geom(block: Block) -> str:
@@ -51,22 +73,19 @@ def _block_geom(block: Block) -> str:
 
 def _object_body(obj: ObjectSpec) -> str:
     x, y, yaw = obj.pose
-    if obj.kind == "chair":
-        return _chair_object(obj.name, x, y, yaw)
-    material = "cardboard" if obj.on_path else "clutter"
-    return _box_object(obj.name, x, y, yaw, obj.size, material)
+    return object_body_xml(obj.name, shape_spec(obj), (x, y, 0.0, yaw), KIND_MATERIALS[obj.kind])
 
 
 def kitchen_layout_xml(layout: KitchenLayout) -> str:
-    """The layout as an MJCF string (includes ``robot.xml``)."""
+    """The layout as an MJCF string (includes ``robot.xml`` and the objects' meshes)."""
     x0, x1, y0, y1 = layout.house
     cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
     extent = max(x1 - x0, y1 - y0)
-    out = [
-        _header(
-            f"voot_kitchen_{layout.difficulty}_{layout.layout_seed}", extent + 4.0, (cx, cy, 0.5)
-        )
-    ]
+    header = _header(
+        f"voot_kitchen_{layout.difficulty}_{layout.layout_seed}", extent + 4.0, (cx, cy, 0.5)
+    )
+    assets = OBJECT_MATERIALS + shape_assets_xml(shape_spec(o) for o in layout.objects)
+    out = [header.replace("  </asset>\n", assets + "  </asset>\n", 1)]
     out.append("  <worldbody>\n")
     out.append(
         f'    <light name="sun" pos="{_v(cx, cy, 9)}" dir="0.3 0.4 -1" directional="true"'
@@ -116,15 +135,9 @@ def kitchen_layout_xml(layout: KitchenLayout) -> str:
     return "".join(out)
 
 
-@cache
-def robot_xml() -> bytes:
-    """The robot's MJCF (``voot.models/robot.xml``), which every scene includes."""
-    return resources.files("voot.models").joinpath("robot.xml").read_bytes()
-
-
-def compile_kitchen(xml: str) -> mujoco.MjModel:
-    """Compile a generated kitchen's MJCF (``robot.xml`` given as an in-memory asset)."""
-    return mujoco.MjModel.from_xml_string(xml, assets={"robot.xml": robot_xml()})
+def compile_kitchen(xml: str, layout: KitchenLayout) -> mujoco.MjModel:
+    """Compile ``layout``'s MJCF ``xml`` (``robot.xml`` and the meshes as in-memory assets)."""
+    return compile_scene(xml, [shape_spec(o) for o in layout.objects])
 
 
 def scene_digest(xml: str) -> str:

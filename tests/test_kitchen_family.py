@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import itertools
 import pickle
 import subprocess
 import sys
@@ -15,6 +16,8 @@ from gymnasium.utils.env_checker import check_env, data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs import kitchen_family as family
+from voot.envs.action_units import normalize
+from voot.envs.kitchen import KitchenClearingEnv
 from voot.envs.kitchen_family import (
     GeneratedKitchenEnv,
     clear_kitchen_cache,
@@ -98,7 +101,7 @@ def test_placement_candidates_avoid_the_path_and_the_forbidden_rooms() -> None:
     held = env.objects[env.task.held]
     here = env.object_pose(env.task.held)
     dists = [np.hypot(x - here[0], y - here[1]) for x, y, _ in cands]
-    assert dists == sorted(dists)
+    assert all(b >= a - 1e-12 for a, b in itertools.pairwise(dists))  # nearest first
     clearing = env._clearing
     assert clearing is not None
     boxes = [object_footprint(held, x, y, np.radians(t)) for x, y, t in cands[:200]]
@@ -157,3 +160,38 @@ def test_the_same_seed_steps_the_same_in_another_process() -> None:
     digest, witness, steps = pickle.loads(out.stdout)
     assert digest == env.kitchen.digest and witness == env.kitchen.witness
     assert data_equivalence(local, steps, exact=True)
+
+
+def test_picks_grasp_the_mesh_and_a_miss_is_an_infeasible_pick() -> None:
+    # the first obstacle of hard seed 2 is a jug: grasps beside its neck miss
+    env = GeneratedKitchenEnv(layout_seed=2, difficulty="hard")
+    env.reset()
+    obj = env.task.on_path[0]
+    assert env.layout.objects[obj].kind in ("jug", "bottle")
+    pose = env.object_pose(obj)
+    grasps = [
+        env._grasp_pose(obj, pose, 0.0, np.array([2.0, hf, df]))
+        for hf in np.linspace(0.5, 1.0, 6)
+        for df in np.linspace(0.1, 0.9, 5)
+    ]
+    missed = [why for g, why in grasps if g is None]
+    assert missed and set(missed) == {"grasp misses the object"}
+    assert len(missed) < len(grasps)
+    # the witness's first pick with the grasp moved to the neck's side, top height
+    a = env.witness[0].copy()
+    lo_hi = env.config.pick_ranges
+    a[1] = 1.0  # height fraction 1
+    a[2] = normalize([0.1], [lo_hi[2]])[0]  # depth fraction 0.1
+    before = env.get_state()
+    _, reward, _, _, info = env.step(a)
+    assert not info["feasible"] and info["reason"] == "grasp misses the object"
+    assert reward == env.config.infeasible_reward
+    assert np.array_equal(env.get_state().physics, before.physics)
+    # on a box the mesh grasp is the side grasp (to the STL's float32 rounding)
+    box = next(i for i, o in enumerate(env.layout.objects) if o.kind == "box")
+    params = np.array([2.0, 0.7, 0.4])
+    mesh, _ = env._grasp_pose(box, env.object_pose(box), 1.0, params)
+    side, _ = KitchenClearingEnv._grasp_pose(env, box, env.object_pose(box), 1.0, params)
+    assert mesh is not None and side is not None
+    assert np.allclose(mesh.position, side.position, rtol=0.0, atol=1e-6)
+    assert np.array_equal(mesh.rotation, side.rotation)

@@ -10,9 +10,10 @@ import pytest
 
 from voot.envs.base_planner import Box2D
 from voot.envs.kitchen_layout import (
-    CHAIR_SIDE,
+    CATALOGUE,
     DIFFICULTIES,
     GENERATOR_VERSION,
+    SIZE_CLASSES,
     DifficultyLevel,
     KitchenLayout,
     LayoutError,
@@ -71,12 +72,10 @@ def test_each_level_draws_within_its_ranges(level: str) -> None:
         off = [o for o in layout.objects if not o.on_path]
         assert spec.on_path[0] <= len(on) <= spec.on_path[1]
         assert spec.clutter[0] <= len(off) <= spec.clutter[1]
+        items = {(i.kind, i.size, i.variant) for i in spec.items()}
         for o in layout.objects:
-            if o.kind == "box":
-                assert all(spec.box_side[0] <= s <= spec.box_side[1] for s in o.size[:2])
-                assert spec.box_height[0] <= o.size[2] <= spec.box_height[1]
-            else:
-                assert spec.chair_share > 0 and o.size[:2] == (CHAIR_SIDE, CHAIR_SIDE)
+            assert (o.kind, o.size, o.variant) in items
+            assert o.kind in spec.kinds
 
 
 @pytest.mark.parametrize("level", LEVELS)
@@ -98,6 +97,21 @@ def test_objects_stand_apart_in_the_kitchen_on_or_off_the_path(level: str) -> No
         ]
         hit = set(obstacles_on_path(path, ROBOT_RADIUS, boxes))
         assert hit == {o.name for o in objs if o.on_path}
+
+
+def test_the_catalogue_is_mesh_shapes_and_each_level_draws_from_part_of_it() -> None:
+    from voot.envs.meshes import SHAPE_KINDS
+
+    assert all(i.kind in SHAPE_KINDS and i.size_class in SIZE_CLASSES for i in CATALOGUE)
+    assert len({(i.kind, i.size, i.variant) for i in CATALOGUE}) == len(CATALOGUE)
+    easy, medium, hard = (set(DIFFICULTIES[k].items()) for k in ("easy", "medium", "hard"))
+    assert easy <= medium and len(hard) > len(easy)
+    # the levels grow: the mean footprint of what they draw
+    area = [np.mean([i.size[0] * i.size[1] for i in DIFFICULTIES[k].items()]) for k in DIFFICULTIES]
+    assert area == sorted(area)
+    # a seed's objects differ in kind across seeds (not one shape everywhere)
+    kinds = {o.kind for s in range(6) for o in first_layout(s, "hard").objects}
+    assert len(kinds) >= 4
 
 
 def test_the_goal_faces_the_sink_on_the_north_counter() -> None:
@@ -123,5 +137,9 @@ def test_bad_arguments_name_the_valid_choices() -> None:
         generate_kitchen_layout(0, "easy", 1.5)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="shape"):
         replace(DIFFICULTIES["easy"], shape="spiral")
+    with pytest.raises(ValueError, match="kinds"):
+        replace(DIFFICULTIES["easy"], kinds=("chair",))
+    with pytest.raises(ValueError, match="no catalogue object"):
+        replace(DIFFICULTIES["easy"], kinds=("jug",), sizes=("large",))
     with pytest.raises(ValueError, match="on_path"):
         DifficultyLevel(**{**DIFFICULTIES["easy"].__dict__, "on_path": (0, 2)})

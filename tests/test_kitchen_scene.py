@@ -37,7 +37,7 @@ def test_the_xml_is_a_function_of_the_layout_also_in_another_process(layout) -> 
 
 
 def test_the_compiled_scene_holds_the_layouts_blocks_and_objects(layout) -> None:  # type: ignore[no-untyped-def]
-    model = compile_kitchen(kitchen_layout_xml(layout))
+    model = compile_kitchen(kitchen_layout_xml(layout), layout)
     assert isinstance(model, mujoco.MjModel)
     footprints = {b.name: b for b in static_footprints(model)}
     for block in layout.blocks:
@@ -55,9 +55,14 @@ def test_the_compiled_scene_holds_the_layouts_blocks_and_objects(layout) -> None
         x, y, z, yaw = object_pose(data, info)
         assert (x, y, z) == pytest.approx((spec.pose[0], spec.pose[1], 0.0), abs=1e-4)
         assert np.cos(yaw - spec.pose[2]) == pytest.approx(1.0)
-        if spec.kind == "box":
-            assert 2 * info.half == pytest.approx(spec.size[:2], abs=1e-4)
-            assert info.height == pytest.approx(spec.size[2], abs=1e-4)
+        # the mesh spans its catalogue bounding box
+        assert 2 * info.half == pytest.approx(spec.size[:2], abs=2e-3)
+        assert info.height == pytest.approx(spec.size[2], abs=2e-3)
+        # collision parts (class object, mesh) and a visual mesh (decor)
+        geoms = [model.geom(g) for g in info.geoms]
+        assert all(int(g.type[0]) == mujoco.mjtGeom.mjGEOM_MESH for g in geoms)
+        assert sum(int(g.contype[0]) == 4 for g in geoms) >= 1
+        assert sum(int(g.contype[0]) == 0 for g in geoms) == 1
     # the robot (robot.xml, an in-memory asset) and both cameras are there
     assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "base_x") >= 0
     for cam in ("top_down", "perspective"):
