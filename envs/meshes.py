@@ -26,7 +26,7 @@ geoms of class ``object``, a visual geom of class ``decor``, the inertial),
 :func:`compile_scene` compiles a scene that includes ``robot.xml`` with them.
 
 Cost: building a shape (sweep, hulls, mass properties, STL bytes and the grasp rays of
-:mod:`voot.envs.mesh_grasp`) takes milliseconds; each spec's result is cached on disk
+:mod:`voot.envs.mesh_grasp`) takes 14-45 ms of CPU; each spec's result is cached on disk
 (:func:`cache_dir`: ``$VOOT_CACHE`` or ``~/.cache/voot``, under ``meshes/``, keyed by a
 hash of the spec and :data:`GENERATOR_VERSION`, written atomically) and in the process.
 The measured figures are in docs/meshes.md (``voot-bench mesh-speed``).
@@ -109,7 +109,7 @@ DENSITY: dict[str, float] = {
 
 #: Version of the shape generator: part of every cache key, so a change of the shapes
 #: (bump it) never reads an old cache entry.
-GENERATOR_VERSION = 2
+GENERATOR_VERSION = 3
 
 #: Vertices per ring of the round kinds (a multiple of 4: the rings reach the bounding box
 #: exactly on the x and y axes).
@@ -498,16 +498,20 @@ def _profile_bottle(spec: ShapeSpec) -> _Build:
 
 
 def _profile_jug(spec: ShapeSpec) -> _Build:
-    """A wide bottle with a D handle on the +x side of its body."""
+    """A wide bottle with a D handle on the +x side of its body.
+
+    The handle spans ``z_mid - reach .. z_mid + reach`` between 8 % of the height and the
+    shoulder (at least 55 % of it), so its reach is at most 23.5 % of the height: a low
+    jug gets a small handle rather than one that reaches below its base.
+    """
     sx, sy, sz = spec.size
     rng = _rng(spec)
-    reach = min(_pick(rng, 0.2, 0.28) * sx, 0.3 * sz)
+    reach = min(_pick(rng, 0.2, 0.28) * sx, 0.235 * sz)
     rx, ry = (sx - reach) / 2, sy / 2
     outer, bands = _bottle_outer(spec, rng, rx, ry)
     body = _solid(_unit_ring("round"), outer, bands)
     tube = min(0.3 * reach, 0.06 * sz, 0.01)
-    a = reach - tube
-    z_mid = min(0.45 * sz, bands[1] - a - tube)
+    z_mid = max(min(0.45 * sz, bands[1] - reach), 0.08 * sz + reach)
     handle = _handle(rx - 2 * tube, rx - 2 * tube, rx, z_mid, reach, tube)
     return _Build(body.shells + handle.shells, body.parts + handle.parts)
 

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
 import pickle
+import subprocess
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import pytest
+import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -194,10 +199,69 @@ def test_grasp_sets_pickle_and_are_cached_beside_the_meshes(cache: Path) -> None
     assert grasp_set(BOTTLE) is disk  # then kept in the process
 
 
+@pytest.mark.parametrize("kind", M.SHAPE_KINDS)
+def test_the_rays_hit_what_trimesh_s_ray_mesh_intersector_hits(kind: str) -> None:
+    # the reference: trimesh's own ray casting (r-tree broad phase), nearest hit per ray
+    sizes = {"plate": (0.26, 0.26, 0.025), "tray": (0.4, 0.3, 0.04), "mug": (0.12, 0.085, 0.1)}
+    for variant in (0, 2):
+        mesh = build_shape(ShapeSpec(kind, sizes.get(kind, (0.2, 0.14, 0.25)), variant)).visual
+        depth, normal = cast_grasp_rays(mesh)
+        org, dirv, _ = MG._grid(mesh, ROWS, COLS)
+        tri, ray, loc = trimesh.ray.ray_triangle.RayMeshIntersector(mesh).intersects_id(
+            org, dirv, multiple_hits=True, return_locations=True
+        )
+        want = np.full(len(org), np.nan)
+        want_n = np.full((len(org), 3), np.nan)
+        dist = np.einsum("ij,ij->i", loc - org[ray], dirv[ray])
+        for r in np.unique(ray):
+            mine = np.flatnonzero(ray == r)
+            best = mine[np.lexsort((tri[mine], dist[mine]))[0]]
+            want[r] = np.round(dist[best] - MG._MARGIN, 9) + 0.0
+            want_n[r] = mesh.face_normals[tri[best]]
+        np.testing.assert_array_equal(depth.reshape(-1), want)
+        np.testing.assert_array_equal(normal.reshape(-1, 3), want_n)
+
+
+_NO_RTREE = """
+import sys
+sys.modules["rtree"] = None  # importing it fails: the library must not need it
+from voot.envs.mesh_grasp import grasp_set, mesh_side_grasp
+from voot.envs.meshes import ShapeSpec, compile_scene, mesh_assets
+g = grasp_set(ShapeSpec("mug", (0.12, 0.085, 0.1), 1))
+mesh_assets([ShapeSpec("bowl", (0.16, 0.16, 0.07))])
+print(round(g.hit_fraction, 6))
+"""
+
+
+_TABLE_DIGEST = """
+import hashlib
+from voot.envs.mesh_grasp import grasp_set
+from voot.envs.meshes import ShapeSpec
+g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+print(hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest())
+"""
+
+
+def test_grasp_tables_are_the_same_in_another_process(tmp_path: Path) -> None:
+    env = {**os.environ, "VOOT_CACHE": str(tmp_path / "other")}
+    out = subprocess.run(
+        [sys.executable, "-c", _TABLE_DIGEST], env=env, capture_output=True, text=True, check=True
+    )
+    g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+    here = hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest()
+    assert out.stdout.strip().splitlines()[-1] == here
+
+
+def test_the_library_needs_no_rtree(tmp_path: Path) -> None:
+    env = {**os.environ, "VOOT_CACHE": str(tmp_path / "cache")}
+    out = subprocess.run(
+        [sys.executable, "-c", _NO_RTREE], env=env, capture_output=True, text=True, check=True
+    )
+    assert 0.5 < float(out.stdout.strip().splitlines()[-1]) < 1.0
+
+
 def test_cast_grasp_rays_takes_the_nearest_hit() -> None:
     # two boxes one behind the other along x: the +x rays stop at the nearer one
-    import trimesh
-
     a = trimesh.creation.box((0.1, 0.1, 0.1))
     b = trimesh.creation.box((0.1, 0.1, 0.1))
     b.apply_translation((0.2, 0.0, 0.0))
