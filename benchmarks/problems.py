@@ -28,7 +28,9 @@ for progressive widening); VOO samples its best cell in ``centered_uniform`` mod
 chains and ``uniform`` mode on the robot domains. The v1 domains add the authors'
 tree-side rules (:data:`V1_TREE_RULES`: 50 retries for every planner, commitment
 counting root actions with reward >= 0 at thresholds 10 / 1, the return to the
-original root after a goal, VOO's per-operator distance).
+original root after a goal, VOO's per-operator distance). ``voot/KitchenClearing-v2``
+(alias ``kitchen_v2``: kitchens generated from ``layout_seed`` and ``difficulty``, env
+keywords) plays the v1 rules and gets the v1 kitchen's settings.
 """
 
 from __future__ import annotations
@@ -54,6 +56,7 @@ ALIASES: Mapping[str, str] = {
     "conveyor": "voot/ConveyorPacking-v0",
     "kitchen_v1": "voot/KitchenClearing-v1",
     "conveyor_v1": "voot/ConveyorPacking-v1",
+    "kitchen_v2": "voot/KitchenClearing-v2",
 }
 #: The robot domains under the authors' two-stage protocol, and their tree-side rules
 #: (reference page, "What the original code checks inside the retries"): commitment
@@ -67,9 +70,12 @@ V1_TREE_RULES: Mapping[str, Any] = {
 #: Root commitment thresholds of the v1 domains (kitchen 10, conveyor 1).
 V1_COMMITMENT: Mapping[str, int] = {
     "voot/KitchenClearing-v1": 10,
+    "voot/KitchenClearing-v2": 10,
     "voot/ConveyorPacking-v1": 1,
 }
-KITCHEN_IDS = frozenset({"voot/KitchenClearing-v0", "voot/KitchenClearing-v1"})
+KITCHEN_IDS = frozenset(
+    {"voot/KitchenClearing-v0", "voot/KitchenClearing-v1", "voot/KitchenClearing-v2"}
+)
 CONVEYOR_IDS = frozenset({"voot/ConveyorPacking-v0", "voot/ConveyorPacking-v1"})
 #: The chains' gymnasium ids -> function name (their ``dim`` keyword picks the settings).
 CHAIN_ENV_IDS: Mapping[str, str] = {
@@ -107,6 +113,7 @@ PAPER_SETUPS: Mapping[str, PaperSetup] = {
     "voot/KitchenClearing-v0": PaperSetup(2_000, 20, ROBOT_PLANNERS),
     "voot/ConveyorPacking-v0": PaperSetup(3_000, 50, ROBOT_PLANNERS),
     "voot/KitchenClearing-v1": PaperSetup(2_000, 20, ROBOT_PLANNERS),
+    "voot/KitchenClearing-v2": PaperSetup(2_000, 20, ROBOT_PLANNERS),
     "voot/ConveyorPacking-v1": PaperSetup(3_000, 50, ROBOT_PLANNERS),
 }
 #: Budget of any other environment.

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot.envs.action_units import denormalize
 from voot.envs.env_state import StepTiming, pose_tuple
-from voot.envs.grasp import side_grasp
+from voot.envs.grasp import GraspPose, side_grasp
 from voot.envs.kitchen_poses import pick_base, place_base, relative_pose
 from voot.envs.kitchen_screen import KitchenScreen
 from voot.envs.robot import TUCK, base_footprint
@@ -48,6 +48,29 @@ class KitchenChecks(KitchenScreen):
         """The base pose ``(x, y, theta)`` of pick parameters for object ``obj``."""
         return pick_base(self.object_box(obj), params)
 
+    def _grasp_pose(
+        self, obj: int, pose: FloatArray, base_heading: float, params: FloatArray
+    ) -> tuple[GraspPose | None, str]:
+        """The gripper pose of a pick's grasp parameters, or None and why there is none.
+
+        The hook of the grasp step of :meth:`_pick_kinematics`: the kitchen's boxes and
+        chairs take the original's :func:`~voot.envs.grasp.side_grasp`, which always
+        gives a pose (''); a subclass whose objects are meshes returns its own grasp,
+        or None with a reason such as ``"grasp misses the object"`` (an infeasible pick).
+        ``pose`` is the object's ``(x, y, z, yaw)``, ``params`` the pick's parameters
+        (grasp angle, height and depth fractions first).
+        """
+        grasp = side_grasp(
+            self.objects[obj],
+            pose,
+            base_heading,
+            params[0],
+            params[1],
+            params[2],
+            self.config.grasp_standoff,
+        )
+        return grasp, ""
+
     def _pick_kinematics(
         self, params: FloatArray
     ) -> tuple[str, FloatArray, Any, tuple[float, float, float]]:
@@ -65,15 +88,10 @@ class KitchenChecks(KitchenScreen):
             self.last_timing = StepTiming()
             return "outside region: the robot leaves the house", base, None, no_rel
         pose = self.object_pose(obj)
-        grasp = side_grasp(
-            self.objects[obj],
-            pose,
-            float(base[2]),
-            params[0],
-            params[1],
-            params[2],
-            cfg.grasp_standoff,
-        )
+        grasp, miss = self._grasp_pose(obj, pose, float(base[2]), params)
+        if grasp is None:
+            self.last_timing = StepTiming()
+            return miss, base, None, no_rel
         t0 = time.perf_counter()
         base_report = self.collision.check(self.data.qpos, base, TUCK)  # cheap early exit
         col_time = time.perf_counter() - t0

@@ -113,3 +113,29 @@ def test_pick_base_pose_is_the_pose_of_the_objects_footprint(env: KitchenClearin
     for obj in (0, 3):
         base = env.pick_base_pose(obj, params)
         assert base.tobytes() == pick_base(env.object_box(obj), params).tobytes()
+
+
+class MissingGrasp(KitchenClearingEnv):
+    """A kitchen whose grasp hook misses every object (as a mesh grasp may)."""
+
+    def _grasp_pose(self, obj, pose, base_heading, params):  # type: ignore[no-untyped-def]
+        return None, "grasp misses the object"
+
+
+def test_a_grasp_hook_that_misses_makes_the_pick_infeasible() -> None:
+    env = KitchenClearingEnv(preset="v1")
+    env.reset(seed=0)
+    pick = kitchen_actions(env)[0]
+    # the v1 hook is the side grasp: the scripted pick is feasible
+    grasp, why = env._grasp_pose(0, env.object_pose(0), 0.0, np.array([2.0, 0.8, 0.5]))
+    assert grasp is not None and why == ""
+    assert env.precheck(pick)[0]
+    miss = MissingGrasp(preset="v1")
+    miss.reset(seed=0)
+    before = miss.get_state()
+    ok, info = miss.precheck(pick)
+    assert not ok and info["reason"] == "grasp misses the object"
+    _, reward, _, _, info = miss.step(pick)
+    assert not info["feasible"] and info["reason"] == "grasp misses the object"
+    assert reward == miss.config.infeasible_reward
+    assert np.array_equal(miss.get_state().physics, before.physics)

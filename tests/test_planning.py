@@ -13,6 +13,7 @@ import pytest
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor import ConveyorPackingEnv
 from voot.envs.kitchen import KitchenClearingEnv
+from voot.envs.kitchen_family import GeneratedKitchenEnv
 from voot.envs.planning import EnvProblem
 from voot.envs.scripted import conveyor_actions, kitchen_actions
 from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
@@ -153,9 +154,12 @@ def test_lean_check_matches_plain_step(env_id: str) -> None:
     env = gym.make(env_id).unwrapped
     p = EnvProblem(env, seed=0)
     kinematic = env.config.precheck == "kinematic"
-    scripted = (
-        kitchen_actions(env) if isinstance(env, KitchenClearingEnv) else conveyor_actions(env)
-    )
+    if isinstance(env, GeneratedKitchenEnv):  # a generated kitchen: its witness plan
+        scripted = env.witness
+    elif isinstance(env, KitchenClearingEnv):
+        scripted = kitchen_actions(env)
+    else:
+        scripted = conveyor_actions(env)
     rng = np.random.default_rng(3)
     for k, good in enumerate(scripted[:4]):
         dim = p.action_bounds().dim

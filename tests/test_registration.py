@@ -45,7 +45,9 @@ def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
     rng = np.random.default_rng(11)
     space = env.action_space
     lo, hi = space.low, space.high
-    if env_id.startswith("voot/KitchenClearing"):
+    if env_id == "voot/KitchenClearing-v2":  # a generated kitchen: its witness plan
+        script = u.witness[:4]
+    elif env_id.startswith("voot/KitchenClearing"):
         from voot.envs.scripted import kitchen_actions
 
         script = kitchen_actions(u)[:4]  # pick, place, pick: then an object is held

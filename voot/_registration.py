@@ -18,6 +18,9 @@ ENV_IDS: dict[str, str] = {
     # docs/environments.md): the entry points above at their "v1" preset.
     "voot/KitchenClearing-v1": "voot.envs.kitchen:KitchenClearingEnv",
     "voot/ConveyorPacking-v1": "voot.envs.conveyor:ConveyorPackingEnv",
+    # Kitchens generated from a seed under the v1 rules (docs/environments.md, "Generated
+    # kitchens"); keywords: layout_seed=int, difficulty="easy" | "medium" | "hard".
+    "voot/KitchenClearing-v2": "voot.envs.kitchen_family:GeneratedKitchenEnv",
 }
 #: id -> keyword arguments registered with it.
 ENV_KWARGS: dict[str, dict[str, str]] = {
