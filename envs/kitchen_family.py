@@ -19,7 +19,7 @@ accepted iff every obstacle gets cleared (and the env sees exactly the obstacles
 generator drew on the path); otherwise it is rejected and the next attempt of the seed
 is drawn (a derived random stream, so the outcome is deterministic), up to
 :data:`MAX_ATTEMPTS`. The feasible actions found are the **witness** plan:
-:attr:`GeneratedKitchenEnv.witness`, normalised actions that solve the episode from
+:meth:`GeneratedKitchenEnv.witness_actions`, normalised actions that solve the episode from
 ``reset()`` (a scripted solution, as :mod:`voot.envs.scripted` is for v1).
 
 Generated kitchens are kept per ``(layout_seed, difficulty, GENERATOR_VERSION)`` in
@@ -252,10 +252,10 @@ class GeneratedKitchenEnv(KitchenClearingEnv):
         """The generated floor plan."""
         return self.kitchen.layout
 
-    @property
-    def witness(self) -> list[FloatArray]:
+    def witness_actions(self) -> list[FloatArray]:
         """The constructive solver's plan: normalised actions that clear the path from
-        ``reset()`` (proof of solvability; a scripted solution for tests)."""
+        ``reset()`` (proof of solvability; a scripted solution for tests). Named as the
+        generated storage rooms' (:mod:`voot.bench.difficulty` reads either)."""
         return [np.array(a, dtype=np.float64) for a in self.kitchen.witness]
 
     def _grasp_pose(

@@ -49,7 +49,7 @@ def test_the_witness_clears_the_path_under_the_v1_rules(difficulty: str) -> None
     )
     assert cfg.precheck == "kinematic" and cfg.nonclearing_penalty_infeasible
     assert u.initial_obstacles == layout.n_on_path
-    steps = play(u, u.witness)
+    steps = play(u, u.witness_actions())
     assert all(s[4]["feasible"] for s in steps)
     assert steps[-1][2] and not any(s[2] for s in steps[:-1])  # terminates at the last
     assert len(steps) == 2 * layout.n_on_path
@@ -95,7 +95,7 @@ def test_the_solver_gives_up_when_the_horizon_is_too_short() -> None:
 def test_placement_candidates_avoid_the_path_and_the_forbidden_rooms() -> None:
     env = GeneratedKitchenEnv(layout_seed=2, difficulty="medium")
     env.reset()
-    env.step(env.witness[0])
+    env.step(env.witness_actions()[0])
     cands = placement_candidates(env)
     assert cands
     held = env.objects[env.task.held]
@@ -124,7 +124,7 @@ def test_gymnasium_checks_and_snapshots_are_bit_exact() -> None:
         warnings.simplefilter("error")
         check_env(env.unwrapped, skip_render_check=True)
     u = env.unwrapped
-    witness = u.witness
+    witness = u.witness_actions()
     u.reset(seed=0)
     u.step(witness[0])
     state = u.get_state()
@@ -139,7 +139,7 @@ def test_the_same_seed_steps_the_same_in_another_process() -> None:
     env = GeneratedKitchenEnv(layout_seed=3, difficulty="medium")
     rng = np.random.default_rng(0)
     probes = [rng.uniform(-1, 1, 6) for _ in range(3)]
-    local = play(env, [*env.witness[:3], *probes])
+    local = play(env, [*env.witness_actions()[:3], *probes])
     code = (
         "import pickle, sys\n"
         "import numpy as np\n"
@@ -147,7 +147,7 @@ def test_the_same_seed_steps_the_same_in_another_process() -> None:
         "probes = pickle.load(sys.stdin.buffer)\n"
         "env = GeneratedKitchenEnv(layout_seed=3, difficulty='medium')\n"
         "env.reset(seed=0)\n"
-        "steps = [env.step(a) for a in [*env.witness[:3], *probes]]\n"
+        "steps = [env.step(a) for a in [*env.witness_actions()[:3], *probes]]\n"
         "sys.stdout.buffer.write(pickle.dumps((env.kitchen.digest, env.kitchen.witness, steps)))\n"
     )
     out = subprocess.run(
@@ -178,7 +178,7 @@ def test_picks_grasp_the_mesh_and_a_miss_is_an_infeasible_pick() -> None:
     assert missed and set(missed) == {"grasp misses the object"}
     assert len(missed) < len(grasps)
     # the witness's first pick with the grasp moved to the neck's side, top height
-    a = env.witness[0].copy()
+    a = env.witness_actions()[0].copy()
     lo_hi = env.config.pick_ranges
     a[1] = 1.0  # height fraction 1
     a[2] = normalize([0.1], [lo_hi[2]])[0]  # depth fraction 0.1

@@ -155,7 +155,7 @@ def test_lean_check_matches_plain_step(env_id: str) -> None:
     p = EnvProblem(env, seed=0)
     kinematic = env.config.precheck == "kinematic"
     if isinstance(env, GeneratedKitchenEnv):  # a generated kitchen: its witness plan
-        scripted = env.witness
+        scripted = env.witness_actions()
     elif isinstance(env, KitchenClearingEnv):
         scripted = kitchen_actions(env)
     else:

@@ -46,7 +46,7 @@ def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
     space = env.action_space
     lo, hi = space.low, space.high
     if env_id == "voot/KitchenClearing-v2":  # a generated kitchen: its witness plan
-        script = u.witness[:4]
+        script = u.witness_actions()[:4]
     elif env_id.startswith("voot/KitchenClearing"):
         from voot.envs.scripted import kitchen_actions
 

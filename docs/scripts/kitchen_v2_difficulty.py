@@ -61,7 +61,7 @@ def main() -> None:
             obstacles.append(env.initial_obstacles)
             for node in ("pick", "place"):
                 if node == "place":
-                    env.step(env.witness[0])
+                    env.step(env.witness_actions()[0])
                 actions = rng.uniform(-1.0, 1.0, (args.samples, 6))
                 pre, ok = _shares(env, actions, reasons[node])
                 totals[node][0] += pre
