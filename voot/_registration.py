@@ -18,6 +18,9 @@ ENV_IDS: dict[str, str] = {
     # docs/environments.md): the entry points above at their "v1" preset.
     "voot/KitchenClearing-v1": "voot.envs.kitchen:KitchenClearingEnv",
     "voot/ConveyorPacking-v1": "voot.envs.conveyor:ConveyorPackingEnv",
+    # Generated storage rooms on the v1 rules (issue 24); keywords: layout_seed=int,
+    # difficulty="easy" | "medium" | "hard" (voot.envs.conveyor_family).
+    "voot/ConveyorPacking-v2": "voot.envs.conveyor_family:ConveyorFamilyEnv",
 }
 #: id -> keyword arguments registered with it.
 ENV_KWARGS: dict[str, dict[str, str]] = {
