@@ -53,7 +53,7 @@ def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
     record = json.loads((cache / "medium-4.json").read_text())
     assert record["attempt"] == cold.layout.attempt
     assert record["generator_version"] == GENERATOR_VERSION
-    assert (cache / "medium-4.mjb").is_file()
+    assert (cache / "medium-4.mjb.z").is_file()
     assert cache.name == f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
     SI.clear_memo()
     warm = SI.storage_instance(4, "medium")
@@ -94,6 +94,9 @@ def test_a_stale_cache_record_is_regenerated(cache: Path) -> None:
     (cache / "easy-2.json").write_text("not json")
     SI.clear_memo()
     assert SI.storage_instance(2, "easy").witness == cold.witness
+    (cache / "easy-2.mjb.z").write_bytes(b"not zlib")
+    SI.clear_memo()
+    assert SI.storage_instance(2, "easy").model.ngeom == cold.model.ngeom
 
 
 def test_without_the_disk_nothing_is_written(cache: Path) -> None:
