@@ -14,7 +14,8 @@ compiled :class:`mujoco.MjModel` into what the task layer needs:
 
 A footprint is the bounding rectangle, in the geom's (or object's) own horizontal frame,
 of the geom's axis-aligned bounding box (``model.geom_aabb``): exact for boxes standing
-upright, a tight rectangle around cylinders and capsules.
+upright, a tight rectangle around cylinders and capsules; for a mesh geom, the rectangle
+around its vertices.
 """
 
 from __future__ import annotations
@@ -81,6 +82,21 @@ def _geom_corners_local(model: mujoco.MjModel, geom: int) -> FloatArray:
     return corners
 
 
+def _geom_points_local(model: mujoco.MjModel, geom: int) -> FloatArray:
+    """Points whose bounding box is the geom's, in the geom's frame, shape ``(n, 3)``.
+
+    A mesh geom's vertices (MuJoCo places a mesh in its principal inertia frame, so the
+    corners of ``geom_aabb`` there, turned back into the body frame, would inflate the
+    box); any other geom's 8 bounding-box corners.
+    """
+    if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_MESH:
+        mesh = int(model.geom_dataid[geom])
+        adr, n = int(model.mesh_vertadr[mesh]), int(model.mesh_vertnum[mesh])
+        verts: FloatArray = model.mesh_vert[adr : adr + n].astype(np.float64)
+        return verts
+    return _geom_corners_local(model, geom)
+
+
 def _rect_of_points(xy: FloatArray) -> tuple[float, float, float, float]:
     """Axis-aligned ``(cx, cy, half_x, half_y)`` of 2-D points."""
     lo, hi = xy.min(axis=0), xy.max(axis=0)
@@ -112,13 +128,13 @@ def static_footprints(
             continue
         rot = data.geom_xmat[g].reshape(3, 3)
         pos = data.geom_xpos[g]
-        corners = _geom_corners_local(model, g) @ rot.T + pos
+        corners = _geom_points_local(model, g) @ rot.T + pos
         if corners[:, 2].max() <= z_band[0] or corners[:, 2].min() >= z_band[1]:
             continue
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
         if abs(abs(rot[2, 2]) - 1.0) < 1e-9:
             yaw = math.atan2(rot[1, 0], rot[0, 0])
-            local = _geom_corners_local(model, g)[:, :2]
+            local = _geom_points_local(model, g)[:, :2]
             lcx, lcy, hx, hy = _rect_of_points(local)
             c, s = math.cos(yaw), math.sin(yaw)
             cx = pos[0] + c * lcx - s * lcy
@@ -176,7 +192,7 @@ def movable_objects(model: mujoco.MjModel) -> list[ObjectInfo]:
         for g in geoms:
             rot = np.empty(9)
             mujoco.mju_quat2Mat(rot, model.geom_quat[g])
-            pts.append(_geom_corners_local(model, g) @ rot.reshape(3, 3).T + model.geom_pos[g])
+            pts.append(_geom_points_local(model, g) @ rot.reshape(3, 3).T + model.geom_pos[g])
         allp = np.concatenate(pts)
         cx, cy, hx, hy = _rect_of_points(allp[:, :2])
         out.append(
