@@ -17,9 +17,10 @@ model (``.mjb.z``: MuJoCo's binary model, zlib-compressed: its procedural textur
 2.8 MB of an uncompressed file, about 45 kB compressed). A cached instance loads without
 generating, compiling or searching;
 its record is used only if the hash matches the scene the generator writes for that
-attempt, else it is regenerated. The folder is ``$VOOT_CACHE_DIR``, else
-``$XDG_CACHE_HOME/voot``, else ``~/.cache/voot``; if it cannot be written the instance is
-still made (and kept in the process). Files are written atomically (a temporary file
+attempt, else it is regenerated. The folder is under voot's cache
+(:func:`voot.envs.meshes.cache_dir`: ``$VOOT_CACHE``, else ``~/.cache/voot``), beside the
+meshes' cache; if it cannot be written the instance is still made (and kept in the
+process). Files are written atomically (a temporary file
 renamed), so concurrent processes can share the cache.
 """
 
@@ -39,6 +40,7 @@ import mujoco
 import numpy as np
 
 from voot.envs.conveyor import ConveyorConfig, ConveyorPackingEnv, conveyor_config
+from voot.envs.meshes import cache_dir as voot_cache_dir
 from voot.envs.storage_layout import (
     GENERATOR_VERSION,
     StorageLayout,
@@ -46,7 +48,7 @@ from voot.envs.storage_layout import (
     difficulty_level,
     generate_storage_layout,
 )
-from voot.envs.storage_scene import storage_xml
+from voot.envs.storage_scene import compile_storage_scene, storage_xml
 from voot.envs.storage_witness import Witness, find_witness
 
 #: Attempts of one seed before giving up (none has needed more than a few).
@@ -116,13 +118,7 @@ class _SceneEnv(ConveyorPackingEnv):
 
 def cache_dir() -> Path:
     """The on-disk cache's folder for this generator and MuJoCo version (module docstring)."""
-    root = os.environ.get("VOOT_CACHE_DIR")
-    if root:
-        base = Path(root)
-    else:
-        xdg = os.environ.get("XDG_CACHE_HOME")
-        base = (Path(xdg) if xdg else Path.home() / ".cache") / "voot"
-    return base / f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
+    return voot_cache_dir() / f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
 
 
 #: The instances made or loaded in this process, by ``(layout_seed, difficulty)``.
@@ -161,7 +157,7 @@ def generate_instance(layout_seed: int, difficulty: str) -> StorageInstance:
     for attempt in range(MAX_ATTEMPTS):
         layout = generate_storage_layout(layout_seed, difficulty, attempt)
         xml = storage_xml(layout)
-        model = _compile(xml)
+        model = compile_storage_scene(layout, xml)
         try:
             env = _SceneEnv(copy.copy(model), layout_config(layout))
         except RuntimeError as exc:  # a fixed grasp that fails: the layout is rejected
@@ -176,12 +172,6 @@ def generate_instance(layout_seed: int, difficulty: str) -> StorageInstance:
         f"no solvable layout for layout_seed={layout_seed}, difficulty={difficulty!r} in"
         f" {MAX_ATTEMPTS} attempts: {'; '.join(rejections[-3:])}"
     )
-
-
-def _compile(xml: str) -> mujoco.MjModel:
-    from voot.envs.storage_scene import robot_xml
-
-    return mujoco.MjModel.from_xml_string(xml, {"robot.xml": robot_xml()})
 
 
 def _sha(xml: str) -> str:

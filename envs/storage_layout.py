@@ -21,7 +21,11 @@ belt with its queue, the hall between them (x in [-0.6, 1.5], y in [-1, 3]) and 
   along the shared wall, of a drawn **width**; easier levels add doors on other shared
   walls (loops);
 * the **boxes**: their count, how many are big, where the big ones stand in the queue,
-  and every size.
+  every size, and each one's shape: a closed cardboard box or an open-top crate
+  (:data:`BOX_KINDS`, a share :data:`CRATE_SHARE` of crates), with a shape variant
+  (bevels, wall thickness, taper: :mod:`voot.envs.meshes` builds the meshes). Every shape
+  fills its bounding box's footprint, so the boxes' footprint rectangles, the fixed
+  grasp and the carry discs are those of the box sizes.
 
 A door of width ``w`` passes the robot carrying a box iff ``w > 2 r`` for the carry
 disc's radius ``r`` (:mod:`voot.envs.robot`): with the fixed grasp a small box gives
@@ -64,6 +68,12 @@ MIN_ROOM_SIDE = 2.6
 DOOR_JAMB = 0.25
 #: Most boxes a belt carries (:class:`voot.envs.conveyor.ConveyorConfig` allows 20).
 MAX_BOXES = 20
+#: The shapes of the boxes (:data:`voot.envs.meshes.SHAPE_KINDS` names).
+BOX_KINDS = ("box", "crate")
+#: Share of open-top crates among the boxes.
+CRATE_SHARE = 1.0 / 3.0
+#: Shape variants drawn per box (:attr:`voot.envs.meshes.ShapeSpec.variant`).
+SHAPE_VARIANTS = 4
 #: Seed-sequence salt of this generator (keeps its streams apart from other users').
 _SALT = 0x5707A6E
 
@@ -229,10 +239,20 @@ class Wall:
 
 @dataclass(frozen=True)
 class BoxSpec:
-    """A box on the belt: its size ``(x, y, z)`` in metres and whether it is a big one."""
+    """A box on the belt.
+
+    Attributes:
+        size: Its bounding box ``(x, y, z)`` in metres (x: depth along the grasp's
+            approach, y: width).
+        big: Whether it is one of the big boxes.
+        kind: Its shape, one of :data:`BOX_KINDS`.
+        variant: Its shape variant (0 .. :data:`SHAPE_VARIANTS` - 1).
+    """
 
     size: tuple[float, float, float]
     big: bool
+    kind: str = "box"
+    variant: int = 0
 
 
 @dataclass(frozen=True)
@@ -533,7 +553,8 @@ def _inner_walls(cuts: list[_Cut], doors: tuple[Door, ...]) -> tuple[Wall, ...]:
 
 
 def _draw_boxes(level: DifficultyLevel, rng: np.random.Generator) -> tuple[BoxSpec, ...]:
-    """The boxes in belt order: the count, which are big, and every size (millimetres)."""
+    """The boxes in belt order: the count, which are big, every size (millimetres),
+    shape and variant."""
     n = int(rng.integers(level.boxes[0], level.boxes[1] + 1))
     n_big = int(rng.integers(level.big_boxes[0], level.big_boxes[1] + 1))
     big = set(int(v) for v in rng.permutation(n)[:n_big])
@@ -541,5 +562,8 @@ def _draw_boxes(level: DifficultyLevel, rng: np.random.Generator) -> tuple[BoxSp
     for i in range(n):
         xs, ys = (level.big_x, level.big_y) if i in big else (level.small_x, level.small_y)
         size = (rng.uniform(*xs), rng.uniform(*ys), rng.uniform(*level.height))
-        out.append(BoxSpec(tuple(round(float(v), 3) for v in size), i in big))  # type: ignore[arg-type]
+        kind = BOX_KINDS[1] if rng.uniform() < CRATE_SHARE else BOX_KINDS[0]
+        variant = int(rng.integers(0, SHAPE_VARIANTS))
+        rounded = tuple(round(float(v), 3) for v in size)
+        out.append(BoxSpec(rounded, i in big, kind, variant))  # type: ignore[arg-type]
     return tuple(out)

@@ -3,11 +3,15 @@
 :func:`storage_xml` writes the scene of a :class:`~voot.envs.storage_layout.StorageLayout`
 with the same building blocks as the fixed ``conveyor.xml`` (imported from
 :mod:`voot.models.generate_scenes`: the header with its materials and collision classes,
-walls, the belt, movable boxes, cameras), so a generated scene follows every convention
-the environments read back (:mod:`voot.envs.scene`): static walls of class ``scene``,
-boxes as bodies ``obj_NN`` with a free joint and one box geom whose bounding box is the
-footprint, queued on the belt in belt order. :func:`compile_storage_scene` compiles it
-with ``robot.xml`` from ``voot.models`` (no file is written).
+walls, the belt, cameras), so a generated scene follows every convention the
+environments read back (:mod:`voot.envs.scene`): static walls of class ``scene``, boxes
+as bodies ``obj_NN`` with a free joint, queued on the belt in belt order. The boxes are
+trimesh meshes (:mod:`voot.envs.meshes`: closed boxes and open-top crates of the
+layout's sizes and variants, convex collision parts, mass and inertia from the mesh);
+their geoms' bounding boxes span exactly the box size, so their footprint rectangles
+(what the checks read) are the sizes'. :func:`compile_storage_scene` compiles the scene
+with ``robot.xml`` and the mesh files handed to MuJoCo in memory (no scene file is
+written; the meshes are cached by :mod:`voot.envs.meshes`).
 
 Decoration (class ``decor``, never collides) marks the doors and the rooms' floors, so a
 top-down image shows the layout.
@@ -15,17 +19,15 @@ top-down image shows the layout.
 
 from __future__ import annotations
 
-from importlib import resources
-
 import mujoco
 
+from voot.envs.meshes import ShapeSpec, compile_scene, object_body_xml, shape_assets_xml
 from voot.envs.storage_layout import WALL_HEIGHT, StorageLayout
 from voot.models.generate_scenes import (
     BELT_FIRST_X,
     BELT_SPACING,
     BELT_TOP,
     CONVEYOR_START,
-    _box_object,
     _cameras,
     _header,
     _v,
@@ -47,14 +49,27 @@ _ROOM_TINTS = (
 )
 
 
+def box_shapes(layout: StorageLayout) -> list[ShapeSpec]:
+    """The mesh spec of every box, in belt order."""
+    return [ShapeSpec(b.kind, b.size, b.variant) for b in layout.boxes]
+
+
+def box_material(big: bool, kind: str) -> str:
+    """The material of a box: big ones red, crates blue-grey, the others cardboard."""
+    return "big_box" if big else ("clutter" if kind == "crate" else "cardboard")
+
+
 def storage_xml(layout: StorageLayout) -> str:
-    """The MJCF text of ``layout``'s scene (robot included by ``robot.xml``)."""
+    """The MJCF text of ``layout``'s scene (robot included by ``robot.xml``; the boxes'
+    mesh files are named in an ``<asset>`` section, see :func:`compile_storage_scene`)."""
     x0, _x1, y0, y1 = layout.area
     view = (x0 - 0.4, _VIEW_EAST, y0 - 0.4, y1 + 0.4)
     cx, cy = 0.5 * (view[0] + view[1]), 0.5 * (view[2] + view[3])
     fovy = max(view[3] - view[2], (view[1] - view[0]) / _ASPECT)
     name = f"voot_storage_{layout.difficulty}_{layout.layout_seed}_{layout.attempt}"
+    shapes = box_shapes(layout)
     out = [_header(name, max(fovy, 12.0) + 4.0, (cx, cy, 0.5))]
+    out.append(f"  <asset>\n{shape_assets_xml(shapes)}  </asset>\n")
     out.append("  <worldbody>\n")
     out.append(
         f'    <light name="sun" pos="{_v(cx, cy, 10)}" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n'
@@ -94,19 +109,15 @@ def storage_xml(layout: StorageLayout) -> str:
     out.append(
         f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n'
     )
-    for i, box in enumerate(layout.boxes):
-        material = "big_box" if box.big else "cardboard"
-        x = BELT_FIRST_X + BELT_SPACING * i
-        out.append(_box_object(f"obj_{i:02d}", x, 1.05, 0.0, box.size, material, z=BELT_TOP))
+    for i, (box, shape) in enumerate(zip(layout.boxes, shapes, strict=True)):
+        pose = (BELT_FIRST_X + BELT_SPACING * i, 1.05, BELT_TOP, 0.0)
+        out.append(object_body_xml(f"obj_{i:02d}", shape, pose, box_material(box.big, box.kind)))
     out.append("  </worldbody>\n</mujoco>\n")
     return "".join(out)
 
 
-def robot_xml() -> bytes:
-    """The text of ``voot.models``' ``robot.xml`` (the generated scenes include it)."""
-    return resources.files("voot.models").joinpath("robot.xml").read_bytes()
-
-
-def compile_storage_scene(layout: StorageLayout) -> mujoco.MjModel:
-    """Compile ``layout``'s scene (:func:`storage_xml`) into a MuJoCo model."""
-    return mujoco.MjModel.from_xml_string(storage_xml(layout), {"robot.xml": robot_xml()})
+def compile_storage_scene(layout: StorageLayout, xml: str | None = None) -> mujoco.MjModel:
+    """Compile ``layout``'s scene (``xml``, default :func:`storage_xml`) into a MuJoCo
+    model, with ``robot.xml`` and the boxes' mesh files as in-memory assets."""
+    text = storage_xml(layout) if xml is None else xml
+    return compile_scene(text, box_shapes(layout))

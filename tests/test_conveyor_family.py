@@ -25,7 +25,7 @@ from voot.envs.planning import EnvProblem
 
 @pytest.fixture(autouse=True)
 def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
-    monkeypatch.setenv("VOOT_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("VOOT_CACHE", str(tmp_path))
     SI.clear_memo()
     yield tmp_path
     SI.clear_memo()
@@ -125,7 +125,7 @@ def test_deterministic_across_processes_with_and_without_the_cache(cache: Path) 
             capture_output=True,
             check=True,
             timeout=120,
-            env={**os.environ, "VOOT_CACHE_DIR": cache_dir},
+            env={**os.environ, "VOOT_CACHE": cache_dir},
         )
         layout, remote = pickle.loads(proc.stdout)
         assert layout == repr(env.layout)

@@ -18,7 +18,7 @@ from voot.envs.storage_layout import GENERATOR_VERSION, generate_storage_layout
 @pytest.fixture
 def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
     """A fresh, empty cache folder and memo for the test."""
-    monkeypatch.setenv("VOOT_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("VOOT_CACHE", str(tmp_path))
     SI.clear_memo()
     yield SI.cache_dir()
     SI.clear_memo()

@@ -13,10 +13,13 @@ import pytest
 from voot.envs.storage_layout import (
     AREA_EAST,
     AREA_NORTH,
+    BOX_KINDS,
+    CRATE_SHARE,
     DIFFICULTIES,
     DOOR_JAMB,
     ENTRANCE,
     MIN_ROOM_SIDE,
+    SHAPE_VARIANTS,
     DifficultyLevel,
     StorageLayout,
     difficulty_level,
@@ -86,8 +89,16 @@ def test_layouts_are_well_formed(difficulty: str) -> None:
             assert xs[0] - 1e-3 <= b.size[0] <= xs[1] + 1e-3
             assert ys[0] - 1e-3 <= b.size[1] <= ys[1] + 1e-3
             assert level.height[0] - 1e-3 <= b.size[2] <= level.height[1] + 1e-3
+            assert b.kind in BOX_KINDS and 0 <= b.variant < SHAPE_VARIANTS
         assert lay.loading_region == (x0, -0.5, y0, y1)
         assert lay.workspace == (x0, 1.5, y0, y1)
+
+
+def test_boxes_and_crates_of_every_variant_are_drawn() -> None:
+    boxes = [b for s in SEEDS for b in generate_storage_layout(s, "hard").boxes]
+    crates = sum(b.kind == "crate" for b in boxes) / len(boxes)
+    assert abs(crates - CRATE_SHARE) < 0.1
+    assert {b.variant for b in boxes} == set(range(SHAPE_VARIANTS))
 
 
 def test_the_entrance_stays_open() -> None:

@@ -8,10 +8,11 @@ import pytest
 
 from voot.envs.base_planner import BasePlanner, BasePlannerConfig
 from voot.envs.conveyor import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y
+from voot.envs.meshes import mesh_name
 from voot.envs.robot import ROBOT_RADIUS, Robot
 from voot.envs.scene import movable_objects, object_pose, static_footprints
 from voot.envs.storage_layout import DIFFICULTIES, generate_storage_layout
-from voot.envs.storage_scene import compile_storage_scene, storage_xml
+from voot.envs.storage_scene import box_material, box_shapes, compile_storage_scene, storage_xml
 from voot.models.generate_scenes import CONVEYOR_START
 
 
@@ -41,6 +42,14 @@ def test_the_scene_holds_the_layout(difficulty: str) -> None:
         assert 2 * b.half_x == pytest.approx(w.xmax - w.xmin, abs=1e-4)
         assert 2 * b.half_y == pytest.approx(w.ymax - w.ymin, abs=1e-4)
     assert "belt_frame" in boxes
+    # each box's shape and material
+    for i, box in enumerate(layout.boxes):
+        body = objects[i].body
+        geoms = [g for g in range(model.ngeom) if model.geom_bodyid[g] == body]
+        assert all(model.geom_type[g] == mujoco.mjtGeom.mjGEOM_MESH for g in geoms)
+        assert model.body_mass[body] > 0
+        mat = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_MATERIAL, model.geom_matid[geoms[0]])
+        assert mat == box_material(box.big, box.kind)
     assert set(boxes) == {w.name for w in layout.walls} | {"belt_frame"}
 
 
@@ -65,6 +74,11 @@ def test_the_xml_is_a_function_of_the_layout() -> None:
     text = storage_xml(a)
     assert '<include file="robot.xml"/>' in text
     assert text.count("<freejoint") == a.n_boxes
+    # the boxes are meshes: one visual mesh geom each, named in the asset section
+    assert text.count('type="mesh"') > text.count('_visual" class="decor" type="mesh"')
+    assert text.count('_visual" class="decor" type="mesh"') == a.n_boxes
+    for spec in box_shapes(a):
+        assert f'<mesh name="{mesh_name(spec)}" file="{mesh_name(spec)}.stl"/>' in text
     assert text.count('class="decor" type="box" size=') >= len(a.doors) + len(a.rooms)
 
 

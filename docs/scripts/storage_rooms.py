@@ -71,7 +71,11 @@ def figure(size: tuple[int, int] = (560, 420)) -> None:
     for difficulty in LEVELS:
         for seed in (0, 1):
             env = _make(
-                seed, difficulty, render_mode="rgb_array", render_camera="top_down", render_size=size
+                seed,
+                difficulty,
+                render_mode="rgb_array",
+                render_camera="top_down",
+                render_size=size,
             )
             env.reset(seed=0)  # type: ignore[attr-defined]
             for a in env.witness_actions():  # type: ignore[attr-defined]
@@ -106,7 +110,7 @@ def benchmark(layouts: int) -> None:
     from voot.envs import storage_instance as SI
 
     with tempfile.TemporaryDirectory() as tmp:
-        os.environ["VOOT_CACHE_DIR"] = tmp
+        os.environ["VOOT_CACHE"] = tmp
         _make(0, "easy")  # imports and warm-up, not measured
         rows = []
         for difficulty in LEVELS:
@@ -167,8 +171,7 @@ def difficulty(layouts: int, samples: int) -> None:
         for seed in range(layouts):
             env = _make(seed, level)
             returns.append(witness_return(env, 0.99))  # type: ignore[arg-type]
-            problem = EnvProblem(env, seed=0)  # type: ignore[arg-type]
-            problem.reset()
+            problem = EnvProblem(env, seed=0)  # type: ignore[arg-type]  (resets the env)
             start = problem.snapshot()
             rng = np.random.default_rng(seed)
             bounds = problem.action_bounds()
