@@ -29,8 +29,10 @@ belt with its queue, the hall between them (x in [-0.6, 1.5], y in [-1, 3]) and 
 
 A door of width ``w`` passes the robot carrying a box iff ``w > 2 r`` for the carry
 disc's radius ``r`` (:mod:`voot.envs.robot`): with the fixed grasp a small box gives
-r of about 0.72 to 0.80 m, a big one about 0.85 to 0.87 m, so the drawn door widths decide which
-rooms a box can reach. Whether every box can be packed is not decided here:
+r = 0.70 to 0.78 m, a big one 0.83 to 0.87 m (1.40 to 1.56 m and 1.66 to 1.75 m of door),
+so the drawn door widths decide which rooms a box can reach: every easy door passes
+every box, medium doors (1.65 to 2.0 m) stop some big boxes, most hard doors (1.55 to
+1.8 m) stop the big ones and a few stop the largest small ones. Whether every box can be packed is not decided here:
 :mod:`voot.envs.storage_witness` proves it for each layout (or the layout is rejected and
 the next ``attempt`` drawn, :mod:`voot.envs.storage_instance`).
 

@@ -5,8 +5,9 @@ Three parts, each printed as Markdown (run from the repository root):
 * ``figure``: ``docs/figures/storage_rooms_layouts.png``, six generated layouts (two per
   difficulty level) seen from the top after their witness packing, and
   ``docs/figures/storage_rooms_perspective.png``, one hard layout in perspective;
-* ``benchmark``: generation cost per instance, cold (draw, compile, prove, write the
-  cache) and cached (read the cache), and what the levels draw, over ``--layouts``
+* ``benchmark``: generation cost per instance, cold (draw, build the meshes, compile,
+  prove, write the caches) and cached (read the cache, with the process's memory
+  caches emptied as in a new process), and what the levels draw, over ``--layouts``
   seeds per level, in a fresh temporary cache folder;
 * ``difficulty``: at the first node of ``--layouts`` layouts per level, the share of
   uniform actions (``--samples`` each) that pass the pre-check and, of those,
@@ -108,6 +109,11 @@ def figure(size: tuple[int, int] = (560, 420)) -> None:
 def benchmark(layouts: int) -> None:
     """Cold and cached cost per instance, and what each level draws."""
     from voot.envs import storage_instance as SI
+    from voot.envs.meshes import clear_memory_cache
+
+    def forget() -> None:  # what a new process knows: nothing but the disk cache
+        SI.clear_memo()
+        clear_memory_cache()
 
     with tempfile.TemporaryDirectory() as tmp:
         os.environ["VOOT_CACHE"] = tmp
@@ -117,15 +123,15 @@ def benchmark(layouts: int) -> None:
             cold, cached, make, checks, draws, rejected = [], [], [], [], 0, 0
             rooms, boxes, doors, min_door, kb = [], [], [], [], []
             for seed in range(1000, 1000 + layouts):
-                SI.clear_memo()
+                forget()
                 t = time.perf_counter()
                 inst = SI.storage_instance(seed, difficulty)
                 cold.append(time.perf_counter() - t)
-                SI.clear_memo()
+                forget()
                 t = time.perf_counter()
                 SI.storage_instance(seed, difficulty)
                 cached.append(time.perf_counter() - t)
-                SI.clear_memo()
+                forget()
                 t = time.perf_counter()
                 _make(seed, difficulty)
                 make.append(time.perf_counter() - t)
