@@ -103,8 +103,10 @@ def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
     )
 
 
-class _SceneEnv(ConveyorPackingEnv):
-    """The v1 conveyor on a given compiled scene (what the solvability search steps)."""
+class SceneConveyorEnv(ConveyorPackingEnv):
+    """The conveyor on a given compiled scene with a given config: what the solvability
+    search steps (:func:`generate_instance`), and a way to run a layout's scene without
+    the cache. ``model`` is taken over (pass a copy to keep yours unchanged)."""
 
     def __init__(self, model: mujoco.MjModel, config: ConveyorConfig) -> None:
         self._pending_model: mujoco.MjModel | None = model
@@ -159,7 +161,7 @@ def generate_instance(layout_seed: int, difficulty: str) -> StorageInstance:
         xml = storage_xml(layout)
         model = compile_storage_scene(layout, xml)
         try:
-            env = _SceneEnv(copy.copy(model), layout_config(layout))
+            env = SceneConveyorEnv(copy.copy(model), layout_config(layout))
         except RuntimeError as exc:  # a fixed grasp that fails: the layout is rejected
             rejections.append(f"attempt {attempt}: {exc}")
             continue

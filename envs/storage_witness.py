@@ -31,7 +31,9 @@ docs/environments.md ("Generated storage rooms").
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -85,15 +87,15 @@ class Witness:
         }
 
     @classmethod
-    def from_json(cls, data: dict[str, object]) -> Witness:
+    def from_json(cls, data: Mapping[str, Any]) -> Witness:
         """The inverse of :meth:`to_json`."""
         return cls(
             solved=bool(data["solved"]),
-            actions=tuple(tuple(float(v) for v in a) for a in data["actions"]),  # type: ignore[attr-defined]
-            placements=tuple(tuple(float(v) for v in p) for p in data["placements"]),  # type: ignore[attr-defined, misc]
-            rooms=tuple(int(v) for v in data["rooms"]),  # type: ignore[attr-defined]
-            checks=int(data["checks"]),  # type: ignore[call-overload]
-            total_return=float(data["total_return"]),  # type: ignore[arg-type]
+            actions=tuple(tuple(float(v) for v in a) for a in data["actions"]),
+            placements=tuple((float(x), float(y), float(t)) for x, y, t in data["placements"]),
+            rooms=tuple(int(v) for v in data["rooms"]),
+            checks=int(data["checks"]),
+            total_return=float(data["total_return"]),
             reason=str(data["reason"]),
         )
 

@@ -64,7 +64,7 @@ def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
         assert np.array_equal(getattr(warm.model, name), getattr(cold.model, name)), name
     # the two models step the same
     config = SI.layout_config(cold.layout)
-    envs = [SI._SceneEnv(i.model_copy(), config) for i in (cold, warm)]
+    envs = [SI.SceneConveyorEnv(i.model_copy(), config) for i in (cold, warm)]
     rng = np.random.default_rng(1)
     probes = [rng.uniform(-1, 1, 9) for _ in cold.witness.actions]
     runs = []

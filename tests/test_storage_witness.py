@@ -8,15 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from voot.envs.storage_instance import _SceneEnv, layout_config
+from voot.envs.storage_instance import SceneConveyorEnv, layout_config
 from voot.envs.storage_layout import generate_storage_layout
 from voot.envs.storage_scene import compile_storage_scene
 from voot.envs.storage_witness import Witness, find_witness, room_slots
 
 
-def _env(seed: int, difficulty: str, attempt: int = 0) -> tuple[_SceneEnv, object]:
+def _env(seed: int, difficulty: str, attempt: int = 0) -> tuple[SceneConveyorEnv, object]:
     layout = generate_storage_layout(seed, difficulty, attempt)
-    return _SceneEnv(compile_storage_scene(layout), layout_config(layout)), layout
+    return SceneConveyorEnv(compile_storage_scene(layout), layout_config(layout)), layout
 
 
 def test_room_slots_fill_rows_from_the_back_wall() -> None:
