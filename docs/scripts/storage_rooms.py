@@ -12,13 +12,19 @@ Three parts, each printed as Markdown (run from the repository root):
 * ``difficulty``: at the first node of ``--layouts`` layouts per level, the share of
   uniform actions (``--samples`` each) that pass the pre-check and, of those,
   execution, with the execution failures by cause (as ``voot-bench difficulty`` does for
-  v1).
+  v1);
+* ``planners``: a first look at planners on the levels: ``voot-bench plan`` with VOOT
+  and PW-UCT (the default grid's settings, v1's domain options) on ``--layouts`` layouts
+  x ``--seeds`` seeds per level at ``--simulations`` simulations, into ``--out``
+  (resumable), and the share of runs that pack every box, of boxes packed and the mean
+  best return.
 
 ::
 
     python docs/scripts/storage_rooms.py figure
     python docs/scripts/storage_rooms.py benchmark [--layouts 20]
     python docs/scripts/storage_rooms.py difficulty [--layouts 5] [--samples 1000]
+    python docs/scripts/storage_rooms.py planners [--layouts 3] [--seeds 2] [--simulations 300]
 
 Timings are wall-clock on whatever machine runs it (the docs say which).
 """
@@ -28,6 +34,8 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
+import subprocess
+import sys
 import tempfile
 import time
 from collections import Counter
@@ -206,18 +214,64 @@ def difficulty(layouts: int, samples: int) -> None:
     print("\n".join(rows))
 
 
+def planners(layouts: int, seeds: int, simulations: int, out: str) -> None:
+    """Runs of VOOT and PW-UCT per level (see the module docstring) and their summary."""
+    from voot.bench.store import ResultStore
+
+    for level in LEVELS:
+        for seed in range(layouts):
+            cmd = [
+                *("voot-bench", "plan", "--out", out, "--problems", "conveyor_v2"),
+                *("--env-kwargs", f"layout_seed={seed}", f"difficulty={level}"),
+                *("--planners", "voot", "pw_uct", "--seeds", str(seeds)),
+                *("--simulations", str(simulations), "--grid", "default", "--workers", "1"),
+            ]
+            done = subprocess.run(cmd, capture_output=True, text=True)
+            if done.returncode:
+                sys.exit(f"{' '.join(cmd)} failed:\n{done.stderr}")
+    runs: dict[tuple[str, str], list[tuple[bool, float, float]]] = {}
+    for row in ResultStore(out, create=False).iter_rows():
+        cfg = row["config"]
+        kw = cfg["env_kwargs"]
+        if kw["layout_seed"] >= layouts or cfg["simulations"] != simulations:
+            continue
+        left = float(row["objects_left"][-1])
+        initial = float(row["objects_initial"])
+        key = (kw["difficulty"], cfg["planner"])
+        runs.setdefault(key, []).append((left == 0, 1 - left / initial, row["best_return"]))
+    print(
+        f"{layouts} layouts x {seeds} seeds per level, {simulations} simulations:\n\n"
+        "| level | planner | runs | pack every box | boxes packed (mean) | best return (mean) |\n"
+        "|---|---|---:|---:|---:|---:|"
+    )
+    for level in LEVELS:
+        for planner in ("voot", "pw_uct"):
+            got = runs.get((level, planner), [])
+            if got:
+                solved = sum(g[0] for g in got)
+                print(
+                    f"| {level} | {planner} | {len(got)} | {solved} of {len(got)}"
+                    f" | {np.mean([g[1] for g in got]):.0%} | {np.mean([g[2] for g in got]):.2f} |"
+                )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("part", choices=("figure", "benchmark", "difficulty"))
+    parser.add_argument("part", choices=("figure", "benchmark", "difficulty", "planners"))
     parser.add_argument("--layouts", type=int, default=None, help="layout seeds per level")
     parser.add_argument("--samples", type=int, default=1000, help="uniform actions per layout")
+    parser.add_argument("--seeds", type=int, default=2, help="planner seeds per layout")
+    parser.add_argument("--simulations", type=int, default=300, help="simulations per run")
+    parser.add_argument("--out", default="/tmp/voot-storage-planners", help="result store")
     args = parser.parse_args()
     if args.part == "figure":
         figure()
     elif args.part == "benchmark":
         benchmark(args.layouts or 20)
-    else:
+    elif args.part == "difficulty":
         difficulty(args.layouts or 5, args.samples)
+    else:
+        planners(args.layouts or 3, args.seeds, args.simulations, args.out)
 
 
 if __name__ == "__main__":
