@@ -13,6 +13,7 @@ Subcommands::
     voot-bench claims results/plan        the paper's claims: ours, 95% interval, verdict
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench speed                      cost per ask of VOO, CMA-ES and GP-UCB
+    voot-bench mesh-speed                 cost of the trimesh object meshes and grasp lookups
     voot-bench speedup                    tree search on the robot domains: 6af33b5 vs now
 
 Errors in the input (unknown function or method, inverted ranges, a corrupt or foreign
@@ -23,7 +24,8 @@ Where the subcommands live: :mod:`~voot.bench.cli_demo` (``demo``, ``figure5``,
 ``demo-voo``), :mod:`~voot.bench.cli_bbfo`, :mod:`~voot.bench.cli_plan`,
 :mod:`~voot.bench.cli_ablation`, :mod:`~voot.bench.cli_store` (``compact``, ``shipped``, ``store-speed``),
 :mod:`~voot.bench.cli_report` (``select``, ``plot``, ``claims``),
-:mod:`~voot.bench.cli_measure` (``speed``, ``difficulty``),
+:mod:`~voot.bench.cli_measure` (``speed``, ``difficulty``), :mod:`~voot.bench.cli_mesh`
+(``mesh-speed``),
 :mod:`~voot.bench.cli_passthrough` (commands that parse their own options) and
 :mod:`~voot.bench.cli_speedup`; what they share is in :mod:`~voot.bench.cli_common`.
 
@@ -46,6 +48,7 @@ from voot.bench import (
     cli_bbfo,
     cli_demo,
     cli_measure,
+    cli_mesh,
     cli_passthrough,
     cli_plan,
     cli_report,
@@ -72,6 +75,7 @@ SUBCOMMANDS: tuple[Callable[[Subparsers], None], ...] = (
     cli_store.register,  # compact, shipped, store-speed
     cli_report.register,  # select, plot, claims
     cli_measure.register,  # speed, difficulty
+    cli_mesh.register,  # mesh-speed
     cli_passthrough.register,  # overhead, record-overhead, record-demo, env-speed, ...
     cli_speedup.register,  # speedup
 )

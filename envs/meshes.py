@@ -26,7 +26,7 @@ geoms of class ``object``, a visual geom of class ``decor``, the inertial),
 :func:`compile_scene` compiles a scene that includes ``robot.xml`` with them.
 
 Cost: building a shape (sweep, hulls, mass properties, STL bytes and the grasp rays of
-:mod:`voot.envs.mesh_grasp`) takes milliseconds; each spec's result is cached on disk
+:mod:`voot.envs.mesh_grasp`) takes 14-45 ms of CPU; each spec's result is cached on disk
 (:func:`cache_dir`: ``$VOOT_CACHE`` or ``~/.cache/voot``, under ``meshes/``, keyed by a
 hash of the spec and :data:`GENERATOR_VERSION`, written atomically) and in the process.
 The measured figures are in docs/meshes.md (``voot-bench mesh-speed``).
@@ -109,7 +109,7 @@ DENSITY: dict[str, float] = {
 
 #: Version of the shape generator: part of every cache key, so a change of the shapes
 #: (bump it) never reads an old cache entry.
-GENERATOR_VERSION = 1
+GENERATOR_VERSION = 3
 
 #: Vertices per ring of the round kinds (a multiple of 4: the rings reach the bounding box
 #: exactly on the x and y axes).
@@ -243,8 +243,20 @@ def _sweep(rings: FloatArray) -> trimesh.Trimesh:
 
 
 def _hull(points: FloatArray) -> trimesh.Trimesh:
-    """The convex hull of ``points`` as a mesh (scipy's qhull through trimesh)."""
-    return trimesh.convex.convex_hull(np.asarray(points, dtype=np.float64))
+    """The convex hull of ``points`` as a closed mesh with outward normals.
+
+    trimesh's hull (scipy's qhull) without its generic repair, a quarter of the cost: the
+    faces are turned outwards here directly, each against the centroid of the hull's
+    vertices (inside a convex hull).
+    """
+    hull = trimesh.convex.convex_hull(np.asarray(points, dtype=np.float64), repair=False)
+    v = np.asarray(hull.vertices, dtype=np.float64)
+    f = np.array(hull.faces, dtype=np.int64)
+    tri = v[f]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    inward = np.einsum("ij,ij->i", normal, tri.mean(axis=1) - v.mean(axis=0)) < 0.0
+    f[inward] = f[inward][:, ::-1]
+    return trimesh.Trimesh(v, f, process=False)
 
 
 @dataclass
@@ -486,16 +498,20 @@ def _profile_bottle(spec: ShapeSpec) -> _Build:
 
 
 def _profile_jug(spec: ShapeSpec) -> _Build:
-    """A wide bottle with a D handle on the +x side of its body."""
+    """A wide bottle with a D handle on the +x side of its body.
+
+    The handle spans ``z_mid - reach .. z_mid + reach`` between 8 % of the height and the
+    shoulder (at least 55 % of it), so its reach is at most 23.5 % of the height: a low
+    jug gets a small handle rather than one that reaches below its base.
+    """
     sx, sy, sz = spec.size
     rng = _rng(spec)
-    reach = min(_pick(rng, 0.2, 0.28) * sx, 0.3 * sz)
+    reach = min(_pick(rng, 0.2, 0.28) * sx, 0.235 * sz)
     rx, ry = (sx - reach) / 2, sy / 2
     outer, bands = _bottle_outer(spec, rng, rx, ry)
     body = _solid(_unit_ring("round"), outer, bands)
     tube = min(0.3 * reach, 0.06 * sz, 0.01)
-    a = reach - tube
-    z_mid = min(0.45 * sz, bands[1] - a - tube)
+    z_mid = max(min(0.45 * sz, bands[1] - reach), 0.08 * sz + reach)
     handle = _handle(rx - 2 * tube, rx - 2 * tube, rx, z_mid, reach, tube)
     return _Build(body.shells + handle.shells, body.parts + handle.parts)
 
@@ -633,16 +649,20 @@ def _read_npz(path: Path) -> dict[str, np.ndarray] | None:
 
 
 def cached_arrays(
-    spec: ShapeSpec, tag: str, build: Callable[[], dict[str, np.ndarray]]
+    spec: ShapeSpec,
+    tag: str,
+    build: Callable[[], dict[str, np.ndarray]],
+    required: Iterable[str] = (),
 ) -> tuple[dict[str, np.ndarray], bool]:
     """The arrays ``build`` makes for ``spec``, from the disk cache if there.
 
-    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically).
-    Returns the arrays and whether they came from the disk.
+    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically). A
+    file that cannot be read, or lacks one of the ``required`` arrays, is rebuilt and
+    replaced. Returns the arrays and whether they came from the disk.
     """
     path = _mesh_dir() / f"{spec.key}.{tag}.npz"
     got = _read_npz(path)
-    if got is not None:
+    if got is not None and all(k in got for k in required):
         return got, True
     arrays = build()
     _write_npz(path, arrays)
@@ -662,18 +682,29 @@ def clear_memory_cache() -> None:
     built_shape.cache_clear()
 
 
+#: The arrays of a mesh cache entry (:func:`_build_arrays`).
+_MESH_ARRAYS = ("stl", "sizes", "inertial")
+
+
 def _build_arrays(spec: ShapeSpec) -> dict[str, np.ndarray]:
+    """A spec's cache entry: its STL files end to end, their sizes, and the inertial.
+
+    Three arrays (``stl``, ``sizes``: the visual mesh's then each part's, ``inertial``:
+    mass, centre of mass, inertia tensor), so that reading it back is three zip members
+    whatever the number of parts.
+    """
     shape = built_shape(spec)
     name = mesh_name(spec)
-    out: dict[str, np.ndarray] = {
-        "visual": np.frombuffer(stl_bytes(shape.visual, name), dtype=np.uint8)
+    blobs = [stl_bytes(shape.visual, name)]
+    blobs += [stl_bytes(p, f"{name}_c{i}") for i, p in enumerate(shape.parts)]
+    inertial = np.concatenate(
+        [[shape.mass], shape.center_of_mass, shape.inertia.reshape(-1)]
+    ).astype(np.float64)
+    return {
+        "stl": np.frombuffer(b"".join(blobs), dtype=np.uint8),
+        "sizes": np.array([len(b) for b in blobs], dtype=np.int64),
+        "inertial": inertial,
     }
-    for i, p in enumerate(shape.parts):
-        out[f"part{i:03d}"] = np.frombuffer(stl_bytes(p, f"{name}_c{i}"), dtype=np.uint8)
-    out["mass"] = np.array(shape.mass)
-    out["com"] = shape.center_of_mass
-    out["inertia"] = shape.inertia
-    return out
 
 
 def _entry(spec: ShapeSpec) -> _Entry:
@@ -681,18 +712,20 @@ def _entry(spec: ShapeSpec) -> _Entry:
     got = _MEMORY.get(spec)
     if got is not None:
         return got
-    arrays, _ = cached_arrays(spec, "mesh", lambda: _build_arrays(spec))
+    arrays, _ = cached_arrays(spec, "mesh", lambda: _build_arrays(spec), _MESH_ARRAYS)
     name = mesh_name(spec)
-    parts = sorted(k for k in arrays if k.startswith("part"))
-    files = {f"{name}.stl": arrays["visual"].tobytes()}
-    for i, k in enumerate(parts):
-        files[f"{name}_c{i}.stl"] = arrays[k].tobytes()
+    data = arrays["stl"].tobytes()
+    ends = np.cumsum(arrays["sizes"]).tolist()
+    starts = [0, *ends[:-1]]
+    names = [f"{name}.stl"] + [f"{name}_c{i}.stl" for i in range(len(ends) - 1)]
+    files = {n: data[a:b] for n, a, b in zip(names, starts, ends, strict=True)}
+    inertial = np.asarray(arrays["inertial"], dtype=np.float64)
     entry = _Entry(
         files=files,
-        n_parts=len(parts),
-        mass=float(arrays["mass"]),
-        center_of_mass=np.asarray(arrays["com"], dtype=np.float64),
-        inertia=np.asarray(arrays["inertia"], dtype=np.float64),
+        n_parts=len(ends) - 1,
+        mass=float(inertial[0]),
+        center_of_mass=inertial[1:4].copy(),
+        inertia=inertial[4:13].reshape(3, 3).copy(),
     )
     _MEMORY[spec] = entry
     return entry

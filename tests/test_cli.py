@@ -30,6 +30,7 @@ COMMANDS = [
     "claims",
     "speed",
     "difficulty",
+    "mesh-speed",
     *PASSTHROUGH,
     "speedup",
 ]
@@ -41,7 +42,7 @@ def test_every_subcommand_is_registered_once_in_the_order_of_the_help(
     parser = build_parser()
     (sub,) = [a for a in parser._actions if a.dest == "command"]
     assert list(sub.choices) == COMMANDS  # type: ignore[union-attr]
-    assert len(SUBCOMMANDS) == 9
+    assert len(SUBCOMMANDS) == 10
     with pytest.raises(SystemExit) as done:
         main(["--help"])
     listed = re.findall(r"^    (\S+)", capsys.readouterr().out, flags=re.MULTILINE)

@@ -2,16 +2,22 @@
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
 import pickle
+import subprocess
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import pytest
+import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from voot.envs import mesh_grasp as MG
 from voot.envs import meshes as M
 from voot.envs.grasp import side_grasp
 from voot.envs.mesh_grasp import (
@@ -42,8 +48,17 @@ def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
 
 
 @pytest.fixture(scope="module")
-def box_info():  # type: ignore[no-untyped-def]
+def box_info(tmp_path_factory: pytest.TempPathFactory):  # type: ignore[no-untyped-def]
     """The box as movable_objects reads it from a compiled scene (MuJoCo's numbers)."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("VOOT_CACHE", str(tmp_path_factory.mktemp("box_cache")))
+        M.clear_memory_cache()
+        info = movable_objects(M.compile_scene(_box_scene(), [BOX]))[0]
+        M.clear_memory_cache()
+    return info
+
+
+def _box_scene() -> str:
     xml = f"""<mujoco><compiler angle="radian"/>
   <asset>{M.shape_assets_xml([BOX])}</asset>
   <default><default class="object"><geom contype="4" conaffinity="7"/></default>
@@ -51,8 +66,7 @@ def box_info():  # type: ignore[no-untyped-def]
   <include file="robot.xml"/>
   <worldbody>{M.object_body_xml("obj_box", BOX, (0.0, 0.0, 0.0, 0.0), "")}</worldbody>
 </mujoco>"""
-    xml = xml.replace(' material=""', "")
-    return movable_objects(M.compile_scene(xml, [BOX]))[0]
+    return xml.replace(' material=""', "")
 
 
 def test_a_box_is_hit_everywhere_on_its_faces() -> None:
@@ -185,10 +199,69 @@ def test_grasp_sets_pickle_and_are_cached_beside_the_meshes(cache: Path) -> None
     assert grasp_set(BOTTLE) is disk  # then kept in the process
 
 
+@pytest.mark.parametrize("kind", M.SHAPE_KINDS)
+def test_the_rays_hit_what_trimesh_s_ray_mesh_intersector_hits(kind: str) -> None:
+    # the reference: trimesh's own ray casting (r-tree broad phase), nearest hit per ray
+    sizes = {"plate": (0.26, 0.26, 0.025), "tray": (0.4, 0.3, 0.04), "mug": (0.12, 0.085, 0.1)}
+    for variant in (0, 2):
+        mesh = build_shape(ShapeSpec(kind, sizes.get(kind, (0.2, 0.14, 0.25)), variant)).visual
+        depth, normal = cast_grasp_rays(mesh)
+        org, dirv, _ = MG._grid(mesh, ROWS, COLS)
+        tri, ray, loc = trimesh.ray.ray_triangle.RayMeshIntersector(mesh).intersects_id(
+            org, dirv, multiple_hits=True, return_locations=True
+        )
+        want = np.full(len(org), np.nan)
+        want_n = np.full((len(org), 3), np.nan)
+        dist = np.einsum("ij,ij->i", loc - org[ray], dirv[ray])
+        for r in np.unique(ray):
+            mine = np.flatnonzero(ray == r)
+            best = mine[np.lexsort((tri[mine], dist[mine]))[0]]
+            want[r] = np.round(dist[best] - MG._MARGIN, 9) + 0.0
+            want_n[r] = mesh.face_normals[tri[best]]
+        np.testing.assert_array_equal(depth.reshape(-1), want)
+        np.testing.assert_array_equal(normal.reshape(-1, 3), want_n)
+
+
+_NO_RTREE = """
+import sys
+sys.modules["rtree"] = None  # importing it fails: the library must not need it
+from voot.envs.mesh_grasp import grasp_set, mesh_side_grasp
+from voot.envs.meshes import ShapeSpec, compile_scene, mesh_assets
+g = grasp_set(ShapeSpec("mug", (0.12, 0.085, 0.1), 1))
+mesh_assets([ShapeSpec("bowl", (0.16, 0.16, 0.07))])
+print(round(g.hit_fraction, 6))
+"""
+
+
+_TABLE_DIGEST = """
+import hashlib
+from voot.envs.mesh_grasp import grasp_set
+from voot.envs.meshes import ShapeSpec
+g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+print(hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest())
+"""
+
+
+def test_grasp_tables_are_the_same_in_another_process(tmp_path: Path) -> None:
+    env = {**os.environ, "VOOT_CACHE": str(tmp_path / "other")}
+    out = subprocess.run(
+        [sys.executable, "-c", _TABLE_DIGEST], env=env, capture_output=True, text=True, check=True
+    )
+    g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
+    here = hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest()
+    assert out.stdout.strip().splitlines()[-1] == here
+
+
+def test_the_library_needs_no_rtree(tmp_path: Path) -> None:
+    env = {**os.environ, "VOOT_CACHE": str(tmp_path / "cache")}
+    out = subprocess.run(
+        [sys.executable, "-c", _NO_RTREE], env=env, capture_output=True, text=True, check=True
+    )
+    assert 0.5 < float(out.stdout.strip().splitlines()[-1]) < 1.0
+
+
 def test_cast_grasp_rays_takes_the_nearest_hit() -> None:
     # two boxes one behind the other along x: the +x rays stop at the nearer one
-    import trimesh
-
     a = trimesh.creation.box((0.1, 0.1, 0.1))
     b = trimesh.creation.box((0.1, 0.1, 0.1))
     b.apply_translation((0.2, 0.0, 0.0))
@@ -206,3 +279,43 @@ def test_cast_grasp_rays_takes_the_nearest_hit() -> None:
 def test_grasp_set_arrays_are_checked() -> None:
     with pytest.raises(ValueError, match=r"depth must be \(4, rows, cols\)"):
         MeshGraspSet(BOX, (0.05, 0.08), 0.22, np.zeros((3, 2, 2)), np.zeros((3, 2, 2, 3)))
+
+
+def _reference_depth(table: np.ndarray, hf: float, df: float) -> float:
+    """The lookup rule written plainly: nearest node decides, bilinear if 4 neighbours hit."""
+    rows, cols = table.shape
+    i = min(rows - 1, max(0, math.floor(hf * rows)))
+    j = min(cols - 1, max(0, math.floor(df * cols)))
+    if np.isnan(table[i, j]):
+        return math.nan
+    ci, cj = hf * rows - 0.5, df * cols - 0.5
+    i0 = min(rows - 2, max(0, math.floor(ci)))
+    j0 = min(cols - 2, max(0, math.floor(cj)))
+    wi, wj = min(1.0, max(0.0, ci - i0)), min(1.0, max(0.0, cj - j0))
+    q = table[i0 : i0 + 2, j0 : j0 + 2]
+    if np.isnan(q).any():
+        return float(table[i, j])
+    return float(
+        (1 - wi) * ((1 - wj) * q[0, 0] + wj * q[0, 1]) + wi * ((1 - wj) * q[1, 0] + wj * q[1, 1])
+    )
+
+
+def test_the_lookup_is_nearest_for_hits_and_bilinear_for_depth() -> None:
+    table = np.array([[0.0, 1.0, np.nan], [2.0, 3.0, 4.0], [np.nan, 5.0, 6.0]])
+    rows = table.tolist()
+    # node centres: the node's own value
+    assert MG._surface_depth(rows, 0.5 / 3, 0.5 / 3) == 0.0
+    assert MG._surface_depth(rows, 1.5 / 3, 2.5 / 3) == 4.0
+    # halfway between four hitting nodes: their mean
+    assert MG._surface_depth(rows, 1.0 / 3, 1.0 / 3) == pytest.approx(1.5)
+    # next to a missing node: the nearest node's value; on a missing node: NaN
+    assert MG._surface_depth(rows, 0.9 / 3, 1.9 / 3) == 1.0
+    assert math.isnan(MG._surface_depth(rows, 0.2 / 3, 2.9 / 3))
+    # out of [0, 1]: clamped to the border
+    assert MG._surface_depth(rows, -0.5, 0.0) == 0.0 and MG._surface_depth(rows, 2.0, 2.0) == 6.0
+    bottle = grasp_set(BOTTLE).depth[0]
+    rng = np.random.default_rng(3)
+    for hf, df in rng.uniform(-0.2, 1.2, (2000, 2)):
+        got = MG._surface_depth(bottle.tolist(), float(hf), float(df))
+        want = _reference_depth(bottle, float(hf), float(df))
+        assert got == want or (math.isnan(got) and math.isnan(want))

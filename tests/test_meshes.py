@@ -144,7 +144,7 @@ def test_mass_and_inertia_are_trimesh_s_and_positive_definite() -> None:
         assert eig[0] + eig[1] >= eig[2] * (1 - 1e-9), kind
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     kind=st.sampled_from(SHAPE_KINDS),
     size=st.tuples(st.floats(0.03, 0.6), st.floats(0.03, 0.6), st.floats(0.02, 0.6)),
@@ -159,6 +159,11 @@ def test_any_size_gives_a_watertight_mesh_of_that_size(
     np.testing.assert_allclose(shape.visual.extents, size, rtol=1e-12, atol=1e-15)
     assert all(p.is_convex for p in shape.parts)
     assert shape.mass > 0 and np.linalg.eigvalsh(shape.inertia).min() > 0
+    # it stands on its base (not on a handle): the vertices at z = 0 span at least 30 %
+    # of the footprint both ways
+    verts = np.asarray(shape.visual.vertices)
+    base = verts[verts[:, 2] < 1e-12]
+    assert np.ptp(base[:, 0]) >= 0.3 * size[0] and np.ptp(base[:, 1]) >= 0.3 * size[1]
 
 
 # ----- specs ------------------------------------------------------------------------------
@@ -177,6 +182,24 @@ def test_specs_are_validated_with_clear_errors() -> None:
         ShapeSpec("box", (0.1, 0.1, 0.1), -1)
     with pytest.raises(ValueError, match=r"variant must be"):
         ShapeSpec("box", (0.1, 0.1, 0.1), True)  # type: ignore[arg-type]
+
+
+def test_a_mesh_that_is_not_watertight_is_an_error_naming_the_spec(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def open_box(spec: ShapeSpec) -> M._Build:
+        box = trimesh.creation.box(spec.size)
+        box.update_faces(np.arange(len(box.faces)) != 0)  # one triangle missing
+        return M._Build([box], [box.convex_hull])
+
+    monkeypatch.setitem(M._BUILDERS, "box", open_box)
+    spec = ShapeSpec("box", (0.1, 0.2, 0.3), 4)
+    with pytest.raises(
+        ValueError, match=r"the mesh of ShapeSpec\(kind='box'.*variant=4\) is not watertight"
+    ):
+        build_shape(spec)
+    with pytest.raises(ValueError, match="is not watertight"):
+        M.compile_scene(scene_xml([spec], [(0.0, 0.0, 0.0, 0.0)]), [spec])
 
 
 def test_specs_are_canonical_values_so_equal_specs_share_a_key() -> None:
@@ -252,6 +275,32 @@ def test_a_corrupt_cache_file_is_rebuilt(cache: Path) -> None:
     assert path.read_bytes()[:2] == b"PK"  # rewritten
 
 
+def test_a_cache_file_of_another_layout_is_rebuilt(cache: Path) -> None:
+    spec = ShapeSpec("tray", SIZES["tray"])
+    cold = M.mesh_assets([spec])
+    path = cache / "meshes" / f"{spec.key}.mesh.npz"
+    np.savez(path, visual=np.zeros(3, dtype=np.uint8))  # readable, but not an entry
+    M.clear_memory_cache()
+    assert M.mesh_assets([spec]) == cold
+    with np.load(path) as z:
+        assert sorted(z.files) == ["inertial", "sizes", "stl"]
+
+
+def test_cache_writes_are_atomic(cache: Path) -> None:
+    spec = ShapeSpec("bin", SIZES["bin"])
+
+    def broken(*args: object, **kwargs: object) -> None:
+        raise OSError("disk full")
+
+    with pytest.MonkeyPatch.context() as mp:  # undone on leaving; VOOT_CACHE stays
+        mp.setattr(np, "savez", broken)
+        with pytest.raises(OSError, match="disk full"):
+            M.mesh_assets([spec])
+    assert list((cache / "meshes").iterdir()) == []  # no half file, no temporary left
+    M.mesh_assets([spec])
+    assert [p.name for p in (cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
+
+
 def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("VOOT_CACHE", "/some/where")
     assert M.cache_dir() == Path("/some/where")
@@ -322,8 +371,8 @@ def test_a_scene_of_three_mesh_objects_compiles_and_its_objects_are_found() -> N
 
 
 def test_objects_rest_on_the_floor_on_their_collision_parts() -> None:
-    specs = [ShapeSpec(k, SIZES[k]) for k in ("box", "bowl", "mug", "bottle", "tray")]
-    poses = [(1.0 + 0.5 * i, 1.0, 0.002, 0.1 * i) for i in range(len(specs))]
+    specs = [ShapeSpec(k, SIZES[k], v) for k in SHAPE_KINDS for v in (0, 3)]
+    poses = [(1.0 + 0.6 * (i % 10), 1.0 + 0.7 * (i // 10), 0.002, 0.1 * i) for i in range(20)]
     model = M.compile_scene(scene_xml(specs, poses), specs)
     data = mujoco.MjData(model)
     objs = movable_objects(model)

@@ -167,3 +167,37 @@ def test_set_and_read_object_pose() -> None:
     obj = movable_objects(model)[0]
     set_object_pose(data, obj, (1.0, -2.0, 0.0, 2.5))
     np.testing.assert_allclose(object_pose(data, obj), [1.0, -2.0, 0.0, 2.5], atol=1e-12)
+
+
+_PRISM = "0 0 0  0.3 0 0  0 0.1 0  0 0 0.2  0.3 0 0.2  0 0.1 0.2"  # a right-triangle prism
+_MESH_SCENE = f"""<mujoco>
+  <asset><mesh name="prism" vertex="{_PRISM}"/></asset>
+  <worldbody>
+    <geom name="static_prism" type="mesh" mesh="prism" pos="1 1 0" contype="2" conaffinity="5"/>
+    <body name="obj_prism" pos="2 0 0">
+      <freejoint name="obj_prism"/>
+      <geom name="obj_prism" type="mesh" mesh="prism" contype="4" conaffinity="7"/>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def test_a_mesh_geom_s_footprint_is_its_vertices_rectangle() -> None:
+    model = mujoco.MjModel.from_xml_string(_MESH_SCENE)
+    # MuJoCo puts the mesh in its principal frame, turned in the horizontal plane: the
+    # corners of geom_aabb there would give a larger rectangle than the prism's
+    geom = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, "obj_prism")
+    assert abs(model.geom_quat[geom][0]) < 0.999
+    (obj,) = movable_objects(model)
+    np.testing.assert_allclose(obj.center, [0.15, 0.05], atol=1e-6)
+    np.testing.assert_allclose(obj.half, [0.15, 0.05], atol=1e-6)
+    assert obj.height == pytest.approx(0.2, abs=1e-6)
+    (box,) = static_footprints(model)
+    corners = np.array([[x, y] for x, y, _ in np.array(_PRISM.split(), float).reshape(-1, 3)])
+    c, s = math.cos(box.yaw), math.sin(box.yaw)
+    offset = np.array([1.0 - box.cx, 1.0 - box.cy])
+    local = (corners + offset) @ np.array([[c, -s], [s, c]])
+    # the static footprint holds every vertex and touches the prism on all four sides
+    slack = np.array([box.half_x, box.half_y]) - np.abs(local)
+    assert np.all(slack >= -1e-6)
+    assert np.all(np.abs(local).max(axis=0) >= [box.half_x - 1e-6, box.half_y - 1e-6])
