@@ -30,7 +30,9 @@ tree-side rules (:data:`V1_TREE_RULES`: 50 retries for every planner, commitment
 counting root actions with reward >= 0 at thresholds 10 / 1, the return to the
 original root after a goal, VOO's per-operator distance). ``voot/KitchenClearing-v2``
 (alias ``kitchen_v2``: kitchens generated from ``layout_seed`` and ``difficulty``, env
-keywords) plays the v1 rules and gets the v1 kitchen's settings.
+keywords) plays the v1 rules and gets the v1 kitchen's settings. ``voot/ConveyorPacking-v2``
+(alias ``conveyor_v2``: generated storage rooms on the v1 rules, env keywords
+``layout_seed`` and ``difficulty``) gets the v1 conveyor's options on every layout.
 """
 
 from __future__ import annotations
@@ -57,6 +59,7 @@ ALIASES: Mapping[str, str] = {
     "kitchen_v1": "voot/KitchenClearing-v1",
     "conveyor_v1": "voot/ConveyorPacking-v1",
     "kitchen_v2": "voot/KitchenClearing-v2",
+    "conveyor_v2": "voot/ConveyorPacking-v2",
 }
 #: The robot domains under the authors' two-stage protocol, and their tree-side rules
 #: (reference page, "What the original code checks inside the retries"): commitment
@@ -72,11 +75,14 @@ V1_COMMITMENT: Mapping[str, int] = {
     "voot/KitchenClearing-v1": 10,
     "voot/KitchenClearing-v2": 10,
     "voot/ConveyorPacking-v1": 1,
+    "voot/ConveyorPacking-v2": 1,
 }
 KITCHEN_IDS = frozenset(
     {"voot/KitchenClearing-v0", "voot/KitchenClearing-v1", "voot/KitchenClearing-v2"}
 )
-CONVEYOR_IDS = frozenset({"voot/ConveyorPacking-v0", "voot/ConveyorPacking-v1"})
+CONVEYOR_IDS = frozenset(
+    {"voot/ConveyorPacking-v0", "voot/ConveyorPacking-v1", "voot/ConveyorPacking-v2"}
+)
 #: The chains' gymnasium ids -> function name (their ``dim`` keyword picks the settings).
 CHAIN_ENV_IDS: Mapping[str, str] = {
     "voot/ShekelChain-v0": "shekel",
@@ -115,6 +121,7 @@ PAPER_SETUPS: Mapping[str, PaperSetup] = {
     "voot/KitchenClearing-v1": PaperSetup(2_000, 20, ROBOT_PLANNERS),
     "voot/KitchenClearing-v2": PaperSetup(2_000, 20, ROBOT_PLANNERS),
     "voot/ConveyorPacking-v1": PaperSetup(3_000, 50, ROBOT_PLANNERS),
+    "voot/ConveyorPacking-v2": PaperSetup(3_000, 50, ROBOT_PLANNERS),
 }
 #: Budget of any other environment.
 DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)

@@ -383,6 +383,22 @@ def conveyor_box_sizes(
     return sizes
 
 
+def conveyor_belt_xml() -> str:
+    """The belt east of the start: a raised frame (static) with a dark surface and rails
+    (decoration); shared by ``conveyor.xml`` and the generated storage rooms."""
+    belt_x0, belt_x1 = 1.5, 25.0
+    bx, bhx = 0.5 * (belt_x0 + belt_x1), 0.5 * (belt_x1 - belt_x0)
+    out = [
+        f'    <geom name="belt_frame" class="scene" type="box" material="rail" size="{_v(bhx, 0.5, (BELT_TOP - 0.01) / 2)}" pos="{_v(bx, 1.05, (BELT_TOP - 0.01) / 2)}"/>\n',
+        f'    <geom name="belt_surface" class="decor" type="box" material="belt" size="{_v(bhx, 0.45, 0.005)}" pos="{_v(bx, 1.05, BELT_TOP - 0.005)}"/>\n',
+    ]
+    for side, y in (("s", 0.53), ("n", 1.57)):
+        out.append(
+            f'    <geom name="belt_rail_{side}" class="decor" type="box" material="rail" size="{_v(bhx, 0.02, 0.04)}" pos="{_v(bx, y, BELT_TOP + 0.02)}"/>\n'
+        )
+    return "".join(out)
+
+
 def conveyor_xml() -> str:
     """The storage rooms and conveyor belt scene as an MJCF string."""
     wall_h = 1.2
@@ -425,19 +441,7 @@ def conveyor_xml() -> str:
     ]
     for name, x0, x1, y0, y1 in walls:
         out.append("    " + _wall(name, x0, x1, y0, y1, wall_h) + "\n")
-    # the belt: a raised frame (static) with a dark belt surface and rails (decoration)
-    belt_x0, belt_x1 = 1.5, 25.0
-    bx, bhx = 0.5 * (belt_x0 + belt_x1), 0.5 * (belt_x1 - belt_x0)
-    out.append(
-        f'    <geom name="belt_frame" class="scene" type="box" material="rail" size="{_v(bhx, 0.5, (BELT_TOP - 0.01) / 2)}" pos="{_v(bx, 1.05, (BELT_TOP - 0.01) / 2)}"/>\n'
-    )
-    out.append(
-        f'    <geom name="belt_surface" class="decor" type="box" material="belt" size="{_v(bhx, 0.45, 0.005)}" pos="{_v(bx, 1.05, BELT_TOP - 0.005)}"/>\n'
-    )
-    for side, y in (("s", 0.53), ("n", 1.57)):
-        out.append(
-            f'    <geom name="belt_rail_{side}" class="decor" type="box" material="rail" size="{_v(bhx, 0.02, 0.04)}" pos="{_v(bx, y, BELT_TOP + 0.02)}"/>\n'
-        )
+    out.append(conveyor_belt_xml())
     # a few static shelves along the walls of the larger rooms
     out.append(
         "    " + Rect(-7.4, -6.9, -7.5, -5.0, 1.8).geom("shelf_sw", "scene", "dark_wood") + "\n"

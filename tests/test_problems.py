@@ -64,6 +64,15 @@ def test_v1_domain_options_are_the_authors_tree_rules() -> None:
     assert P.paper_setup("voot/ConveyorPacking-v1").simulations == 3000
 
 
+def test_the_generated_conveyor_takes_the_v1_conveyors_options() -> None:
+    assert P.normalize_problem("conveyor_v2") == "voot/ConveyorPacking-v2"
+    for planner in ("voot", "pw_uct", "doot"):
+        v1 = P.domain_options("voot/ConveyorPacking-v1", None, planner)
+        v2 = P.domain_options("voot/ConveyorPacking-v2", None, planner, {"layout_seed": 3})
+        assert v2 == v1
+    assert P.paper_setup("voot/ConveyorPacking-v2") == P.paper_setup("voot/ConveyorPacking-v1")
+
+
 def test_env_kwargs_must_be_json() -> None:
     assert P.check_env_kwargs({"dim": 3}) == {"dim": 3}
     with pytest.raises(ValueError, match="JSON"):

@@ -51,6 +51,8 @@ def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
         from voot.envs.scripted import kitchen_actions
 
         script = kitchen_actions(u)[:4]  # pick, place, pick: then an object is held
+    elif hasattr(u, "witness_actions"):  # a generated layout: the packing that proves it
+        script = u.witness_actions()[:3]
     elif env_id.startswith("voot/ConveyorPacking"):
         from voot.envs.scripted import conveyor_actions
 

@@ -21,6 +21,9 @@ ENV_IDS: dict[str, str] = {
     # Kitchens generated from a seed under the v1 rules (docs/environments.md, "Generated
     # kitchens"); keywords: layout_seed=int, difficulty="easy" | "medium" | "hard".
     "voot/KitchenClearing-v2": "voot.envs.kitchen_family:GeneratedKitchenEnv",
+    # Generated storage rooms on the v1 rules (issue 24); keywords: layout_seed=int,
+    # difficulty="easy" | "medium" | "hard" (voot.envs.conveyor_family).
+    "voot/ConveyorPacking-v2": "voot.envs.conveyor_family:ConveyorFamilyEnv",
 }
 #: id -> keyword arguments registered with it.
 ENV_KWARGS: dict[str, dict[str, str]] = {
