@@ -61,6 +61,7 @@ def documented_sweeps() -> dict[str, list[Any]]:
     return {
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
+        "heldout-kitchen-v2": heldout_sweep(),
         "protocol-v1-same-seed": build_plan_specs(
             ["kitchen_v1", "conveyor_v1"], planners=PROTOCOL_V1_PLANNERS
         ),
@@ -117,6 +118,29 @@ def protocol_v1_sweep() -> list[Any]:
         for seed in seeds
     ]
     return [*tuning, *evaluation, *rl]
+
+
+def heldout_sweep() -> list[Any]:
+    """The held-out protocol as docs/results-planning.md runs it on the generated kitchens
+    (``voot-bench plan --heldout``): every setting on the training layouts, the selected
+    setting on the held-out layouts, one seed each."""
+    from voot.bench.layouts import HELDOUT_LAYOUTS, TRAINING_LAYOUTS
+    from voot.bench.plan_sweep import build_plan_specs
+    from voot.bench.tuning import selected_specs, tuning_selections
+
+    common: dict[str, Any] = {
+        "planners": "voot pw_uct doot rand_doot uniform_t".split(),
+        "seeds": [0],
+        "simulations": 2000,
+        "env_kwargs": {"difficulty": "medium"},
+    }
+    tuning = build_plan_specs(["kitchen_v2"], layout_seeds=TRAINING_LAYOUTS, **common)
+    rows = ResultStore(DATA / "heldout-kitchen-v2", create=False).load(kind="plan")
+    evaluation = selected_specs(
+        build_plan_specs(["kitchen_v2"], layout_seeds=HELDOUT_LAYOUTS, **common),
+        tuning_selections(tuning, rows),
+    )
+    return [*tuning, *evaluation]
 
 
 def ablation_sweep() -> list[Any]:
@@ -329,3 +353,22 @@ def test_the_protocol_pages_tables_are_what_the_committed_store_redraws(tmp_path
         "plan-cpu-seconds.png",
         "plan-simulations.png",
     ]
+
+
+def test_the_heldout_tables_are_what_the_committed_store_redraws(tmp_path: Path) -> None:
+    """docs/results-planning.md shows the held-out protocol's tables as the store redraws."""
+    pytest.importorskip("matplotlib")
+    import importlib.util
+
+    root = DATA.parents[1]
+    path = root / "docs" / "scripts" / "heldout_docs.py"
+    spec = importlib.util.spec_from_file_location("heldout_docs", path)
+    assert spec is not None and spec.loader is not None
+    docs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(docs)
+    with shipped.store_copy(DATA / "heldout-kitchen-v2") as copy:
+        body = docs.render(copy, tmp_path)
+    page = (root / "docs" / "results-planning.md").read_text()
+    assert docs.marked(page) == body, "run python docs/scripts/heldout_docs.py"
+    assert body.count("| 20 layouts, 20 runs |") == 5  # each planner on the 20 held-out
+    assert "Settings selected on training layouts 1000-1019" in body
