@@ -1,10 +1,11 @@
-"""Tests of voot.bench.cli_measure: ``voot-bench speed`` and its cases (``difficulty``:
+"""Tests of voot.bench.cli_measure: ``voot-bench speed`` and its cases, ``ladder`` (``difficulty``:
 tests/test_difficulty.py)."""
 
 from __future__ import annotations
 
 import sys
 import types
+from pathlib import Path
 
 import pytest
 
@@ -46,3 +47,17 @@ def test_parse_cases() -> None:
         parse_cases(["voo:0"])
     with pytest.raises(ValueError, match="unknown method"):
         parse_cases(["nope:3"])
+
+
+def test_ladder_prints_and_writes_the_tables(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "ladder.md"
+    argv = ["ladder", "--env", "kitchen_v2", "--levels", "easy", "--layouts", "0:1"]
+    assert main([*argv, "--samples", "5", "--rollouts", "1", "--markdown", str(out)]) == 0
+    text = out.read_text()
+    assert "Difficulty ladder of voot/KitchenClearing-v2: layouts 0;" in text
+    assert text.strip() in capsys.readouterr().out
+    assert main([*argv, "--samples", "0"]) == 2
+    assert "--samples must be >= 1" in capsys.readouterr().err
+    assert main([*argv, "--layouts", "x"]) == 2

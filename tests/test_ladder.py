@@ -60,3 +60,23 @@ def test_level_stats_refuses_bad_arguments() -> None:
         ladder.level_stats("voot/KitchenClearing-v2", "easy", samples=0)
     with pytest.raises(ValueError, match="at least one layout"):
         ladder.level_stats("voot/KitchenClearing-v2", "easy", layouts=())
+
+
+def test_a_small_ladder_of_generated_kitchens_is_measured_and_reproducible() -> None:
+    a = ladder.level_stats("voot/KitchenClearing-v2", "easy", layouts=(0,), samples=20, rollouts=2)
+    assert a.layouts == (0,) and a.rollouts == 2 and set(a.precheck) == {"pick", "place"}
+    for node in ("pick", "place"):
+        assert 0 <= a.executed[node] <= a.precheck[node] <= 20
+    assert 0.0 <= a.feasible_share <= 1.0 and 0.0 <= a.handled <= 1.0
+    b = ladder.level_stats("voot/KitchenClearing-v2", "easy", layouts=(0,), samples=20, rollouts=2)
+    assert a == b  # same arguments, same numbers
+
+
+def test_the_report_gives_a_verdict_per_statistic() -> None:
+    rows = [_row("voot", "easy", 0.0), _row("voot", "hard", 0.0)]
+    text = ladder.ladder_report(
+        "voot/KitchenClearing-v2", ("easy", "hard"), (0,), samples=10, rollouts=1, rows=rows
+    )
+    assert "| voot | easy | 1 | 100%" in text
+    assert "- objects handled by voot: yes (100.0% / 100.0%)" in text
+    assert "- feasible share of uniform actions:" in text

@@ -62,6 +62,8 @@ def documented_sweeps() -> dict[str, list[Any]]:
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
         "heldout-kitchen-v2": heldout_sweep(),
+        "ladder-kitchen-v2": ladder_sweep("kitchen_v2", 2000),
+        "ladder-conveyor-v2": ladder_sweep("conveyor_v2", 3000),
         "protocol-v1-same-seed": build_plan_specs(
             ["kitchen_v1", "conveyor_v1"], planners=PROTOCOL_V1_PLANNERS
         ),
@@ -141,6 +143,26 @@ def heldout_sweep() -> list[Any]:
         tuning_selections(tuning, rows),
     )
     return [*tuning, *evaluation]
+
+
+def ladder_sweep(problem: str, simulations: int) -> list[Any]:
+    """The planner runs of docs/environments.md's difficulty ladder: VOOT and PW-UCT at
+    their default settings on layouts 0-9 of every level."""
+    from voot.bench.plan_sweep import build_plan_specs
+
+    return [
+        spec
+        for level in ("easy", "medium", "hard")
+        for spec in build_plan_specs(
+            [problem],
+            planners=["voot", "pw_uct"],
+            seeds=[0],
+            simulations=simulations,
+            grid="default",
+            env_kwargs={"difficulty": level},
+            layout_seeds=range(10),
+        )
+    ]
 
 
 def ablation_sweep() -> list[Any]:
