@@ -84,6 +84,8 @@ def with_costs(r: Row, calls_per_sim: int, cpu_per_sim: float) -> Row:
 
 #: The generated family of :func:`layout_rows` (no env is made: rows only).
 LAYOUT_PROBLEM = "voot/KitchenClearing-v2"
+#: Its label in tables and figures (the alias of voot.bench.problems).
+LAYOUT_LABEL = "kitchen_v2"
 #: Final returns of voot's selected setting per held-out layout and seed: per-layout means
 #: 2, 4, 6 (units: mean 4, t-interval half-width 4.303 * 2 / sqrt(3) = 4.968 over 3
 #: layouts; the 6 runs taken as independent would give 2.099).

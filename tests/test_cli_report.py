@@ -79,7 +79,7 @@ def test_plot_and_claims_redraw_a_store_of_layouts(
 ) -> None:
     """A store whose rows have layout seeds (a held-out protocol's) redraws: one curve per
     family and planner, settings selected on the training layouts, intervals over layouts."""
-    from plan_fixtures import LAYOUT_PROBLEM, layout_rows
+    from plan_fixtures import LAYOUT_LABEL, layout_rows
 
     from voot.bench.store import ResultStore
 
@@ -92,17 +92,15 @@ def test_plot_and_claims_redraw_a_store_of_layouts(
     assert main([*argv, "--axes-dir", str(tmp_path / "axes")]) == 0
     printed = capsys.readouterr().out
     assert png.read_bytes()[:4] == b"\x89PNG" and (tmp_path / "axes" / "plan-calls.png").exists()
-    assert f"| {LAYOUT_PROBLEM} | 3 | **4 ± 4.968 (3)** | 1 ± 0 (3) |" in printed
+    assert f"| {LAYOUT_LABEL} | 3 | **4 ± 4.968 (3)** | 1 ± 0 (3) |" in printed
     text = md.read_text()
     assert "Settings selected on training layouts 1000-1001" in text
-    assert f"| {LAYOUT_PROBLEM} | voot | omega=0.1 | 3 layouts, 6 runs |" in text
+    assert f"| {LAYOUT_LABEL} | voot | omega=0.1 | 3 layouts, 6 runs |" in text
     # the same with the layouts named, and without any: every layout pooled, same-seed rule
     assert main(["plot", str(out), "--tuning-layouts", "1000:1002"]) == 0
     assert "**4 ± 4.968 (3)**" in capsys.readouterr().out
     assert main(["plot", str(out)]) == 0
-    assert (
-        f"| {LAYOUT_PROBLEM} | voot | omega=0.3 | 5 layouts, 10 runs |" in capsys.readouterr().out
-    )
+    assert f"| {LAYOUT_LABEL} | voot | omega=0.3 | 5 layouts, 10 runs |" in capsys.readouterr().out
     assert main(["claims", str(out), "--heldout"]) == 0
     assert "judged on the held-out layouts" in capsys.readouterr().out
     # errors: both options; --heldout on a store without a family that has a held-out set

@@ -79,12 +79,12 @@ def test_plan_data_reads_the_cost_curves_and_counts() -> None:
 
 
 def test_plan_data_on_held_out_layouts() -> None:
-    from plan_fixtures import LAYOUT_PROBLEM, layout_rows
+    from plan_fixtures import LAYOUT_LABEL, LAYOUT_PROBLEM, layout_rows
 
     data = plan_data(layout_rows(), tuning_layouts=[1000, 1001])
     by = {d.planner: d for d in data}
     voot = by["voot"]
-    assert voot.problem == LAYOUT_PROBLEM and voot.label == "omega=0.1"  # tuned on 1000-1001
+    assert voot.problem == LAYOUT_LABEL and voot.label == "omega=0.1"  # tuned on 1000-1001
     assert voot.layouts == (0, 0, 1, 1, 2, 2) and voot.seeds == (0, 1) * 3
     assert voot.has_layouts and voot.n_layouts == 3 and voot.n_units == 3 and voot.n_seeds == 6
     assert voot.tuning_layouts == (1000, 1001) and voot.tuning_seeds == ()

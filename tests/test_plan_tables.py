@@ -81,22 +81,20 @@ def test_calls_table_captions_and_the_tuned_report() -> None:
 
 
 def test_tables_on_held_out_layouts_take_the_layout_as_the_unit() -> None:
-    from plan_fixtures import LAYOUT_PROBLEM, layout_rows
+    from plan_fixtures import LAYOUT_LABEL, layout_rows
 
     data = plan_data(layout_rows(), tuning_layouts=[1000, 1001])
     ret = returns_table(data, at=[3])
-    assert f"| {LAYOUT_PROBLEM} | 3 | **4 ± 4.968 (3)** | 1 ± 0 (3) |" in ret
+    assert f"| {LAYOUT_LABEL} | 3 | **4 ± 4.968 (3)** | 1 ± 0 (3) |" in ret
     assert "over the per-layout means (number of layouts" in ret
     done = completion_table(data)
     # voot clears on seed 0 of every layout at simulation 3, never on seed 1: per-layout
     # medians are inf, so the median is too
-    assert f"| {LAYOUT_PROBLEM} | voot | 3/6 (50%) | > 3 |" in done
+    assert f"| {LAYOUT_LABEL} | voot | 3/6 (50%) | > 3 |" in done
     assert "over the per-layout medians" in done
     caption = figure_caption(data, "simulations")
     assert "mean over 6 (layout, seed) runs on 3 layouts" in caption
     assert "Settings selected on training layouts 1000-1001, disjoint from the held-out" in caption
-    assert f"| {LAYOUT_PROBLEM} | voot | omega=0.1 | 3 layouts, 6 runs |" in plan_settings_table(
-        data
-    )
+    assert f"| {LAYOUT_LABEL} | voot | omega=0.1 | 3 layouts, 6 runs |" in plan_settings_table(data)
     report = plan_report(data)
     assert report.startswith("### Protocol") and "report the held-out layouts only" in report
