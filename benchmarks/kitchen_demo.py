@@ -223,9 +223,11 @@ def run(
         fps: frames per second of the GIF.
         verbose: print progress and the obstacles cleared.
         env_id: the kitchen version (:data:`KITCHEN_IDS`; default :data:`DEMO_ENV`, v1).
-        layout_seed, difficulty: the layout of a generated kitchen (:data:`GENERATED_ID`
-            only; None: :data:`DEFAULT_LAYOUT_SEED`, :data:`DEFAULT_DIFFICULTY`); on v0 or
-            v1 giving either is a ValueError (:func:`layout_kwargs`).
+        layout_seed: the layout seed of a generated kitchen (:data:`GENERATED_ID` only;
+            None: :data:`DEFAULT_LAYOUT_SEED`); on v0 or v1 giving it is a ValueError
+            (:func:`layout_kwargs`).
+        difficulty: the generated kitchen's level (``"easy"``, ``"medium"``, ``"hard"``;
+            None: :data:`DEFAULT_DIFFICULTY`); as ``layout_seed``, v2 only.
 
     Returns:
         A :class:`DemoSummary`; the recording has been read back with
