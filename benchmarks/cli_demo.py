@@ -1,4 +1,5 @@
-"""The demos: ``demo`` (VOOT clearing the kitchen, with a rerun recording and a GIF),
+"""The demos: ``demo`` (VOOT clearing the kitchen, with a rerun recording and a GIF; on
+a generated kitchen with ``--env kitchen_v2 --layout-seed S --difficulty D``),
 ``figure5`` (the paper's Figure 5 on the kitchen) and ``demo-voo`` (VOO on a test
 function with the paper's budget)."""
 
@@ -15,6 +16,14 @@ from voot.bench.cli_types import seed_argument
 if TYPE_CHECKING:
     from voot.bench.cli_common import Subparsers
 
+#: ``--difficulty`` of ``demo`` (:data:`voot.envs.kitchen_layout.DIFFICULTIES`; written
+#: out so that ``voot-bench --help`` does not import the environments).
+DIFFICULTY_CHOICES = ("easy", "medium", "hard")
+#: Defaults of ``--layout-seed`` and ``--difficulty`` as the help states them
+#: (:data:`voot.bench.kitchen_demo.DEFAULT_LAYOUT_SEED`, ``DEFAULT_DIFFICULTY``).
+DEFAULT_LAYOUT_SEED = 0
+DEFAULT_DIFFICULTY = "easy"
+
 
 def cmd_demo(args: argparse.Namespace) -> int:
     """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
@@ -25,7 +34,32 @@ def cmd_demo(args: argparse.Namespace) -> int:
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
     try:
         env_id = normalize_problem(args.env)
-        kitchen_demo.run(args.out, sims, seed, args.planner, video=not args.no_video, env_id=env_id)
+        if env_id != kitchen_demo.GENERATED_ID and (
+            args.layout_seed is not None or args.difficulty is not None
+        ):
+            given = [
+                flag
+                for flag, value in (
+                    ("--layout-seed", args.layout_seed),
+                    ("--difficulty", args.difficulty),
+                )
+                if value is not None
+            ]
+            verb = "choose" if len(given) > 1 else "chooses"
+            raise CLIError(
+                f"{' and '.join(given)} {verb} a generated kitchen; --env {args.env} ({env_id})"
+                " is the paper's fixed instance: use --env kitchen_v2"
+            )
+        kitchen_demo.run(
+            args.out,
+            sims,
+            seed,
+            args.planner,
+            video=not args.no_video,
+            env_id=env_id,
+            layout_seed=args.layout_seed,
+            difficulty=args.difficulty,
+        )
     except ValueError as exc:
         raise CLIError(str(exc)) from exc
     return 0
@@ -104,8 +138,22 @@ def register(sub: Subparsers) -> None:
     p.add_argument(
         "--env",
         default="kitchen_v1",
-        help="kitchen_v1 (voot/KitchenClearing-v1, the authors' protocol; default) or kitchen"
-        " (voot/KitchenClearing-v0)",
+        help="kitchen_v1 (voot/KitchenClearing-v1, the authors' protocol; default), kitchen"
+        " (voot/KitchenClearing-v0) or kitchen_v2 (voot/KitchenClearing-v2, kitchens generated"
+        " from --layout-seed and --difficulty)",
+    )
+    p.add_argument(
+        "--layout-seed",
+        type=seed_argument,
+        default=None,
+        help="kitchen_v2 only: the generated kitchen's layout seed (default: "
+        f"{DEFAULT_LAYOUT_SEED})",
+    )
+    p.add_argument(
+        "--difficulty",
+        choices=DIFFICULTY_CHOICES,
+        default=None,
+        help=f"kitchen_v2 only: the generated kitchen's level (default: {DEFAULT_DIFFICULTY})",
     )
     p.set_defaults(func=cmd_demo)
 

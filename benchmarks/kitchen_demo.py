@@ -7,7 +7,10 @@ MuJoCo scene, the best plan on the ``plan`` timeline, the sampled picks and plac
 the root and the first place node coloured by :math:`\hat Q`, the search tree), checks
 that it reads back, renders the best plan as a GIF (``kitchen_<planner>.gif``,
 :func:`voot.record.kitchen_animation.plan_animation`) and prints the obstacles cleared.
-It runs on ``voot/KitchenClearing-v1`` by default (``env_id`` picks v0).
+It runs on ``voot/KitchenClearing-v1`` by default (``env_id`` picks v0, or the generated
+kitchens of ``voot/KitchenClearing-v2`` with ``layout_seed`` and ``difficulty``: the
+recording then shows that kitchen's walls, counters and mesh objects, and its files are
+named after the layout, :func:`output_stem`).
 
 Whether a search clears every obstacle depends on the seed (see ``docs/recordings.md``,
 "VOOT on the kitchen"); the demo seed's search clears all seven within
@@ -31,8 +34,15 @@ from voot.tree.step_info import StepInfo
 
 #: The first release's kitchen (Figure 5 of :func:`figure5` and the v0 results).
 KITCHEN_ID = "voot/KitchenClearing-v0"
+#: The generated kitchens (:mod:`voot.envs.kitchen_family`): the only version that takes
+#: ``layout_seed`` and ``difficulty``.
+GENERATED_ID = "voot/KitchenClearing-v2"
 #: The kitchen versions the demo runs on.
-KITCHEN_IDS = ("voot/KitchenClearing-v0", "voot/KitchenClearing-v1")
+KITCHEN_IDS = ("voot/KitchenClearing-v0", "voot/KitchenClearing-v1", GENERATED_ID)
+#: The layout of a generated kitchen when :func:`run` is not given one (the env's defaults).
+DEFAULT_LAYOUT_SEED = 0
+#: See :data:`DEFAULT_LAYOUT_SEED`.
+DEFAULT_DIFFICULTY = "easy"
 #: The demo's default: the authors' protocol (v1), where a search is about ten times
 #: cheaper than on v0 and the demo seed's search clears the path within 600 simulations
 #: (other seeds may commit to a dead end; see docs/recordings.md).
@@ -61,8 +71,57 @@ def options_for(env_id: str, planner: str) -> dict[str, Any]:
     return domain_options(env_id, None, normalize_planner(planner))
 
 
-def make_problem(seed: int | None = 0, env_id: str = KITCHEN_ID) -> Any:
-    """A fresh kitchen (``gym.make``) as a planning problem, reset with ``seed``."""
+def layout_kwargs(
+    env_id: str, layout_seed: int | None = None, difficulty: str | None = None
+) -> dict[str, Any]:
+    """The ``gym.make`` keywords that choose the kitchen's layout.
+
+    On :data:`GENERATED_ID` they are ``layout_seed`` and ``difficulty`` (None: the
+    defaults :data:`DEFAULT_LAYOUT_SEED`, :data:`DEFAULT_DIFFICULTY`; a level not in
+    :data:`voot.envs.kitchen_layout.DIFFICULTIES` is an error naming them). The paper's
+    kitchens (v0, v1) are one fixed instance: there they are ``{}``, and a layout option
+    is a ValueError that says which env takes it.
+    """
+    if env_id not in KITCHEN_IDS:
+        raise ValueError(f"unknown kitchen {env_id!r}; valid ids are: {', '.join(KITCHEN_IDS)}")
+    if env_id != GENERATED_ID:
+        given = [
+            name
+            for name, value in (("layout_seed", layout_seed), ("difficulty", difficulty))
+            if value is not None
+        ]
+        if given:
+            verb = "choose" if len(given) > 1 else "chooses"
+            raise ValueError(
+                f"{' and '.join(given)} {verb} a generated kitchen; {env_id} is the paper's"
+                f" fixed instance. Use {GENERATED_ID} (kitchen_v2) for generated layouts"
+            )
+        return {}
+    from voot.envs.kitchen_layout import difficulty_level
+
+    seed = V.integer(DEFAULT_LAYOUT_SEED if layout_seed is None else layout_seed, "layout_seed", 0)
+    level = DEFAULT_DIFFICULTY if difficulty is None else difficulty
+    difficulty_level(level)  # an unknown level names the valid ones
+    return {"layout_seed": seed, "difficulty": level}
+
+
+def output_stem(planner: str, env_kwargs: dict[str, Any] | None = None) -> str:
+    """The file name (without suffix) of :func:`run`'s outputs.
+
+    ``kitchen_<planner>`` on the paper's kitchens; on a generated one its layout is in
+    the name, ``kitchen_v2_<difficulty>_<layout_seed>_<planner>``, so demos of several
+    layouts can share a folder.
+    """
+    if not env_kwargs:
+        return f"kitchen_{planner}"
+    return f"kitchen_v2_{env_kwargs['difficulty']}_{env_kwargs['layout_seed']}_{planner}"
+
+
+def make_problem(
+    seed: int | None = 0, env_id: str = KITCHEN_ID, env_kwargs: dict[str, Any] | None = None
+) -> Any:
+    """A fresh kitchen (``gym.make(env_id, **env_kwargs)``) as a planning problem, reset
+    with ``seed``; ``env_kwargs`` as :func:`layout_kwargs` gives them."""
     import gymnasium as gym
 
     import voot  # noqa: F401 - registers the environment ids
@@ -70,7 +129,7 @@ def make_problem(seed: int | None = 0, env_id: str = KITCHEN_ID) -> Any:
 
     if env_id not in KITCHEN_IDS:
         raise ValueError(f"unknown kitchen {env_id!r}; valid ids are: {', '.join(KITCHEN_IDS)}")
-    env = gym.make(env_id, disable_env_checker=True)
+    env = gym.make(env_id, disable_env_checker=True, **(env_kwargs or {}))
     return EnvProblem(env, seed=seed)
 
 
@@ -93,6 +152,8 @@ class DemoSummary:
         recording_entities: entities the recording holds (read back).
         video: the GIF, or None.
         video_frames: frames of the GIF.
+        layout_seed, difficulty: the generated kitchen's layout (None on v0 and v1,
+            whose JSON then has neither key).
     """
 
     planner: str
@@ -110,12 +171,18 @@ class DemoSummary:
     recording_entities: int
     video: Path | None
     video_frames: int
+    layout_seed: int | None = None
+    difficulty: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain values (paths as strings), e.g. for JSON."""
+        """Plain values (paths as strings), e.g. for JSON; the layout keys only for a
+        generated kitchen."""
         out = asdict(self)
         out["recording"] = str(self.recording)
         out["video"] = None if self.video is None else str(self.video)
+        for key in ("layout_seed", "difficulty"):
+            if out[key] is None:
+                del out[key]
         return out
 
 
@@ -138,12 +205,15 @@ def run(
     fps: float = 10.0,
     verbose: bool = True,
     env_id: str = DEMO_ENV,
+    layout_seed: int | None = None,
+    difficulty: str | None = None,
 ) -> DemoSummary:
     """Plan on the kitchen with ``planner``; write the recording and a GIF of the best plan.
 
     Args:
         out_dir: folder of ``kitchen_<planner>.rrd``, ``kitchen_<planner>.gif`` and
-            ``kitchen_<planner>.json`` (this summary).
+            ``kitchen_<planner>.json`` (this summary); on a generated kitchen the
+            names carry its layout (:func:`output_stem`).
         n_simulations: simulations of the search.
         seed: seed of the environment's reset and of the search.
         planner: a planner name (``voot``, ``pw_uct`` ...; see
@@ -153,6 +223,11 @@ def run(
         fps: frames per second of the GIF.
         verbose: print progress and the obstacles cleared.
         env_id: the kitchen version (:data:`KITCHEN_IDS`; default :data:`DEMO_ENV`, v1).
+        layout_seed: the layout seed of a generated kitchen (:data:`GENERATED_ID` only;
+            None: :data:`DEFAULT_LAYOUT_SEED`); on v0 or v1 giving it is a ValueError
+            (:func:`layout_kwargs`).
+        difficulty: the generated kitchen's level (``"easy"``, ``"medium"``, ``"hard"``;
+            None: :data:`DEFAULT_DIFFICULTY`); as ``layout_seed``, v2 only.
 
     Returns:
         A :class:`DemoSummary`; the recording has been read back with
@@ -161,18 +236,21 @@ def run(
     check_n_simulations(n_simulations)
     V.integer(seed, "seed", 0)
     key = normalize_planner(planner)
+    env_kwargs = layout_kwargs(env_id, layout_seed, difficulty)
     out = _check_dir(out_dir)
     from voot.record.reader import read_recording
     from voot.record.recorder import record_plan
 
     start = time.perf_counter()
-    problem = make_problem(seed, env_id)
+    problem = make_problem(seed, env_id, env_kwargs)
     env = problem.unwrapped
     obstacles = int(env.initial_obstacles)
-    rrd = out / f"kitchen_{key}.rrd"
+    stem = output_stem(key, env_kwargs)
+    rrd = out / f"{stem}.rrd"
     if verbose:
+        where = "".join(f", {k} {v}" for k, v in env_kwargs.items())
         print(
-            f"{key} on {env_id}: {n_simulations} simulations, seed {seed},"
+            f"{key} on {env_id}{where}: {n_simulations} simulations, seed {seed},"
             f" {obstacles} obstacles on the path ...",
             flush=True,
         )
@@ -191,10 +269,12 @@ def run(
         assert result.mcts is not None
         problem.restore(result.mcts.root.snapshot)
         label = f"{key.upper().replace('_', '-')}, {n_simulations} simulations, seed {seed}"
+        if env_kwargs:
+            label += f", {env_kwargs['difficulty']} kitchen {env_kwargs['layout_seed']}"
         frames = plan_animation(problem, result.actions, size=video_size, label=label)
         from voot.record.video import write_video
 
-        gif = write_video(out / f"kitchen_{key}.gif", frames, fps=fps, hold_last=int(2 * fps))
+        gif = write_video(out / f"{stem}.gif", frames, fps=fps, hold_last=int(2 * fps))
         from PIL import Image
 
         with Image.open(gif) as image:  # the writer merges repeated frames: count the file's
@@ -215,8 +295,10 @@ def run(
         recording_entities=len(rec.entities),
         video=gif,
         video_frames=n_frames,
+        layout_seed=env_kwargs.get("layout_seed"),
+        difficulty=env_kwargs.get("difficulty"),
     )
-    (out / f"kitchen_{key}.json").write_text(json.dumps(summary.to_dict(), indent=2) + "\n")
+    (out / f"{stem}.json").write_text(json.dumps(summary.to_dict(), indent=2) + "\n")
     if verbose:
         when = (
             f" (all after {summary.first_all_cleared} simulations)"

@@ -32,6 +32,8 @@ from voot.tree.config import normalize_planner
 from voot.tree.mcts import MCTS, check_n_simulations, plan
 from voot.tree.step_info import StepInfo
 
+#: The kitchens Figure 5 is drawn on: the paper's one fixed kitchen (v0, v1).
+FIGURE5_IDS = ("voot/KitchenClearing-v0", "voot/KitchenClearing-v1")
 #: Visits of the first object's place node at which Figure 5 is drawn (the paper's 50).
 FIGURE5_VISITS = 50
 #: Colour (RGB) of the executed placements that failed (forbidden rooms, no base path).
@@ -241,6 +243,11 @@ def figure5(
     Raises:
         ValueError: if no place node gets ``visits`` visits within ``max_simulations``.
     """
+    if env_id not in FIGURE5_IDS:  # the generated kitchens have no layout option here
+        raise ValueError(
+            f"figure5 runs on the paper's kitchen; valid ids are: {', '.join(FIGURE5_IDS)}"
+            f" (got {env_id!r})"
+        )
     V.integer(visits, "visits", 1)
     check_n_simulations(max_simulations)
     out = _check_dir(out_dir)

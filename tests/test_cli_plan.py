@@ -98,6 +98,31 @@ def test_plan_records_a_run(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert "were not recorded again" in capsys.readouterr().err
 
 
+def test_plan_records_a_generated_kitchen(tmp_path: Path) -> None:
+    pytest.importorskip("rerun")
+    pytest.importorskip("mujoco")
+    from gymnasium import make
+
+    from voot.record.reader import read_recording
+
+    rrd = tmp_path / "run.rrd"
+    argv = ["plan", "--out", str(tmp_path / "r"), "--problems", "kitchen_v2", "--planners"]
+    argv += ["voot", "--simulations", "3", "--grid", "default", "--backend", "serial"]
+    argv += ["--layout-seeds", "3:4", "--env-kwargs", "difficulty=medium", "--record", str(rrd)]
+    assert main([*argv, "--no-progress"]) == 0
+    (row,) = ResultStore(tmp_path / "r").load()
+    assert row["config"]["env_kwargs"] == {"difficulty": "medium", "layout_seed": 3}
+    env = make("voot/KitchenClearing-v2", layout_seed=3, difficulty="medium").unwrapped
+    names = [o.name for o in env.objects]
+    rec = read_recording(rrd)
+    meshes = {e for e in rec.entities if e.startswith("/scene/bodies/obj_") and e.endswith("/mesh")}
+    assert meshes == {f"/scene/bodies/{name}/mesh" for name in names}
+    for name in names:  # each object's visual mesh, in the layout it was run on
+        geom = env.model.geom(f"{name}_visual")
+        n_visual = int(env.model.mesh_vertnum[int(geom.dataid[0])])
+        assert len(rec.latest(f"scene/bodies/{name}/mesh", "Mesh3D:vertex_positions")) == n_visual
+
+
 def test_plan_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
     assert (
         main(["plan", "--dry-run", "--problems", "kitchen", "conveyor", "--grid", "default"]) == 0

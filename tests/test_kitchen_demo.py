@@ -12,7 +12,13 @@ pytest.importorskip("mujoco")
 pytest.importorskip("matplotlib")
 
 from voot.bench.cli import main
-from voot.bench.kitchen_demo import DemoSummary, planner_options, run
+from voot.bench.kitchen_demo import (
+    DemoSummary,
+    layout_kwargs,
+    output_stem,
+    planner_options,
+    run,
+)
 from voot.record.reader import read_recording
 
 
@@ -37,6 +43,7 @@ def test_tiny_run_writes_a_recording_that_reads_back(tmp_path: Path, capsys) -> 
     assert summary.video_frames > summary.plan_length
     saved = json.loads((tmp_path / "out" / "kitchen_voot.json").read_text())
     assert saved["cleared"] == summary.cleared and saved["recording"] == str(summary.recording)
+    assert "layout_seed" not in saved and "difficulty" not in saved  # the paper's kitchen
     out = capsys.readouterr().out
     assert f"cleared {summary.cleared} of 7 obstacles" in out and "rerun " in out
 
@@ -52,3 +59,67 @@ def test_bad_input(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="folder"):
         run(tmp_path / "file", n_simulations=1)
     assert main(["demo", "--out", str(tmp_path / "cli"), "--simulations", "0"]) == 2
+
+
+def _visual_vertices(model: object, body: str) -> int:
+    """Vertices of ``body``'s visual mesh (its ``<body>_visual`` geom) in ``model``."""
+    geom = model.geom(f"{body}_visual")  # type: ignore[attr-defined]
+    return int(model.mesh_vertnum[int(geom.dataid[0])])  # type: ignore[attr-defined]
+
+
+def test_generated_kitchen_recording_shows_its_mesh_objects(tmp_path: Path) -> None:
+    from voot.bench.kitchen_demo import GENERATED_ID, make_problem
+
+    summary = run(
+        tmp_path / "v2",
+        n_simulations=4,
+        seed=0,
+        video_size=(96, 72),
+        fps=5,
+        verbose=False,
+        env_id=GENERATED_ID,
+        layout_seed=3,
+        difficulty="medium",
+    )
+    stem = "kitchen_v2_medium_3_voot"
+    assert summary.recording == tmp_path / "v2" / f"{stem}.rrd"
+    assert summary.video == tmp_path / "v2" / f"{stem}.gif" and summary.video_frames > 1
+    saved = json.loads((tmp_path / "v2" / f"{stem}.json").read_text())
+    assert (saved["layout_seed"], saved["difficulty"]) == (3, "medium")
+    env = make_problem(0, GENERATED_ID, layout_kwargs(GENERATED_ID, 3, "medium")).unwrapped
+    model = env.model
+    objects = sorted(o.name for o in env.objects)
+    assert objects and summary.obstacles >= 1
+    rec = read_recording(summary.recording)
+    for name in objects:
+        mesh = f"scene/bodies/{name}/mesh"
+        # the visual mesh exactly: not its convex collision parts (group 3), nor both
+        n_visual = _visual_vertices(model, name)
+        assert len(rec.latest(mesh, "Mesh3D:vertex_positions")) == n_visual
+        assert len(rec.latest(mesh, "Mesh3D:vertex_normals")) == n_visual
+        parts = [g for g in range(model.ngeom) if model.geom_bodyid[g] == model.body(name).id]
+        assert len(parts) > 2  # the object has collision parts that are left out
+        # the object moves with the plan: one pose per step of the best plan
+        assert rec.entity(f"scene/bodies/{name}").rows["plan"] == summary.plan_length + 1
+    # the generated walls and counters are drawn as boxes of the world body
+    walls = rec.latest("scene/bodies/world/boxes", "Boxes3D:half_sizes")
+    assert len(walls) >= len(env.layout.blocks)
+
+
+def test_layout_options() -> None:
+    v2 = "voot/KitchenClearing-v2"
+    assert layout_kwargs(v2) == {"layout_seed": 0, "difficulty": "easy"}
+    assert layout_kwargs(v2, 7, "hard") == {"layout_seed": 7, "difficulty": "hard"}
+    assert layout_kwargs("voot/KitchenClearing-v1") == {}
+    with pytest.raises(ValueError, match="layout_seed and difficulty choose a generated"):
+        layout_kwargs("voot/KitchenClearing-v1", 3, "easy")
+    with pytest.raises(ValueError, match="KitchenClearing-v2"):
+        layout_kwargs("voot/KitchenClearing-v0", difficulty="easy")
+    with pytest.raises(ValueError, match="valid levels are: easy, medium, hard"):
+        layout_kwargs(v2, 0, "extreme")
+    with pytest.raises(ValueError, match="layout_seed must be"):
+        layout_kwargs(v2, -1)
+    with pytest.raises(ValueError, match="unknown kitchen"):
+        layout_kwargs("voot/ConveyorPacking-v1")
+    assert output_stem("voot") == "kitchen_voot"
+    assert output_stem("pw_uct", layout_kwargs(v2, 5, "hard")) == "kitchen_v2_hard_5_pw_uct"

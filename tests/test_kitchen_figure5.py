@@ -54,6 +54,8 @@ def test_bad_input(tmp_path: Path) -> None:
         figure5(tmp_path, visits=0)
     with pytest.raises(ValueError, match="no place node"):
         figure5(tmp_path, seed=0, planners=("voot",), visits=50, max_simulations=5, image=None)
+    with pytest.raises(ValueError, match="figure5 runs on the paper's kitchen"):
+        figure5(tmp_path, env_id="voot/KitchenClearing-v2")  # the demo takes v2, figure5 not
 
 
 def test_failure_category_is_the_reason_before_its_details() -> None:

@@ -11,7 +11,12 @@ pytest.importorskip("matplotlib")
 
 from voot.bench.kitchen_demo import make_problem
 from voot.envs.scripted import kitchen_actions
-from voot.record.kitchen_animation import plan_animation
+from voot.record.kitchen_animation import (
+    GENERATED_VIEW_DISTANCE,
+    KITCHEN_VIEW,
+    kitchen_view,
+    plan_animation,
+)
 
 
 def test_plan_animation_follows_the_scripted_solution() -> None:
@@ -30,3 +35,20 @@ def test_plan_animation_follows_the_scripted_solution() -> None:
     assert problem.snapshot() == expected.snapshot()
     with pytest.raises(ValueError, match="size"):
         plan_animation(problem, [], size=(10, 10))
+
+
+def test_kitchen_view_fits_a_generated_house() -> None:
+    assert kitchen_view(make_problem(0).unwrapped) == KITCHEN_VIEW  # the paper's kitchen
+    env = make_problem(
+        0, "voot/KitchenClearing-v2", {"layout_seed": 3, "difficulty": "medium"}
+    ).unwrapped
+    x0, x1, y0, y1 = env.layout.house
+    view = kitchen_view(env)
+    assert view["lookat"] == pytest.approx((0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0))
+    assert view["distance"] == pytest.approx(GENERATED_VIEW_DISTANCE * max(x1 - x0, y1 - y0))
+    frame = plan_animation(
+        make_problem(0, "voot/KitchenClearing-v2", {"layout_seed": 3, "difficulty": "medium"}),
+        [],
+        size=(96, 72),
+    )[0]
+    assert frame.shape == (72, 96, 3) and frame.std() > 5

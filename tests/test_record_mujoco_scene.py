@@ -20,6 +20,7 @@ from voot.record.mujoco_scene import (  # noqa: E402
     find_mujoco,
     log_mujoco_model,
     model_camera_eye,
+    vertex_normals,
 )
 from voot.record.reader import read_recording  # noqa: E402
 
@@ -122,6 +123,24 @@ def test_geometry_by_body_and_kind(model: object, tmp_path: Path) -> None:
     # The pole's frame is not rotated at qpos0, so body frame = world frame shifted.
     assert np.allclose(np.sort(verts + body_pos, axis=0), np.sort(world.T, axis=0), atol=1e-5)
     assert len(rec.latest("scene/bodies/pole/mesh", "Mesh3D:triangle_indices")) == 4
+    normals = np.array(rec.latest("scene/bodies/pole/mesh", "Mesh3D:vertex_normals"))
+    assert normals.shape == (4, 3) and np.allclose(np.linalg.norm(normals, axis=1), 1.0)
+    # outward: each vertex's normal points away from the tetrahedron's centre
+    assert np.all(np.einsum("ij,ij->i", normals, verts - verts.mean(axis=0)) > 0)
+
+
+def test_vertex_normals() -> None:
+    # a unit cube, faces wound counter-clockwise from outside
+    v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    faces = np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))])
+    n = vertex_normals(v, faces)
+    assert n.dtype == np.float32 and n.shape == (8, 3)
+    # a corner's three faces weigh the same: the normal is the corner's diagonal
+    assert np.allclose(n, (2 * v - 1) / np.sqrt(3), atol=1e-6)
+    # a vertex on no face, and a degenerate face, give zero vectors
+    extra = vertex_normals(np.vstack([v, [[5, 5, 5]]]), np.vstack([faces, [[8, 8, 8]]]))
+    assert np.allclose(extra[8], 0.0) and np.allclose(extra[:8], n)
 
 
 def test_poses_per_step_and_fixed_bodies_once(model: object, tmp_path: Path) -> None:

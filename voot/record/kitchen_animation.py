@@ -1,6 +1,11 @@
 r"""A kitchen plan as frames: the robot driving, reaching and carrying between the states
 the environment teleports to (the GIF of ``voot-bench demo``).
 
+The frames are MuJoCo's off-screen renders of the env's visual geoms (groups 0-2), so a
+generated kitchen's mesh objects (``voot/KitchenClearing-v2``) show as their visual
+meshes, not as their hidden convex collision parts (group 3); the camera is fitted to a
+generated house (:func:`kitchen_view`).
+
 It reads the kitchen's task record (the held object and its grasp) and plans the drives
 it shows with the env's base planner: an animation of this one environment, kept apart
 from the demo application that uses it (:mod:`voot.bench.kitchen_demo`).
@@ -26,7 +31,34 @@ KITCHEN_VIEW: dict[str, Any] = {
     "elevation": -60.0,
 }
 
+#: Distance of :func:`kitchen_view`'s eye from a generated house's centre, in multiples
+#: of the house's longer side (the whole house fits a 4:3 frame at 60 degrees down).
+GENERATED_VIEW_DISTANCE = 1.25
+
 Frame = NDArray[np.uint8]
+
+
+def kitchen_view(env: Any) -> dict[str, Any]:
+    r"""The GIF's free camera for the kitchen ``env``.
+
+    The paper's kitchen (v0, v1) gets :data:`KITCHEN_VIEW`. A generated kitchen
+    (:class:`~voot.envs.kitchen_family.GeneratedKitchenEnv`, ``voot/KitchenClearing-v2``)
+    has its own size and room layout, so the camera is fitted to its house
+    :math:`[x_0, x_1] \times [y_0, y_1]`: it looks at the house's centre from the west
+    (azimuth 0, as :data:`KITCHEN_VIEW`, 60 degrees down) at
+    :data:`GENERATED_VIEW_DISTANCE` :math:`\cdot \max(x_1 - x_0, y_1 - y_0)`.
+    """
+    from voot.envs.kitchen_family import GeneratedKitchenEnv
+
+    if not isinstance(env, GeneratedKitchenEnv):
+        return dict(KITCHEN_VIEW)
+    x0, x1, y0, y1 = (float(v) for v in env.layout.house)
+    return {
+        "lookat": (0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0),
+        "distance": GENERATED_VIEW_DISTANCE * max(x1 - x0, y1 - y0),
+        "azimuth": 0.0,
+        "elevation": -60.0,
+    }
 
 
 def _resample(poses: NDArray[np.float64], spacing: float, max_frames: int) -> list[Any]:
@@ -94,7 +126,8 @@ def plan_animation(
         actions: the plan (planner actions, as in :attr:`PlanResult.actions`).
         size: ``(width, height)`` in pixels.
         view: the free camera (``lookat``, ``distance``, ``azimuth``, ``elevation``);
-            default :data:`KITCHEN_VIEW`.
+            default :func:`kitchen_view` (:data:`KITCHEN_VIEW` on the paper's kitchen,
+            fitted to the house on a generated one).
         label: caption prefix.
         spacing: metres of base motion between frames.
         max_motion_frames: at most this many frames per base motion.
@@ -107,7 +140,7 @@ def plan_animation(
     env = problem.unwrapped
     if not isinstance(env, KitchenClearingEnv):
         raise ValueError(f"plan_animation needs the kitchen, got {type(env).__name__}")
-    render = _KitchenRenderer(env, size, view if view is not None else KITCHEN_VIEW)
+    render = _KitchenRenderer(env, size, view if view is not None else kitchen_view(env))
     data, robot = env.data, env.robot
     n = len(actions)
 

@@ -3,7 +3,8 @@
 Every body with drawn geoms becomes one entity ``<root>/bodies/<body name>``; its geoms
 are logged once, static, *in the body's frame*, batched by kind (``boxes`` for boxes and
 planes, ``ellipsoids`` for spheres and ellipsoids, ``cylinders``, ``capsules``, and
-``mesh`` for all its meshes merged, with per-vertex colours). A body's pose is then one
+``mesh`` for all its meshes merged, with per-vertex colours and normals, so the viewer
+shades them). A body's pose is then one
 :class:`rerun.Transform3D` per time step (MuJoCo's ``xpos``/``xquat``, world frame), so
 the robot and the objects move along a plan. Bodies welded to the world (no joint
 between them and the world, not mocap) never move: their pose is logged once, static.
@@ -11,7 +12,10 @@ between them and the world, not mocap) never move: their pose is logged once, st
 Poses are computed on a private ``MjData``: :meth:`MujocoScene.log_poses` copies
 ``qpos`` and the mocap poses of the given data and runs ``mj_kinematics``, so the
 caller's data (an environment's) is never touched. Height fields and SDF geoms are
-skipped (counted in :attr:`MujocoScene.skipped`). MuJoCo is imported lazily.
+skipped (counted in :attr:`MujocoScene.skipped`). Only the geom groups MuJoCo's viewer
+shows by default are drawn (0, 1, 2): a mesh object of a generated scene
+(:mod:`voot.envs.meshes`) is drawn as its visual mesh (class ``decor``, group 1), not
+as its convex collision parts (group 3) on top of it. MuJoCo is imported lazily.
 
 :func:`model_camera_eye` turns one of the model's cameras into the 3-D view's first eye
 (:class:`voot.record.blueprint.Eye3D`), so a recording opens on the view the scene was
@@ -83,6 +87,34 @@ def _quat_rotate(q_wxyz: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray
     u = q_wxyz[..., 1:]
     t = 2.0 * np.cross(u, v)
     return np.asarray(v + w * t + np.cross(u, t), dtype=np.float64)
+
+
+def vertex_normals(
+    vertices: NDArray[np.float64], faces: NDArray[np.integer]
+) -> NDArray[np.float32]:
+    r"""Unit normals ``(n, 3)`` of a triangle mesh's vertices, for the viewer's shading.
+
+    A vertex's normal is the normalised sum of the unit normals of the faces around it,
+    each weighted by the face's angle at the vertex,
+    :math:`n_v \propto \sum_{f \ni v} \alpha_{f,v}\, \hat n_f` (angle weights do not
+    depend on how a polygon is cut into triangles: a cube's corner gets its diagonal),
+    with the faces wound counter-clockwise seen from outside, as MuJoCo keeps them. A
+    vertex on no face (or only on degenerate ones) gets the zero vector.
+    """
+    v = np.asarray(vertices, dtype=np.float64).reshape(-1, 3)
+    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    area2 = np.linalg.norm(cross, axis=1, keepdims=True)
+    unit = np.divide(cross, area2, out=np.zeros_like(cross), where=area2 > 0)
+    out = np.zeros_like(v)
+    for k in range(3):
+        e1 = v[f[:, (k + 1) % 3]] - v[f[:, k]]
+        e2 = v[f[:, (k + 2) % 3]] - v[f[:, k]]
+        angle = np.arctan2(np.linalg.norm(np.cross(e1, e2), axis=1), np.einsum("ij,ij->i", e1, e2))
+        np.add.at(out, f[:, k], unit * angle[:, None])
+    length = np.linalg.norm(out, axis=1, keepdims=True)
+    out = np.divide(out, length, out=np.zeros_like(out), where=length > 1e-12)
+    return out.astype(np.float32)
 
 
 def _entity_part(name: str) -> str:
@@ -280,6 +312,8 @@ class MujocoScene:
         m = self.model
         verts, faces, colors = [], [], []
         offset = 0
+        # MuJoCo keeps a mesh's vertices in the mesh's own frame (centred at its centroid,
+        # along its principal axes); geom_pos / geom_quat place that frame in the body.
         for g in geoms:
             mesh = int(m.geom_dataid[g])
             va, vn = int(m.mesh_vertadr[mesh]), int(m.mesh_vertnum[mesh])
@@ -290,11 +324,14 @@ class MujocoScene:
             faces.append(np.array(m.mesh_face[fa : fa + fn], dtype=np.uint32) + offset)
             colors.append(np.repeat(self._colors([g]), vn, axis=0))
             offset += vn
+        positions = np.concatenate(verts)
+        triangles = np.concatenate(faces)
         rec.log(
             entity,
             rr.Mesh3D(
-                vertex_positions=np.concatenate(verts),
-                triangle_indices=np.concatenate(faces),
+                vertex_positions=positions,
+                triangle_indices=triangles,
+                vertex_normals=vertex_normals(positions, triangles),
                 vertex_colors=np.concatenate(colors),
             ),
             static=True,

@@ -1,0 +1,59 @@
+"""Make the generated-kitchen demo's figures of docs/recordings.md from its recording.
+
+* ``docs/figures/voot_kitchen_v2.gif``: VOOT's best plan in a generated kitchen
+  (:func:`voot.bench.kitchen_demo.run` on ``voot/KitchenClearing-v2``, medium, layout
+  seed 3; the demo's default simulations and seed);
+* ``docs/figures/recordings_kitchen_v2_viewer.png``: rerun's viewer on that recording's
+  3-D view at the end of the best plan (the mesh objects where the plan left them).
+
+The screenshot is taken by the native viewer of ``rerun-sdk`` running headless
+(:mod:`voot.record.screenshot`); without a GPU it needs Mesa's lavapipe
+(``apt-get install mesa-vulkan-drivers``). ``--no-viewer`` skips it.
+
+Run from the repository root (about 15 s)::
+
+    python docs/scripts/kitchen_v2_demo_figures.py [--work /tmp/kitchen_v2] [--no-viewer]
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+from pathlib import Path
+
+from PIL import Image
+
+from voot.bench.kitchen_demo import GENERATED_ID, run
+from voot.record.screenshot import viewer_screenshots
+
+FIGURES = Path("docs/figures")
+#: The kitchen shown: a medium one whose search clears every obstacle.
+LAYOUT_SEED, DIFFICULTY = 3, "medium"
+#: The 3-D view of the recording's default layout.
+SCENE_VIEW = "Scene and sampled actions"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--work", default="/tmp/voot_kitchen_v2_figures", help="scratch folder")
+    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer screenshot")
+    args = parser.parse_args()
+    work = Path(args.work)
+    FIGURES.mkdir(parents=True, exist_ok=True)
+
+    summary = run(work, env_id=GENERATED_ID, layout_seed=LAYOUT_SEED, difficulty=DIFFICULTY)
+    assert summary.video is not None
+    shutil.copy(summary.video, FIGURES / "voot_kitchen_v2.gif")
+    if args.no_viewer:
+        return
+    path = FIGURES / "recordings_kitchen_v2_viewer.png"
+    viewer_screenshots(
+        summary.recording, {SCENE_VIEW: path}, timeline="plan", sequence=summary.plan_length
+    )
+    img = Image.open(path).convert("RGB")
+    img.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(path, optimize=True)
+    print(f"screenshot -> {path} ({path.stat().st_size // 1024} kB)")
+
+
+if __name__ == "__main__":
+    main()
