@@ -5,7 +5,10 @@ The hashes are the committed ``tools/behaviour_hashes.json`` (recomputed by
 runs of VOO and DOO, and tree searches on the Shekel chain and on both kitchens; a
 60-simulation run of every tree and sampling planner on both v1 domains
 (``tools/v1_fingerprints.json``); and CMA-ES's curve (``tools/behaviour_curves.json``) within a relative tolerance, since its last
-bits depend on the CPU's BLAS kernel.
+bits depend on the CPU's BLAS kernel. The RL planners' v1 fingerprints
+(``tools/v1_rl_fingerprints.json``) are checked where torch is installed (marked ``rl``):
+counts exactly, returns within a relative tolerance, since their last bits depend on
+torch's CPU kernel.
 """
 
 from __future__ import annotations
@@ -65,3 +68,45 @@ def test_v1_fingerprints_of_every_planner(hashes: object) -> None:
     assert set(got) == {f"v1/{p}/{q}" for p in ("kitchen_v1", "conveyor_v1") for q in planners}
     changed = {k: (pinned.get(k), v) for k, v in got.items() if pinned.get(k) != v}
     assert not changed, f"v1 behaviour changed (pinned, now): {changed}"
+
+
+def test_every_rl_planner_is_pinned_and_the_tolerance_catches_a_real_change(
+    hashes: object,
+) -> None:
+    from voot.bench.rl_runs import RL_PLANNERS
+
+    assert set(hashes.V1_RL_PLANNERS) == set(RL_PLANNERS)  # type: ignore[attr-defined]
+    changes = hashes.v1_rl_changes  # type: ignore[attr-defined]
+    pinned = json.loads((ROOT / "tools" / "v1_rl_fingerprints.json").read_text())
+    assert set(pinned) == {
+        f"v1/{p}/{q}" for p in ("kitchen_v1", "conveyor_v1") for q in RL_PLANNERS
+    }
+    assert changes(pinned, pinned) == {}
+    run = pinned["v1/kitchen_v1/ddpg"]
+    # a torch kernel's size of difference (the scalar kernel moved it by 5.5e-6) passes
+    kernel = {**run, "best_by_step": [v * (1 + 1e-5) for v in run["best_by_step"]]}
+    assert changes(pinned, {**pinned, "v1/kitchen_v1/ddpg": kernel}) == {}
+    moved = {**run, "best_by_step": [v * (1 + 1e-3) for v in run["best_by_step"]]}
+    assert changes(pinned, {**pinned, "v1/kitchen_v1/ddpg": moved}) == {
+        "v1/kitchen_v1/ddpg": ["best_by_step"]
+    }
+    shorter = {**run, "best_so_far": run["best_so_far"][:-1], "exact": "0" * 16}
+    assert changes(pinned, {**pinned, "v1/kitchen_v1/ddpg": shorter}) == {
+        "v1/kitchen_v1/ddpg": ["exact", "best_so_far"]
+    }
+    fewer = {k: v for k, v in pinned.items() if k != "v1/conveyor_v1/ppo"}
+    assert changes(pinned, fewer) == {"v1/conveyor_v1/ppo": ["missing"]}
+
+
+@pytest.mark.rl
+def test_v1_fingerprints_of_the_rl_planners(hashes: object) -> None:
+    pinned = json.loads((ROOT / "tools" / "v1_rl_fingerprints.json").read_text())
+    got = hashes.v1_rl_fingerprints()  # type: ignore[attr-defined]
+    changed = hashes.v1_rl_changes(pinned, got)  # type: ignore[attr-defined]
+    assert not changed, f"v1 RL behaviour changed: {changed}"
+    # each run trains: DDPG past its warm-up steps, PPO past its first whole rollout
+    from voot.rl import DDPGConfig, PPOConfig
+
+    starts = {"ppo": PPOConfig().n_steps, "ddpg": DDPGConfig().learning_starts}
+    for key, run in got.items():
+        assert run["rl_steps"] > starts[key.rsplit("/", 1)[1]] + 150, key

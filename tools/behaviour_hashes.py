@@ -6,7 +6,13 @@
 
 The v1 fingerprints of every planner (a short run of each tree and sampling planner on
 both v1 domains, :func:`v1_fingerprints`) are pinned in ``tools/v1_fingerprints.json``;
-``record`` writes them and ``compare`` checks them on a line of their own.
+``record`` writes them and ``compare`` checks them on a line of their own. The RL
+planners (ppo, ddpg) are pinned in ``tools/v1_rl_fingerprints.json`` where torch is
+installed (the ``rl`` extra; :func:`v1_rl_fingerprints`): ``record`` and ``compare`` include
+them there, and
+
+    python tools/behaviour_hashes.py record-rl    # the RL fingerprints alone
+    python tools/behaviour_hashes.py compare-rl
 
 CMA-ES is pinned by its curve (``tools/behaviour_curves.json``, compared within a relative
 tolerance, see :data:`CMAES_RTOL`): its last bits depend on the CPU's BLAS kernel.
@@ -130,7 +136,7 @@ def _plan_rows() -> dict[str, str]:
 
 #: The v1 domains and the planners pinned on them: every tree planner and every sampling
 #: (MPC) planner. The RL planners (``ppo``, ``ddpg``) need torch, which the core and dev
-#: installs do not have, so they are not pinned here.
+#: installs do not have, so they are pinned apart (:data:`V1_RL_PLANNERS`).
 V1_PROBLEMS: dict[str, str] = {
     "kitchen_v1": "voot/KitchenClearing-v1",
     "conveyor_v1": "voot/ConveyorPacking-v1",
@@ -184,6 +190,138 @@ def v1_fingerprints() -> dict[str, str]:
             row = run_plan_spec(PlanSpec(env_id, None, (), planner, (), V1_SIMULATIONS, 0))
             out[f"v1/{label}/{planner}"] = _digest({k: row.get(k) for k in V1_KEYS})
     return out
+
+
+#: The RL planners, pinned apart (``tools/v1_rl_fingerprints.json``) because they need
+#: torch and stable-baselines3 (the ``rl`` extra), which the core and dev installs lack.
+V1_RL_PLANNERS: tuple[str, ...] = ("ppo", "ddpg")
+V1_RL_FILE = Path(__file__).with_name("v1_rl_fingerprints.json")
+#: Simulations of each RL run, by planner and problem: small budgets that train.
+#: The budget is matched to a VOOT search of that many simulations (its steps plus
+#: pre-checks, as ``voot-bench plan --planners ppo ddpg`` runs them, default options).
+#: DDPG updates after every step from step 100 (``learning_starts``): the other planners'
+#: 60 simulations give 375 steps on the kitchen and 589 on the conveyor, so 275 and 489
+#: gradient steps.
+#: PPO updates only after a whole 2,048-step rollout: 300 simulations give 2,234 steps
+#: on the kitchen and 220 give 2,311 on the conveyor (the first multiples of 20 with
+#: over 150 steps of the updated policy; 280 and 200 leave it 29 and 47).
+V1_RL_SIMULATIONS: dict[str, dict[str, int]] = {
+    "ppo": {"kitchen_v1": 300, "conveyor_v1": 220},
+    "ddpg": {"kitchen_v1": 60, "conveyor_v1": 60},
+}
+#: What an RL fingerprint holds exactly (hashed): the calls curve, the budget, the
+#: episodes finished, the objects-left curve, the status and the steps at which the best
+#: return improved. The episode count carries the training's signal where the curve does
+#: not: an episode ends at an infeasible step, so it counts the policy's infeasible
+#: actions (kitchen PPO at 300 simulations: 1,663 episodes in 2,234 steps).
+#: On the conveyor every action of these budgets is infeasible (one step per episode),
+#: so there the pin holds the budget and the task, not the learning.
+V1_RL_EXACT_KEYS: tuple[str, ...] = (
+    "calls_curve",
+    "rl_steps",
+    "n_episodes",
+    "objects_left",
+    "status",
+)
+#: The returns (``best_so_far`` and the values of ``best_by_step``) are compared within
+#: this relative tolerance, not by their bits: they pass through float32 networks whose
+#: last bits depend on torch's CPU kernel and thread count. Measured on one Intel Xeon
+#: (AVX-512): the avx2 and avx512 kernels give the same bits, the scalar kernel
+#: (``ATEN_CPU_CAPABILITY=default``) moves kitchen returns by up to 5.5e-6 relative
+#: (DDPG's best; PPO's by 4.0e-7), two torch threads instead of one move DDPG's by
+#: 5.9e-7 (PPO's not at all); episodes and improvement steps stay the same. A change of behaviour moves a
+#: count or a step (measured: PPO's learning rate 1e-3 instead of 3e-4 gives 1,658 kitchen
+#: episodes instead of 1,663; DDPG's 2e-3 instead of 1e-3 gives 215 instead of 213 and
+#: another best). On the conveyor neither change is seen (every action is infeasible).
+V1_RL_RTOL = 1e-4
+
+
+def _v1_rl_fingerprint(row: dict[str, Any]) -> dict[str, Any]:
+    """An RL row's fingerprint: ``exact`` (a hash), ``rl_steps`` (the budget, also in the
+    hash, shown so that a test can see the run trained) and its returns, compared within
+    :data:`V1_RL_RTOL` (:func:`v1_rl_changes`)."""
+    improvements = row.get("best_by_step") or []
+    exact = {k: row.get(k) for k in V1_RL_EXACT_KEYS} | {
+        "improvement_steps": [int(s) for s, _ in improvements]
+    }
+    return {
+        "exact": _digest(exact),
+        "rl_steps": int(row.get("rl_steps") or 0),
+        "best_so_far": [float(v) for v in row.get("best_so_far") or []],
+        "best_by_step": [float(b) for _, b in improvements],
+    }
+
+
+def rl_installed() -> bool:
+    """Whether the ``rl`` extra (torch and stable-baselines3) is importable."""
+    import importlib.util
+
+    return all(importlib.util.find_spec(m) is not None for m in ("torch", "stable_baselines3"))
+
+
+def v1_rl_fingerprints() -> dict[str, dict[str, Any]]:
+    """``{"v1/<problem>/<planner>": fingerprint}`` of the RL planners
+    (:data:`V1_RL_PLANNERS`) on both v1 domains, :data:`V1_RL_SIMULATIONS`, seed 0,
+    default options (:func:`_v1_rl_fingerprint`).
+
+    The same seed gives bit-identical rows in one process and across processes (torch on
+    one CPU thread, ``voot.rl.train``); another torch CPU kernel may move the returns'
+    last bits, hence :data:`V1_RL_RTOL`.
+
+    Raises:
+        voot.rl.MissingExtraError: torch or stable-baselines3 is not installed.
+        RuntimeError: a run failed.
+    """
+    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+    from voot.rl import require_sb3
+
+    require_sb3()
+    out = {}
+    for label, env_id in V1_PROBLEMS.items():
+        for planner in V1_RL_PLANNERS:
+            sims = V1_RL_SIMULATIONS[planner][label]
+            row = run_plan_spec(PlanSpec(env_id, None, (), planner, (), sims, 0))
+            if row["status"] != "ok":
+                raise RuntimeError(f"the {planner} run on {label} failed: {row.get('error')}")
+            out[f"v1/{label}/{planner}"] = _v1_rl_fingerprint(row)
+    return out
+
+
+def v1_rl_changes(pinned: dict[str, Any], got: dict[str, Any]) -> dict[str, list[str]]:
+    """``{run: [what changed]}`` between two sets of RL fingerprints: a missing or extra
+    run, another ``exact`` hash, or a return curve of another length or off by more than
+    :data:`V1_RL_RTOL` relative (empty: none changed)."""
+    out: dict[str, list[str]] = {}
+    for key in sorted(pinned.keys() | got.keys()):
+        a, b = pinned.get(key), got.get(key)
+        if a is None or b is None:
+            out[key] = ["missing" if b is None else "not pinned"]
+            continue
+        what = ["exact"] if a["exact"] != b["exact"] else []
+        for curve in ("best_so_far", "best_by_step"):
+            x, y = np.asarray(a[curve], dtype=float), np.asarray(b[curve], dtype=float)
+            if x.shape != y.shape or not np.isclose(y, x, rtol=V1_RL_RTOL, atol=0.0).all():
+                what.append(curve)
+        if what:
+            out[key] = what
+    return out
+
+
+def _compare_rl() -> bool:
+    """Print the RL fingerprints' comparison line; whether they are unchanged."""
+    pinned = json.loads(V1_RL_FILE.read_text())
+    changes = v1_rl_changes(pinned, v1_rl_fingerprints())
+    for key, what in changes.items():
+        print(f"CHANGED {key}: {', '.join(what)}")
+    n = len(pinned)
+    print(f"{n - len(changes)} of {n} v1 RL fingerprints unchanged (returns within {V1_RL_RTOL})")
+    return not changes
+
+
+def _record_rl() -> None:
+    got = v1_rl_fingerprints()
+    V1_RL_FILE.write_text(json.dumps(got, indent=1, sort_keys=True) + "\n")
+    print(f"{len(got)} v1 RL fingerprints -> {V1_RL_FILE}")
 
 
 def _root_parallel() -> dict[str, str]:
@@ -256,6 +394,14 @@ def main(argv: list[str]) -> int:
     if len(argv) == 2 and argv[0] == "bbfo-digest":
         print(_bbfo_digest(argv[1]))
         return 0
+    if argv in (["record-rl"], ["compare-rl"]):
+        if not rl_installed():
+            print('the RL fingerprints need the rl extra: pip install -e ".[rl]"')
+            return 2
+        if argv[0] == "record-rl":
+            _record_rl()
+            return 0
+        return 0 if _compare_rl() else 1
     if len(argv) != 2 or argv[0] not in ("record", "compare"):
         print(__doc__)
         return 2
@@ -271,12 +417,17 @@ def main(argv: list[str]) -> int:
             f"{len(hashes)} hashes -> {path}, CMA-ES's curve -> {CMAES_CURVE_FILE}, "
             f"{len(v1)} v1 fingerprints -> {V1_FILE}"
         )
+        if rl_installed():
+            _record_rl()
         return 0
     pinned_v1 = json.loads(V1_FILE.read_text())
     bad_v1 = sorted(k for k in pinned_v1.keys() | v1.keys() if pinned_v1.get(k) != v1.get(k))
     for k in bad_v1:
         print(f"CHANGED {k}: {pinned_v1.get(k)} -> {v1.get(k)}")
     print(f"{len(pinned_v1) - len(bad_v1)} of {len(pinned_v1)} v1 planner fingerprints unchanged")
+    rl_ok = _compare_rl() if rl_installed() else True
+    if not rl_installed():
+        print("v1 RL fingerprints not checked: the rl extra (torch) is not installed")
     expected = json.loads(path.read_text())
     bad = sorted(k for k in expected.keys() | hashes.keys() if expected.get(k) != hashes.get(k))
     for k in bad:
@@ -286,7 +437,7 @@ def main(argv: list[str]) -> int:
         print(f"CHANGED bbfo/cmaes: the curve moves by more than {CMAES_RTOL} at {moved[:5]}")
     total = len(expected) + 1
     print(f"{total - len(bad) - bool(moved)} of {total} outputs unchanged")
-    return 1 if bad or moved or bad_v1 else 0
+    return 1 if bad or moved or bad_v1 or not rl_ok else 0
 
 
 if __name__ == "__main__":
