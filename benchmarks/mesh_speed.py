@@ -133,26 +133,8 @@ def time_shapes(
 
 def scene_xml(specs: Sequence[ShapeSpec]) -> str:
     """A scene of the robot, a floor and one body per spec in a row (``obj_0``...)."""
-    bodies = "".join(
-        M.object_body_xml(f"obj_{i}", s, (1.0 + 0.5 * i, 1.0, 0.0, 0.3 * i), "stuff")
-        for i, s in enumerate(specs)
-    )
-    return f"""<mujoco model="mesh_speed">
-  <compiler angle="radian" autolimits="true"/>
-  <asset>
-    <material name="stuff" rgba="0.8 0.5 0.3 1"/>
-{M.shape_assets_xml(specs)}  </asset>
-  <default>
-    <default class="scene"><geom contype="2" conaffinity="5" group="0"/></default>
-    <default class="object"><geom contype="4" conaffinity="7" group="0" density="100"/></default>
-    <default class="decor"><geom contype="0" conaffinity="0" group="1"/></default>
-  </default>
-  <include file="robot.xml"/>
-  <worldbody>
-    <geom name="floor" class="scene" type="plane" size="8 8 0.1"/>
-{bodies}  </worldbody>
-</mujoco>
-"""
+    poses = [(1.0 + 0.5 * i, 1.0, 0.0, 0.3 * i) for i in range(len(specs))]
+    return M.objects_scene_xml(specs, poses, "mesh_speed")
 
 
 def _scene(specs: Sequence[ShapeSpec]) -> None:

@@ -21,7 +21,7 @@ import os
 import struct
 import tempfile
 import zipfile
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -61,6 +61,7 @@ __all__ = [
     "mesh_assets",
     "mesh_name",
     "object_body_xml",
+    "objects_scene_xml",
     "shape_assets_xml",
     "stl_bytes",
 ]
@@ -297,6 +298,37 @@ def object_body_xml(
     )
     lines.append("    </body>\n")
     return "".join(lines)
+
+
+def objects_scene_xml(
+    specs: Sequence[ShapeSpec],
+    poses: Sequence[tuple[float, float, float, float]],
+    model: str = "objects",
+) -> str:
+    """A minimal scene of the robot, a floor and one object per spec (bodies ``obj_0``,
+    ``obj_1``... at ``poses``): for measuring and testing the meshes outside a domain."""
+    if len(specs) != len(poses):
+        raise ValueError(f"got {len(specs)} specs but {len(poses)} poses")
+    bodies = "".join(
+        object_body_xml(f"obj_{i}", s, p, "stuff")
+        for i, (s, p) in enumerate(zip(specs, poses, strict=True))
+    )
+    return f"""<mujoco model="{model}">
+  <compiler angle="radian" autolimits="true"/>
+  <asset>
+    <material name="stuff" rgba="0.8 0.5 0.3 1"/>
+{shape_assets_xml(specs)}  </asset>
+  <default>
+    <default class="scene"><geom contype="2" conaffinity="5" group="0"/></default>
+    <default class="object"><geom contype="4" conaffinity="7" group="0" density="100"/></default>
+    <default class="decor"><geom contype="0" conaffinity="0" group="1"/></default>
+  </default>
+  <include file="robot.xml"/>
+  <worldbody>
+    <geom name="floor" class="scene" type="plane" size="8 8 0.1"/>
+{bodies}  </worldbody>
+</mujoco>
+"""
 
 
 def compile_scene(xml: str, specs: Iterable[ShapeSpec]) -> mujoco.MjModel:

@@ -8,7 +8,6 @@ import os
 import pickle
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -33,18 +32,13 @@ from voot.envs.mesh_grasp import (
 from voot.envs.meshes import ShapeSpec, build_shape
 from voot.envs.scene import movable_objects
 
+#: Every test gets a fresh mesh cache (never ~/.cache).
+pytestmark = pytest.mark.usefixtures("mesh_cache")
+
+
 BOX = ShapeSpec("box", (0.1, 0.16, 0.22))
 BOTTLE = ShapeSpec("bottle", (0.07, 0.07, 0.25))
 MUG = ShapeSpec("mug", (0.12, 0.085, 0.1))
-
-
-@pytest.fixture(autouse=True)
-def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
-    """A fresh cache folder (never ~/.cache) and empty in-process caches."""
-    monkeypatch.setenv("VOOT_CACHE", str(tmp_path / "cache"))
-    M.clear_memory_cache()
-    yield tmp_path / "cache"
-    M.clear_memory_cache()
 
 
 @pytest.fixture(scope="module")
@@ -181,9 +175,9 @@ def test_normals_face_the_rays_and_are_unit_vectors() -> None:
         assert np.all(n[:, 0] * n0 + n[:, 1] * n1 > 0.0)  # against the ray (-n)
 
 
-def test_grasp_sets_pickle_and_are_cached_beside_the_meshes(cache: Path) -> None:
+def test_grasp_sets_pickle_and_are_cached_beside_the_meshes(mesh_cache: Path) -> None:
     g = grasp_set(BOTTLE)
-    assert (cache / "meshes" / f"{BOTTLE.key}.grasp.npz").is_file()
+    assert (mesh_cache / "meshes" / f"{BOTTLE.key}.grasp.npz").is_file()
     back = pickle.loads(pickle.dumps(g))
     assert isinstance(back, MeshGraspSet) and back.spec == BOTTLE
     np.testing.assert_array_equal(back.depth, g.depth)
@@ -237,6 +231,7 @@ _TABLE_DIGEST = """
 import hashlib
 from voot.envs.mesh_grasp import grasp_set
 from voot.envs.meshes import ShapeSpec
+
 g = grasp_set(ShapeSpec("jug", (0.16, 0.11, 0.25), 2))
 print(hashlib.sha256(g.depth.tobytes() + g.normal.tobytes()).hexdigest())
 """

@@ -8,7 +8,6 @@ import math
 import os
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import mujoco
@@ -22,39 +21,13 @@ from voot.envs import meshes as M
 from voot.envs.meshes import SHAPE_KINDS, ShapeSpec, build_shape
 from voot.envs.scene import movable_objects, object_pose
 
-
-@pytest.fixture(autouse=True)
-def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
-    """A fresh cache folder (never ~/.cache) and empty in-process caches."""
-    monkeypatch.setenv("VOOT_CACHE", str(tmp_path / "cache"))
-    M.clear_memory_cache()
-    yield tmp_path / "cache"
-    M.clear_memory_cache()
+#: Every test gets a fresh mesh cache (never ~/.cache).
+pytestmark = pytest.mark.usefixtures("mesh_cache")
 
 
 def scene_xml(specs: list[ShapeSpec], poses: list[tuple[float, float, float, float]]) -> str:
     """A tiny scene: a floor, the robot, one object per spec (bodies obj_0, obj_1, ...)."""
-    bodies = "".join(
-        M.object_body_xml(f"obj_{i}", s, p, "stuff")
-        for i, (s, p) in enumerate(zip(specs, poses, strict=True))
-    )
-    return f"""<mujoco model="tiny">
-  <compiler angle="radian" autolimits="true"/>
-  <option timestep="0.002"/>
-  <asset>
-    <material name="stuff" rgba="0.8 0.5 0.3 1"/>
-{M.shape_assets_xml(specs)}  </asset>
-  <default>
-    <default class="scene"><geom contype="2" conaffinity="5" group="0"/></default>
-    <default class="object"><geom contype="4" conaffinity="7" group="0" density="100"/></default>
-    <default class="decor"><geom contype="0" conaffinity="0" group="1"/></default>
-  </default>
-  <include file="robot.xml"/>
-  <worldbody>
-    <geom name="floor" class="scene" type="plane" size="5 5 0.1" pos="0 0 0"/>
-{bodies}  </worldbody>
-</mujoco>
-"""
+    return M.objects_scene_xml(specs, poses, "tiny")
 
 
 # ----- shapes -----------------------------------------------------------------------------
@@ -93,6 +66,7 @@ def test_stl_bytes_are_a_binary_stl_of_the_mesh() -> None:
 _DIGEST = """
 import hashlib, sys
 from voot.envs.meshes import ShapeSpec, mesh_assets
+
 specs = [ShapeSpec("mug", (0.12, 0.085, 0.1), 3), ShapeSpec("crate", (0.4, 0.3, 0.25), 1)]
 files = mesh_assets(specs)
 h = hashlib.sha256()
@@ -119,33 +93,33 @@ def test_mesh_bytes_are_the_same_in_another_process(tmp_path: Path) -> None:
     assert digests == [h.hexdigest(), h.hexdigest()]
 
 
-def test_the_cache_is_written_once_and_read_back_the_same(cache: Path) -> None:
+def test_the_cache_is_written_once_and_read_back_the_same(mesh_cache: Path) -> None:
     specs = [ShapeSpec("bowl", SIZES["bowl"], 1), ShapeSpec("box", SIZES["box"])]
     cold = M.mesh_assets(specs)
-    files = sorted(p.name for p in (cache / "meshes").iterdir())
+    files = sorted(p.name for p in (mesh_cache / "meshes").iterdir())
     assert files == sorted(f"{s.key}.mesh.npz" for s in specs)
-    stamps = {p: p.stat().st_mtime_ns for p in (cache / "meshes").iterdir()}
+    stamps = {p: p.stat().st_mtime_ns for p in (mesh_cache / "meshes").iterdir()}
     M.clear_memory_cache()
     warm = M.mesh_assets(specs)  # from the disk
     assert warm == cold
-    assert {p: p.stat().st_mtime_ns for p in (cache / "meshes").iterdir()} == stamps
+    assert {p: p.stat().st_mtime_ns for p in (mesh_cache / "meshes").iterdir()} == stamps
     assert M.mesh_assets(specs) is not None and M._MEMORY  # now from the process
 
 
-def test_a_corrupt_cache_file_is_rebuilt(cache: Path) -> None:
+def test_a_corrupt_cache_file_is_rebuilt(mesh_cache: Path) -> None:
     spec = ShapeSpec("plate", SIZES["plate"])
     cold = M.mesh_assets([spec])
-    path = cache / "meshes" / f"{spec.key}.mesh.npz"
+    path = mesh_cache / "meshes" / f"{spec.key}.mesh.npz"
     path.write_bytes(b"not a zip file")
     M.clear_memory_cache()
     assert M.mesh_assets([spec]) == cold
     assert path.read_bytes()[:2] == b"PK"  # rewritten
 
 
-def test_a_cache_file_of_another_layout_is_rebuilt(cache: Path) -> None:
+def test_a_cache_file_of_another_layout_is_rebuilt(mesh_cache: Path) -> None:
     spec = ShapeSpec("tray", SIZES["tray"])
     cold = M.mesh_assets([spec])
-    path = cache / "meshes" / f"{spec.key}.mesh.npz"
+    path = mesh_cache / "meshes" / f"{spec.key}.mesh.npz"
     np.savez(path, visual=np.zeros(3, dtype=np.uint8))  # readable, but not an entry
     M.clear_memory_cache()
     assert M.mesh_assets([spec]) == cold
@@ -153,7 +127,7 @@ def test_a_cache_file_of_another_layout_is_rebuilt(cache: Path) -> None:
         assert sorted(z.files) == ["inertial", "sizes", "stl"]
 
 
-def test_cache_writes_are_atomic(cache: Path) -> None:
+def test_cache_writes_are_atomic(mesh_cache: Path) -> None:
     spec = ShapeSpec("bin", SIZES["bin"])
 
     def broken(*args: object, **kwargs: object) -> None:
@@ -163,9 +137,9 @@ def test_cache_writes_are_atomic(cache: Path) -> None:
         mp.setattr(np, "savez", broken)
         with pytest.raises(OSError, match="disk full"):
             M.mesh_assets([spec])
-    assert list((cache / "meshes").iterdir()) == []  # no half file, no temporary left
+    assert list((mesh_cache / "meshes").iterdir()) == []  # no half file, no temporary left
     M.mesh_assets([spec])
-    assert [p.name for p in (cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
+    assert [p.name for p in (mesh_cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
 
 
 def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) -> None:
