@@ -1,9 +1,9 @@
-"""Redraw the held-out protocol's figures and tables from the committed store (issue 24).
+"""Redraw the held-out protocol's figures and tables from the committed stores (issue 24).
 
-Runs ``voot-bench plot docs/data/heldout-kitchen-v2 --heldout`` (settings selected on the
-training layouts 1000-1019, reported on the held-out layouts 0-19), writes the figures
-into ``docs/figures/heldout-kitchen-v2/`` and the tables between the
-``<!-- heldout-kitchen-v2:tables -->`` markers of ``docs/results-planning.md``:
+For each store of :data:`STORES` (``docs/data/heldout-kitchen-v2`` ...), runs ``voot-bench
+plot STORE --heldout`` (settings selected on the training layouts 1000-1019, reported on
+the held-out layouts 0-19), writes the figures into ``docs/figures/<name>/`` and the
+tables between the ``<!-- <name>:tables -->`` markers of ``docs/results-planning.md``:
 
     python docs/scripts/heldout_docs.py
 """
@@ -18,21 +18,20 @@ from pathlib import Path
 
 from voot.bench.cli import main as bench
 
-STORE = "docs/data/heldout-kitchen-v2"
+#: The committed held-out stores (under docs/data/) the page shows.
+STORES = ("heldout-kitchen-v2",)
 PAGE = Path("docs/results-planning.md")
-FIGURES = Path("docs/figures/heldout-kitchen-v2")
-NAME = "heldout-kitchen-v2:tables"
 
 
-def _block() -> re.Pattern[str]:
-    return re.compile(rf"(<!-- {NAME} -->\n)(.*?)(<!-- /{NAME} -->)", re.S)
+def _block(name: str) -> re.Pattern[str]:
+    return re.compile(rf"(<!-- {name}:tables -->\n)(.*?)(<!-- /{name}:tables -->)", re.S)
 
 
-def marked(text: str) -> str:
-    """The block between the page's ``<!-- heldout-kitchen-v2:tables -->`` markers."""
-    m = _block().search(text)
+def marked(text: str, name: str) -> str:
+    """The block between the page's ``<!-- NAME:tables -->`` markers."""
+    m = _block(name).search(text)
     if m is None:
-        raise SystemExit(f"{PAGE} has no <!-- {NAME} --> markers")
+        raise SystemExit(f"{PAGE} has no <!-- {name}:tables --> markers")
     return m.group(2)
 
 
@@ -50,12 +49,15 @@ def render(store: str | Path, figures: str | Path) -> str:
 
 
 def main() -> None:
-    FIGURES.mkdir(parents=True, exist_ok=True)
     text = PAGE.read_text()
-    marked(text)
-    body = render(STORE, FIGURES)
-    PAGE.write_text(_block().sub(lambda m: m.group(1) + body + m.group(3), text))
-    print(f"{PAGE}: held-out tables redrawn from {STORE}; figures in {FIGURES}")
+    for name in STORES:
+        figures = Path("docs/figures") / name
+        figures.mkdir(parents=True, exist_ok=True)
+        marked(text, name)
+        body = render(Path("docs/data") / name, figures)
+        text = _block(name).sub(lambda m, body=body: m.group(1) + body + m.group(3), text)
+        print(f"{name}: tables redrawn into {PAGE}; figures in {figures}")
+    PAGE.write_text(text)
 
 
 if __name__ == "__main__":
