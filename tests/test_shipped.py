@@ -61,7 +61,8 @@ def documented_sweeps() -> dict[str, list[Any]]:
     return {
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
-        "heldout-kitchen-v2": heldout_sweep(),
+        "heldout-kitchen-v2": heldout_sweep("kitchen_v2", 2000),
+        "heldout-conveyor-v2": heldout_sweep("conveyor_v2", 3000),
         "ladder-kitchen-v2": ladder_sweep("kitchen_v2", 2000),
         "ladder-conveyor-v2": ladder_sweep("conveyor_v2", 3000),
         "protocol-v1-same-seed": build_plan_specs(
@@ -122,10 +123,10 @@ def protocol_v1_sweep() -> list[Any]:
     return [*tuning, *evaluation, *rl]
 
 
-def heldout_sweep() -> list[Any]:
-    """The held-out protocol as docs/results-planning.md runs it on the generated kitchens
-    (``voot-bench plan --heldout``): every setting on the training layouts, the selected
-    setting on the held-out layouts, one seed each."""
+def heldout_sweep(problem: str, simulations: int) -> list[Any]:
+    """The held-out protocol as docs/results-planning.md runs it on a generated family at
+    ``medium`` (``voot-bench plan --heldout``): every setting on the training layouts, the
+    selected setting on the held-out layouts, one seed each."""
     from voot.bench.layouts import HELDOUT_LAYOUTS, TRAINING_LAYOUTS
     from voot.bench.plan_sweep import build_plan_specs
     from voot.bench.tuning import selected_specs, tuning_selections
@@ -133,13 +134,14 @@ def heldout_sweep() -> list[Any]:
     common: dict[str, Any] = {
         "planners": "voot pw_uct doot rand_doot uniform_t".split(),
         "seeds": [0],
-        "simulations": 2000,
+        "simulations": simulations,
         "env_kwargs": {"difficulty": "medium"},
     }
-    tuning = build_plan_specs(["kitchen_v2"], layout_seeds=TRAINING_LAYOUTS, **common)
-    rows = ResultStore(DATA / "heldout-kitchen-v2", create=False).load(kind="plan")
+    tuning = build_plan_specs([problem], layout_seeds=TRAINING_LAYOUTS, **common)
+    name = "heldout-" + problem.replace("_", "-")
+    rows = ResultStore(DATA / name, create=False).load(kind="plan")
     evaluation = selected_specs(
-        build_plan_specs(["kitchen_v2"], layout_seeds=HELDOUT_LAYOUTS, **common),
+        build_plan_specs([problem], layout_seeds=HELDOUT_LAYOUTS, **common),
         tuning_selections(tuning, rows),
     )
     return [*tuning, *evaluation]
@@ -377,7 +379,7 @@ def test_the_protocol_pages_tables_are_what_the_committed_store_redraws(tmp_path
     ]
 
 
-@pytest.mark.parametrize("name", ["heldout-kitchen-v2"])
+@pytest.mark.parametrize("name", ["heldout-kitchen-v2", "heldout-conveyor-v2"])
 def test_the_heldout_tables_are_what_the_committed_store_redraws(name: str, tmp_path: Path) -> None:
     """docs/results-planning.md shows the held-out protocol's tables as the store redraws."""
     pytest.importorskip("matplotlib")

@@ -19,7 +19,7 @@ from pathlib import Path
 from voot.bench.cli import main as bench
 
 #: The committed held-out stores (under docs/data/) the page shows.
-STORES = ("heldout-kitchen-v2",)
+STORES = ("heldout-kitchen-v2", "heldout-conveyor-v2")
 PAGE = Path("docs/results-planning.md")
 
 
