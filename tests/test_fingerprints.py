@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -101,7 +103,20 @@ def test_every_rl_planner_is_pinned_and_the_tolerance_catches_a_real_change(
 @pytest.mark.rl
 def test_v1_fingerprints_of_the_rl_planners(hashes: object) -> None:
     pinned = json.loads((ROOT / "tools" / "v1_rl_fingerprints.json").read_text())
-    got = hashes.v1_rl_fingerprints()  # type: ignore[attr-defined]
+    # In a fresh interpreter: torch's first optimiser imports triton, which crashed (a
+    # segmentation fault, torch 2.14.1 + CUDA wheels) inside a pytest process that had
+    # already loaded Ray and pyarrow for the other rl tests; alone it runs fine.
+    code = (
+        "import importlib.util, json, sys\n"
+        "spec = importlib.util.spec_from_file_location('h', 'tools/behaviour_hashes.py')\n"
+        "h = importlib.util.module_from_spec(spec); spec.loader.exec_module(h)\n"
+        "sys.stdout.write(json.dumps(h.v1_rl_fingerprints()))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=False
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    got = json.loads(done.stdout)
     changed = hashes.v1_rl_changes(pinned, got)  # type: ignore[attr-defined]
     assert not changed, f"v1 RL behaviour changed: {changed}"
     # each run trains: DDPG past its warm-up steps, PPO past its first whole rollout
