@@ -25,6 +25,18 @@ DATA = Path(__file__).resolve().parents[1] / shipped.DATA_DIR
 STORES = [p.name for p in shipped.store_dirs(DATA)]
 
 
+def docs_script(name: str) -> Any:
+    """The module of ``docs/scripts/<name>.py`` (the scripts that write the docs' tables)."""
+    import importlib.util
+
+    path = DATA.parents[1] / "docs" / "scripts" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    docs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(docs)
+    return docs
+
+
 def test_the_manifest_lists_every_committed_store() -> None:
     assert STORES, f"no result stores under {DATA}"
     assert sorted(shipped.read_manifest(DATA)) == STORES
@@ -198,14 +210,8 @@ def test_the_ablations_v1_rows_are_the_protocol_stores_rows() -> None:
 
 
 def test_the_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
-    import importlib.util
-
     root = DATA.parents[1]
-    path = root / "docs" / "scripts" / "ablation_docs.py"
-    spec = importlib.util.spec_from_file_location("ablation_docs", path)
-    assert spec is not None and spec.loader is not None
-    docs = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(docs)
+    docs = docs_script("ablation_docs")
     with shipped.store_copy(DATA / "ablation-v1") as copy:
         blocks = docs.render(copy)
     page = (root / "docs" / "results-planning.md").read_text()
@@ -357,14 +363,8 @@ def test_the_cli_checks_and_redraws(tmp_path: Path, capsys: pytest.CaptureFixtur
 def test_the_protocol_pages_tables_are_what_the_committed_store_redraws(tmp_path: Path) -> None:
     """docs/results-planning.md shows the v1 protocol's tables as the store redraws them."""
     pytest.importorskip("matplotlib")
-    import importlib.util
-
     root = DATA.parents[1]
-    path = root / "docs" / "scripts" / "protocol_v1_docs.py"
-    spec = importlib.util.spec_from_file_location("protocol_v1_docs", path)
-    assert spec is not None and spec.loader is not None
-    docs = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(docs)
+    docs = docs_script("protocol_v1_docs")
     with shipped.store_copy(DATA / "protocol-v1") as copy:
         blocks = docs.render(copy, tmp_path)
     page = (root / "docs" / "results-planning.md").read_text()
@@ -383,14 +383,8 @@ def test_the_protocol_pages_tables_are_what_the_committed_store_redraws(tmp_path
 def test_the_heldout_tables_are_what_the_committed_store_redraws(name: str, tmp_path: Path) -> None:
     """docs/results-planning.md shows the held-out protocol's tables as the store redraws."""
     pytest.importorskip("matplotlib")
-    import importlib.util
-
     root = DATA.parents[1]
-    path = root / "docs" / "scripts" / "heldout_docs.py"
-    spec = importlib.util.spec_from_file_location("heldout_docs", path)
-    assert spec is not None and spec.loader is not None
-    docs = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(docs)
+    docs = docs_script("heldout_docs")
     assert name in docs.STORES
     with shipped.store_copy(DATA / name) as copy:
         body = docs.render(copy, tmp_path)

@@ -35,6 +35,9 @@ from typing import Any
 
 import numpy as np
 
+from voot.bench.plan_sweep import PLAN_PLANNERS
+from voot.bench.rl_runs import RL_PLANNERS
+
 TIMING_KEYS = {
     "wall_time",
     "elapsed",
@@ -141,19 +144,7 @@ V1_PROBLEMS: dict[str, str] = {
     "kitchen_v1": "voot/KitchenClearing-v1",
     "conveyor_v1": "voot/ConveyorPacking-v1",
 }
-V1_PLANNERS: tuple[str, ...] = (
-    "voot",
-    "doot",
-    "rand_doot",
-    "pw_uct",
-    "voronoi_pw",
-    "hoot",
-    "uniform_t",
-    "cem",
-    "mppi",
-    "predictive_sampling",
-    "random_shooting",
-)
+V1_PLANNERS: tuple[str, ...] = tuple(p for p in PLAN_PLANNERS if p not in RL_PLANNERS)
 #: Simulations of each v1 run: 60 keeps all 22 runs at a few seconds in total.
 V1_SIMULATIONS = 60
 V1_FILE = Path(__file__).with_name("v1_fingerprints.json")
@@ -194,7 +185,7 @@ def v1_fingerprints() -> dict[str, str]:
 
 #: The RL planners, pinned apart (``tools/v1_rl_fingerprints.json``) because they need
 #: torch and stable-baselines3 (the ``rl`` extra), which the core and dev installs lack.
-V1_RL_PLANNERS: tuple[str, ...] = ("ppo", "ddpg")
+V1_RL_PLANNERS: tuple[str, ...] = RL_PLANNERS
 V1_RL_FILE = Path(__file__).with_name("v1_rl_fingerprints.json")
 #: Simulations of each RL run, by planner and problem: small budgets that train.
 #: The budget is matched to a VOOT search of that many simulations (its steps plus
