@@ -19,7 +19,7 @@ info carries ``next_operator``. States are teleports: ``qpos`` is set and
 renders it.
 
 ``voot-bench record-demo --out DIR`` records VOOT and PW-UCT on it and draws their
-Figure-5 panels and a GIF of VOOT's plan (:mod:`voot.bench.record_demo`).
+Figure-5 panels and a GIF of VOOT's plan (:mod:`voot.bench.demos.record_demo`).
 """
 
 from __future__ import annotations

@@ -15,9 +15,9 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.action_units import normalize
-from voot.envs.conveyor import OBJECTS_PER_ACTION, ConveyorPackingEnv
-from voot.envs.kitchen import KitchenClearingEnv
+from voot.envs.conveyor.env import OBJECTS_PER_ACTION, ConveyorPackingEnv
+from voot.envs.core.units import normalize
+from voot.envs.kitchen.env import KitchenClearingEnv
 
 FloatArray = NDArray[np.float64]
 

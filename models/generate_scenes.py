@@ -18,7 +18,7 @@ Geometry (metres), after the original problems (see the reference page):
   (x in [-2, 2.8], y in [-1, 3]) has counters along the north and west walls with the
   sink at (0, 3.65), a fridge and a side table; south of it is a hall. A wall at
   x = 2.8 with a 0.9 m door at y = 2 (the original's 1.0 m door was sized for a PR2 with
-  its arms out; ours is sized for the base-motion disc, see ``voot.envs.robot``) leads to
+  its arms out; ours is sized for the base-motion disc, see ``voot.envs.robot.model``) leads to
   two large rooms (x in [2.8, 6]) split by a wall at y = 0. Seven obstacles (boxes and
   chairs) stand on the straight path from the start (-1.5, -1.5) to the sink pose
   (0, 2.5), as in the original problem; two more chairs stand by the east wall.

@@ -29,7 +29,7 @@ def pytest_unconfigure(config: object) -> None:
 @pytest.fixture
 def mesh_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
     """A fresh mesh cache folder and empty in-process mesh caches, for one test."""
-    from voot.envs import meshes
+    from voot.envs.assets import meshes
 
     monkeypatch.setenv("VOOT_CACHE", str(tmp_path / "cache"))
     meshes.clear_memory_cache()

@@ -3,7 +3,7 @@
 A kitchen-sized house (outer walls, a kitchen with a 1.0 m door, furniture and ten
 movable objects), a wall with a door, random free poses and an independent (shapely)
 check that a path keeps its distance from every obstacle. Used by
-``tests/test_base_planner.py`` and the tests of the modules it is built from.
+``tests/envs/motion/test_base_planner.py`` and the tests of the modules it is built from.
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ import math
 import numpy as np
 import shapely
 
-from voot.envs.base_planner import BasePlanner
-from voot.envs.planar import BasePath, Box2D, Pose2D
+from voot.envs.motion.planar import BasePath, Box2D, Pose2D
+from voot.envs.motion.planner import BasePlanner
 
 WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from voot.envs.action_units import normalize
-from voot.envs.kitchen import KitchenClearingEnv
+from voot.envs.core.units import normalize
+from voot.envs.kitchen.env import KitchenClearingEnv
 
 
 def place_action(env: KitchenClearingEnv, x: float, y: float, theta: float) -> np.ndarray:

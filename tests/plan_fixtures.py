@@ -1,9 +1,9 @@
-"""Synthetic plan rows shared by the tests of voot.bench.plan_runs, plan_plot and
+"""Synthetic plan rows shared by the tests of voot.bench.report.plan_runs, plan_plot and
 plan_tables (a helper, not a test module)."""
 
 from __future__ import annotations
 
-from voot.bench.store_format import Row, make_row
+from voot.bench.store.format import Row, make_row
 
 
 def plan_row(
@@ -84,7 +84,7 @@ def with_costs(r: Row, calls_per_sim: int, cpu_per_sim: float) -> Row:
 
 #: The generated family of :func:`layout_rows` (no env is made: rows only).
 LAYOUT_PROBLEM = "voot/KitchenClearing-v2"
-#: Its label in tables and figures (the alias of voot.bench.problems).
+#: Its label in tables and figures (the alias of voot.bench.protocol.problems).
 LAYOUT_LABEL = "kitchen_v2"
 #: Final returns of voot's selected setting per held-out layout and seed: per-layout means
 #: 2, 4, 6 (units: mean 4, t-interval half-width 4.303 * 2 / sqrt(3) = 4.968 over 3

@@ -1,11 +1,11 @@
-"""A small result row shared by the tests of voot.bench.store, store_format and
+"""A small result row shared by the tests of voot.bench.store.result_store, store_format and
 store_index (a helper, not a test module)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from voot.bench.store_format import make_row
+from voot.bench.store.format import make_row
 
 
 def row(i: int, status: str = "ok", n: int = 5, kind: str = "bbfo") -> dict:

@@ -39,7 +39,7 @@ def test_optim_functions_tree_load_no_mujoco_envs_or_bench() -> None:
 
 
 def test_the_library_loads_no_argparse() -> None:
-    # argparse converters (voot.bench.cli_types) belong to the command line; the
+    # argparse converters (voot.bench.cli.types) belong to the command line; the
     # library's checks (voot.validation) raise ValueError and need no argparse
     modules = loaded_after(
         "voot.validation", "voot.optim", "voot.tree", "voot.functions", "voot.parallel"

@@ -83,7 +83,7 @@ def test_a_refused_tell_leaves_the_optimiser_as_it_was(
 
 @pytest.fixture(scope="module")
 def kitchen() -> object:
-    from voot.envs.kitchen import KitchenClearingEnv
+    from voot.envs.kitchen.env import KitchenClearingEnv
 
     return KitchenClearingEnv(preset="v1")
 
@@ -120,7 +120,7 @@ def test_env_actions_work_or_are_refused_without_a_trace(kitchen: object, action
 def test_cli_arguments_give_an_error_message_not_a_traceback(
     flag: str, value: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from voot.bench.cli import main
+    from voot.bench.cli.main import main
 
     argv = ["bbfo", "--functions", "shekel", "--methods", "voo", flag, value, "--dry-run"]
     try:

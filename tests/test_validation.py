@@ -76,7 +76,7 @@ def test_seed() -> None:
 
 
 def test_no_argparse_helper_in_the_library() -> None:
-    # command-line types live in voot.bench.cli_types (the library raises ValueError)
+    # command-line types live in voot.bench.cli.types (the library raises ValueError)
     assert not hasattr(V, "seed_argument")
 
 

@@ -35,8 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from voot.bench.plan_sweep import PLAN_PLANNERS
-from voot.bench.rl_runs import RL_PLANNERS
+from voot.bench.sweep.plan import PLAN_PLANNERS
+from voot.bench.sweep.rl import RL_PLANNERS
 
 TIMING_KEYS = {
     "wall_time",
@@ -80,7 +80,7 @@ CMAES_RTOL = 1e-9
 
 
 def _bbfo_row(method: str) -> dict[str, Any]:
-    from voot.bench.sweep import RunSpec, run_spec
+    from voot.bench.sweep.bbfo import RunSpec, run_spec
 
     row: dict[str, Any] = run_spec(RunSpec("shekel", 3, method, (), 200, 0))
     return row
@@ -112,7 +112,7 @@ def _bbfo() -> dict[str, str]:
 
 
 def _plan_rows() -> dict[str, str]:
-    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+    from voot.bench.sweep.plan import PlanSpec, run_plan_spec
 
     specs = {
         "plan/shekel_chain/voot": PlanSpec("shekel_chain", 10, (), "voot", (), 300, 0),
@@ -173,7 +173,7 @@ def v1_fingerprints() -> dict[str, str]:
     hashes were checked equal under the Prescott, Haswell and SkylakeX OpenBLAS kernels,
     ``OPENBLAS_CORETYPE``, which move CMA-ES's).
     """
-    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+    from voot.bench.sweep.plan import PlanSpec, run_plan_spec
 
     out = {}
     for label, env_id in V1_PROBLEMS.items():
@@ -263,7 +263,7 @@ def v1_rl_fingerprints() -> dict[str, dict[str, Any]]:
         voot.rl.MissingExtraError: torch or stable-baselines3 is not installed.
         RuntimeError: a run failed.
     """
-    from voot.bench.plan_sweep import PlanSpec, run_plan_spec
+    from voot.bench.sweep.plan import PlanSpec, run_plan_spec
     from voot.rl import require_sb3
 
     require_sb3()
@@ -325,7 +325,7 @@ def _root_parallel() -> dict[str, str]:
 
 
 def _demo() -> dict[str, str]:
-    from voot.bench import kitchen_demo
+    from voot.bench.demos import kitchen_demo
     from voot.record.reader import read_recording
 
     out = {}
@@ -344,9 +344,9 @@ def _demo() -> dict[str, str]:
 
 def _sweeps() -> dict[str, str]:
     """Whole sweeps through the store (bbfo and plan), rows hashed without timings."""
-    from voot.bench.plan_sweep import build_plan_specs
-    from voot.bench.store import ResultStore
-    from voot.bench.sweep import build_specs, run_sweep
+    from voot.bench.store.result_store import ResultStore
+    from voot.bench.sweep.bbfo import build_specs, run_sweep
+    from voot.bench.sweep.plan import build_plan_specs
 
     out = {}
     with tempfile.TemporaryDirectory() as tmp:

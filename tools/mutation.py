@@ -28,10 +28,10 @@ Run it from the repository root with the project's virtual environment active; t
 package must be installed editable (``pip install -e .``) so the tests import the
 mutated file::
 
-    python tools/mutation.py voot/optim/voo.py tests/test_voo.py tests/test_registry.py
-    python tools/mutation.py envs/kitchen_checks.py tests/test_kitchen_checks.py \\
+    python tools/mutation.py voot/optim/voo.py tests/optim/test_voo.py tests/optim/test_registry.py
+    python tools/mutation.py envs/kitchen/checks.py tests/envs/kitchen/test_kitchen_checks.py \\
         --functions _pick_kinematics,_place_checks,precheck
-    python tools/mutation.py benchmarks/store.py tests/test_store.py --sample 150 --seed 0
+    python tools/mutation.py benchmarks/store/result_store.py tests/benchmarks/store/test_store.py --sample 150 --seed 0
 
 ``--list`` prints the mutants without running anything; ``--only 3,17`` runs the
 named mutants; ``--json out.json`` writes every result. The file is restored after

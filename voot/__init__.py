@@ -13,7 +13,10 @@ Importing ``voot`` registers the gymnasium environment ids (``voot/...``) withou
 importing MuJoCo; the environments load it when made.
 """
 
+from voot import _source_tree
 from voot._registration import register_envs
+
+_source_tree.install(__file__)
 
 __version__ = "0.1.0"
 

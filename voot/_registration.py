@@ -7,23 +7,23 @@ from __future__ import annotations
 
 #: id -> entry point ("module:Class"). Filled in by the environment modules' issues.
 ENV_IDS: dict[str, str] = {
-    # Synthetic planning chains (voot.envs.chain_env); keyword: dim=3 | 10 | 20.
-    "voot/ShekelChain-v0": "voot.envs.chain_env:ShekelChainEnv",
-    "voot/GriewankChain-v0": "voot.envs.chain_env:GriewankChainEnv",
-    "voot/RastriginChain-v0": "voot.envs.chain_env:RastriginChainEnv",
+    # Synthetic planning chains (voot.envs.chains); keyword: dim=3 | 10 | 20.
+    "voot/ShekelChain-v0": "voot.envs.chains:ShekelChainEnv",
+    "voot/GriewankChain-v0": "voot.envs.chains:GriewankChainEnv",
+    "voot/RastriginChain-v0": "voot.envs.chains:RastriginChainEnv",
     # MuJoCo benchmark domains (voot.envs; need the [envs] extra); keyword: config=...
-    "voot/KitchenClearing-v0": "voot.envs.kitchen:KitchenClearingEnv",
-    "voot/ConveyorPacking-v0": "voot.envs.conveyor:ConveyorPackingEnv",
+    "voot/KitchenClearing-v0": "voot.envs.kitchen.env:KitchenClearingEnv",
+    "voot/ConveyorPacking-v0": "voot.envs.conveyor.env:ConveyorPackingEnv",
     # The same domains under the authors' protocol (two-stage feasibility, see
     # docs/environments.md): the entry points above at their "v1" preset.
-    "voot/KitchenClearing-v1": "voot.envs.kitchen:KitchenClearingEnv",
-    "voot/ConveyorPacking-v1": "voot.envs.conveyor:ConveyorPackingEnv",
+    "voot/KitchenClearing-v1": "voot.envs.kitchen.env:KitchenClearingEnv",
+    "voot/ConveyorPacking-v1": "voot.envs.conveyor.env:ConveyorPackingEnv",
     # Kitchens generated from a seed under the v1 rules (docs/environments.md, "Generated
     # kitchens"); keywords: layout_seed=int, difficulty="easy" | "medium" | "hard".
-    "voot/KitchenClearing-v2": "voot.envs.kitchen_family:GeneratedKitchenEnv",
+    "voot/KitchenClearing-v2": "voot.envs.kitchen.generated.env:GeneratedKitchenEnv",
     # Generated storage rooms on the v1 rules (issue 24); keywords: layout_seed=int,
-    # difficulty="easy" | "medium" | "hard" (voot.envs.conveyor_family).
-    "voot/ConveyorPacking-v2": "voot.envs.conveyor_family:ConveyorFamilyEnv",
+    # difficulty="easy" | "medium" | "hard" (voot.envs.conveyor.generated.env).
+    "voot/ConveyorPacking-v2": "voot.envs.conveyor.generated.env:ConveyorFamilyEnv",
 }
 #: id -> keyword arguments registered with it.
 ENV_KWARGS: dict[str, dict[str, str]] = {

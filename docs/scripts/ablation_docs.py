@@ -16,7 +16,7 @@ import re
 import tempfile
 from pathlib import Path
 
-from voot.bench.cli import main as bench
+from voot.bench.cli.main import main as bench
 
 STORE = "docs/data/ablation-v1"
 PAGE = Path("docs/results-planning.md")

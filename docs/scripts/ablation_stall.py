@@ -5,7 +5,7 @@ on KitchenClearing-v1 seeds 0-19 with the settings the protocol selected on the 
 seeds (docs/data/protocol-v1), and prints
 
 * per seed, the last commitment and the draws at that root afterwards, by stage and cause
-  (:func:`voot.bench.stall.stall_table`);
+  (:func:`voot.bench.protocol.stall.stall_table`);
 * over all commitments, the evidence they were made on: visits of the root that was left,
   children tied at the chosen Q, and the share of commitments into a dead end (a root that
   never gets a feasible action);
@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from voot.bench.plan_sweep import PlanSpec
-from voot.bench.stall import commitments, stall_table, summarize, trace_search
+from voot.bench.protocol.stall import commitments, stall_table, summarize, trace_search
+from voot.bench.sweep.plan import PlanSpec
 
 KITCHEN = "voot/KitchenClearing-v1"
 #: The settings selected on tuning seeds 1000-1004 (docs/results-planning.md).

@@ -2,7 +2,7 @@
 
 * ``docs/figures/figure5_v1.png``: the placements sampled at the first object's place
   node after 50 visits for PW-UCT, RAND-DOOT and VOOT (seed 0), drawn from the
-  recordings, with each panel's counts (:func:`voot.bench.kitchen_figure5.figure5`);
+  recordings, with each panel's counts (:func:`voot.bench.demos.figure5.figure5`);
 * ``docs/figures/figure5_v1.json``: those counts;
 * ``docs/figures/figure5_v1_viewer_{pw_uct,rand_doot,voot}.png``: rerun's viewer on each
   recording's Figure-5 view, and ``figure5_v1_viewer.png`` its whole window for VOOT
@@ -23,7 +23,7 @@ import shutil
 import sys
 from pathlib import Path
 
-from voot.bench.kitchen_figure5 import figure5
+from voot.bench.demos.figure5 import figure5
 from voot.record.screenshot import viewer_screenshots
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -16,7 +16,7 @@ import re
 import tempfile
 from pathlib import Path
 
-from voot.bench.cli import main as bench
+from voot.bench.cli.main import main as bench
 
 #: The committed held-out stores (under docs/data/) the page shows.
 STORES = ("heldout-kitchen-v2", "heldout-conveyor-v2")

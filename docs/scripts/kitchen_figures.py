@@ -1,11 +1,11 @@
 """Make the kitchen figures of the README and docs/recordings.md from recordings.
 
 * ``docs/figures/voot_kitchen.gif``: VOOT's best plan clearing the kitchen
-  (:func:`voot.bench.kitchen_demo.run`, its default simulations and seed);
+  (:func:`voot.bench.demos.kitchen_demo.run`, its default simulations and seed);
 * ``docs/figures/recordings_kitchen_viewer.png``: rerun's viewer on that recording, at
   the end of the best plan;
 * ``docs/figures/recordings_kitchen_figure5_{voot,pw_uct}.png``: rerun's viewer showing
-  the Figure-5 recordings (:func:`voot.bench.kitchen_figure5.figure5`, same seed): the
+  the Figure-5 recordings (:func:`voot.bench.demos.figure5.figure5`, same seed): the
   placements sampled at the first object's place node after 50 visits; and the
   viewer's whole window for VOOT (``..._figure5_viewer.png``);
 * ``docs/figures/recordings_kitchen_figure5_drawn.png``: the same data drawn with
@@ -28,8 +28,8 @@ from pathlib import Path
 
 from PIL import Image
 
-from voot.bench.kitchen_demo import run
-from voot.bench.kitchen_figure5 import figure5
+from voot.bench.demos.figure5 import figure5
+from voot.bench.demos.kitchen_demo import run
 from voot.record.screenshot import viewer_screenshots
 
 FIGURES = Path("docs/figures")

@@ -1,7 +1,7 @@
 """Make the generated-kitchen demo's figures of docs/recordings.md from its recording.
 
 * ``docs/figures/voot_kitchen_v2.gif``: VOOT's best plan in a generated kitchen
-  (:func:`voot.bench.kitchen_demo.run` on ``voot/KitchenClearing-v2``, medium, layout
+  (:func:`voot.bench.demos.kitchen_demo.run` on ``voot/KitchenClearing-v2``, medium, layout
   seed 3; the demo's default simulations and seed);
 * ``docs/figures/recordings_kitchen_v2_viewer.png``: rerun's viewer on that recording's
   3-D view at the end of the best plan (the mesh objects where the plan left them).
@@ -23,7 +23,7 @@ from pathlib import Path
 
 from PIL import Image
 
-from voot.bench.kitchen_demo import GENERATED_ID, run
+from voot.bench.demos.kitchen_demo import GENERATED_ID, run
 from voot.record.screenshot import viewer_screenshots
 
 FIGURES = Path("docs/figures")

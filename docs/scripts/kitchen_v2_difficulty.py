@@ -3,7 +3,7 @@
 For each level and layout seeds ``0 .. n-1``: ``--samples`` uniform actions at the first
 pick node (after ``reset()``) and as many at the first place node (after the witness's
 first pick), each checked from the same state: the share that passes the v1 pre-check
-(:meth:`~voot.envs.kitchen_checks.KitchenChecks.precheck`) and the share that passes the
+(:meth:`~voot.envs.kitchen.checks.KitchenChecks.precheck`) and the share that passes the
 whole step, pooled over the seeds; also the objects to clear and the witness's length.
 The same measure as ``voot-bench difficulty`` for v1 (docs/environments.md), without a
 planner. Run from the repository root (about half a minute)::
@@ -18,8 +18,8 @@ import collections
 
 import numpy as np
 
-from voot.envs.kitchen_family import GeneratedKitchenEnv
-from voot.envs.kitchen_layout import DIFFICULTIES
+from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
+from voot.envs.kitchen.generated.layout import DIFFICULTIES
 
 
 def _shares(

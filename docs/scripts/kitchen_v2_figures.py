@@ -19,8 +19,8 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw
 
-from voot.envs.kitchen_family import GeneratedKitchenEnv
-from voot.envs.kitchen_layout import DIFFICULTIES
+from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
+from voot.envs.kitchen.generated.layout import DIFFICULTIES
 
 SEEDS = (0, 1)
 TILE = (420, 360)

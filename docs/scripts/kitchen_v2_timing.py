@@ -1,11 +1,11 @@
 """Time generated kitchens (``voot/KitchenClearing-v2``): cold generation vs a cached scene.
 
-First the object catalogue's meshes and grasp tables (:data:`~voot.envs.kitchen_layout.
+First the object catalogue's meshes and grasp tables (:data:`~voot.envs.kitchen.generated.layout.
 CATALOGUE`): built with trimesh if the mesh cache is empty, else read from it. Then for
 each difficulty level and layout seeds ``0 .. n-1`` (one process, no kitchen cached at
 the start), prints:
 
-* **cold**: :func:`~voot.envs.kitchen_family.generated_kitchen` the first time (every
+* **cold**: :func:`~voot.envs.kitchen.generated.env.generated_kitchen` the first time (every
   attempt drawn, compiled and checked by the constructive solver, rejections included);
 * **rejections** per accepted kitchen, and the solver's stepped actions;
 * **cached scene**: the kept kitchen's model loaded again, as an env does it (a copy of
@@ -25,11 +25,11 @@ import copy
 import statistics
 import time
 
-from voot.envs.kitchen_family import GeneratedKitchenEnv, generated_kitchen
-from voot.envs.kitchen_layout import CATALOGUE, DIFFICULTIES
-from voot.envs.kitchen_scene import compile_kitchen
-from voot.envs.mesh_grasp import grasp_set
-from voot.envs.meshes import ShapeSpec, mesh_assets
+from voot.envs.assets.meshes import ShapeSpec, mesh_assets
+from voot.envs.kitchen.generated.env import GeneratedKitchenEnv, generated_kitchen
+from voot.envs.kitchen.generated.layout import CATALOGUE, DIFFICULTIES
+from voot.envs.kitchen.generated.scene import compile_kitchen
+from voot.envs.robot.mesh_grasp import grasp_set
 
 
 def _ms(seconds: list[float]) -> str:

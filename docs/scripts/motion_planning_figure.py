@@ -23,9 +23,9 @@ import matplotlib.pyplot as plt
 from matplotlib.patches import Circle
 from matplotlib.patches import Polygon as PolygonPatch
 
-from voot.envs.base_planner import BasePlanner
-from voot.envs.planar import Box2D, Pose2D
-from voot.envs.swept_volume import obstacles_on_path, swept_footprint
+from voot.envs.motion.planar import Box2D, Pose2D
+from voot.envs.motion.planner import BasePlanner
+from voot.envs.motion.swept_volume import obstacles_on_path, swept_footprint
 
 WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
 

@@ -16,7 +16,7 @@ import re
 import tempfile
 from pathlib import Path
 
-from voot.bench.cli import main as bench
+from voot.bench.cli.main import main as bench
 
 STORE = "docs/data/protocol-v1"
 FIGURES = Path("docs/figures/protocol-v1")

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from voot.bench.plan_runs import plan_data
-from voot.bench.store import ResultStore
+from voot.bench.report.plan_runs import plan_data
+from voot.bench.store.result_store import ResultStore
 
 
 def main() -> None:

@@ -16,7 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from voot.bench.store import ResultStore
+from voot.bench.store.result_store import ResultStore
 
 COLOURS = {"voot": "tab:blue", "ppo": "tab:orange", "ddpg": "tab:green"}
 

@@ -116,8 +116,8 @@ def figure(size: tuple[int, int] = (560, 420)) -> None:
 
 def benchmark(layouts: int) -> None:
     """Cold and cached cost per instance, and what each level draws."""
-    from voot.envs import storage_instance as SI
-    from voot.envs.meshes import clear_memory_cache
+    from voot.envs.assets.meshes import clear_memory_cache
+    from voot.envs.conveyor.generated import instance as SI
 
     def forget() -> None:  # what a new process knows: nothing but the disk cache
         SI.clear_memo()
@@ -173,9 +173,9 @@ def benchmark(layouts: int) -> None:
 
 def difficulty(layouts: int, samples: int) -> None:
     """Uniform actions at the first node per level (see the module docstring)."""
-    from voot.bench.difficulty import short_reason
-    from voot.envs.conveyor_family import witness_return
-    from voot.envs.planning import EnvProblem
+    from voot.bench.protocol.difficulty import short_reason
+    from voot.envs.conveyor.generated.env import witness_return
+    from voot.envs.core.problem import EnvProblem
 
     rows = []
     for level in LEVELS:
@@ -216,7 +216,7 @@ def difficulty(layouts: int, samples: int) -> None:
 
 def planners(layouts: int, seeds: int, simulations: int, out: str) -> None:
     """Runs of VOOT and PW-UCT per level (see the module docstring) and their summary."""
-    from voot.bench.store import ResultStore
+    from voot.bench.store.result_store import ResultStore
 
     for level in LEVELS:
         for seed in range(layouts):

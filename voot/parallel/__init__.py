@@ -5,7 +5,7 @@ Two concepts, one module each:
 * :mod:`voot.parallel.executors`: the :class:`Executor` interface (map a picklable
   function over items; results in the items' order or as they complete; a shutdown that
   terminates worker processes) with a :class:`SerialExecutor` and a
-  :class:`ProcessExecutor`. ``voot.bench.ray_backend.RayBackend`` implements the same
+  :class:`ProcessExecutor`. ``voot.bench.sweep.ray_backend.RayBackend`` implements the same
   interface on a Ray cluster.
 * :mod:`voot.parallel.cache`: :class:`WorkerCache`, the one small LRU of expensive
   objects (environments, planning problems) that each worker process keeps between

@@ -7,7 +7,7 @@ scene), so each process keeps what it built in one small least-recently-used cac
 users reset what they take out (an environment is reset with the run's seed, a planning
 problem restored to its initial snapshot), so a kept object behaves as a fresh one.
 
-One cache per process, whatever uses it (``voot.bench.problems.cached_env`` for
+One cache per process, whatever uses it (``voot.bench.protocol.problems.cached_env`` for
 environments, ``voot.tree.root_parallel`` for problems built from factories): the
 number of heavy objects a worker holds is bounded once (:data:`CACHE_SIZE`), not per
 user. Users keep their keys apart by making them tuples that start with their own tag

@@ -1,7 +1,7 @@
 """Executors: where a function runs over many items, in this process or in workers.
 
 One interface (:class:`Executor`) for every parallel job of voot: the runs of a
-benchmark sweep (``voot.bench.sweep.run_sweep``) and the trees of a root-parallel search
+benchmark sweep (``voot.bench.sweep.bbfo.run_sweep``) and the trees of a root-parallel search
 (``voot.tree.root_parallel.plan_root_parallel``). An executor
 
 * ``map(fn, items)``: yields ``fn(item)`` for every item, **in the items' order**;
@@ -23,7 +23,7 @@ workers blocked for ever on their task queue, adopted by PID 1, and kept the
 multiprocessing resource tracker alive with them). See :func:`watch_parent`.
 
 Implementations: :class:`SerialExecutor` (this process, one item after the other),
-:class:`ProcessExecutor` (a pool of local processes) and, in ``voot.bench.ray_backend``,
+:class:`ProcessExecutor` (a pool of local processes) and, in ``voot.bench.sweep.ray_backend``,
 ``RayBackend`` (actors on a Ray cluster; it needs Ray, so it lives with the benchmarks).
 """
 

@@ -6,7 +6,7 @@
 * :func:`read_recording`: read a ``.rrd`` back (entities, timelines, counts);
 * :mod:`voot.record.mujoco_scene`: any ``MjModel`` in rerun;
 * :mod:`voot.record.video`: a GIF/MP4 of a plan, rendered headless by MuJoCo;
-* :mod:`voot.bench.overhead`: the cost of recording (a ``voot-bench`` command).
+* :mod:`voot.bench.measure.overhead`: the cost of recording (a ``voot-bench`` command).
 
 Names are imported lazily, so ``voot.record.video`` works without rerun installed.
 """

@@ -4,7 +4,7 @@ Logging costs time inside the search loop, so everything that grows with the tre
 (sampled actions of the watched nodes, the tree graph) is logged every so many
 simulations, and the per-simulation scalars are buffered and sent in columns. The
 defaults keep a recording within 1.5x of the search time without one (see
-:mod:`voot.bench.overhead`).
+:mod:`voot.bench.measure.overhead`).
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ generated house (:func:`kitchen_view`).
 
 It reads the kitchen's task record (the held object and its grasp) and plans the drives
 it shows with the env's base planner: an animation of this one environment, kept apart
-from the demo application that uses it (:mod:`voot.bench.kitchen_demo`).
+from the demo application that uses it (:mod:`voot.bench.demos.kitchen_demo`).
 """
 
 from __future__ import annotations
@@ -42,13 +42,13 @@ def kitchen_view(env: Any) -> dict[str, Any]:
     r"""The GIF's free camera for the kitchen ``env``.
 
     The paper's kitchen (v0, v1) gets :data:`KITCHEN_VIEW`. A generated kitchen
-    (:class:`~voot.envs.kitchen_family.GeneratedKitchenEnv`, ``voot/KitchenClearing-v2``)
+    (:class:`~voot.envs.kitchen.generated.env.GeneratedKitchenEnv`, ``voot/KitchenClearing-v2``)
     has its own size and room layout, so the camera is fitted to its house
     :math:`[x_0, x_1] \times [y_0, y_1]`: it looks at the house's centre from the west
     (azimuth 0, as :data:`KITCHEN_VIEW`, 60 degrees down) at
     :data:`GENERATED_VIEW_DISTANCE` :math:`\cdot \max(x_1 - x_0, y_1 - y_0)`.
     """
-    from voot.envs.kitchen_family import GeneratedKitchenEnv
+    from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
 
     if not isinstance(env, GeneratedKitchenEnv):
         return dict(KITCHEN_VIEW)
@@ -122,7 +122,7 @@ def plan_animation(
     left at the end of the plan.
 
     Args:
-        problem: an :class:`~voot.envs.planning.EnvProblem` over the kitchen.
+        problem: an :class:`~voot.envs.core.problem.EnvProblem` over the kitchen.
         actions: the plan (planner actions, as in :attr:`PlanResult.actions`).
         size: ``(width, height)`` in pixels.
         view: the free camera (``lookat``, ``distance``, ``azimuth``, ``elevation``);
@@ -133,9 +133,9 @@ def plan_animation(
         max_motion_frames: at most this many frames per base motion.
         arm_frames: frames of each arm motion.
     """
-    from voot.envs.kitchen import KitchenClearingEnv
-    from voot.envs.robot import TUCK, compose2d
-    from voot.envs.scene import set_object_pose
+    from voot.envs.core.scene import set_object_pose
+    from voot.envs.kitchen.env import KitchenClearingEnv
+    from voot.envs.robot.model import TUCK, compose2d
 
     env = problem.unwrapped
     if not isinstance(env, KitchenClearingEnv):
@@ -209,7 +209,7 @@ class _KitchenRenderer:
     def __init__(self, env: Any, size: tuple[int, int], view: dict[str, Any]) -> None:
         import mujoco
 
-        from voot.envs.rendering import ensure_headless_gl
+        from voot.envs.core.rendering import ensure_headless_gl
         from voot.record.video import FREE_CAMERA_KEYS
 
         w, h = (int(v) for v in size)

@@ -14,7 +14,7 @@ Poses are computed on a private ``MjData``: :meth:`MujocoScene.log_poses` copies
 caller's data (an environment's) is never touched. Height fields and SDF geoms are
 skipped (counted in :attr:`MujocoScene.skipped`). Only the geom groups MuJoCo's viewer
 shows by default are drawn (0, 1, 2): a mesh object of a generated scene
-(:mod:`voot.envs.meshes`) is drawn as its visual mesh (class ``decor``, group 1), not
+(:mod:`voot.envs.assets.meshes`) is drawn as its visual mesh (class ``decor``, group 1), not
 as its convex collision parts (group 3) on top of it. MuJoCo is imported lazily.
 
 :func:`model_camera_eye` turns one of the model's cameras into the 3-D view's first eye

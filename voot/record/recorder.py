@@ -31,7 +31,7 @@ index of the best plan):
 
 Cost: scalars and sample drawings are buffered and sent as columns every
 ``flush_every`` simulations (a drawing grows with the node's action count; one is made
-every ``samples_every`` simulations); the tree graph is logged once. See :mod:`voot.bench.overhead` for measured figures.
+every ``samples_every`` simulations); the tree graph is logged once. See :mod:`voot.bench.measure.overhead` for measured figures.
 """
 
 from __future__ import annotations

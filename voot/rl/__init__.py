@@ -13,7 +13,7 @@ the three pieces, over any voot gymnasium env that can be snapshotted:
 
 Importing this package loads neither torch nor stable-baselines3 (they are the ``rl``
 extra, loaded when :func:`train` runs). The benchmark runs with a budget matched to a
-tree search are in :mod:`voot.bench.rl_runs`.
+tree search are in :mod:`voot.bench.sweep.rl`.
 """
 
 from voot.rl.config import (

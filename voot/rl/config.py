@@ -2,7 +2,7 @@
 
 Every field is a named, validated option at stable-baselines3's default (SB3 2.x,
 ``stable_baselines3.PPO`` and ``stable_baselines3.DDPG``, checked against the installed
-signatures by ``tests/test_rl_config.py``), except:
+signatures by ``tests/rl/test_rl_config.py``), except:
 
 * ``gamma``: the problem's discount (the tree's: kitchen 0.9, conveyor 0.99, chains
   0.9), set by the benchmark runner; 0.99, SB3's default, when used directly;

@@ -12,7 +12,7 @@ Reproducibility on CPU: torch is set to one thread (``torch.set_num_threads(1)``
 parallel reductions may sum in another order with more), the algorithm gets
 ``seed`` (SB3 seeds Python's ``random``, numpy's global generator, torch and the action
 space with it), and the device is the config's (``"cpu"`` by default). The same config,
-env and seed then give bit-identical curves in any process (``tests/test_rl_train.py``
+env and seed then give bit-identical curves in any process (``tests/rl/test_rl_train.py``
 checks it across two processes); the timings differ.
 
 stable-baselines3 and torch are imported when :func:`train` runs, not with this module:

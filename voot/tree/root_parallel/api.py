@@ -78,7 +78,7 @@ def plan_root_parallel(
         executor: ``"process"`` (a :class:`~voot.parallel.ProcessExecutor` of
             ``min(K, max_workers or os.cpu_count())`` workers for this call only; pass your
             own to keep it between calls), ``"serial"``, or any
-            :class:`~voot.parallel.Executor` (e.g. ``voot.bench.ray_backend.RayBackend``),
+            :class:`~voot.parallel.Executor` (e.g. ``voot.bench.sweep.ray_backend.RayBackend``),
             or any object with ``map(fn, items)`` (or ``map_unordered``), e.g. a
             :class:`concurrent.futures.Executor`.
         max_workers: worker processes of ``executor="process"``.

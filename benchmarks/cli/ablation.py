@@ -1,0 +1,117 @@
+"""``voot-bench ablation``: one departure from the authors' code at a time (issue 23).
+
+Builds the runs of :mod:`voot.bench.protocol.ablation` (the v1 defaults and every switch's variant
+of VOOT and PW-UCT) and runs them as ``voot-bench plan --tuning-seeds`` does
+(:func:`voot.bench.cli.plan.plan_tuned`): every variant's grid on the tuning seeds, then
+its selected setting on the evaluation seeds; resumable at any point. ``--table`` draws
+the ablation's table from the store (as ``voot-bench claims --ablation``).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+from voot.bench.cli.common import (
+    CLIError,
+    add_backend_options,
+    add_compact_options,
+    check_sweep_options,
+    parse_range,
+    split_list,
+)
+from voot.bench.cli.plan import plan_tuned
+from voot.bench.cli.report import print_ablation_table
+from voot.bench.sweep.plan import PlanSpec
+
+if TYPE_CHECKING:
+    from voot.bench.cli.common import Subparsers
+
+
+def cmd_ablation(args: argparse.Namespace) -> int:
+    """Run (or, with ``--list``/``--table``, describe) the ablation."""
+    from voot.bench.protocol import ablation as A
+
+    if args.list:
+        print(A.switch_list())
+        return 0
+    try:
+        switches = A.check_switches(split_list(args.switches) or None)
+    except ValueError as exc:
+        raise CLIError(str(exc)) from None
+    if args.table:
+        problems = split_list(args.problems) or None
+        return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
+    check_sweep_options(args)
+    problems = split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+
+    def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
+        return A.ablation_specs(
+            switches,
+            seeds,
+            problems=problems,
+            include_baseline=not args.no_baseline,
+            simulations=args.simulations,
+        )
+
+    tuning = specs_of(parse_range(args.tuning_seeds, "--tuning-seeds"))
+    evaluation = specs_of(parse_range(args.seeds, "--seeds"))
+    args.record = None
+    return plan_tuned(args, tuning, evaluation)
+
+
+def register(sub: Subparsers) -> None:
+    """Add ``ablation``."""
+    p = sub.add_parser(
+        "ablation",
+        help="one switch at a time from the v1 defaults to the authors' code, for VOOT and"
+        " PW-UCT (tuned as the protocol; resumable); --table draws its table",
+        description="The ablation of issue 23: every departure of voot's v1 defaults from the"
+        " authors' code as a variant of VOOT and PW-UCT (one switch at a time, and all at"
+        " once), each variant's grid on the tuning seeds, its selected setting on the"
+        " evaluation seeds of both v1 domains. --list prints the switches.",
+    )
+    p.add_argument(
+        "--out", default="results/ablation-v1", help="result store directory (%(default)s)"
+    )
+    p.add_argument("--switches", nargs="+", metavar="NAME", help="switches (default: all)")
+    p.add_argument(
+        "--problems", nargs="+", metavar="NAME", help="kitchen_v1 and/or conveyor_v1 (both)"
+    )
+    p.add_argument("--seeds", default="0:20", help="evaluation seeds (default: %(default)s)")
+    p.add_argument(
+        "--tuning-seeds", default="1000:1005", help="tuning seeds (default: %(default)s)"
+    )
+    p.add_argument(
+        "--simulations", type=int, default=None, help="simulations per run (default: the paper's)"
+    )
+    p.add_argument(
+        "--no-baseline", action="store_true", help="do not run the v1 defaults (no variant)"
+    )
+    p.add_argument("--list", action="store_true", help="print the switches and exit")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="print the ablation table from --out (runs nothing): per switch VOOT's and"
+        " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
+    )
+    p.add_argument("--markdown", help="--table: also write the table here")
+    add_backend_options(p)
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--estimate", action="store_true", help="print the estimated CPU-hours and exit")
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
+    )
+    p.add_argument("--dry-run", action="store_true", help="list the runs and exit")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument(
+        "--compact", action="store_true", help="create --out as a compact store (as plan)"
+    )
+    add_compact_options(p, "compact-")
+    p.set_defaults(func=cmd_ablation)

@@ -1,0 +1,183 @@
+"""The demos: ``demo`` (VOOT clearing the kitchen, with a rerun recording and a GIF; on
+a generated kitchen with ``--env kitchen_v2 --layout-seed S --difficulty D``),
+``figure5`` (the paper's Figure 5 on the kitchen) and ``demo-voo`` (VOO on a test
+function with the paper's budget)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from typing import TYPE_CHECKING
+
+from voot.bench.cli.common import CLIError
+from voot.bench.cli.types import seed_argument
+
+if TYPE_CHECKING:
+    from voot.bench.cli.common import Subparsers
+
+#: ``--difficulty`` of ``demo`` (:data:`voot.envs.kitchen.generated.layout.DIFFICULTIES`; written
+#: out so that ``voot-bench --help`` does not import the environments).
+DIFFICULTY_CHOICES = ("easy", "medium", "hard")
+#: Defaults of ``--layout-seed`` and ``--difficulty`` as the help states them
+#: (:data:`voot.bench.demos.kitchen_demo.DEFAULT_LAYOUT_SEED`, ``DEFAULT_DIFFICULTY``).
+DEFAULT_LAYOUT_SEED = 0
+DEFAULT_DIFFICULTY = "easy"
+
+
+def cmd_demo(args: argparse.Namespace) -> int:
+    """VOOT on the kitchen: prints obstacles cleared, writes ``.rrd``, ``.gif``, ``.json``."""
+    from voot.bench.demos import kitchen_demo
+    from voot.bench.protocol.problems import normalize_problem
+
+    sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
+    seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
+    try:
+        env_id = normalize_problem(args.env)
+        if env_id != kitchen_demo.GENERATED_ID and (
+            args.layout_seed is not None or args.difficulty is not None
+        ):
+            given = [
+                flag
+                for flag, value in (
+                    ("--layout-seed", args.layout_seed),
+                    ("--difficulty", args.difficulty),
+                )
+                if value is not None
+            ]
+            verb = "choose" if len(given) > 1 else "chooses"
+            raise CLIError(
+                f"{' and '.join(given)} {verb} a generated kitchen; --env {args.env} ({env_id})"
+                " is the paper's fixed instance: use --env kitchen_v2"
+            )
+        kitchen_demo.run(
+            args.out,
+            sims,
+            seed,
+            args.planner,
+            video=not args.no_video,
+            env_id=env_id,
+            layout_seed=args.layout_seed,
+            difficulty=args.difficulty,
+        )
+    except ValueError as exc:
+        raise CLIError(str(exc)) from exc
+    return 0
+
+
+def cmd_figure5(args: argparse.Namespace) -> int:
+    """Record the paper's Figure 5 on the kitchen and draw it (:mod:`voot.bench.demos.figure5`)."""
+    from voot.bench.demos.figure5 import figure5
+    from voot.bench.protocol.problems import normalize_problem
+
+    if args.seed < 0:
+        raise CLIError(f"--seed must be >= 0, got {args.seed}")
+    figure5(
+        args.out,
+        args.seed,
+        planners=args.planners,
+        visits=args.visits,
+        max_simulations=args.max_simulations,
+        env_id=normalize_problem(args.env),
+        image=args.image,
+    )
+    return 0
+
+
+def cmd_demo_voo(args: argparse.Namespace) -> int:
+    from voot.bench.sweep.bbfo import RunSpec, check_functions, paper_budget, run_spec
+    from voot.functions import get_function
+    from voot.optim.registry import normalize_method
+
+    function = check_functions([args.function])[0]
+    method = normalize_method(args.method)
+    if args.dim < 1:
+        raise CLIError(f"--dim must be >= 1, got {args.dim}")
+    budget = args.budget if args.budget is not None else paper_budget(function, args.dim)
+    if budget < 1:
+        raise CLIError(f"--budget must be >= 1, got {budget}")
+    spec = RunSpec(function, args.dim, method, (), budget, args.seed)
+    print(
+        f"{method} on {function}-{args.dim}D, {budget} evaluations, seed {args.seed} ...",
+        file=sys.stderr,
+    )
+    start = time.perf_counter()
+    row = run_spec(spec)
+    elapsed = time.perf_counter() - start
+    if row["status"] != "ok":
+        print(f"voot-bench: run failed: {row['error']}", file=sys.stderr)
+        return 1
+    best = float(row["best_so_far"][-1])
+    optimum = get_function(function, args.dim).optimum_value
+    print(
+        f"{method} on {function}-{args.dim}D: {budget} evaluations in {elapsed:.1f} s (seed {args.seed})"
+    )
+    print(f"  best value found  {best:.6g}")
+    if optimum is not None:
+        print(f"  known optimum     {float(optimum):.6g}")
+        print(f"  regret            {float(optimum) - best:.6g}")
+    for k in (10, 100, 1000):
+        if k < budget:
+            print(f"  best after {k:>5}  {float(row['best_so_far'][k - 1]):.6g}")
+    return 0
+
+
+def register(sub: Subparsers) -> None:
+    """Add ``demo``, ``figure5`` and ``demo-voo``."""
+    p = sub.add_parser(
+        "demo",
+        help="the README's main job: VOOT clearing the kitchen, with a rerun recording and a GIF",
+    )
+    p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
+    p.add_argument("--simulations", type=int, default=None, help="default: 1000")
+    p.add_argument(
+        "--seed", type=seed_argument, default=None, help="default: the documented demo seed"
+    )
+    p.add_argument("--planner", default="voot")
+    p.add_argument("--no-video", action="store_true", help="skip the GIF")
+    p.add_argument(
+        "--env",
+        default="kitchen_v1",
+        help="kitchen_v1 (voot/KitchenClearing-v1, the authors' protocol; default), kitchen"
+        " (voot/KitchenClearing-v0) or kitchen_v2 (voot/KitchenClearing-v2, kitchens generated"
+        " from --layout-seed and --difficulty)",
+    )
+    p.add_argument(
+        "--layout-seed",
+        type=seed_argument,
+        default=None,
+        help="kitchen_v2 only: the generated kitchen's layout seed (default: "
+        f"{DEFAULT_LAYOUT_SEED})",
+    )
+    p.add_argument(
+        "--difficulty",
+        choices=DIFFICULTY_CHOICES,
+        default=None,
+        help=f"kitchen_v2 only: the generated kitchen's level (default: {DEFAULT_DIFFICULTY})",
+    )
+    p.set_defaults(func=cmd_demo)
+
+    p = sub.add_parser(
+        "figure5",
+        help="the paper's Figure 5 on the kitchen: placements sampled at the first place node",
+    )
+    p.add_argument("--out", default="kitchen_demo", help="output folder (default: kitchen_demo)")
+    p.add_argument("--seed", type=seed_argument, default=0)
+    p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"], metavar="NAME")
+    p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
+    p.add_argument("--max-simulations", type=int, default=2000)
+    p.add_argument("--env", default="kitchen", help="kitchen (v0, default) or kitchen_v1")
+    p.add_argument(
+        "--image",
+        default="kitchen_figure5.png",
+        help="image file name in --out (default: %(default)s); its counts go beside it as .json",
+    )
+    p.set_defaults(func=cmd_figure5)
+
+    p = sub.add_parser("demo-voo", help="VOO on Shekel-20D with the paper's budget")
+    p.add_argument("--function", default="shekel")
+    p.add_argument("--dim", type=int, default=20)
+    p.add_argument("--method", default="voo")
+    p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
+    p.add_argument("--seed", type=seed_argument, default=0)
+    p.set_defaults(func=cmd_demo_voo)

@@ -1,0 +1,130 @@
+"""Subcommands on whole result stores: ``compact`` (copy a store into a compact one),
+``shipped`` (check the committed stores against their manifest and redraw them) and
+``store-speed`` (size and load time of synthetic stores, full vs compact)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from voot.bench.cli.common import CLIError, add_compact_options, compact_config
+
+if TYPE_CHECKING:
+    from voot.bench.cli.common import Subparsers
+
+
+def cmd_compact(args: argparse.Namespace) -> int:
+    """Convert a result store into a compact one (:func:`voot.bench.store.result_store.compact_store`)."""
+    from voot.bench.store.result_store import compact_store
+
+    out = compact_store(args.src, args.dst, compact_config(args))
+    mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
+    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if out["dst_bytes"] else ""
+    print(
+        f"{out['rows']} rows in {args.src} ({mb_src:.2f} MB of rows); {out['copied']} copied"
+        f" now, {out['rows'] - out['copied']} already there; {args.dst}: {mb_dst:.2f} MB of"
+        f" rows{ratio}"
+    )
+    return 0
+
+
+def cmd_shipped(args: argparse.Namespace) -> int:
+    """Check the committed stores against their manifest and redraw their figures
+    (:mod:`voot.bench.store.shipped`); with ``--write``, rewrite the manifest."""
+    from voot.bench.store import shipped
+
+    root = Path(args.root)
+    if not root.is_dir():
+        raise CLIError(f"{root}: no such folder (the committed stores are in docs/data)")
+    if args.add_checksums:
+        for path in shipped.store_dirs(root):
+            n = shipped.add_row_checksums(path)
+            print(f"{path.name}: {n} rows given a checksum")
+        print("now rewrite the manifest: voot-bench shipped --write", file=sys.stderr)
+        return 0
+    if args.write:
+        path = shipped.write_manifest(root)
+        for name, entry in shipped.read_manifest(root).items():
+            print(f"{name}: {entry['rows']} rows, sha256 {entry['sha256'][:12]}...")
+        print(f"manifest: {path}", file=sys.stderr)
+        return 0
+    out = Path(args.out) if args.out else None
+    for path in shipped.store_dirs(root):
+        got = shipped.check_store(root, path.name)
+        line = f"{path.name}: {got['rows']} rows, checksums and manifest ok"
+        if out is not None:
+            files = shipped.redraw(path, out / path.name)
+            line += f"; redrawn: {', '.join(f.name for f in files)}"
+        print(line, flush=True)
+    return 0
+
+
+def cmd_store_speed(args: argparse.Namespace) -> int:
+    """Print the size and load time of synthetic plan-row stores, full and compact."""
+    from voot.bench.measure.store_speed import time_load
+
+    if args.rows < 1 or args.length < 1:
+        raise CLIError("--rows and --length must be >= 1")
+    print(f"{args.rows} plan-like rows of {args.length} simulations (five curves each)")
+    print(
+        "| store | MB of rows | KB per row | write s | first load s | load s (lists)"
+        " | load s (arrays) | verify s |"
+    )
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for name, config in (("full", None), ("compact", compact_config(args))):
+        t = time_load(args.rows, args.length, args.repeats, plan=True, compact=config)
+        print(
+            f"| {name} | {t['mb']:.2f} | {1000 * t['mb'] / args.rows:.1f} | {t['write']:.2f}"
+            f" | {t['cold']:.3f} | {t['warm']:.3f} | {t['warm_arrays']:.3f} | {t['verify']:.3f} |",
+            flush=True,
+        )
+    return 0
+
+
+def register(sub: Subparsers) -> None:
+    """Add ``compact``, ``shipped`` and ``store-speed``."""
+    p = sub.add_parser(
+        "compact",
+        help="copy a result store into a compact one (resumable; the source is only read)",
+        description="Every row of SRC into the compact store DST: best_so_far and"
+        " objects_left exactly (their change points), elapsed, cpu_elapsed and calls_curve at"
+        " reduced resolution with their first and last values exact. Run ids are unchanged,"
+        " so a sweep resumed on DST skips every copied run.",
+    )
+    p.add_argument("src", help="the result store to read")
+    p.add_argument("dst", help="the compact store to write (created if missing)")
+    add_compact_options(p, "")
+    p.set_defaults(func=cmd_compact)
+
+    p = sub.add_parser(
+        "shipped",
+        help="check the committed result stores (docs/data) against their manifest and"
+        " redraw their figures and tables",
+    )
+    p.add_argument(
+        "--root", default="docs/data", help="folder of the stores (default: %(default)s)"
+    )
+    p.add_argument("--out", default=None, help="redraw every store's figures and tables here")
+    p.add_argument("--write", action="store_true", help="rewrite the manifest (stores.json)")
+    p.add_argument(
+        "--add-checksums",
+        action="store_true",
+        help="give the rows of stores written before row checksums theirs (then --write)",
+    )
+    p.set_defaults(func=cmd_shipped)
+
+    p = sub.add_parser(
+        "store-speed",
+        help="size and load time of a store of synthetic plan rows, full vs compact",
+    )
+    p.add_argument("--rows", type=int, default=1000, help="rows (default: %(default)s)")
+    p.add_argument(
+        "--length", type=int, default=3000, help="simulations per row (default: %(default)s)"
+    )
+    p.add_argument(
+        "--repeats", type=int, default=3, help="loads timed, best kept (default: %(default)s)"
+    )
+    add_compact_options(p, "")
+    p.set_defaults(func=cmd_store_speed)

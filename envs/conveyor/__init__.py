@@ -1,0 +1,6 @@
+"""The conveyor-packing family: pack the boxes arriving on a belt into storage rooms.
+
+* :mod:`.env`: :class:`ConveyorPackingEnv` (``voot/ConveyorPacking-v0`` and ``-v1``).
+
+Storage rooms generated from a seed (``voot/ConveyorPacking-v2``) are in :mod:`.generated`.
+"""

@@ -1,0 +1,553 @@
+"""``voot/ConveyorPacking-v0``: pack the boxes arriving on a belt into the storage rooms.
+
+The paper's conveyor-belt domain (Figure 1 left; reference page "Conveyor-belt
+packing"). Boxes arrive on a belt east of the robot's start pose (0, 1.05, 0). West of
+the start, a wide entrance opens into a small first room; its 1.62 m door leads to the
+larger rooms. The first two boxes are big: carrying one, the robot's base-motion disc is
+too wide for that door, so they must go into the first room, leaving space for the rest.
+
+Picks are fixed (as in the original): each box is taken from the belt with the same
+side grasp and presented in front of the robot at the start pose, and every placement's
+base path starts there. Each action places the **next three boxes**: 9 numbers, three
+object poses ``(x, y, theta)`` in the loading region x in [-7.4, -0.5],
+y in [-7.5, 3], theta in [0, 2 pi) (normalised to [-1, 1]). The placements are checked
+in sequence (each sees the ones before it): the box must lie in the loading region, the
+robot's base footprint in the workspace, robot and box must collide with nothing, and a
+base path must exist from the start pose to the placing pose for the robot carrying the
+box. If all three are feasible the reward is ``sum_i exp(-0.1 L_i)`` over the three base
+paths' lengths ``L_i``; if any is infeasible the action earns -2 and nothing moves.
+``info["placement"]`` is the first box's pose ``(x, y, theta)`` and ``info["base_pose"]``
+the robot's base pose placing it; ``info["placements"]`` and ``info["base_poses"]`` list
+them for every box of the action (also for an infeasible action: they follow from the
+action alone).
+The episode terminates when every box is placed (no goal bonus in this domain:
+``info["goal_bonus"]`` is 0) and is truncated after ``horizon`` steps. When fewer than
+three boxes remain, the action's trailing entries are ignored.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot import validation as V
+from voot.envs.core.env import ManipulationEnv
+from voot.envs.core.presets import env_config, preset_config
+from voot.envs.core.rendering import add_marker_box
+from voot.envs.core.scene import object_footprint, rect_inside, set_object_pose
+from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
+from voot.envs.core.units import denormalize
+from voot.envs.motion.planner import BasePath, BasePlannerConfig
+from voot.envs.robot.arm_ik import IKConfig
+from voot.envs.robot.grasp import side_grasp
+from voot.envs.robot.model import (
+    BASE_HALF,
+    ROBOT_RADIUS,
+    CarryDisc,
+    base_footprint,
+    carry_disc,
+    compose2d,
+    compose_inverse2d,
+    compose_inverse_tuple,
+)
+from voot.envs.robot.rotations import rot_z
+from voot.optim.base import Bounds
+
+FloatArray = NDArray[np.float64]
+
+#: What a planner's pre-check of an action covers (:attr:`ConveyorConfig.precheck`).
+PRECHECKS = ("full_step", "kinematic")
+#: Boxes placed by one action.
+OBJECTS_PER_ACTION = 3
+#: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
+BELT_FIRST_X = 2.3
+BELT_SPACING = 1.1
+BELT_Y = 1.05
+BELT_TOP = 0.06
+
+
+@dataclass(frozen=True)
+class ConveyorConfig:
+    """Settings of :class:`ConveyorPackingEnv` (defaults: the paper's / original's values).
+
+    Attributes:
+        start: The robot's base pose where every box is presented ((0, 1.05, 0)).
+        loading_region: Where boxes may be placed ``(xmin, xmax, ymin, ymax)``; also the
+            x, y ranges of the action.
+        workspace: Where the robot's base may go (the base planner's workspace).
+        place_theta: Range of a placed box's heading (radians).
+        n_objects: Boxes to pack, the first ``n_objects`` of the belt (1..20).
+        grasp_angle: The fixed grasp's roll about the approach axis (radians).
+        height_fraction: The fixed grasp's height as a fraction of the box height.
+        depth_fraction: The fixed grasp's position across the grasped face.
+        present_gap: Gap between the base's front and the presented box (metres).
+        length_scale: ``c`` in the placement reward ``exp(-c L)``.
+        infeasible_reward: Reward of an infeasible action.
+        horizon: Steps after which an episode is truncated.
+        render_overlays: Draw the loading region in rendered images.
+        precheck: What the planners' pre-check of an action covers (stage 1 of
+            :mod:`voot.tree.problem`; :meth:`ConveyorPackingEnv.precheck`).
+            ``"full_step"`` (v0): the whole step. ``"kinematic"`` (v1, the authors'
+            code): the three placements' region and collision checks, in sequence; the
+            base paths (through the door, which the big boxes' carry disc cannot pass)
+            are found only when the action is executed.
+        ik: IK settings.
+        planner: Base planner settings.
+    """
+
+    start: tuple[float, float, float] = (0.0, 1.05, 0.0)
+    loading_region: tuple[float, float, float, float] = (-7.4, -0.5, -7.5, 3.0)
+    workspace: tuple[float, float, float, float] = (-7.4, 1.5, -7.5, 3.0)
+    place_theta: tuple[float, float] = (0.0, 2.0 * math.pi)
+    n_objects: int = 20
+    grasp_angle: float = math.pi / 2
+    height_fraction: float = 0.75
+    depth_fraction: float = 0.5
+    present_gap: float = 0.2
+    length_scale: float = 0.1
+    infeasible_reward: float = -2.0
+    horizon: int = 20
+    render_overlays: bool = True
+    precheck: str = "full_step"
+    ik: IKConfig = field(default_factory=IKConfig)
+    planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
+        for name in ("loading_region", "workspace"):
+            object.__setattr__(self, name, V.region(f"ConveyorConfig.{name}", getattr(self, name)))
+        object.__setattr__(
+            self, "place_theta", V.range_pair("ConveyorConfig.place_theta", self.place_theta)
+        )
+        V.integer(self.n_objects, "ConveyorConfig.n_objects", 1, 20)
+        for name in ("grasp_angle", "present_gap", "length_scale"):
+            object.__setattr__(
+                self, name, V.positive_number(f"ConveyorConfig.{name}", getattr(self, name))
+            )
+        for name in ("height_fraction", "depth_fraction"):
+            v = V.number(getattr(self, name), f"ConveyorConfig.{name}", 0.0, 1.0)
+            object.__setattr__(self, name, v)
+        r = V.number(
+            self.infeasible_reward, "ConveyorConfig.infeasible_reward", high=0.0, open_high=True
+        )
+        object.__setattr__(self, "infeasible_reward", r)
+        V.integer(self.horizon, "ConveyorConfig.horizon", 1)
+        if self.precheck not in PRECHECKS:
+            raise ValueError(
+                f"ConveyorConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+            )
+        if not isinstance(self.ik, IKConfig):
+            raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
+        if not isinstance(self.planner, BasePlannerConfig):
+            raise ValueError(
+                f"ConveyorConfig.planner must be a BasePlannerConfig, got {type(self.planner).__name__}"
+            )
+
+    @property
+    def place_ranges(self) -> tuple[tuple[float, float], ...]:
+        """Ranges of one placement's parameters (x, y, theta)."""
+        r = self.loading_region
+        return ((r[0], r[1]), (r[2], r[3]), self.place_theta)
+
+
+#: Named versions of the domain: :class:`ConveyorConfig` overrides (see
+#: :data:`voot.envs.kitchen.config.KITCHEN_PRESETS`).
+CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
+)
+
+
+def conveyor_config(preset: str = "v0", **overrides: Any) -> ConveyorConfig:
+    """The :class:`ConveyorConfig` of a named version (:data:`CONVEYOR_PRESETS`)."""
+    config: ConveyorConfig = preset_config(ConveyorConfig, CONVEYOR_PRESETS, preset, **overrides)
+    return config
+
+
+@dataclass(frozen=True)
+class ConveyorTask:
+    """The task's progress (immutable; part of every snapshot).
+
+    Attributes:
+        steps: Steps taken in this episode (feasible or not).
+        placed: Boxes placed so far (they are the first ``placed`` boxes).
+        done: Every box is placed (terminated).
+    """
+
+    steps: int
+    placed: int
+    done: bool
+
+
+@dataclass(frozen=True)
+class FixedPick:
+    """The fixed grasp of one box: its pose in the base frame, the arm, the motion disc."""
+
+    rel: tuple[float, float, float]
+    arm_q: tuple[float, ...]
+    disc: CarryDisc
+
+
+class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
+    """The conveyor-belt packing domain as a gymnasium environment (module docstring).
+
+    Args:
+        config: Settings; defaults to the ``preset``'s :class:`ConveyorConfig`.
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
+        preset: The domain version when ``config`` is None: ``"v0"`` or ``"v1"``
+            (:data:`CONVEYOR_PRESETS`; ``voot/ConveyorPacking-v1`` passes ``"v1"``).
+        **options: :class:`ConveyorConfig` fields overriding the config's.
+
+    Raises:
+        RuntimeError: If the fixed grasp of some box is infeasible (a broken scene).
+    """
+
+    def __init__(
+        self,
+        config: ConveyorConfig | None = None,
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+        preset: str = "v0",
+        **options: Any,
+    ) -> None:
+        self.config = env_config(ConveyorConfig, CONVEYOR_PRESETS, config, preset, options)
+        cfg = self.config
+        super().__init__(
+            self._scene_model(),
+            cfg.workspace,
+            cfg.ik,
+            cfg.planner,
+            render_mode,
+            render_camera,
+            render_size,
+        )
+        if len(self.objects) < cfg.n_objects:  # pragma: no cover - scene drift
+            raise ValueError(
+                f"the scene has {len(self.objects)} boxes, fewer than n_objects={cfg.n_objects}"
+            )
+        self.n = cfg.n_objects
+        self._reset_physics()
+        self.picks = tuple(self._fixed_pick(i) for i in range(self.n))
+        self.action_space = gym.spaces.Box(
+            -1.0, 1.0, shape=(3 * OBJECTS_PER_ACTION,), dtype=np.float64
+        )
+        self.observation_space = gym.spaces.Box(
+            -50.0, 50.0, shape=(4 + 5 * len(self.objects) + 2,), dtype=np.float64
+        )
+
+    # ----- fixed picks ---------------------------------------------------------------------
+    def _fixed_pick(self, i: int) -> FixedPick:
+        """Grasp box ``i`` presented on the floor in front of the robot at ``start``."""
+        cfg = self.config
+        obj = self.objects[i]
+        depth = float(obj.half[0])
+        rel = (
+            BASE_HALF + cfg.present_gap + depth - float(obj.center[0]),
+            -float(obj.center[1]),
+            0.0,
+        )
+        pose = compose2d(cfg.start, rel)
+        grasp = side_grasp(
+            obj,
+            (pose[0], pose[1], 0.0, pose[2]),
+            cfg.start[2],
+            cfg.grasp_angle,
+            cfg.height_fraction,
+            cfg.depth_fraction,
+        )
+        rb = rot_z(cfg.start[2])
+        ik = self.ik.solve(
+            rb.T @ (grasp.position - np.array([cfg.start[0], cfg.start[1], 0.0])),
+            rb.T @ grasp.rotation,
+        )
+        if not ik.success or ik.q is None:
+            raise RuntimeError(
+                f"the fixed grasp of {obj.name} is out of the arm's reach ({ik.reason})"
+            )
+        report = self.collision.check(
+            self.data.qpos,
+            cfg.start,
+            ik.q,
+            held=i,
+            object_poses={i: (pose[0], pose[1], 0.0, pose[2])},
+        )
+        if not report.free:
+            raise RuntimeError(f"the fixed grasp of {obj.name} collides: {', '.join(report.hits)}")
+        box = object_footprint(obj, *rel)
+        disc = carry_disc(box.corners())
+        disc = replace(disc, radius=max(disc.radius, ROBOT_RADIUS))
+        # the kitchen's pick_requires_free_carry rule, checked once: the robot must be able
+        # to move with its load from the start. Placements cannot block it later: the
+        # discs (x <= 0.45 + 0.87 m around the start) stay east of the loading region.
+        hits = self.planner.colliding(disc.center(cfg.start), disc.radius, ())
+        if hits:
+            raise RuntimeError(
+                f"the carry footprint of {obj.name} at the start collides with {', '.join(hits)}"
+            )
+        return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
+
+    def _scene_model(self) -> str | mujoco.MjModel:
+        """The scene to load: ``voot.models``' fixed ``conveyor.xml`` (the paper's instance).
+
+        A subclass with a generated layout returns its compiled model instead; it is
+        called once, in ``__init__``, after :attr:`config` is set.
+        """
+        return "conveyor"
+
+    # ----- ManipulationEnv hooks -------------------------------------------------------------
+    def _queue_pose(self, i: int, placed: int) -> tuple[float, float, float, float]:
+        """Where box ``i`` waits on the belt when ``placed`` boxes are gone."""
+        k = i - placed if i < self.n else i
+        return (BELT_FIRST_X + BELT_SPACING * k, BELT_Y, BELT_TOP, 0.0)
+
+    def _reset_physics(self) -> None:
+        mujoco.mj_resetData(self.model, self.data)
+        self._set_robot(self.config.start)
+
+    def _initial_task(self) -> ConveyorTask:
+        return ConveyorTask(steps=0, placed=0, done=False)
+
+    def _task_error(self, task: ConveyorTask) -> str | None:
+        """What no episode of this conveyor reaches in ``task`` (see ``set_state``), or None:
+        the counts within their bounds, and done exactly when every box is placed."""
+        if not is_count(task.steps, 0, self.config.horizon):
+            horizon = self.config.horizon
+            return f"steps must be an int in 0..{horizon} (the horizon), got {task.steps!r}"
+        if not is_count(task.placed, 0, self.n):
+            return f"placed must be an int in 0..{self.n} (the boxes), got {task.placed!r}"
+        if type(task.done) is not bool or task.done != (task.placed == self.n):
+            full = task.placed == self.n
+            return f"done must be {full} when placed is {task.placed}, got {task.done!r}"
+        return None
+
+    def _observation(self) -> FloatArray:
+        t = self.task
+        base = self.robot.base_pose(self.data)
+        parts = [base[0], base[1], math.cos(base[2]), math.sin(base[2])]
+        for i in range(len(self.objects)):
+            x, y, _, yaw = self.object_pose(i)
+            parts += [x, y, math.cos(yaw), math.sin(yaw), float(i < t.placed)]
+        parts += [t.placed / self.n, t.steps / self.config.horizon]
+        return np.array(parts, dtype=np.float64)
+
+    def _info_reset(self) -> dict[str, Any]:
+        return {
+            "next_operator": "place",
+            "objects_left": self.n,
+            "next_objects": self._next_names(),
+        }
+
+    @property
+    def objects_left(self) -> int:
+        """Boxes still to place."""
+        return self.n - self.task.placed
+
+    def _next_names(self) -> list[str]:
+        p = self.task.placed
+        return [self.objects[i].name for i in range(p, min(p + OBJECTS_PER_ACTION, self.n))]
+
+    def action_bounds(self) -> Bounds:
+        """The 9-D action box in normalised units."""
+        return Bounds.cube(-1.0, 1.0, 3 * OBJECTS_PER_ACTION)
+
+    # ----- stepping ------------------------------------------------------------------------
+    def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:
+        """The base pose placing box ``i`` at ``(x, y, theta)`` with its fixed grasp."""
+        return compose_inverse2d(obj_pose, self.picks[i].rel)
+
+    def transition(self, action: ArrayLike) -> tuple[float, bool, bool, dict[str, Any]]:
+        """One step without its observation (see :meth:`ManipulationEnv.transition`)."""
+        a, clipped = self._validate_action(action)
+        cfg, t = self.config, self.task
+        if t.done or t.steps >= cfg.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        start_time = time.perf_counter()
+        m = min(OBJECTS_PER_ACTION, self.n - t.placed)
+        params = denormalize(a[: 3 * m], cfg.place_ranges * m).reshape(m, 3)
+        names = [self.objects[t.placed + k].name for k in range(m)]
+        placements = tuple((x, y, th) for x, y, th in params.tolist())
+        bases = tuple(
+            compose_inverse_tuple(p, self.picks[t.placed + k].rel) for k, p in enumerate(placements)
+        )
+        moved: dict[int, tuple[float, float, float, float]] = {}
+        lengths: list[float] = []
+        paths: list[FloatArray] = []
+        col_time = plan_time = 0.0
+        reason = ""
+        for k in range(m):
+            i = t.placed + k
+            reason, dt_col, dt_plan = self._check_place(i, params[k], moved, lengths, paths)
+            col_time += dt_col
+            plan_time += dt_plan
+            if reason:
+                reason = f"box {k + 1}/{m} ({names[k]}): {reason}"
+                break
+        self.last_timing = StepTiming(
+            collision=col_time, planning=plan_time, total=time.perf_counter() - start_time
+        )
+        if reason:
+            reward = cfg.infeasible_reward
+            self.task = replace(t, steps=t.steps + 1)
+            feasible = False
+        else:
+            for i, pose in moved.items():
+                set_object_pose(self.data, self.objects[i], pose)
+            placed = t.placed + m
+            for i in range(placed, len(self.objects)):
+                set_object_pose(self.data, self.objects[i], self._queue_pose(i, placed))
+            reward = float(sum(math.exp(-cfg.length_scale * length) for length in lengths))
+            self.task = replace(t, steps=t.steps + 1, placed=placed, done=placed == self.n)
+            feasible = True
+        t = self.task
+        terminated = t.done
+        truncated = (not terminated) and t.steps >= cfg.horizon
+        info: dict[str, Any] = {
+            "operator": "place",
+            "objects": names,
+            "feasible": feasible,
+            "reason": reason,
+            "base_path_length": float(sum(lengths)) if feasible else 0.0,
+            "base_path_lengths": lengths if feasible else [],
+            "base_paths": paths if feasible else [],
+            "parameters": params,
+            "base_pose": bases[0],
+            "placement": placements[0],
+            "base_poses": bases,
+            "placements": placements,
+            "action_clipped": clipped,
+            "next_operator": "place",
+            "next_objects": self._next_names(),
+            "objects_left": self.n - t.placed,
+            "objects_placed": t.placed,
+            "goal_bonus": 0.0,
+        }
+        return float(reward), terminated, truncated, info
+
+    def _check_place(
+        self,
+        i: int,
+        xyt: FloatArray,
+        moved: dict[int, tuple[float, float, float, float]],
+        lengths: list[float],
+        paths: list[FloatArray],
+    ) -> tuple[str, float, float]:
+        """Check placing box ``i`` at ``xyt`` after the placements in ``moved``.
+
+        On success, records the placement in ``moved`` and its path in ``lengths`` and
+        ``paths``. Returns why it is infeasible (``""`` if feasible) and the seconds spent
+        in collision checks and base planning.
+        """
+        cfg = self.config
+        plan_time = 0.0
+        x, y, theta = (float(v) for v in xyt)
+        reason, col_time, base = self._place_kinematics(i, xyt, moved)
+        if reason:
+            return reason, col_time, plan_time
+        assert base is not None  # passed the region checks
+        pick = self.picks[i]
+        t0 = time.perf_counter()
+        movable = [self.object_box(j) for j in range(self.task.placed)] + [
+            object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
+        ]
+        disc = pick.disc
+        path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
+        plan_time = time.perf_counter() - t0
+        if path is None:
+            return "no base path", col_time, plan_time
+        base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
+        moved[i] = (x, y, 0.0, theta)
+        lengths.append(float(base_path.length))
+        paths.append(base_path.waypoints)
+        return "", col_time, plan_time
+
+    def _place_kinematics(
+        self,
+        i: int,
+        xyt: FloatArray,
+        moved: dict[int, tuple[float, float, float, float]],
+    ) -> tuple[str, float, FloatArray | None]:
+        """Region and collision checks of placing box ``i`` at ``xyt`` after ``moved``.
+
+        Returns why it fails (``""`` if it passes), the seconds spent in collision checks
+        and the base pose placing the box (None if the box left the region first).
+        Changes nothing.
+        """
+        cfg = self.config
+        x, y, theta = (float(v) for v in xyt)
+        box = object_footprint(self.objects[i], x, y, theta)
+        if not rect_inside(box, cfg.loading_region):
+            return "outside region: the box leaves the loading region", 0.0, None
+        base = self.place_base_pose(i, (x, y, theta))
+        if not rect_inside(base_footprint(base), cfg.workspace):
+            return "outside region: the robot leaves the workspace", 0.0, base
+        t0 = time.perf_counter()
+        poses = dict(moved)
+        poses[i] = (x, y, 0.0, theta)
+        report = self.collision.check(
+            self.data.qpos, base, self.picks[i].arm_q, held=i, object_poses=poses
+        )
+        col_time = time.perf_counter() - t0
+        if not report.free:
+            return "collision: " + ", ".join(report.hits), col_time, base
+        return "", col_time, base
+
+    def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
+        """The cheap kinematic check of ``action`` in the current state (changes nothing).
+
+        Stage 1 of the authors' two-stage feasibility (:mod:`voot.tree.problem`): the
+        placements' region and collision checks in sequence, each seeing the ones before
+        it; the first failure rejects the whole action. The base paths are left to
+        :meth:`step`. Returns whether it passes and an info with ``feasible``,
+        ``reason``, ``placement(s)`` and ``base_pose(s)``.
+        """
+        a, _ = self._validate_action(action)
+        cfg, t = self.config, self.task
+        if t.done or t.steps >= cfg.horizon:
+            raise ValueError("the episode has ended (terminated or truncated); call reset()")
+        m = min(OBJECTS_PER_ACTION, self.n - t.placed)
+        params = [denormalize(a[3 * k : 3 * k + 3], cfg.place_ranges) for k in range(m)]
+        placements = tuple(pose_tuple(p) for p in params)
+        bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
+        moved: dict[int, tuple[float, float, float, float]] = {}
+        reason = ""
+        for k in range(m):
+            i = t.placed + k
+            reason, _, _ = self._place_kinematics(i, params[k], moved)
+            if reason:
+                reason = f"box {k + 1}/{m} ({self.objects[i].name}): {reason}"
+                break
+            x, y, theta = placements[k]
+            moved[i] = (x, y, 0.0, theta)
+        return not reason, {
+            "operator": "place",
+            "feasible": not reason,
+            "reason": reason,
+            "placement": placements[0],
+            "base_pose": bases[0],
+            "placements": placements,
+            "base_poses": bases,
+        }
+
+    # ----- rendering -----------------------------------------------------------------------
+    def _decorate(self, scene: mujoco.MjvScene) -> None:
+        if not self.config.render_overlays:
+            return
+        xmin, xmax, ymin, ymax = self.config.loading_region
+        add_marker_box(
+            scene,
+            (0.5 * (xmin + xmax), 0.5 * (ymin + ymax), 0.006),
+            (0.5 * (xmax - xmin), 0.5 * (ymax - ymin), 0.002),
+            0.0,
+            (1.0, 0.85, 0.1, 0.10),
+        )

@@ -1,0 +1,118 @@
+"""``voot/ConveyorPacking-v2``: the conveyor on generated storage rooms (v1 rules).
+
+``gym.make("voot/ConveyorPacking-v2", layout_seed=s, difficulty=d)`` gives the conveyor
+packing task of ``voot/ConveyorPacking-v1`` (the same action, checks, reward, fixed picks
+and two-stage feasibility) on the storage rooms generated from ``layout_seed`` at the
+level ``difficulty`` (``"easy"``, ``"medium"`` or ``"hard"``;
+:data:`voot.envs.conveyor.generated.layout.DIFFICULTIES`): the rooms, their doors, the boxes'
+count and sizes are drawn (:mod:`voot.envs.conveyor.generated.layout`), the loading region, the
+workspace and ``n_objects`` follow from the layout, and the instance is proven solvable
+before it is used (:mod:`voot.envs.conveyor.generated.witness`; its packing is
+:meth:`ConveyorFamilyEnv.witness_actions`). Instances are cached per
+``(layout_seed, difficulty)`` and generator version (:mod:`voot.envs.conveyor.generated.instance`).
+
+Other keywords are :class:`~voot.envs.conveyor.env.ConveyorConfig` fields, as for v1
+(``horizon``, ``precheck``...); the solvability proof holds for the default grasp and
+planner settings (changing ``grasp_angle``, ``present_gap``, ``planner``... voids it).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import mujoco
+import numpy as np
+from numpy.typing import NDArray
+
+from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.generated.instance import layout_config, storage_instance
+from voot.envs.conveyor.generated.layout import StorageLayout
+from voot.envs.conveyor.generated.witness import Witness
+
+FloatArray = NDArray[np.float64]
+
+
+class ConveyorFamilyEnv(ConveyorPackingEnv):
+    """The conveyor packing task on a generated, solvable storage layout (module docstring).
+
+    Args:
+        layout_seed: The layout's seed (an integer >= 0).
+        difficulty: ``"easy"``, ``"medium"`` or ``"hard"``.
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"`` (framed on the layout).
+        render_size: ``(width, height)`` of rendered images.
+        **options: :class:`~voot.envs.conveyor.env.ConveyorConfig` fields overriding v1's,
+            except those the layout sets (``loading_region``, ``workspace``,
+            ``n_objects``).
+
+    Attributes:
+        layout: The accepted :class:`~voot.envs.conveyor.generated.layout.StorageLayout`.
+        witness: The packing that proves it solvable.
+        rejections: Why earlier draws of this seed were rejected (their count is the
+            number of rejections).
+    """
+
+    def __init__(
+        self,
+        layout_seed: int = 0,
+        difficulty: str = "easy",
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+        **options: Any,
+    ) -> None:
+        for name in ("config", "preset"):
+            if name in options:
+                raise ValueError(
+                    f"voot/ConveyorPacking-v2 takes no {name!r}: its config is v1's on the"
+                    " generated layout (pass ConveyorConfig fields as keywords)"
+                )
+        instance = storage_instance(layout_seed, difficulty)
+        config = layout_config(instance.layout, **options)
+        self.layout: StorageLayout = instance.layout
+        self.witness: Witness = instance.witness
+        self.rejections: tuple[str, ...] = instance.rejections
+        self._pending_model: mujoco.MjModel | None = instance.model_copy()
+        super().__init__(
+            config=config,
+            render_mode=render_mode,
+            render_camera=render_camera,
+            render_size=render_size,
+        )
+
+    @property
+    def layout_seed(self) -> int:
+        return self.layout.layout_seed
+
+    @property
+    def difficulty(self) -> str:
+        return self.layout.difficulty
+
+    def _scene_model(self) -> mujoco.MjModel:
+        """The generated scene (handed over once: the env keeps no second reference)."""
+        model, self._pending_model = self._pending_model, None
+        if model is None:  # pragma: no cover - called once, by __init__
+            raise RuntimeError("the generated scene was already loaded")
+        return model
+
+    def witness_actions(self) -> list[FloatArray]:
+        """The witness packing as normalised actions: from a reset, they pack every box
+        (with the default grasp and planner settings)."""
+        return [np.array(a, dtype=np.float64) for a in self.witness.actions]
+
+    def _info_reset(self) -> dict[str, Any]:
+        info = super()._info_reset()
+        info["layout_seed"] = self.layout.layout_seed
+        info["difficulty"] = self.layout.difficulty
+        return info
+
+
+def witness_return(env: ConveyorFamilyEnv, gamma: float = 1.0) -> float:
+    """The (discounted) return of the witness packing executed from a reset of ``env``."""
+    env.reset(seed=0)
+    total = 0.0
+    for k, a in enumerate(env.witness_actions()):
+        _, reward, _, _, _ = env.step(a)
+        total += math.pow(gamma, k) * float(reward)
+    return total

@@ -1,0 +1,232 @@
+"""A solvable storage instance from ``(layout_seed, difficulty)``, generated once and cached.
+
+:func:`storage_instance` is what ``voot/ConveyorPacking-v2`` loads. Cold, it draws the
+layout (:func:`~voot.envs.conveyor.generated.layout.generate_storage_layout`, attempt 0), compiles
+its scene (:mod:`voot.envs.conveyor.generated.scene`), builds the env on it and proves it solvable
+(:func:`~voot.envs.conveyor.generated.witness.find_witness`); a layout that fails (no witness
+packing, or a box whose fixed grasp is infeasible) is **rejected** and the next attempt
+of the same seed drawn, deterministically, up to :data:`MAX_ATTEMPTS`. The rejections are
+counted and their reasons kept (:attr:`StorageInstance.rejections`).
+
+Caching. The accepted instance is kept in the process (a dict: a second env of the same
+layout costs a model copy) and on disk, keyed by ``(layout_seed, difficulty)`` in a
+folder named after the generator's version and MuJoCo's (``storage-g1-mj3.x.y``: the
+compiled model is stored in MuJoCo's binary format, which is version specific): a JSON
+record (the attempt, the rejections, the witness, a hash of the scene's MJCF) and the
+model (``.mjb.z``: MuJoCo's binary model, zlib-compressed: its procedural textures make
+2.8 MB of an uncompressed file, about 45 kB compressed). A cached instance loads without
+generating, compiling or searching;
+its record is used only if the hash matches the scene the generator writes for that
+attempt, else it is regenerated. The folder is under voot's cache
+(:func:`voot.envs.assets.meshes.cache_dir`: ``$VOOT_CACHE``, else ``~/.cache/voot``), beside the
+meshes' cache; if it cannot be written the instance is still made (and kept in the
+process). Files are written atomically (a temporary file
+renamed), so concurrent processes can share the cache.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import os
+import tempfile
+import zlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from voot.envs.assets.meshes import cache_dir as voot_cache_dir
+from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv, conveyor_config
+from voot.envs.conveyor.generated.layout import (
+    GENERATOR_VERSION,
+    StorageLayout,
+    check_layout_seed,
+    difficulty_level,
+    generate_storage_layout,
+)
+from voot.envs.conveyor.generated.scene import compile_storage_scene, storage_xml
+from voot.envs.conveyor.generated.witness import Witness, find_witness
+
+#: Attempts of one seed before giving up (none has needed more than a few).
+MAX_ATTEMPTS = 50
+#: The config fields a layout sets (an env keyword may not override them).
+LAYOUT_FIELDS = frozenset({"loading_region", "workspace", "n_objects"})
+
+
+@dataclass(frozen=True, eq=False)
+class StorageInstance:
+    """An accepted layout with its compiled scene and the proof that it is solvable.
+
+    Attributes:
+        layout: The layout (its ``attempt`` is the accepted draw).
+        model: The compiled scene; copy it before use (:meth:`model_copy`): an env may
+            change its model's collision filter.
+        witness: The packing that solves it (:mod:`voot.envs.conveyor.generated.witness`).
+        rejections: Why each earlier attempt of this seed was rejected.
+        xml_sha256: Hash of the scene's MJCF (the cache's consistency check).
+    """
+
+    layout: StorageLayout
+    model: mujoco.MjModel
+    witness: Witness
+    rejections: tuple[str, ...]
+    xml_sha256: str
+
+    def model_copy(self) -> mujoco.MjModel:
+        """A private copy of :attr:`model`."""
+        return copy.copy(self.model)
+
+
+def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
+    """The v1 :class:`ConveyorConfig` on ``layout``: its loading region, workspace and box
+    count, with ``options`` (other config fields) applied.
+
+    Raises:
+        ValueError: An option is one of :data:`LAYOUT_FIELDS` or no config field.
+    """
+    fixed = sorted(LAYOUT_FIELDS & set(options))
+    if fixed:
+        raise ValueError(
+            f"{', '.join(fixed)} come from the generated layout; choose another layout_seed"
+            " or difficulty instead"
+        )
+    return conveyor_config(
+        "v1",
+        loading_region=layout.loading_region,
+        workspace=layout.workspace,
+        n_objects=layout.n_boxes,
+        **options,
+    )
+
+
+class SceneConveyorEnv(ConveyorPackingEnv):
+    """The conveyor on a given compiled scene with a given config: what the solvability
+    search steps (:func:`generate_instance`), and a way to run a layout's scene without
+    the cache. ``model`` is taken over (pass a copy to keep yours unchanged)."""
+
+    def __init__(self, model: mujoco.MjModel, config: ConveyorConfig) -> None:
+        self._pending_model: mujoco.MjModel | None = model
+        super().__init__(config=config)
+
+    def _scene_model(self) -> mujoco.MjModel:
+        model, self._pending_model = self._pending_model, None
+        assert model is not None
+        return model
+
+
+def cache_dir() -> Path:
+    """The on-disk cache's folder for this generator and MuJoCo version (module docstring)."""
+    return voot_cache_dir() / f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
+
+
+#: The instances made or loaded in this process, by ``(layout_seed, difficulty)``.
+_MEMO: dict[tuple[int, str], StorageInstance] = {}
+
+
+def clear_memo() -> None:
+    """Forget the instances kept in this process (the disk cache stays)."""
+    _MEMO.clear()
+
+
+def storage_instance(layout_seed: int, difficulty: str, *, disk: bool = True) -> StorageInstance:
+    """The solvable instance of ``(layout_seed, difficulty)``: from this process's memo,
+    else from the disk cache (``disk=True``), else generated (and cached)."""
+    seed = check_layout_seed(layout_seed)
+    difficulty_level(difficulty)
+    key = (seed, difficulty)
+    hit = _MEMO.get(key)
+    if hit is None:
+        hit = _load(seed, difficulty) if disk else None
+        if hit is None:
+            hit = generate_instance(seed, difficulty)
+            if disk:
+                _store(hit)
+        _MEMO[key] = hit
+    return hit
+
+
+def generate_instance(layout_seed: int, difficulty: str) -> StorageInstance:
+    """Generate, compile and prove ``(layout_seed, difficulty)`` (no cache; see module).
+
+    Raises:
+        RuntimeError: No attempt of :data:`MAX_ATTEMPTS` was solvable.
+    """
+    rejections: list[str] = []
+    for attempt in range(MAX_ATTEMPTS):
+        layout = generate_storage_layout(layout_seed, difficulty, attempt)
+        xml = storage_xml(layout)
+        model = compile_storage_scene(layout, xml)
+        try:
+            env = SceneConveyorEnv(copy.copy(model), layout_config(layout))
+        except RuntimeError as exc:  # a fixed grasp that fails: the layout is rejected
+            rejections.append(f"attempt {attempt}: {exc}")
+            continue
+        witness = find_witness(env, layout)
+        env.close()
+        if witness.solved:
+            return StorageInstance(layout, model, witness, tuple(rejections), _sha(xml))
+        rejections.append(f"attempt {attempt}: {witness.reason}")
+    raise RuntimeError(
+        f"no solvable layout for layout_seed={layout_seed}, difficulty={difficulty!r} in"
+        f" {MAX_ATTEMPTS} attempts: {'; '.join(rejections[-3:])}"
+    )
+
+
+def _sha(xml: str) -> str:
+    return hashlib.sha256(xml.encode()).hexdigest()
+
+
+def _paths(layout_seed: int, difficulty: str) -> tuple[Path, Path]:
+    stem = cache_dir() / f"{difficulty}-{layout_seed}"
+    return stem.with_suffix(".json"), stem.with_suffix(".mjb.z")
+
+
+def _load(layout_seed: int, difficulty: str) -> StorageInstance | None:
+    """The cached instance, or None (missing, unreadable, or not this generator's)."""
+    record_path, model_path = _paths(layout_seed, difficulty)
+    try:
+        record = json.loads(record_path.read_text())
+        layout = generate_storage_layout(layout_seed, difficulty, int(record["attempt"]))
+        sha = _sha(storage_xml(layout))
+        if record["xml_sha256"] != sha:
+            return None
+        blob = zlib.decompress(model_path.read_bytes())
+        model = mujoco.MjModel.from_binary_path("model.mjb", {"model.mjb": blob})
+        witness = Witness.from_json(record["witness"])
+        rejections = tuple(str(r) for r in record["rejections"])
+    except (OSError, ValueError, KeyError, TypeError, zlib.error):
+        return None
+    return StorageInstance(layout, model, witness, rejections, sha)
+
+
+def _store(instance: StorageInstance) -> None:
+    """Write ``instance`` to the disk cache (atomically); silently skipped if impossible."""
+    layout = instance.layout
+    record_path, model_path = _paths(layout.layout_seed, layout.difficulty)
+    record = {
+        "layout_seed": layout.layout_seed,
+        "difficulty": layout.difficulty,
+        "generator_version": GENERATOR_VERSION,
+        "attempt": layout.attempt,
+        "rejections": list(instance.rejections),
+        "witness": instance.witness.to_json(),
+        "xml_sha256": instance.xml_sha256,
+    }
+    try:
+        record_path.parent.mkdir(parents=True, exist_ok=True)
+        buffer = np.zeros(mujoco.mj_sizeModel(instance.model), dtype=np.uint8)
+        mujoco.mj_saveModel(instance.model, None, buffer)
+        fd, tmp = tempfile.mkstemp(dir=record_path.parent, suffix=".mjb.tmp")
+        with os.fdopen(fd, "wb") as f:
+            f.write(zlib.compress(buffer.tobytes(), 6))
+        os.replace(tmp, model_path)
+        fd, tmp = tempfile.mkstemp(dir=record_path.parent, suffix=".json.tmp")
+        with os.fdopen(fd, "w") as f:
+            json.dump(record, f, sort_keys=True)
+        os.replace(tmp, record_path)
+    except OSError:  # pragma: no cover - a read-only home: the instance stays in memory
+        return

@@ -1,0 +1,387 @@
+"""Loading the MJCF scenes and reading their floor plan back as 2-D footprints.
+
+The scenes (``voot.models``: ``kitchen.xml``, ``conveyor.xml``, both including
+``robot.xml``) are the single source of truth for the geometry. This module turns the
+compiled :class:`mujoco.MjModel` into what the task layer needs:
+
+* :func:`static_footprints`: one :class:`~voot.envs.motion.planar.Box2D` per static
+  collision geom (walls, counters, furniture) that stands in the robot's height band;
+* :class:`ObjectInfo`: each movable object (a body with a free joint named ``obj_*``): its
+  free-joint address, its geoms, and its footprint rectangle in its own frame;
+* :func:`object_footprint`: that rectangle at the object's current pose;
+* :func:`object_pose` and :func:`set_object_pose`: an object's ``(x, y, z, yaw)``
+  read from and written to its free joint's ``qpos``.
+
+A footprint is the bounding rectangle, in the geom's (or object's) own horizontal frame,
+of the geom's axis-aligned bounding box (``model.geom_aabb``): exact for boxes standing
+upright, a tight rectangle around cylinders and capsules; for a mesh geom, the rectangle
+around its vertices.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import mujoco
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from voot.envs.motion.planar import Box2D
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.intp]
+
+#: Collision bit of the robot's geoms (contype 1).
+ROBOT_BIT = 1
+#: Collision bit of static scene geoms (contype 2).
+SCENE_BIT = 2
+#: Collision bit of movable objects (contype 4).
+OBJECT_BIT = 4
+#: Name prefix of the movable objects' bodies (and free joints).
+OBJECT_PREFIX = "obj_"
+#: Scenes shipped in ``voot.models``.
+SCENES = ("kitchen", "conveyor", "robot")
+
+
+def model_path(scene: str) -> Path:
+    """Path of the MJCF file of ``scene`` (one of :data:`SCENES`) inside ``voot.models``."""
+    if scene not in SCENES:
+        raise ValueError(f"unknown scene {scene!r}; valid scenes: {', '.join(SCENES)}")
+    path = Path(str(resources.files("voot.models").joinpath(f"{scene}.xml")))
+    if not path.is_file():  # pragma: no cover - broken installation
+        raise FileNotFoundError(f"scene file {path} is missing from the voot.models package")
+    return path
+
+
+def load_model(scene: str) -> mujoco.MjModel:
+    """Compile the scene ``scene`` (one of :data:`SCENES`)."""
+    return mujoco.MjModel.from_xml_path(str(model_path(scene)))
+
+
+def yaw_of_quat(quat: FloatArray) -> float:
+    """Heading (rotation about z) of a unit quaternion ``(w, x, y, z)``."""
+    w, x, y, z = (float(v) for v in quat)
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def quat_of_yaw(yaw: float) -> FloatArray:
+    """The unit quaternion ``(w, x, y, z)`` of a rotation by ``yaw`` about z."""
+    return np.array([math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw)])
+
+
+def _geom_corners_local(model: mujoco.MjModel, geom: int) -> FloatArray:
+    """The 8 corners of a geom's bounding box, in the geom's frame, shape ``(8, 3)``."""
+    aabb = model.geom_aabb[geom]
+    signs = np.array(
+        [[sx, sy, sz] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0) for sz in (-1.0, 1.0)]
+    )
+    corners: FloatArray = aabb[:3] + signs * aabb[3:]
+    return corners
+
+
+def _geom_points_local(model: mujoco.MjModel, geom: int) -> FloatArray:
+    """Points whose bounding box is the geom's, in the geom's frame, shape ``(n, 3)``.
+
+    A mesh geom's vertices (MuJoCo places a mesh in its principal inertia frame, so the
+    corners of ``geom_aabb`` there, turned back into the body frame, would inflate the
+    box); any other geom's 8 bounding-box corners.
+    """
+    if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_MESH:
+        mesh = int(model.geom_dataid[geom])
+        adr, n = int(model.mesh_vertadr[mesh]), int(model.mesh_vertnum[mesh])
+        verts: FloatArray = model.mesh_vert[adr : adr + n].astype(np.float64)
+        return verts
+    return _geom_corners_local(model, geom)
+
+
+def _rect_of_points(xy: FloatArray) -> tuple[float, float, float, float]:
+    """Axis-aligned ``(cx, cy, half_x, half_y)`` of 2-D points."""
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    return float(c[0]), float(c[1]), float(h[0]), float(h[1])
+
+
+def static_footprints(
+    model: mujoco.MjModel, z_band: tuple[float, float] = (0.02, 1.5)
+) -> list[Box2D]:
+    """Footprints of the static collision geoms of the world body.
+
+    Args:
+        model: A compiled scene.
+        z_band: Only geoms whose vertical extent overlaps ``(zmin, zmax)`` count: the
+            robot's height band (something flush with the floor, or hanging above the
+            robot's head, does not block the base).
+
+    Returns:
+        One :class:`Box2D` per geom, named after the geom, in geom order. A geom whose
+        local z axis is vertical gives an oriented rectangle (its yaw); any other gives
+        the axis-aligned rectangle around its projected bounding box.
+    """
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    boxes: list[Box2D] = []
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] != 0 or not (model.geom_contype[g] & SCENE_BIT):
+            continue
+        rot = data.geom_xmat[g].reshape(3, 3)
+        pos = data.geom_xpos[g]
+        corners = _geom_points_local(model, g) @ rot.T + pos
+        if corners[:, 2].max() <= z_band[0] or corners[:, 2].min() >= z_band[1]:
+            continue
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+        if abs(abs(rot[2, 2]) - 1.0) < 1e-9:
+            yaw = math.atan2(rot[1, 0], rot[0, 0])
+            local = _geom_points_local(model, g)[:, :2]
+            lcx, lcy, hx, hy = _rect_of_points(local)
+            c, s = math.cos(yaw), math.sin(yaw)
+            cx = pos[0] + c * lcx - s * lcy
+            cy = pos[1] + s * lcx + c * lcy
+            boxes.append(Box2D(float(cx), float(cy), hx, hy, yaw, name))
+        else:
+            cx, cy, hx, hy = _rect_of_points(corners[:, :2])
+            boxes.append(Box2D(cx, cy, hx, hy, 0.0, name))
+    return boxes
+
+
+@dataclass(frozen=True)
+class ObjectInfo:
+    """A movable object of a scene.
+
+    Attributes:
+        name: Body name (``obj_*``); also the free joint's name.
+        body: Body id.
+        qpos_adr: Address of its free joint's 7 qpos entries ``(x, y, z, qw, qx, qy, qz)``.
+        geoms: Its geom ids.
+        center: Centre of its footprint rectangle in the body frame, ``(2,)``.
+        half: Half extents of the footprint rectangle in the body frame, ``(2,)``.
+        height: Top of its bounding box above the body origin (the origin is on the
+            support surface).
+        radius: Circumradius of the footprint rectangle (``hypot(*half)``).
+    """
+
+    name: str
+    body: int
+    qpos_adr: int
+    geoms: tuple[int, ...]
+    center: FloatArray
+    half: FloatArray
+    height: float
+
+    @property
+    def radius(self) -> float:
+        return float(math.hypot(self.half[0], self.half[1]))
+
+
+def movable_objects(model: mujoco.MjModel) -> list[ObjectInfo]:
+    """Every body named ``obj_*`` with a free joint, in body order."""
+    out: list[ObjectInfo] = []
+    for b in range(model.nbody):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) or ""
+        if not name.startswith(OBJECT_PREFIX):
+            continue
+        jnt = int(model.body_jntadr[b])
+        if model.body_jntnum[b] != 1 or model.jnt_type[jnt] != mujoco.mjtJoint.mjJNT_FREE:
+            raise ValueError(f"object body {name!r} must have exactly one free joint")
+        geoms = tuple(int(g) for g in np.flatnonzero(model.geom_bodyid == b))
+        if not geoms:
+            raise ValueError(f"object body {name!r} has no geoms")
+        pts = []
+        for g in geoms:
+            rot = np.empty(9)
+            mujoco.mju_quat2Mat(rot, model.geom_quat[g])
+            pts.append(_geom_points_local(model, g) @ rot.reshape(3, 3).T + model.geom_pos[g])
+        allp = np.concatenate(pts)
+        cx, cy, hx, hy = _rect_of_points(allp[:, :2])
+        out.append(
+            ObjectInfo(
+                name=name,
+                body=b,
+                qpos_adr=int(model.jnt_qposadr[jnt]),
+                geoms=geoms,
+                center=np.array([cx, cy]),
+                half=np.array([hx, hy]),
+                height=float(allp[:, 2].max()),
+            )
+        )
+    return out
+
+
+def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
+    """The footprint of ``obj`` with its body at ``(x, y)`` and heading ``yaw``."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    ox, oy = obj.center.tolist()  # the same numbers as numpy scalars, cheaper to multiply
+    hx, hy = obj.half.tolist()
+    cx = x + c * ox - s * oy
+    cy = y + s * ox + c * oy
+    return Box2D.fast(cx, cy, hx, hy, yaw, obj.name)
+
+
+#: Margin (metres) of the float shortcuts of :func:`rect_inside` and :func:`rect_overlaps`:
+#: far above the rounding difference (~1e-14 m) between them and the corner arrays.
+_SURE = 1e-9
+
+
+def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:
+    """Put ``obj``'s body at ``(x, y, z, yaw)`` (free joint qpos)."""
+    if type(pose) is tuple and len(pose) == 4:
+        x, y, z, yaw = (float(v) for v in pose)
+    else:
+        x, y, z, yaw = (float(v) for v in np.asarray(pose, dtype=np.float64))
+    a = obj.qpos_adr
+    data.qpos[a : a + 7] = (x, y, z, math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+
+
+def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:
+    """``(x, y, z, yaw)`` of ``obj``'s body from its free joint."""
+    a = obj.qpos_adr
+    # floats: the same products and powers (C pow) as on numpy scalars, cheaper
+    x, y, z, q0, q1, q2, q3 = data.qpos[a : a + 7].tolist()
+    yaw = math.atan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2**2 + q3**2))
+    return np.array([x, y, z, yaw])
+
+
+def _aabb(
+    cx: float, cy: float, half_x: float, half_y: float, yaw: float
+) -> tuple[float, float, float, float]:
+    """``(xmin, xmax, ymin, ymax)`` of the axis-aligned box around the rectangle."""
+    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
+    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
+    return cx - ex, cx + ex, cy - ey, cy + ey
+
+
+def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
+    """Is the rectangle ``box`` inside the axis-aligned ``(xmin, xmax, ymin, ymax)``?
+
+    Decided from the rectangle's extent with plain floats when it is inside or outside by
+    more than 1e-9 m; only a rectangle within that of an edge is tested with its corner
+    array (as before), so the answer is always the corner test's.
+    """
+    return rect_fields_inside(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
+
+
+def rect_fields_inside(
+    cx: float,
+    cy: float,
+    half_x: float,
+    half_y: float,
+    yaw: float,
+    bounds: tuple[float, float, float, float],
+) -> bool:
+    """:func:`rect_inside` of the rectangle with these :class:`Box2D` fields (floats).
+
+    For a caller that has the numbers and no box: the box is built only for a rectangle
+    within 1e-9 m of an edge.
+    """
+    xmin, xmax, ymin, ymax = bounds
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
+    if (
+        lo_x >= xmin + _SURE
+        and hi_x <= xmax - _SURE
+        and lo_y >= ymin + _SURE
+        and hi_y <= ymax - _SURE
+    ):
+        return True
+    if lo_x < xmin - _SURE or hi_x > xmax + _SURE or lo_y < ymin - _SURE or hi_y > ymax + _SURE:
+        return False
+    return _rect_inside_corners(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
+
+
+def _rect_inside_corners(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
+    c = box.corners()
+    xmin, xmax, ymin, ymax = bounds
+    return bool(
+        np.all(c[:, 0] >= xmin)
+        and np.all(c[:, 0] <= xmax)
+        and np.all(c[:, 1] >= ymin)
+        and np.all(c[:, 1] <= ymax)
+    )
+
+
+def rect_overlaps(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
+    """Does the rectangle ``box`` overlap the open axis-aligned ``(xmin, xmax, ymin, ymax)``?
+
+    Separating-axis test between the oriented rectangle and the axis-aligned one. A
+    rectangle clearly apart from the region (by more than 1e-9 m along x or y) or
+    clearly inside it is decided with plain floats; the others run the test on arrays,
+    as before.
+    """
+    return rect_fields_overlap(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
+
+
+def rect_fields_overlap(
+    cx: float,
+    cy: float,
+    half_x: float,
+    half_y: float,
+    yaw: float,
+    bounds: tuple[float, float, float, float],
+) -> bool:
+    """:func:`rect_overlaps` of the rectangle with these :class:`Box2D` fields (floats)."""
+    xmin, xmax, ymin, ymax = bounds
+    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
+    if hi_x < xmin - _SURE or lo_x > xmax + _SURE or hi_y < ymin - _SURE or lo_y > ymax + _SURE:
+        return False
+    if lo_x > xmin + _SURE and hi_x < xmax - _SURE and lo_y > ymin + _SURE and hi_y < ymax - _SURE:
+        return True
+    sure = _rect_overlaps_floats(cx, cy, half_x, half_y, yaw, bounds)
+    if sure is not None:
+        return sure
+    return _rect_overlaps_sat(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
+
+
+def _rect_overlaps_floats(
+    cx: float,
+    cy: float,
+    half_x: float,
+    half_y: float,
+    yaw: float,
+    bounds: tuple[float, float, float, float],
+) -> bool | None:
+    """:func:`_rect_overlaps_sat` on floats where every test clears it by 1e-9 m; else None.
+
+    The same separating-axis tests on corners rotated with scalar products (the array
+    code's matrix products may round differently in the last bits): an answer is given
+    only when no comparison is within the margin of flipping.
+    """
+    c, s = math.cos(yaw), math.sin(yaw)
+    xs, ys = [], []
+    for lx, ly in ((half_x, half_y), (-half_x, half_y), (-half_x, -half_y), (half_x, -half_y)):
+        xs.append(lx * c - ly * s + cx)
+        ys.append(lx * s + ly * c + cy)
+    xmin, xmax, ymin, ymax = bounds
+    unsure = False
+    # each test is "separated if a <= b"
+    tests = [(max(xs), xmin), (xmax, min(xs)), (max(ys), ymin), (ymax, min(ys))]
+    corners = ((xmin, ymin), (xmax, ymin), (xmax, ymax), (xmin, ymax))
+    for ux, uy in ((c, s), (-s, c)):
+        pa = [x * ux + y * uy for x, y in corners]
+        pb = [x * ux + y * uy for x, y in zip(xs, ys, strict=True)]
+        tests.append((max(pa), min(pb)))
+        tests.append((max(pb), min(pa)))
+    for a, b in tests:
+        if a < b - _SURE:
+            return False
+        if a <= b + _SURE:
+            unsure = True
+    return None if unsure else True
+
+
+def _rect_overlaps_sat(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
+    xmin, xmax, ymin, ymax = bounds
+    c = box.corners()
+    if c[:, 0].max() <= xmin or c[:, 0].min() >= xmax:
+        return False
+    if c[:, 1].max() <= ymin or c[:, 1].min() >= ymax:
+        return False
+    aabb = np.array([[xmin, ymin], [xmax, ymin], [xmax, ymax], [xmin, ymax]])
+    for axis in (
+        np.array([math.cos(box.yaw), math.sin(box.yaw)]),
+        np.array([-math.sin(box.yaw), math.cos(box.yaw)]),
+    ):
+        pa, pb = aabb @ axis, c @ axis
+        if pa.max() <= pb.min() or pb.max() <= pa.min():
+            return False
+    return True

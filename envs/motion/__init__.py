@@ -1,0 +1,8 @@
+"""Base motion planning for the holonomic mobile base in a 2-D floor plan.
+
+* :mod:`.planner`: :class:`BasePlanner`, the facade (queries, caches, ``DiscProbe``);
+* :mod:`.planar`: ``Pose2D``, ``Box2D``, ``BasePath``, SE(2) path length;
+* :mod:`.disc_geometry`: exact disc-against-box tests (arrays and floats);
+* :mod:`.visibility_graph`: the reduced visibility graph; :mod:`.graph_search`: A* on it;
+* :mod:`.swept_volume`: the floor area swept along a path and the objects it meets.
+"""

@@ -1,0 +1,70 @@
+"""Tests of ``voot-bench ablation`` and ``voot-bench claims --ablation``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from voot.bench.cli.main import main
+from voot.bench.store.result_store import ResultStore
+
+
+def test_list_and_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["ablation", "--list"]) == 0
+    out = capsys.readouterr().out
+    assert "pw_authors" in out and "commit_off" in out and out.startswith("v1")
+    args = ["ablation", "--out", "/nonexistent/ablation", "--problems", "kitchen_v1"]
+    assert main([*args, "--switches", "kappa_off", "--dry-run"]) == 0
+    captured = capsys.readouterr()
+    # tuning: 6 settings x 5 seeds for voot, voot[kappa_off] and pw_uct
+    assert "tuning: 90 runs" in captured.err and "evaluation: 60 runs" in captured.err
+
+
+def test_unknown_switch_and_claims_without_tuning_seeds_are_errors(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["ablation", "--switches", "pw_inverted", "--dry-run"]) != 0
+    assert "valid switches are" in capsys.readouterr().err
+    assert main(["claims", "docs/data/ablation-v1", "--ablation"]) != 0
+    assert "--tuning-seeds" in capsys.readouterr().err
+
+
+def test_a_tiny_ablation_runs_resumes_and_draws_its_table(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "abl"
+    args = [
+        "ablation", "--out", str(out), "--problems", "kitchen_v1", "--switches", "commit_off",
+        "--seeds", "0:2", "--tuning-seeds", "1000:1001", "--simulations", "15",
+        "--workers", "1", "--backend", "serial", "--no-progress",
+    ]  # fmt: skip
+    assert main(args) == 0
+    rows = ResultStore(out, create=False).load(kind="plan", status="ok")
+    variants = {r["config"].get("variant", "") for r in rows}
+    assert variants == {"", "commit_off"}
+    n = len(rows)
+    capsys.readouterr()
+    assert main(args) == 0  # resumes: nothing runs again
+    assert len(ResultStore(out, create=False).load(kind="plan")) == n
+    md = tmp_path / "table.md"
+    assert main(["claims", str(out), "--tuning-seeds", "1000:1001", "--ablation",
+                 "--markdown", str(md)]) == 0  # fmt: skip
+    text = md.read_text()
+    assert "| commit_off | kitchen_v1 | voot |" in text  # no data: 15 < 750 simulations
+    assert "runs of 15 simulations" in text
+    assert "voot[commit_off] vs pw_uct[commit_off] | no data" in text
+    # plot takes a variant's label as a planner filter
+    md = tmp_path / "plot.md"
+    plot = [
+        "plot",
+        str(out),
+        "--tuning-seeds",
+        "1000:1001",
+        "--planners",
+        "voot",
+        "voot[commit_off]",
+    ]
+    assert main([*plot, "--markdown", str(md)]) == 0
+    table = md.read_text()
+    assert "voot[commit_off]" in table and "pw_uct" not in table

@@ -1,0 +1,54 @@
+"""Tests of ``voot-bench demo-voo`` and ``demo``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from voot.bench.cli.main import main
+
+
+def test_demo_prints_best_optimum_and_regret(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo-voo", "--budget", "200", "--dim", "10"]) == 0
+    out = capsys.readouterr().out
+    assert "voo on shekel-10D: 200 evaluations" in out
+    for word in ("best value found", "known optimum", "regret", "best after   100"):
+        assert word in out
+
+
+def test_demo_plans_on_the_kitchen_and_writes_a_recording(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "demo"
+    assert main(["demo", "--simulations", "5", "--seed", "0", "--no-video", "--out", str(out)]) == 0
+    assert (out / "kitchen_voot.rrd").stat().st_size > 0
+    assert "rerun " in capsys.readouterr().out
+
+
+def test_demo_layout_options(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from voot.bench.cli import demo as cli_demo
+    from voot.bench.demos import kitchen_demo
+    from voot.envs.kitchen.generated.layout import DIFFICULTIES
+
+    # the help's copies of the levels and defaults are the library's
+    assert cli_demo.DIFFICULTY_CHOICES == tuple(DIFFICULTIES)
+    assert cli_demo.DEFAULT_LAYOUT_SEED == kitchen_demo.DEFAULT_LAYOUT_SEED
+    assert cli_demo.DEFAULT_DIFFICULTY == kitchen_demo.DEFAULT_DIFFICULTY
+    out = str(tmp_path / "demo")
+    assert main(["demo", "--out", out, "--layout-seed", "3"]) == 2  # v1 is one fixed kitchen
+    err = capsys.readouterr().err
+    assert "--layout-seed chooses a generated kitchen" in err and "--env kitchen_v2" in err
+    assert main(["demo", "--out", out, "--env", "kitchen", "--difficulty", "hard"]) == 2
+    assert "--difficulty chooses" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["demo", "--out", out, "--env", "kitchen_v2", "--difficulty", "extreme"])
+    assert not (tmp_path / "demo").exists()
+
+
+def test_demo_on_a_generated_kitchen(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "demo"
+    argv = ["demo", "--env", "kitchen_v2", "--layout-seed", "2", "--difficulty", "easy"]
+    assert main([*argv, "--simulations", "3", "--no-video", "--out", str(out)]) == 0
+    assert (out / "kitchen_v2_easy_2_voot.rrd").stat().st_size > 0
+    assert "voot/KitchenClearing-v2, layout_seed 2, difficulty easy" in capsys.readouterr().out

@@ -1,0 +1,154 @@
+"""voot/ConveyorPacking-v2: the v1 conveyor on generated, solvable storage rooms."""
+
+from __future__ import annotations
+
+import copy
+import os
+import pickle
+import subprocess
+import sys
+import textwrap
+from collections.abc import Iterator
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env, data_equivalence
+
+import voot  # noqa: F401  (registers the ids)
+from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.generated import instance as SI
+from voot.envs.conveyor.generated.env import ConveyorFamilyEnv, witness_return
+from voot.envs.core.problem import EnvProblem
+
+
+@pytest.fixture(autouse=True)
+def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
+    monkeypatch.setenv("VOOT_CACHE", str(tmp_path))
+    SI.clear_memo()
+    yield tmp_path
+    SI.clear_memo()
+
+
+def _make(seed: int = 0, difficulty: str = "easy", **kw: object) -> ConveyorFamilyEnv:
+    env = gym.make("voot/ConveyorPacking-v2", layout_seed=seed, difficulty=difficulty, **kw)
+    u = env.unwrapped
+    assert isinstance(u, ConveyorFamilyEnv)
+    return u
+
+
+def test_check_env_and_the_v1_rules_on_the_layout() -> None:
+    env = _make(1, "medium")
+    check_env(env, skip_render_check=True)
+    assert isinstance(env, ConveyorPackingEnv) and env.config.precheck == "kinematic"
+    assert env.config.loading_region == env.layout.loading_region
+    assert env.config.workspace == env.layout.workspace
+    assert env.n == env.layout.n_boxes == len(env.objects)
+    assert env.observation_space.shape == (4 + 5 * env.n + 2,)
+    _, info = env.reset(seed=0)
+    assert info["layout_seed"] == 1 and info["difficulty"] == "medium"
+    assert info["objects_left"] == env.n
+    assert (env.layout_seed, env.difficulty) == (1, "medium")
+
+
+@pytest.mark.parametrize("difficulty", ["easy", "medium", "hard"])
+def test_the_witness_solves_the_env_and_passes_the_precheck(difficulty: str) -> None:
+    env = _make(2, difficulty)
+    env.reset(seed=0)
+    problem = EnvProblem(env)
+    for a in env.witness_actions():
+        assert problem.is_feasible(a)
+        res = problem.step(a)
+        assert res.feasible, res.info["reason"]
+    assert res.terminal and env.objects_left == 0
+    assert witness_return(env) == pytest.approx(env.witness.total_return)
+    assert witness_return(env, 0.99) < witness_return(env)
+
+
+def test_snapshots_are_bit_exact() -> None:
+    env = _make(3, "hard")
+    env.reset(seed=0)
+    rng = np.random.default_rng(0)
+    for a in env.witness_actions()[:2]:
+        env.step(a)
+    state = env.get_state()
+    probes = [rng.uniform(-1, 1, 9) for _ in range(6)] + env.witness_actions()[2:3]
+    first = []
+    for a in probes:
+        env.set_state(state)
+        first.append(env.step(a))
+    env.step(env.witness_actions()[2])
+    for a, expected in zip(probes, first, strict=True):
+        env.set_state(state)
+        assert data_equivalence(env.step(a), expected, exact=True)
+    for twin in (copy.deepcopy(env), pickle.loads(pickle.dumps(env))):
+        twin.set_state(state)
+        assert data_equivalence(twin.step(probes[-1]), first[-1], exact=True)
+        assert twin.layout == env.layout and twin.witness == env.witness
+
+
+def test_deterministic_across_processes_with_and_without_the_cache(cache: Path) -> None:
+    env = _make(5, "medium")
+    env.reset(seed=0)
+    rng = np.random.default_rng(4)
+    probes = [rng.uniform(-1, 1, 9) for _ in range(8)] + env.witness_actions()
+    local = []
+    for a in probes:
+        state = env.get_state()
+        out = env.step(a)
+        local.append(out)
+        if not out[4]["feasible"]:
+            env.set_state(state)
+    script = textwrap.dedent(
+        """
+        import pickle, sys
+        import gymnasium as gym
+        import voot
+        probes = pickle.load(sys.stdin.buffer)
+        env = gym.make("voot/ConveyorPacking-v2", layout_seed=5, difficulty="medium").unwrapped
+        env.reset(seed=0)
+        out = []
+        for a in probes:
+            state = env.get_state()
+            step = env.step(a)
+            out.append(step)
+            if not step[4]["feasible"]:
+                env.set_state(state)
+        sys.stdout.buffer.write(pickle.dumps((repr(env.layout), out)))
+        """
+    )
+    for cache_dir in (str(cache), str(cache / "other")):  # cached, then generated anew
+        proc = subprocess.run(
+            [sys.executable, "-c", script],
+            input=pickle.dumps(probes),
+            capture_output=True,
+            check=True,
+            timeout=120,
+            env={**os.environ, "VOOT_CACHE": cache_dir},
+        )
+        layout, remote = pickle.loads(proc.stdout)
+        assert layout == repr(env.layout)
+        assert data_equivalence(local, remote, exact=True)
+    assert local[-1][2]  # the witness terminated the episode
+
+
+def test_different_seeds_and_levels_differ() -> None:
+    a, b, c = _make(0, "easy"), _make(1, "easy"), _make(0, "hard")
+    assert a.layout != b.layout and a.layout != c.layout
+    oa, ob = a.reset(seed=0)[0], b.reset(seed=0)[0]
+    assert oa.shape != ob.shape or not np.array_equal(oa, ob)
+    assert a.config.workspace != b.config.workspace or a.n != b.n
+
+
+def test_options_and_bad_keywords() -> None:
+    env = _make(0, "easy", horizon=5, infeasible_reward=-3.0)
+    assert env.config.horizon == 5 and env.config.infeasible_reward == -3.0
+    with pytest.raises(ValueError, match="come from the generated layout"):
+        _make(0, "easy", n_objects=3)
+    with pytest.raises(ValueError, match="takes no 'preset'"):
+        _make(0, "easy", preset="v0")
+    with pytest.raises(ValueError, match="easy, medium, hard"):
+        _make(0, "impossible")
+    with pytest.raises(ValueError, match="layout_seed"):
+        _make(-1, "easy")
