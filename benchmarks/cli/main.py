@@ -139,7 +139,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of ``voot-bench``; returns the exit status."""
     parser = build_parser()
     words = list(sys.argv[1:] if argv is None else argv)
-    if words and words[0] in measurement_names(parser):  # the old spelling: voot-bench speed
+    if words and words[0] in measurement_names(parser):  # old spelling: voot-bench speed
         words.insert(0, MEASURE)
     args = parser.parse_args(words)
     try:

@@ -105,7 +105,7 @@ SPHERES: dict[str, Callable[[np.ndarray], float]] = {
     "shifted_sphere": shifted_sphere,
 }
 
-#: Default objectives of ``voot-bench voo-speed``.
+#: Default objectives of ``voot-bench measure voo-speed``.
 VOO_SPEED_OBJECTIVES = ("sphere", "shifted_sphere", "shekel", "rastrigin", "griewank")
 
 
