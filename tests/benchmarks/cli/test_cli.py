@@ -73,6 +73,30 @@ def test_a_measurement_without_measure_is_the_same_command(
     assert old == capsys.readouterr().out and name not in listed_commands([], capsys)
 
 
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def test_every_command_the_docs_name_is_registered() -> None:
+    """Every ``voot-bench NAME`` in the code of the README and docs/ (a code span or a line
+    of a code block) is a command, and every ``voot-bench measure NAME`` a measurement (the
+    docs spell measurements with ``measure``)."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    named = [
+        (page.name, m.group(1), m.group(2))
+        for page in pages
+        for m in re.finditer(
+            r"(?:^|`)(?:nice )?voot-bench ([a-z][\w-]*)(?: ([a-z][\w-]*))?",
+            page.read_text(),
+            flags=re.MULTILINE,
+        )
+    ]
+    assert len(named) > 50
+    for page, first, second in named:
+        assert first in RESEARCH, (page, first)
+        if first == "measure":
+            assert second is None or second in MEASURE, (page, second)
+
+
 def test_version(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as done:
         main(["--version"])
