@@ -1,4 +1,4 @@
-"""``voot-bench ablation``: one departure from the authors' code at a time (issue 23).
+"""``voot-bench ablation``: one departure from the authors' code at a time.
 
 Builds the runs of :mod:`voot.bench.protocol.ablation` (the v1 defaults and every switch's variant
 of VOOT and PW-UCT) and runs them as ``voot-bench plan --tuning-seeds`` does
@@ -13,14 +13,7 @@ import argparse
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import (
-    CLIError,
-    add_backend_options,
-    add_compact_options,
-    check_sweep_options,
-    parse_range,
-    split_list,
-)
+from voot.bench.cli import common as C
 from voot.bench.cli.plan import plan_tuned
 from voot.bench.cli.report import print_ablation_table
 from voot.bench.sweep.plan import PlanSpec
@@ -37,14 +30,14 @@ def cmd_ablation(args: argparse.Namespace) -> int:
         print(A.switch_list())
         return 0
     try:
-        switches = A.check_switches(split_list(args.switches) or None)
+        switches = A.check_switches(C.split_list(args.switches) or None)
     except ValueError as exc:
-        raise CLIError(str(exc)) from None
+        raise C.CLIError(str(exc)) from None
     if args.table:
-        problems = split_list(args.problems) or None
+        problems = C.split_list(args.problems) or None
         return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
-    check_sweep_options(args)
-    problems = split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+    C.check_sweep_options(args)
+    problems = C.split_list(args.problems) or list(A.ABLATION_PROBLEMS)
 
     def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
         return A.ablation_specs(
@@ -55,8 +48,8 @@ def cmd_ablation(args: argparse.Namespace) -> int:
             simulations=args.simulations,
         )
 
-    tuning = specs_of(parse_range(args.tuning_seeds, "--tuning-seeds"))
-    evaluation = specs_of(parse_range(args.seeds, "--seeds"))
+    tuning = specs_of(C.parse_range(args.tuning_seeds, "--tuning-seeds"))
+    evaluation = specs_of(C.parse_range(args.seeds, "--seeds"))
     args.record = None
     return plan_tuned(args, tuning, evaluation)
 
@@ -67,7 +60,7 @@ def register(sub: Subparsers) -> None:
         "ablation",
         help="one switch at a time from the v1 defaults to the authors' code, for VOOT and"
         " PW-UCT (tuned as the protocol; resumable); --table draws its table",
-        description="The ablation of issue 23: every departure of voot's v1 defaults from the"
+        description="The ablation: every departure of voot's v1 defaults from the"
         " authors' code as a variant of VOOT and PW-UCT (one switch at a time, and all at"
         " once), each variant's grid on the tuning seeds, its selected setting on the"
         " evaluation seeds of both v1 domains. --list prints the switches.",
@@ -97,21 +90,8 @@ def register(sub: Subparsers) -> None:
         " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
     )
     p.add_argument("--markdown", help="--table: also write the table here")
-    add_backend_options(p)
-    p.add_argument(
-        "--skip-failed", action="store_true", help="do not retry runs that failed before"
-    )
-    p.add_argument("--estimate", action="store_true", help="print the estimated CPU-hours and exit")
-    p.add_argument(
-        "--probe-simulations",
-        type=int,
-        default=20,
-        help="--estimate: simulations of a probe run (default: %(default)s)",
-    )
-    p.add_argument("--dry-run", action="store_true", help="list the runs and exit")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument(
-        "--compact", action="store_true", help="create --out as a compact store (as plan)"
-    )
-    add_compact_options(p, "compact-")
+    C.add_backend_options(p)
+    C.add_estimate_options(p, estimate="print the estimated CPU-hours and exit")
+    C.add_run_options(p, dry_run="list the runs and exit")
+    C.add_compact_store_options(p, compact="create --out as a compact store (as plan)")
     p.set_defaults(func=cmd_ablation)

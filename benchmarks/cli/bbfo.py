@@ -8,66 +8,44 @@ import os
 import sys
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import (
-    CLIError,
-    add_filters,
-    open_store,
-    parse_assignments,
-    parse_int_list,
-    parse_range,
-    sigterm_as_interrupt,
-    split_list,
-    stored_note,
-)
+from voot.bench.cli import common as C
 
 if TYPE_CHECKING:
     from voot.bench.cli.common import Subparsers
 
 
 def cmd_bbfo(args: argparse.Namespace) -> int:
-    from voot.bench.sweep.bbfo import (
-        PAPER_DIMS,
-        PAPER_FUNCTIONS,
-        PAPER_METHODS,
-        build_specs,
-        make_backend,
-        run_sweep,
-        summarize_specs,
-    )
+    """Run (or, with ``--dry-run``, list) the black-box sweep of :mod:`voot.bench.sweep.bbfo`."""
+    from voot.bench.sweep import bbfo as B
 
-    seeds = parse_range(args.seeds, "--seeds")
-    specs = build_specs(
-        split_list(args.functions) or PAPER_FUNCTIONS,
-        parse_int_list(args.dims, "--dims") or PAPER_DIMS,
-        split_list(args.methods) or PAPER_METHODS,
+    seeds = C.parse_range(args.seeds, "--seeds")
+    specs = B.build_specs(
+        C.split_list(args.functions) or B.PAPER_FUNCTIONS,
+        C.parse_int_list(args.dims, "--dims") or B.PAPER_DIMS,
+        C.split_list(args.methods) or B.PAPER_METHODS,
         seeds,
         grid=args.grid,
         budget_scale=args.budget_scale,
         budget=args.budget,
         instance=args.instance,
-        fixed=parse_assignments(args.set, "--set"),
+        fixed=C.parse_assignments(args.set, "--set"),
     )
     if not specs:
-        raise CLIError("the grid is empty (e.g. rembo is not run in 3-D); widen --dims/--methods")
+        raise C.CLIError("the grid is empty (e.g. rembo is not run in 3-D); widen --dims/--methods")
     evaluations = sum(s.budget for s in specs)
     instance = f", instance {args.instance}" if args.instance else ""
     print(
         f"{len(specs)} runs, {evaluations} evaluations, seeds {seeds[0]}..{seeds[-1]}{instance}"
-        f"{stored_note(args.out, specs)}",
+        f"{C.stored_note(args.out, specs)}",
         file=sys.stderr,
     )
     if args.dry_run:
-        print(summarize_specs(specs))
+        print(B.summarize_specs(specs))
         return 0
-    store = open_store(args.out)
-    backend = make_backend(args.backend, args.workers)
+    store = C.open_store(args.out)
+    backend = B.make_backend(args.backend, args.workers)
     print(f"results: {store.path}", file=sys.stderr)
-    with sigterm_as_interrupt():
-        summary = run_sweep(
-            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
-        )
-    print(summary)
-    return 1 if summary.failed else 0
+    return 1 if C.run_specs(args, specs, store, backend).failed else 0
 
 
 def register(sub: Subparsers) -> None:
@@ -78,7 +56,7 @@ def register(sub: Subparsers) -> None:
     p.add_argument(
         "--out", default="results/bbfo", help="result store directory (default: %(default)s)"
     )
-    add_filters(p, defaults=True)
+    C.add_filters(p, defaults=True)
     p.add_argument(
         "--seeds", default="20", help="N (seeds 0..N-1) or START:STOP (default: %(default)s)"
     )
@@ -106,9 +84,5 @@ def register(sub: Subparsers) -> None:
         "--workers", type=int, default=os.cpu_count() or 1, help="processes (default: %(default)s)"
     )
     p.add_argument("--backend", choices=BACKENDS, default="process", help="where runs execute")
-    p.add_argument(
-        "--skip-failed", action="store_true", help="do not retry runs that failed before"
-    )
-    p.add_argument("--dry-run", action="store_true", help="list the runs per cell and exit")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    C.add_run_options(p, dry_run="list the runs per cell and exit")
     p.set_defaults(func=cmd_bbfo)

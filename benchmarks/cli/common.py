@@ -1,10 +1,12 @@
 """What the ``voot-bench`` subcommands share: the user error (:class:`CLIError`), the
 parsers of list, range and ``NAME=VALUE`` options, opening a result store for a sweep,
-SIGTERM as Ctrl-C, and the options that more than one subcommand adds (test-function
-filters, compact-store settings).
+running a sweep into it (SIGTERM as Ctrl-C), writing a markdown file, and the argument
+groups that more than one subcommand adds (test-function filters, the backend of a sweep,
+the run options of a sweep, compact-store settings, a checked count).
 
-The subcommands themselves live in the ``cli_*`` modules listed in
-:data:`voot.bench.cli.main.SUBCOMMANDS`.
+The subcommands themselves live in the modules of this package whose ``register``
+functions :mod:`voot.bench.cli.main` lists in :data:`~voot.bench.cli.main.COMMANDS`
+and :data:`~voot.bench.cli.main.MEASUREMENTS`.
 """
 
 from __future__ import annotations
@@ -13,7 +15,9 @@ import argparse
 import contextlib
 import json
 import signal
+import sys
 from collections.abc import Iterator, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from voot.bench.store.format import StoreError
@@ -21,6 +25,9 @@ from voot.bench.store.result_store import ResultStore
 from voot.bench.sweep.bbfo import Spec
 
 if TYPE_CHECKING:
+    from voot.bench.sweep.backends import Backend
+    from voot.bench.sweep.bbfo import SweepSummary
+
     #: The object ``add_subparsers`` returns; every ``register`` adds its parsers to it.
     Subparsers = argparse._SubParsersAction[argparse.ArgumentParser]
 
@@ -210,3 +217,55 @@ def check_sweep_options(args: argparse.Namespace) -> None:
         raise CLIError("--address and --max-tries go with --backend ray")
     if args.probe_simulations < 1:
         raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+
+
+def add_run_options(p: argparse.ArgumentParser, dry_run: str) -> None:
+    """``--skip-failed``, ``--dry-run`` (``dry_run``: its help) and ``--no-progress`` of a
+    sweep: how :func:`run_specs` runs it."""
+    p.add_argument(
+        "--skip-failed", action="store_true", help="do not retry runs that failed before"
+    )
+    p.add_argument("--dry-run", action="store_true", help=dry_run)
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def add_estimate_options(p: argparse.ArgumentParser, estimate: str) -> None:
+    """``--estimate`` (``estimate``: its help) and ``--probe-simulations`` of a planning
+    sweep (:mod:`voot.bench.protocol.estimate`)."""
+    p.add_argument("--estimate", action="store_true", help=estimate)
+    p.add_argument(
+        "--probe-simulations",
+        type=int,
+        default=20,
+        help="--estimate: simulations of a probe run (default: %(default)s)",
+    )
+
+
+def add_compact_store_options(p: argparse.ArgumentParser, compact: str) -> None:
+    """``--compact`` (``compact``: its help) and the compact settings
+    (``--compact-points``, ``--compact-spacing``) of a planning sweep's new store."""
+    p.add_argument("--compact", action="store_true", help=compact)
+    add_compact_options(p, "compact-")
+
+
+def run_specs(
+    args: argparse.Namespace, specs: Sequence[Any], store: ResultStore, backend: Backend
+) -> SweepSummary:
+    """Run ``specs`` into ``store`` on ``backend`` as the options of :func:`add_run_options`
+    say (SIGTERM as Ctrl-C); print the sweep's summary and return it."""
+    from voot.bench.sweep.bbfo import run_sweep
+
+    with sigterm_as_interrupt():
+        summary = run_sweep(
+            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
+        )
+    print(summary)
+    return summary
+
+
+def write_markdown(path: str, text: str) -> None:
+    """Write ``text`` to the markdown file ``path`` (its folder created) and say so on stderr."""
+    md = Path(path)
+    md.parent.mkdir(parents=True, exist_ok=True)
+    md.write_text(text)
+    print(f"markdown: {md}", file=sys.stderr)

@@ -1,7 +1,9 @@
 """The demos: ``demo`` (VOOT clearing the kitchen, with a rerun recording and a GIF; on
 a generated kitchen with ``--env kitchen_v2 --layout-seed S --difficulty D``),
-``figure5`` (the paper's Figure 5 on the kitchen) and ``demo-voo`` (VOO on a test
-function with the paper's budget)."""
+``record-demo`` (recordings, Figure-5 panels and a GIF on the tiny pick-and-place demo),
+``figure5`` (the paper's Figure 5 on the kitchen), ``demo-voo`` (VOO on a test function
+with the paper's budget) and ``env-figures`` (pictures of the two scenes, as in the
+docs)."""
 
 from __future__ import annotations
 
@@ -65,6 +67,31 @@ def cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_record_demo(args: argparse.Namespace) -> int:
+    """Record planners on the tiny demo (:func:`voot.bench.demos.record_demo.record_demo`)."""
+    from voot.bench.demos.record_demo import record_demo
+
+    record_demo(
+        args.out,
+        args.simulations,
+        args.seed,
+        args.planners,
+        watch=args.watch,
+        video=not args.no_video,
+    )
+    return 0
+
+
+def cmd_env_figures(args: argparse.Namespace) -> int:
+    """Render the scenes' figures (:func:`voot.bench.demos.env_figures.render_all`)."""
+    from pathlib import Path
+
+    from voot.bench.demos import env_figures
+
+    env_figures.render_all(Path(args.out_dir))
+    return 0
+
+
 def cmd_figure5(args: argparse.Namespace) -> int:
     """Record the paper's Figure 5 on the kitchen and draw it (:mod:`voot.bench.demos.figure5`)."""
     from voot.bench.demos.figure5 import figure5
@@ -123,7 +150,7 @@ def cmd_demo_voo(args: argparse.Namespace) -> int:
 
 
 def register(sub: Subparsers) -> None:
-    """Add ``demo``, ``figure5`` and ``demo-voo``."""
+    """Add ``demo``, ``record-demo``, ``figure5``, ``demo-voo`` and ``env-figures``."""
     p = sub.add_parser(
         "demo",
         help="the README's main job: VOOT clearing the kitchen, with a rerun recording and a GIF",
@@ -158,6 +185,27 @@ def register(sub: Subparsers) -> None:
     p.set_defaults(func=cmd_demo)
 
     p = sub.add_parser(
+        "record-demo",
+        help="recordings, Figure-5 panels and a GIF on the tiny pick-and-place demo",
+        description="Record planners on the demo, draw their Figure-5 panels and a GIF of"
+        " VOOT's plan: demo_<planner>.rrd per planner, demo_figure5.png (the watched place"
+        " node's placements, one panel per planner, same seed) and demo_voot.gif (VOOT's"
+        " best plan, rendered headless).",
+    )
+    p.add_argument("--out", default=".", help="output folder")
+    p.add_argument("--simulations", type=int, default=300)
+    p.add_argument("--seed", type=seed_argument, default=0)
+    p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"])
+    p.add_argument(
+        "--watch",
+        default="best:place",
+        help="the node drawn in the figure: 'place' (the first place node, the paper's"
+        " Figure 5) or 'best:place' (the place node of the best plan)",
+    )
+    p.add_argument("--no-video", action="store_true")
+    p.set_defaults(func=cmd_record_demo)
+
+    p = sub.add_parser(
         "figure5",
         help="the paper's Figure 5 on the kitchen: placements sampled at the first place node",
     )
@@ -181,3 +229,15 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--budget", type=int, default=None, help="evaluations (default: the paper's)")
     p.add_argument("--seed", type=seed_argument, default=0)
     p.set_defaults(func=cmd_demo_voo)
+
+    p = sub.add_parser(
+        "env-figures",
+        help="render the environment figures of the docs",
+        description="Render the kitchen and the storage rooms at the start and after the"
+        " scripted solution, top-down and in perspective, and the robot holding a box"
+        " (headless, MUJOCO_GL=egl).",
+    )
+    p.add_argument(
+        "out_dir", nargs="?", default="docs/figures", help="folder of the figures (%(default)s)"
+    )
+    p.set_defaults(func=cmd_env_figures)

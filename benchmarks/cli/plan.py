@@ -14,21 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import (
-    CLIError,
-    add_backend_options,
-    add_compact_options,
-    check_sweep_options,
-    compact_config,
-    existing_store,
-    open_store,
-    parse_assignments,
-    parse_int_list,
-    parse_range,
-    sigterm_as_interrupt,
-    split_list,
-    stored_note,
-)
+from voot.bench.cli import common as C
 from voot.bench.store.result_store import ResultStore
 
 if TYPE_CHECKING:
@@ -41,38 +27,38 @@ def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.protocol.problems import DEFAULT_PROBLEMS
     from voot.bench.sweep.plan import build_plan_specs, summarize_plan_specs
 
-    check_sweep_options(args)
+    C.check_sweep_options(args)
     if args.record is not None:
         if args.backend == "ray":
-            raise CLIError(
+            raise C.CLIError(
                 "--record writes .rrd files where the search runs; use --backend process"
                 " (or serial) for recorded runs"
             )
         try:
             from voot.record import SearchRecorder  # noqa: F401 - the recorder's entry point
         except ImportError as exc:
-            raise CLIError(
+            raise C.CLIError(
                 f"--record needs the recorder of voot.record ({exc}); install the [record]"
                 " extra (pip install 'voot[record]')"
             ) from None
     layouts = _layout_options(args)
-    seeds = parse_range(args.seeds, "--seeds") if args.seeds is not None else None
+    seeds = C.parse_range(args.seeds, "--seeds") if args.seeds is not None else None
     if seeds is None and layouts.evaluation is not None:
         seeds = [0]  # on a layout axis the layouts are the samples: one seed each by default
-    problems = split_list(args.problems) or list(DEFAULT_PROBLEMS)
+    problems = C.split_list(args.problems) or list(DEFAULT_PROBLEMS)
 
     def specs_of(seed_list: list[int] | None, tuning: bool = False) -> list[PlanSpec]:
         out: list[PlanSpec] = []
         for names, layout_list in layouts.groups(problems, tuning):
             out += build_plan_specs(
                 names,
-                parse_int_list(args.dims, "--dims") or None,
-                split_list(args.planners) or None,
+                C.parse_int_list(args.dims, "--dims") or None,
+                C.split_list(args.planners) or None,
                 seed_list,
                 simulations=args.simulations,
                 grid=args.grid,
-                env_kwargs=parse_assignments(args.env_kwargs, "--env-kwargs"),
-                fixed=parse_assignments(args.set, "--set"),
+                env_kwargs=C.parse_assignments(args.env_kwargs, "--env-kwargs"),
+                fixed=C.parse_assignments(args.set, "--set"),
                 record=args.record,
                 horizon=args.horizon,
                 layout_seeds=layout_list,
@@ -81,12 +67,12 @@ def cmd_plan(args: argparse.Namespace) -> int:
 
     if args.tuning_seeds is not None or layouts.tuning is not None:
         if args.record is not None:
-            raise CLIError(
+            raise C.CLIError(
                 "--record records single runs; it does not go with --tuning-seeds,"
                 " --tuning-layouts or --heldout"
             )
         tuning_seeds = (
-            parse_range(args.tuning_seeds, "--tuning-seeds")
+            C.parse_range(args.tuning_seeds, "--tuning-seeds")
             if args.tuning_seeds is not None
             else seeds  # held-out layouts: the same seeds on other layouts
         )
@@ -96,14 +82,14 @@ def cmd_plan(args: argparse.Namespace) -> int:
         return _print_estimate(args, specs)
     simulations = sum(s.simulations for s in specs)
     print(
-        f"{len(specs)} runs, {simulations} simulations{stored_note(args.out, specs)}",
+        f"{len(specs)} runs, {simulations} simulations{C.stored_note(args.out, specs)}",
         file=sys.stderr,
     )
     if args.dry_run:
         print(summarize_plan_specs(specs))
         return 0
     summary = _run_plan_specs(
-        args, specs, open_store(args.out, compact_config(args) if args.compact else None)
+        args, specs, C.open_store(args.out, C.compact_config(args) if args.compact else None)
     )
     if args.record is not None and summary.skipped:
         print(
@@ -119,7 +105,7 @@ def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
     from voot.bench.protocol.estimate import estimate, format_estimate
     from voot.bench.sweep.bbfo import pending_specs
 
-    store = existing_store(args.out)
+    store = C.existing_store(args.out)
     rows = store.load(status="ok") if store is not None else []
     pending = pending_specs(specs, store) if store is not None else list(specs)
     lines = estimate(
@@ -133,19 +119,14 @@ def _run_plan_specs(
     args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore
 ) -> SweepSummary:
     """Run ``specs`` into ``store`` with the backend of ``args``; the sweep's summary."""
-    from voot.bench.sweep.bbfo import make_backend, run_sweep
+    from voot.bench.sweep.bbfo import make_backend
 
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
     )
     layout = f", compact: {store.compact}" if store.compact is not None else ""
     print(f"results: {store.path} (backend: {backend.name}{layout})", file=sys.stderr)
-    with sigterm_as_interrupt():
-        summary = run_sweep(
-            specs, store, backend, progress=not args.no_progress, retry_failed=not args.skip_failed
-        )
-    print(summary)
-    return summary
+    return C.run_specs(args, specs, store, backend)
 
 
 def plan_tuned(
@@ -175,8 +156,8 @@ def plan_tuned(
             eval_layouts,
         )
     except ValueError as exc:
-        raise CLIError(str(exc)) from None
-    existing = existing_store(args.out)
+        raise C.CLIError(str(exc)) from None
+    existing = C.existing_store(args.out)
     rows = existing.load(kind="plan", status="ok") if existing is not None else []
     selections = tuning_selections(tuning, rows)
     complete = existing is not None and not _pending(tuning, existing)
@@ -194,7 +175,7 @@ def plan_tuned(
     print(
         f"tuning: {len(tuning)} runs (every setting) on {on_tuning};"
         f" evaluation: {len(evaluation)} runs (the selected setting) on {on_eval}"
-        f"{'' if complete else ', after the tuning runs'}{stored_note(args.out, tuning)}",
+        f"{'' if complete else ', after the tuning runs'}{C.stored_note(args.out, tuning)}",
         file=sys.stderr,
     )
     if args.estimate:
@@ -205,7 +186,7 @@ def plan_tuned(
         print("evaluation runs (one setting per problem and planner):")
         print(summarize_plan_specs(evaluation))
         return 0
-    store = open_store(args.out, compact_config(args) if args.compact else None)
+    store = C.open_store(args.out, C.compact_config(args) if args.compact else None)
     summary = _run_plan_specs(args, tuning, store)
     if summary.failed or _pending(tuning, store):
         print(
@@ -251,7 +232,7 @@ class LayoutOptions:
             try:
                 split = layout_set(normalize_problem(name))
             except ValueError as exc:
-                raise CLIError(f"--heldout: {exc}") from None
+                raise C.CLIError(f"--heldout: {exc}") from None
             out.append(([name], list(split.training if tuning else split.heldout)))
         return out
 
@@ -266,7 +247,7 @@ def _layout_options(args: argparse.Namespace) -> LayoutOptions:
     tuning_layouts = getattr(args, "tuning_layouts", None)
     if getattr(args, "heldout", False):
         if layout_seeds is not None or tuning_layouts is not None:
-            raise CLIError(
+            raise C.CLIError(
                 "--heldout sets the layouts itself (each family's training and held-out"
                 " layouts); give either --heldout or --tuning-layouts with --layout-seeds"
             )
@@ -280,7 +261,7 @@ def _layout_options(args: argparse.Namespace) -> LayoutOptions:
         else None
     )
     if tuning is not None and evaluation is None:
-        raise CLIError(
+        raise C.CLIError(
             "--tuning-layouts needs the evaluation layouts: give --layout-seeds (e.g. the"
             f" held-out layouts {layouts_text(HELDOUT_LAYOUTS)}: --layout-seeds 0:20) or use"
             " --heldout"
@@ -291,14 +272,14 @@ def _layout_options(args: argparse.Namespace) -> LayoutOptions:
 def parse_layout_seeds(values: Sequence[str], what: str) -> list[int]:
     """Layout seeds: one ``N`` (0 .. N-1) or ``START:STOP``, or a list of seeds and
     ranges (``3 7 9``, ``0:5,100``); a single layout L is ``L:L+1``."""
-    items = split_list(values)
+    items = C.split_list(values)
     if not items:
-        raise CLIError(f"{what}: no layout seeds given")
+        raise C.CLIError(f"{what}: no layout seeds given")
     if len(items) == 1:
-        return parse_range(items[0], what)
-    out = parse_int_list(items, what)
+        return C.parse_range(items[0], what)
+    out = C.parse_int_list(items, what)
     if min(out) < 0:
-        raise CLIError(f"{what}: layout seeds must be >= 0, got {min(out)}")
+        raise C.CLIError(f"{what}: layout seeds must be >= 0, got {min(out)}")
     return list(dict.fromkeys(out))
 
 
@@ -384,11 +365,8 @@ def register(sub: Subparsers) -> None:
         metavar="NAME=VALUE",
         help="keywords of gymnasium.make for the environments (e.g. dim=3)",
     )
-    add_backend_options(p)
+    C.add_backend_options(p)
     p.add_argument("--record", metavar="RUN.rrd", help="record each run's search with rerun")
-    p.add_argument(
-        "--skip-failed", action="store_true", help="do not retry runs that failed before"
-    )
     p.add_argument(
         "--tuning-seeds",
         metavar="START:STOP",
@@ -420,25 +398,15 @@ def register(sub: Subparsers) -> None:
         " training layouts, evaluate on its held-out layouts (voot.bench.protocol.layouts:"
         " training 1000-1019, held-out 0-19)",
     )
-    p.add_argument(
-        "--estimate",
-        action="store_true",
-        help="print the estimated CPU-hours of the runs not yet in --out (cost per"
+    C.add_estimate_options(
+        p,
+        estimate="print the estimated CPU-hours of the runs not yet in --out (cost per"
         " simulation from the store's rows, else a short probe run) and exit",
     )
-    p.add_argument(
-        "--probe-simulations",
-        type=int,
-        default=20,
-        help="--estimate: simulations of a probe run (default: %(default)s)",
-    )
-    p.add_argument("--dry-run", action="store_true", help="list the runs per problem and exit")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument(
-        "--compact",
-        action="store_true",
-        help="create --out as a compact store (step curves exact, cost curves at reduced"
+    C.add_run_options(p, dry_run="list the runs per problem and exit")
+    C.add_compact_store_options(
+        p,
+        compact="create --out as a compact store (step curves exact, cost curves at reduced"
         " resolution; kept in its header, so later runs into it are compact too)",
     )
-    add_compact_options(p, "compact-")
     p.set_defaults(func=cmd_plan)

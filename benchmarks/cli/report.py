@@ -10,7 +10,14 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError, add_filters, parse_int_list, parse_range, split_list
+from voot.bench.cli.common import (
+    CLIError,
+    add_filters,
+    parse_int_list,
+    parse_range,
+    split_list,
+    write_markdown,
+)
 from voot.bench.store.format import Row
 
 if TYPE_CHECKING:
@@ -152,10 +159,7 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
         path = plot_plan_figure(data, args.png_seconds, x="seconds")
         print(f"figure: {path}", file=sys.stderr)
     if args.markdown:
-        md = Path(args.markdown)
-        md.parent.mkdir(parents=True, exist_ok=True)
-        md.write_text(report)
-        print(f"markdown: {md}", file=sys.stderr)
+        write_markdown(args.markdown, report)
     return 0
 
 
@@ -258,10 +262,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
         path = plot_figure3(data, args.png, regret=args.regret, log=args.log)
         print(f"figure: {path}", file=sys.stderr)
     if args.markdown:
-        md = Path(args.markdown)
-        md.parent.mkdir(parents=True, exist_ok=True)
-        md.write_text(f"{table}\n\nSelected hyperparameters:\n\n{settings}\n")
-        print(f"markdown: {md}", file=sys.stderr)
+        write_markdown(args.markdown, f"{table}\n\nSelected hyperparameters:\n\n{settings}\n")
     return 0
 
 
@@ -281,10 +282,7 @@ def print_ablation_table(
     text = ablation_table(rows, seeds, labels)
     print(text)
     if markdown:
-        md = Path(markdown)
-        md.parent.mkdir(parents=True, exist_ok=True)
-        md.write_text(text + "\n")
-        print(f"markdown: {md}", file=sys.stderr)
+        write_markdown(markdown, text + "\n")
     return 0
 
 
@@ -320,10 +318,7 @@ def cmd_claims(args: argparse.Namespace) -> int:
     text = claims_table(evaluate(data), note)
     print(text)
     if args.markdown:
-        md = Path(args.markdown)
-        md.parent.mkdir(parents=True, exist_ok=True)
-        md.write_text(text + "\n")
-        print(f"markdown: {md}", file=sys.stderr)
+        write_markdown(args.markdown, text + "\n")
     return 0
 
 

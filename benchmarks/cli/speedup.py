@@ -1,4 +1,4 @@
-"""``voot-bench speedup``: tree search on the robot domains with a baseline commit's code
+"""``voot-bench measure speedup``: tree search on the robot domains with a baseline commit's code
 and the current code side by side (CPU time, bit-identical curves), or with ``--v1`` the
 v1 domains' cost per simulation (:mod:`voot.bench.measure.speedup`)."""
 

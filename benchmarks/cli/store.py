@@ -1,6 +1,7 @@
-"""Subcommands on whole result stores: ``compact`` (copy a store into a compact one),
-``shipped`` (check the committed stores against their manifest and redraw them) and
-``store-speed`` (size and load time of synthetic stores, full vs compact)."""
+"""Subcommands on whole result stores: ``compact`` (copy a store into a compact one) and
+``shipped`` (check the committed stores against their manifest and redraw them). The size
+and load time of stores is a measurement (``voot-bench measure store-speed``,
+:mod:`voot.bench.cli.measure`)."""
 
 from __future__ import annotations
 
@@ -61,30 +62,8 @@ def cmd_shipped(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_store_speed(args: argparse.Namespace) -> int:
-    """Print the size and load time of synthetic plan-row stores, full and compact."""
-    from voot.bench.measure.store_speed import time_load
-
-    if args.rows < 1 or args.length < 1:
-        raise CLIError("--rows and --length must be >= 1")
-    print(f"{args.rows} plan-like rows of {args.length} simulations (five curves each)")
-    print(
-        "| store | MB of rows | KB per row | write s | first load s | load s (lists)"
-        " | load s (arrays) | verify s |"
-    )
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-    for name, config in (("full", None), ("compact", compact_config(args))):
-        t = time_load(args.rows, args.length, args.repeats, plan=True, compact=config)
-        print(
-            f"| {name} | {t['mb']:.2f} | {1000 * t['mb'] / args.rows:.1f} | {t['write']:.2f}"
-            f" | {t['cold']:.3f} | {t['warm']:.3f} | {t['warm_arrays']:.3f} | {t['verify']:.3f} |",
-            flush=True,
-        )
-    return 0
-
-
 def register(sub: Subparsers) -> None:
-    """Add ``compact``, ``shipped`` and ``store-speed``."""
+    """Add ``compact`` and ``shipped``."""
     p = sub.add_parser(
         "compact",
         help="copy a result store into a compact one (resumable; the source is only read)",
@@ -114,17 +93,3 @@ def register(sub: Subparsers) -> None:
         help="give the rows of stores written before row checksums theirs (then --write)",
     )
     p.set_defaults(func=cmd_shipped)
-
-    p = sub.add_parser(
-        "store-speed",
-        help="size and load time of a store of synthetic plan rows, full vs compact",
-    )
-    p.add_argument("--rows", type=int, default=1000, help="rows (default: %(default)s)")
-    p.add_argument(
-        "--length", type=int, default=3000, help="simulations per row (default: %(default)s)"
-    )
-    p.add_argument(
-        "--repeats", type=int, default=3, help="loads timed, best kept (default: %(default)s)"
-    )
-    add_compact_options(p, "")
-    p.set_defaults(func=cmd_store_speed)

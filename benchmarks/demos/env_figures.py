@@ -1,6 +1,6 @@
 """Render the documentation figures of the two scenes (headless, ``MUJOCO_GL=egl``).
 
-``voot-bench env-figures [out_dir]`` (default ``docs/figures``) writes:
+``voot-bench env-figures [out_dir]`` (default ``docs/figures``; :func:`render_all`) writes:
 
 * ``kitchen_top_down.png``, ``kitchen_perspective.png``: the kitchen at the start, with
   the swept corridor of the fixed path (blue) and the forbidden rooms (red);
@@ -14,8 +14,6 @@
 
 from __future__ import annotations
 
-import argparse
-import sys
 from pathlib import Path
 
 import imageio.v3 as iio
@@ -70,15 +68,3 @@ def render_all(out_dir: Path) -> None:
         conveyor.step(a)
     _save(out_dir / "conveyor_packed_top_down.png", conveyor.render_image("top_down"))
     conveyor.close()
-
-
-def main(argv: list[str] | None = None) -> None:
-    """Command line: ``voot-bench env-figures [out_dir]``."""
-    parser = argparse.ArgumentParser(
-        prog="voot-bench env-figures", description="render the environment figures of the docs"
-    )
-    parser.add_argument(
-        "out_dir", nargs="?", default="docs/figures", help="folder of the figures (%(default)s)"
-    )
-    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
-    render_all(Path(args.out_dir))

@@ -1,6 +1,7 @@
 """Speed benchmark of the two environments (a command, not a test).
 
-``voot-bench env-speed [--n N] [--seed S]`` prints, per operator (kitchen pick,
+``voot-bench measure env-speed [--n N] [--seed S]`` prints (:func:`run`, :func:`report`),
+per operator (kitchen pick,
 kitchen place, conveyor 3-box place):
 
 * the median cost of one step, split into IK, collision checks and base motion planning
@@ -21,7 +22,6 @@ check under 2 ms, a place including its base path under 5 ms, a restore under 50
 
 from __future__ import annotations
 
-import argparse
 import statistics
 import time
 from collections.abc import Callable
@@ -30,7 +30,6 @@ from typing import Any
 
 import numpy as np
 
-from voot.bench.cli.types import seed_argument
 from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.state import EnvState
@@ -180,18 +179,3 @@ def report(results: dict[str, Any]) -> str:
         f"get_state: kitchen {results['kitchen_snapshot'] * 1e6:.1f} us"
     )
     return "\n".join(lines)
-
-
-def main(argv: list[str] | None = None) -> None:
-    """Command line: ``voot-bench env-speed [--n N] [--seed S]``."""
-    parser = argparse.ArgumentParser(
-        prog="voot-bench env-speed", description=__doc__.splitlines()[0]
-    )
-    parser.add_argument(
-        "--n", type=int, default=1000, help="random actions per operator (default 1000)"
-    )
-    parser.add_argument("--seed", type=seed_argument, default=0, help="seed of the random actions")
-    args = parser.parse_args(argv)
-    if args.n < 1:
-        parser.error("--n must be >= 1")
-    print(report(run(args.n, args.seed)))

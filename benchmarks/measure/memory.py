@@ -1,4 +1,4 @@
-"""Memory of a long tree search against the size of its tree (``voot-bench memory``).
+"""Memory of a long tree search against the size of its tree (``voot-bench measure memory``).
 
 A search of ``n`` simulations adds at most one node per simulation (progressive
 widening adds fewer), and nothing else in the planner should grow with ``n``: the best

@@ -1,4 +1,4 @@
-"""The cost of the trimesh object meshes (``voot-bench mesh-speed``; figures in docs/meshes.md).
+"""The cost of the trimesh object meshes (``voot-bench measure mesh-speed``; docs/meshes.md).
 
 Three measurements, each in a temporary cache folder (``VOOT_CACHE``), so nothing of the
 user's cache is read or written:

@@ -1,27 +1,26 @@
-r"""What the search itself costs: ``voot-bench overhead`` and ``voot-bench record-overhead``.
+r"""What the search itself costs: ``voot-bench measure overhead`` and ``record-overhead``.
 
-**The planner's own overhead** (:func:`measure`, ``voot-bench overhead``): for every
-planner, action dimension and budget, one search of depth ``--depth`` on
-:class:`~voot.tree.null_problem.NullProblem`, printing the wall time per simulation and
-per node visit (one action taken inside a simulation, new or re-evaluated) and the
-process CPU time per node visit (the figure to trust on a shared machine). The null step
-is a few microseconds of Python, so the figures are the search's cost: the goal is VOOT
-under 100 microseconds per node visit, so that the simulator, not the search, bounds the
-speed.
+**The planner's own overhead** (:func:`measure`, :func:`print_tree_overhead`,
+``voot-bench measure overhead``): for every planner, action dimension and budget, one
+search of depth ``--depth`` on :class:`~voot.tree.null_problem.NullProblem`, printing
+the wall time per simulation and per node visit (one action taken inside a simulation,
+new or re-evaluated) and the process CPU time per node visit (the figure to trust on a
+shared machine). The null step is a few microseconds of Python, so the figures are the
+search's cost: the goal is VOOT under 100 microseconds per node visit, so that the
+simulator, not the search, bounds the speed.
 
-**The cost of recording** (:func:`measure_overhead`, ``voot-bench record-overhead``): the
-same search timed with and without a :class:`~voot.record.SearchRecorder` (its
-``finish`` included; rerun's one-off start-up measured apart on a warm-up recording),
-alternating ``--repeats`` times and keeping the fastest run of each (wall and process
-CPU time), checking that both gave the same curve, and printing ``on / off`` (goal: at
-most 1.5). Problems: ``shekel`` (the Shekel chain in ``--dim`` dimensions with the
-authors' chain settings) and ``null`` (the null problem at depth 5, the worst case for
-the recorder's relative cost).
+**The cost of recording** (:func:`measure_overhead`, :func:`print_record_overhead`,
+``voot-bench measure record-overhead``): the same search timed with and without a
+:class:`~voot.record.SearchRecorder` (its ``finish`` included; rerun's one-off start-up
+measured apart on a warm-up recording), alternating ``--repeats`` times and keeping the
+fastest run of each (wall and process CPU time), checking that both gave the same curve,
+and printing ``on / off`` (goal: at most 1.5). Problems: ``shekel`` (the Shekel chain in
+``--dim`` dimensions with the authors' chain settings) and ``null`` (the null problem at
+depth 5, the worst case for the recorder's relative cost).
 """
 
 from __future__ import annotations
 
-import argparse
 import tempfile
 import time
 from collections.abc import Sequence
@@ -31,7 +30,6 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
-from voot.bench.cli.types import seed_argument
 from voot.record.config import RecorderConfig
 from voot.record.recorder import SearchRecorder
 from voot.tree.chains import chain_planner_options, make_chain
@@ -68,28 +66,26 @@ def measure(
     }
 
 
-def tree_main(argv: Sequence[str] | None = None) -> int:
-    """``voot-bench overhead``: print the planner's overhead table."""
-    parser = argparse.ArgumentParser(
-        prog="voot-bench overhead", description="the planner's own overhead per node visit"
-    )
-    parser.add_argument("--planners", nargs="+", default=list(DEFAULT_PLANNERS))
-    parser.add_argument("--dims", nargs="+", type=int, default=[6, 9])
-    parser.add_argument("--simulations", nargs="+", type=int, default=[1000, 10000])
-    parser.add_argument("--depth", type=int, default=5)
-    parser.add_argument("--seed", type=seed_argument, default=0)
-    args = parser.parse_args(argv)
+def print_tree_overhead(
+    planners: Sequence[str],
+    dims: Sequence[int],
+    simulations: Sequence[int],
+    depth: int = 5,
+    seed: int = 0,
+) -> None:
+    """``voot-bench measure overhead``: print the planner's overhead table, a row per
+    planner, dimension and budget (:func:`measure`) as each is measured."""
     header = (
         f"{'planner':<11} {'dim':>3} {'sims':>6} {'visits':>7} {'nodes':>7} {'steps':>7}"
         f" {'s':>7} {'us/sim':>8} {'us/visit':>8} {'cpu us/visit':>12}"
     )
-    print(f"null problem, depth {args.depth}, seed {args.seed}")
+    print(f"null problem, depth {depth}, seed {seed}")
     print(header)
-    for planner in args.planners:
-        for dim in args.dims:
-            for n in args.simulations:
+    for planner in planners:
+        for dim in dims:
+            for n in simulations:
                 try:
-                    row = measure(planner, dim, n, args.depth, args.seed)
+                    row = measure(planner, dim, n, depth, seed)
                 except ValueError as exc:  # e.g. a sampler whose module is missing
                     print(f"{planner:<11} {dim:>3} {n:>6} skipped: {exc}")
                     continue
@@ -100,7 +96,6 @@ def tree_main(argv: Sequence[str] | None = None) -> int:
                     f" {row['us_per_visit']:>8.1f} {row['cpu_us_per_visit']:>12.1f}",
                     flush=True,
                 )
-    return 0
 
 
 #: Problems :func:`measure_overhead` knows.
@@ -190,27 +185,23 @@ def measure_overhead(
     }
 
 
-def record_main(argv: Sequence[str] | None = None) -> int:
-    """``voot-bench record-overhead``: print the overhead of recording."""
-    parser = argparse.ArgumentParser(
-        prog="voot-bench record-overhead", description="the cost of recording a search"
-    )
-    parser.add_argument("--problems", nargs="+", default=list(PROBLEMS), choices=PROBLEMS)
-    parser.add_argument("--dim", type=int, default=10)
-    parser.add_argument("--simulations", type=int, default=1000)
-    parser.add_argument("--planner", default="voot")
-    parser.add_argument("--seed", type=seed_argument, default=0)
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args(argv)
+def print_record_overhead(
+    problems: Sequence[str] = PROBLEMS,
+    dim: int = 10,
+    n_simulations: int = 1000,
+    planner: str = "voot",
+    seed: int = 0,
+    repeats: int = 3,
+) -> None:
+    """``voot-bench measure record-overhead``: print the overhead of recording, a row per
+    problem (:func:`measure_overhead`) as each is measured."""
     print(
         f"{'problem':<8} {'dim':>3} {'planner':<8} {'sims':>6} {'nodes':>6} {'off s':>7}"
         f" {'on s':>7} {'ratio':>6} {'cpu off':>7} {'cpu on':>7} {'ratio':>6}"
         f" {'setup s':>7} {'rrd kB':>7}"
     )
-    for name in args.problems:
-        row = measure_overhead(
-            name, args.dim, args.simulations, args.planner, args.seed, args.repeats
-        )
+    for name in problems:
+        row = measure_overhead(name, dim, n_simulations, planner, seed, repeats)
         print(
             f"{row['problem']:<8} {row['dim']:>3} {row['planner']:<8} {row['simulations']:>6}"
             f" {row['n_nodes']:>6} {row['off_s']:>7.3f} {row['on_s']:>7.3f} {row['ratio']:>6.3f}"
@@ -218,4 +209,3 @@ def record_main(argv: Sequence[str] | None = None) -> int:
             f" {row['setup_s']:>7.3f} {row['rrd_bytes'] / 1024:>7.0f}",
             flush=True,
         )
-    return 0

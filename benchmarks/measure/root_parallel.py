@@ -1,9 +1,9 @@
 r"""Speed-up and quality of root-parallel search over 1, 2, 4 ... workers.
 
-Run ``voot-bench root-parallel`` (options: ``--help``). The figure of
-the documentation was made by::
+Run ``voot-bench measure root-parallel`` (options: ``--help``; :func:`run_and_report`).
+The figure of the documentation was made by::
 
-    voot-bench root-parallel --problems shekel kitchen \
+    voot-bench measure root-parallel --problems shekel kitchen \
         --budget 10000 240 --seeds 5 3 --workers 1 2 4
 
 (5 minutes at a load average of 3 on two cores, 15 at 9). For every problem (the
@@ -32,7 +32,6 @@ used, so importing this module stays as light as :mod:`voot.tree`.
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import functools
 import json
@@ -430,32 +429,23 @@ def _load(load: tuple[float, float, float] | None) -> str:
     return "?" if load is None else "/".join(f"{x:.1f}" for x in load)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
-        prog="voot-bench root-parallel",
-        description="Speed-up and quality of root-parallel search (see the module docstring).",
-    )
-    parser.add_argument("--problems", nargs="+", default=["shekel"], choices=PROBLEMS)
-    parser.add_argument("--dim", type=int, default=10, help="Shekel chain dimension (3, 10, 20)")
-    parser.add_argument("--trees", nargs="+", type=int, default=[1, 2, 4], help="values of K")
-    parser.add_argument("--workers", nargs="+", type=int, default=[1, 2], help="values of W")
-    parser.add_argument(
-        "--seeds", type=int, nargs="+", default=[3], help="seeds 0 .. N-1 (per problem)"
-    )
-    parser.add_argument("--budget", type=int, nargs="+", default=None, help="S per problem")
-    parser.add_argument("--merge", default="max_q")
-    parser.add_argument("--no-long", action="store_true", help="skip the equal-wall-time runs")
-    parser.add_argument("--figure", default=DEFAULT_FIGURE, help="PNG path ('' for none)")
-    parser.add_argument("--json", default="", help="write the table rows to this JSON file")
-    args = parser.parse_args(argv)
-    budgets = args.budget or [None] * len(args.problems)
-    if len(budgets) not in (1, len(args.problems)):
-        parser.error("--budget takes one value, or one per problem")
-    if len(budgets) == 1:
-        budgets = budgets * len(args.problems)
-    seeds = args.seeds if len(args.seeds) > 1 else args.seeds * len(args.problems)
-    if len(seeds) != len(args.problems) or min(seeds) < 1:
-        parser.error("--seeds takes one count >= 1, or one per problem")
+def run_and_report(
+    problems: Sequence[str],
+    budgets: Sequence[int | None],
+    seeds: Sequence[int],
+    *,
+    dim: int = 10,
+    trees: Sequence[int] = (1, 2, 4),
+    workers: Sequence[int] = (1, 2),
+    merge: str = "max_q",
+    long_runs: bool = True,
+    figure: str = DEFAULT_FIGURE,
+    json_path: str = "",
+) -> None:
+    """``voot-bench measure root-parallel``: :func:`measure` every problem (its budget
+    :math:`S` and its number of seeds from ``budgets`` and ``seeds``, one each), print the
+    table and the load averages, write the rows to ``json_path`` and draw ``figure``
+    (each unless empty)."""
 
     def log(msg: str) -> None:
         print(msg, file=sys.stderr, flush=True)
@@ -463,16 +453,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(f"cores: {os.cpu_count()}, load average before: {load_average()}", flush=True)
     t0 = time.perf_counter()
     results = []
-    for name, budget, n_seeds in zip(args.problems, budgets, seeds, strict=True):
-        setup = make_setup(name, budget, args.dim)
+    for name, budget, n_seeds in zip(problems, budgets, seeds, strict=True):
+        setup = make_setup(name, budget, dim)
         results.append(
             measure(
                 setup,
-                args.trees,
-                args.workers,
+                trees,
+                workers,
                 list(range(n_seeds)),
-                args.merge,
-                long_runs=not args.no_long,
+                merge,
+                long_runs=long_runs,
                 log=log,
             )
         )
@@ -483,12 +473,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     print(f"load averages (1, 5, 15 min) before -> after: {loads}")
     print(f"total {time.perf_counter() - t0:.0f} s")
-    if args.json:
-        Path(args.json).write_text(json.dumps({"rows": rows, "loads": loads}, indent=1))
-    if args.figure:
+    if json_path:
+        Path(json_path).write_text(json.dumps({"rows": rows, "loads": loads}, indent=1))
+    if figure:
         note = (
             f"{os.cpu_count()} cores shared with other users; load average (1/5/15 min)"
-            f" before -> after: {loads}; merge={args.merge}; seeds per problem {seeds}"
+            f" before -> after: {loads}; merge={merge}; seeds per problem {list(seeds)}"
         )
-        print(f"figure: {plot(results, args.figure, note)}")
-    return 0
+        print(f"figure: {plot(results, figure, note)}")

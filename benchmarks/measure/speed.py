@@ -9,15 +9,14 @@ tells pycma whole populations, GP-UCB refits on tell) are timed on ``repeats`` f
 ask + tell evaluations instead.
 
 VOO's cost also depends on the objective: each time the best point improves, the
-structures of its best-cell test move to the new best point. ``voot-bench voo-speed``
-(:func:`measure_voo_cost`, :func:`voo_main`) times whole ask + tell evaluations after
-``n`` evaluations of several objectives, on which the best point improves at different
-rates.
+structures of its best-cell test move to the new best point. ``voot-bench measure
+voo-speed`` (:func:`measure_voo_cost`, :func:`print_voo_cost`) times whole ask + tell
+evaluations after ``n`` evaluations of several objectives, on which the best point
+improves at different rates.
 """
 
 from __future__ import annotations
 
-import argparse
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -25,7 +24,6 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
-from voot.bench.cli.types import seed_argument
 from voot.functions import available_functions, get_function
 from voot.optim import Bounds, make_optimizer
 from voot.optim.registry import normalize_method
@@ -107,7 +105,7 @@ SPHERES: dict[str, Callable[[np.ndarray], float]] = {
     "shifted_sphere": shifted_sphere,
 }
 
-#: Default objectives of ``voot-bench voo-speed``.
+#: Default objectives of ``voot-bench measure voo-speed``.
 VOO_SPEED_OBJECTIVES = ("sphere", "shifted_sphere", "shekel", "rastrigin", "griewank")
 
 
@@ -178,50 +176,28 @@ def measure_voo_cost(
     return spent / int(repeats), improvements
 
 
-def voo_main(argv: Sequence[str] | None = None) -> int:
-    """Command line: ``voot-bench voo-speed [--objectives ...] [--n N] [--dim D] ...``."""
-    parser = argparse.ArgumentParser(
-        prog="voot-bench voo-speed",
-        description="CPU time of one VOO ask + tell after n evaluations, per objective.",
-    )
-    parser.add_argument(
-        "--objectives",
-        nargs="+",
-        default=list(VOO_SPEED_OBJECTIVES),
-        choices=voo_objectives(),
-        metavar="NAME",
-        help=f"default: {' '.join(VOO_SPEED_OBJECTIVES)}; any of {', '.join(voo_objectives())}",
-    )
-    parser.add_argument("--n", type=int, default=5000, help="evaluations before timing (5000)")
-    parser.add_argument("--dim", type=int, default=20)
-    parser.add_argument("--repeats", type=int, default=500, help="timed evaluations (500)")
-    parser.add_argument("--seeds", type=int, default=1, help="seeds 0..SEEDS-1, each timed (1)")
-    parser.add_argument("--seed", type=seed_argument, default=0, help="first seed (0)")
-    parser.add_argument("--omega", type=float, default=0.001)
-    parser.add_argument("--sampler", default="centered_uniform")
-    args = parser.parse_args(argv)
-    for name in ("n", "dim", "repeats", "seeds"):
-        if getattr(args, name) < (0 if name == "n" else 1):
-            parser.error(f"--{name} must be >= {0 if name == 'n' else 1}")
+def print_voo_cost(
+    objectives: Sequence[str] = VOO_SPEED_OBJECTIVES,
+    n: int = 5000,
+    dim: int = 20,
+    repeats: int = 500,
+    seeds: Sequence[int] = (0,),
+    *,
+    omega: float = 0.001,
+    sampler: str = "centered_uniform",
+) -> None:
+    """``voot-bench measure voo-speed``: print VOO's CPU time per ask + tell after ``n``
+    evaluations (:func:`measure_voo_cost`), a row per objective and seed as each is
+    measured."""
     print(
-        f"VOO ask + tell after n = {args.n} evaluations, d = {args.dim}, mean of"
-        f" {args.repeats} evaluations (CPU time; omega = {args.omega}, {args.sampler})"
+        f"VOO ask + tell after n = {n} evaluations, d = {dim}, mean of"
+        f" {repeats} evaluations (CPU time; omega = {omega}, {sampler})"
     )
     print("| objective | seed | us per ask + tell | best improved (of the timed) |")
     print("| --- | ---: | ---: | ---: |")
-    for objective in args.objectives:
-        for seed in range(args.seed, args.seed + args.seeds):
-            try:
-                seconds, improved = measure_voo_cost(
-                    objective,
-                    args.n,
-                    args.dim,
-                    args.repeats,
-                    seed,
-                    omega=args.omega,
-                    sampler=args.sampler,
-                )
-            except ValueError as exc:
-                parser.error(str(exc))
+    for objective in objectives:
+        for seed in seeds:
+            seconds, improved = measure_voo_cost(
+                objective, n, dim, repeats, seed, omega=omega, sampler=sampler
+            )
             print(f"| {objective} | {seed} | {1e6 * seconds:.1f} | {improved} |", flush=True)
-    return 0

@@ -1,4 +1,4 @@
-"""``voot-bench speedup``: the tree search on the robot domains, old code against new.
+"""``voot-bench measure speedup``: the tree search on the robot domains, old code against new.
 
 The command materialises the code of a baseline commit (``git archive`` from the current
 checkout, into a temporary folder), lays both it and the current checkout out as
@@ -195,15 +195,17 @@ def repo_root(start: Path | None = None) -> Path:
     else:
         raise SpeedupError(
             f"{here} is not inside a checkout of voot (voot/, envs/, models/, benchmarks/):"
-            " voot-bench speedup must run from a git checkout (a pip-installed wheel has no"
+            " voot-bench measure speedup must run from a git checkout (a pip-installed wheel has no"
             " git history to take the baseline from)"
         )
     if shutil.which("git") is None:
-        raise SpeedupError("git is not installed; voot-bench speedup needs it for the baseline")
+        raise SpeedupError(
+            "git is not installed; voot-bench measure speedup needs it for the baseline"
+        )
     probe = _git(root, "rev-parse", "--show-toplevel", check=False)
     if probe.returncode != 0:
         raise SpeedupError(
-            f"{root} is not a git checkout: voot-bench speedup must run from a git checkout"
+            f"{root} is not a git checkout: voot-bench measure speedup must run from a git checkout"
             " (a pip-installed wheel has no git history to take the baseline from)"
         )
     return root
@@ -490,7 +492,7 @@ def split_line(run: RunResult) -> str:
 
 
 def format_report(baseline: str, current: str, comparisons: Sequence[Comparison]) -> str:
-    """The table ``voot-bench speedup`` prints."""
+    """The table ``voot-bench measure speedup`` prints."""
     lines = [
         f"baseline: {baseline[:10]}   current: {current}",
         "CPU seconds of the search (process time), same machine, one after the other"

@@ -1,4 +1,4 @@
-"""The store's size and speed benchmark (``voot-bench store-speed``): synthetic plan-like
+"""The store's size and speed benchmark (``voot-bench measure store-speed``): synthetic plan-like
 rows (:func:`synthetic_plan_row`) and the time to write, load and verify a store of them,
 full or compact (:func:`time_load`; measured numbers in docs/stores.md)."""
 

@@ -109,7 +109,7 @@ class PaperSetup:
     planners: tuple[str, ...]
 
 
-#: Planners of the paper's chain experiments (issue 3: the six samplers).
+#: Planners of the paper's chain experiments (the six samplers).
 CHAIN_PLANNERS: tuple[str, ...] = ("voot", "doot", "rand_doot", "pw_uct", "voronoi_pw", "hoot")
 #: Planners of the paper's Figure 4.
 ROBOT_PLANNERS: tuple[str, ...] = ("voot", "rand_doot", "pw_uct", "voronoi_pw", "doot")
@@ -125,7 +125,7 @@ PAPER_SETUPS: Mapping[str, PaperSetup] = {
 }
 #: Budget of any other environment.
 DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)
-#: The default problems of ``voot-bench plan`` (issue 3): the Shekel chain in 10-D and 20-D.
+#: The default problems of ``voot-bench plan``: the Shekel chain in 10-D and 20-D.
 DEFAULT_PROBLEMS: tuple[str, ...] = ("shekel_chain",)
 DEFAULT_CHAIN_DIMS: tuple[int, ...] = (10, 20)
 

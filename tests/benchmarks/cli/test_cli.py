@@ -1,8 +1,10 @@
-"""Tests of voot.bench.cli.main: the dispatcher (every subcommand registered, in the order of
-the help), errors as one line and exit status 2, the seed options, the console script."""
+"""Tests of voot.bench.cli.main: the dispatcher (every command and measurement registered with
+a parser and its --help, in the order of the help; the measurements' old spellings; the
+version), errors as one line and exit status 2, the seed options, the console script."""
 
 from __future__ import annotations
 
+import argparse
 import re
 import shutil
 import subprocess
@@ -11,46 +13,94 @@ from pathlib import Path
 
 import pytest
 
-from voot.bench.cli.main import SUBCOMMANDS, build_parser, main
-from voot.bench.cli.passthrough import PASSTHROUGH
+import voot
+from voot.bench.cli.main import COMMANDS, MEASUREMENTS, build_parser, main, measurement_names
 
-#: The subcommands in the order ``voot-bench --help`` lists them.
-COMMANDS = [
-    "demo",
-    "figure5",
-    "demo-voo",
-    "bbfo",
-    "plan",
-    "ablation",
-    "compact",
-    "shipped",
-    "store-speed",
-    "select",
-    "plot",
-    "claims",
-    "speed",
-    "difficulty",
-    "ladder",
-    "mesh-speed",
-    "memory",
-    *PASSTHROUGH,
-    "speedup",
-]
+#: The researcher's commands in the order ``voot-bench --help`` lists them.
+RESEARCH = (
+    "demo record-demo figure5 demo-voo env-figures bbfo plan ablation select plot claims"
+    " difficulty ladder compact shipped measure"
+).split()
+#: The measurements in the order ``voot-bench measure --help`` lists them.
+MEASURE = (
+    "speed voo-speed overhead record-overhead memory root-parallel store-speed env-speed"
+    " mesh-speed speedup"
+).split()
 
 
-def test_every_subcommand_is_registered_once_in_the_order_of_the_help(
-    capsys: pytest.CaptureFixture[str],
+def listed_commands(argv: list[str], capsys: pytest.CaptureFixture[str]) -> list[str]:
+    """The commands the help of ``voot-bench ARGV --help`` lists."""
+    with pytest.raises(SystemExit) as done:
+        main([*argv, "--help"])
+    assert done.value.code == 0
+    return re.findall(r"^    (\S+)", capsys.readouterr().out, flags=re.MULTILINE)
+
+
+def test_the_commands_in_the_order_of_the_help(capsys: pytest.CaptureFixture[str]) -> None:
+    assert len(COMMANDS) == 7 and len(MEASUREMENTS) == 3
+    assert listed_commands([], capsys) == RESEARCH
+    assert listed_commands(["measure"], capsys) == MEASURE
+    assert measurement_names(build_parser()) == MEASURE
+
+
+@pytest.mark.parametrize(
+    "argv", [[name] for name in RESEARCH if name != "measure"] + [["measure", m] for m in MEASURE]
+)
+def test_every_command_has_a_parser_with_help_and_a_handler(
+    argv: list[str], capsys: pytest.CaptureFixture[str]
 ) -> None:
     parser = build_parser()
-    (sub,) = [a for a in parser._actions if a.dest == "command"]
-    assert list(sub.choices) == COMMANDS  # type: ignore[union-attr]
-    assert len(SUBCOMMANDS) == 11
+    for word in argv:
+        (sub,) = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        parser = sub.choices[word]
+    assert callable(parser.get_default("func"))
     with pytest.raises(SystemExit) as done:
-        main(["--help"])
-    listed = re.findall(r"^    (\S+)", capsys.readouterr().out, flags=re.MULTILINE)
-    assert done.value.code == 0 and listed == COMMANDS
-    for name, p in sub.choices.items():  # type: ignore[union-attr]
-        assert callable(p.get_default("func")), name
+        main([*argv, "--help"])
+    out = capsys.readouterr().out
+    assert done.value.code == 0 and out.startswith(f"usage: voot-bench {' '.join(argv)} ")
+    assert not re.search(r"\bissues? \d", out)  # no internal issue numbers in the help
+
+
+@pytest.mark.parametrize("name", MEASURE)
+def test_a_measurement_without_measure_is_the_same_command(
+    name: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit):
+        main([name, "--help"])
+    old = capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        main(["measure", name, "--help"])
+    assert old == capsys.readouterr().out and name not in listed_commands([], capsys)
+
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def test_every_command_the_docs_name_is_registered() -> None:
+    """Every ``voot-bench NAME`` in the code of the README and docs/ (a code span or a line
+    of a code block) is a command, and every ``voot-bench measure NAME`` a measurement (the
+    docs spell measurements with ``measure``)."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    named = [
+        (page.name, m.group(1), m.group(2))
+        for page in pages
+        for m in re.finditer(
+            r"(?:^|`)(?:nice )?voot-bench ([a-z][\w-]*)(?: ([a-z][\w-]*))?",
+            page.read_text(),
+            flags=re.MULTILINE,
+        )
+    ]
+    assert len(named) > 50
+    for page, first, second in named:
+        assert first in RESEARCH, (page, first)
+        if first == "measure":
+            assert second is None or second in MEASURE, (page, second)
+
+
+def test_version(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as done:
+        main(["--version"])
+    assert done.value.code == 0 and capsys.readouterr().out == f"voot-bench {voot.__version__}\n"
 
 
 def test_an_interrupt_is_exit_status_130(
@@ -62,7 +112,7 @@ def test_an_interrupt_is_exit_status_130(
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cli_measure, "cmd_speed", interrupted)
-    assert main(["speed"]) == 130
+    assert main(["measure", "speed"]) == 130
     assert "interrupted; finished runs are saved" in capsys.readouterr().err
 
 
@@ -81,7 +131,7 @@ def test_an_interrupt_is_exit_status_130(
         (["plot", "x", "--log"], "--log needs --regret"),
         (["bbfo", "--instance", "-1"], "instance must be an integer >= 0"),
         (["demo-voo", "--function", "nope"], "unknown function 'nope'"),
-        (["speed", "--cases", "voo"], "--cases: 'voo' is not METHOD:N"),
+        (["measure", "speed", "--cases", "voo"], "--cases: 'voo' is not METHOD:N"),
     ],
 )
 def test_clear_errors(argv: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
@@ -107,13 +157,21 @@ def test_cli_errors_that_were_tracebacks_or_silence(
     assert re.search(message, capsys.readouterr().err)
 
 
-@pytest.mark.parametrize("command", ["demo-voo", "speed", "demo", "figure5", "difficulty"])
+SEEDED = ["demo-voo", "demo", "record-demo", "figure5", "difficulty", "ladder"]
+
+
+@pytest.mark.parametrize(
+    "command",
+    [[c] for c in SEEDED]
+    + [["measure", m] for m in ("speed", "voo-speed", "overhead", "record-overhead", "memory")]
+    + [["measure", "env-speed"]],
+)
 @pytest.mark.parametrize("seed", ["-1", "1.5", "x"])
 def test_every_seed_option_is_checked_by_the_parser(
-    command: str, seed: str, capsys: pytest.CaptureFixture[str]
+    command: list[str], seed: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
     with pytest.raises(SystemExit) as exit_info:
-        main([command, "--seed", seed])
+        main([*command, "--seed", seed])
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
     assert f"argument --seed: must be an integer >= 0, got '{seed}'" in err
@@ -145,5 +203,5 @@ def test_console_script_help() -> None:
     assert SCRIPT is not None
     done = subprocess.run([SCRIPT, "--help"], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0
-    for command in ("demo", "demo-voo", "bbfo", "plan", "plot", "speed", "select"):
+    for command in ("demo", "demo-voo", "bbfo", "plan", "plot", "measure", "select"):
         assert command in done.stdout

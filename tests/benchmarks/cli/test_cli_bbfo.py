@@ -10,22 +10,10 @@ import pytest
 from voot.bench.cli.main import main
 from voot.bench.store.result_store import ResultStore
 
-TINY = [
-    "--functions",
-    "rastrigin,shekel",
-    "--dims",
-    "3",
-    "--methods",
-    "voo",
-    "random",
-    "--seeds",
-    "2",
-    "--budget",
-    "12",
-    "--workers",
-    "1",
-    "--no-progress",
-]
+TINY = (
+    "--functions rastrigin,shekel --dims 3 --methods voo random --seeds 2 --budget 12"
+    " --workers 1 --no-progress"
+).split()
 
 
 def test_bbfo_select_plot_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,17 +1,15 @@
-"""Tests of voot.bench.cli.measure: ``voot-bench speed`` and its cases, ``ladder`` (``difficulty``:
-tests/benchmarks/protocol/test_difficulty.py)."""
+"""Tests of voot.bench.cli.measure: ``voot-bench measure speed`` and its cases, ``memory``
+(``voo-speed``, ``overhead``, ``record-overhead`` and ``root-parallel``: with their
+measurements in tests/benchmarks/measure; ``store-speed``: test_cli_store.py)."""
 
 from __future__ import annotations
-
-import sys
-import types
-from pathlib import Path
 
 import pytest
 
 from voot.bench.cli.common import CLIError
 from voot.bench.cli.main import main
 from voot.bench.cli.measure import SPEED_CASES, parse_cases
+from voot.bench.measure import speed
 
 
 def test_speed_table(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
@@ -23,16 +21,14 @@ def test_speed_table(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixt
             raise RuntimeError("too slow today")
         return 0.002
 
-    fake = types.ModuleType("voot.bench.measure.speed")
-    fake.measure_ask_cost = measure_ask_cost  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "voot.bench.measure.speed", fake)
-    assert main(["speed", "--repeats", "2"]) == 1  # one case failed
+    monkeypatch.setattr(speed, "measure_ask_cost", measure_ask_cost)
+    assert main(["measure", "speed", "--repeats", "2"]) == 1  # one case failed
     out = capsys.readouterr().out
     assert calls[0] == ("voo", 1000, 20, 2, 0) and ("voo", 5000, 20, 2, 0) in calls
     assert {c[0] for c in calls} == {"voo", "cmaes", "gp_ucb"}
     assert "| voo | 1000 | 2.000 |" in out
     assert "| gp_ucb | 100 | error: RuntimeError: too slow today |" in out
-    assert main(["speed", "--cases", "voo:10", "--dim", "3"]) == 0
+    assert main(["measure", "speed", "--cases", "voo:10", "--dim", "3"]) == 0
     assert calls[-1] == ("voo", 10, 3, 5, 0)
 
 
@@ -49,15 +45,16 @@ def test_parse_cases() -> None:
         parse_cases(["nope:3"])
 
 
-def test_ladder_prints_and_writes_the_tables(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    out = tmp_path / "ladder.md"
-    argv = ["ladder", "--env", "kitchen_v2", "--levels", "easy", "--layouts", "0:1"]
-    assert main([*argv, "--samples", "5", "--rollouts", "1", "--markdown", str(out)]) == 0
-    text = out.read_text()
-    assert "Difficulty ladder of voot/KitchenClearing-v2: layouts 0;" in text
-    assert text.strip() in capsys.readouterr().out
-    assert main([*argv, "--samples", "0"]) == 2
-    assert "--samples must be >= 1" in capsys.readouterr().err
-    assert main([*argv, "--layouts", "x"]) == 2
+def test_memory_prints_a_table_per_planner(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["measure", "memory", "--problem", "shekel_chain", "--planners", "voot,pw_uct"]
+    assert main([*argv, "--simulations", "20", "--checkpoints", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "voot on shekel_chain, seed 0:" in out and "pw_uct on shekel_chain, seed 0:" in out
+    assert out.count("| 20 |") == 2 and out.count("| 10 |") == 2
+    assert out.count("(1 = linear in the tree)") == 2
+
+
+@pytest.mark.parametrize("flag", ["--simulations", "--checkpoints"])
+def test_memory_refuses_zero_counts(flag: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["measure", "memory", flag, "0"]) == 2
+    assert "must be >= 1" in capsys.readouterr().err

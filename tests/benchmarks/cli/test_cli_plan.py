@@ -8,28 +8,10 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from cli_fixtures import PLAN_TINY
 
 from voot.bench.cli.main import main
 from voot.bench.store.result_store import ResultStore
-
-PLAN_TINY = [
-    "--problems",
-    "shekel_chain",
-    "--dims",
-    "3",
-    "--planners",
-    "voot",
-    "pw_uct",
-    "--seeds",
-    "2",
-    "--simulations",
-    "12",
-    "--grid",
-    "default",
-    "--workers",
-    "1",
-    "--no-progress",
-]
 
 
 def test_plan_plot_select_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -183,19 +165,9 @@ def test_a_resumed_sweep_says_how_many_runs_are_stored(
     assert "2 runs, 10 simulations; 1 already in the store" in capsys.readouterr().err
 
 
-TUNE_TINY = [
-    "--problems",
-    "shekel_chain",
-    "--dims",
-    "3",
-    "--planners",
-    "voot",
-    "--simulations",
-    "8",
-    "--workers",
-    "1",
-    "--no-progress",
-]
+TUNE_TINY = (
+    "--problems shekel_chain --dims 3 --planners voot --simulations 8 --workers 1 --no-progress"
+).split()
 
 
 def test_plan_with_tuning_seeds_end_to_end(
@@ -280,18 +252,10 @@ def test_plan_tuning_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert "no finished plan runs" in capsys.readouterr().err
 
 
-LAYOUT_TINY = [
-    "--problems",
-    "voot-test/LayoutChain-v0",
-    "--planners",
-    "voot",
-    "pw_uct",
-    "--simulations",
-    "6",
-    "--workers",
-    "1",
-    "--no-progress",
-]
+LAYOUT_TINY = (
+    "--problems voot-test/LayoutChain-v0 --planners voot pw_uct --simulations 6 --workers 1"
+    " --no-progress"
+).split()
 
 
 def _unique_rows(out: Path) -> list[dict]:

@@ -6,27 +6,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from cli_fixtures import PLAN_TINY
 
 from voot.bench.cli.main import main
-
-PLAN_TINY = [
-    "--problems",
-    "shekel_chain",
-    "--dims",
-    "3",
-    "--planners",
-    "voot",
-    "pw_uct",
-    "--seeds",
-    "2",
-    "--simulations",
-    "12",
-    "--grid",
-    "default",
-    "--workers",
-    "1",
-    "--no-progress",
-]
 
 
 def test_plot_options_of_the_other_kind(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,4 +1,5 @@
-"""Tests of ``voot-bench compact`` and ``store-speed`` (``shipped``: tests/benchmarks/store/test_shipped.py)."""
+"""Tests of ``voot-bench compact`` and ``voot-bench measure store-speed`` (``shipped``:
+tests/benchmarks/store/test_shipped.py)."""
 
 from __future__ import annotations
 
@@ -46,7 +47,7 @@ def test_store_speed_prints_both_layouts(
     from voot.bench.store import index as store_index
 
     monkeypatch.setattr(store_index, "RACY_NS", 0)
-    assert main(["store-speed", "--rows", "2", "--length", "300", "--repeats", "1"]) == 0
+    assert main(["measure", "store-speed", "--rows", "2", "--length", "300", "--repeats", "1"]) == 0
     out = capsys.readouterr().out
     assert "| full |" in out and "| compact |" in out
-    assert main(["store-speed", "--rows", "0"]) == 2
+    assert main(["measure", "store-speed", "--rows", "0"]) == 2

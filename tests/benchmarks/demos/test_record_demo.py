@@ -11,15 +11,16 @@ pytest.importorskip("rerun")
 def test_demo_command_writes_recordings_and_figure(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
     pytest.importorskip("rerun")
     pytest.importorskip("matplotlib")
-    from voot.bench.demos.record_demo import main
+    from voot.bench.cli.main import main
     from voot.record.reader import read_recording
 
-    assert main(["--out", str(tmp_path), "--simulations", "120", "--no-video"]) == 0
+    argv = ["record-demo", "--no-video", "--out"]
+    assert main([*argv, str(tmp_path), "--simulations", "120"]) == 0
     for planner in ("voot", "pw_uct"):
         rec = read_recording(tmp_path / f"demo_{planner}.rrd")
         assert rec.entity("search/best_return").rows == {"search": 120}
     assert (tmp_path / "demo_figure5.png").stat().st_size > 5000
     assert "figure ->" in capsys.readouterr().out
     # Too short a search to reach a place node: said, not raised.
-    assert main(["--out", str(tmp_path / "short"), "--simulations", "3", "--no-video"]) == 0
+    assert main([*argv, str(tmp_path / "short"), "--simulations", "3"]) == 0
     assert "no figure" in capsys.readouterr().out

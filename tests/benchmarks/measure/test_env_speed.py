@@ -1,4 +1,5 @@
-"""The environments' speed benchmark command (voot.bench.measure.env_speed, voot-bench env-speed) runs; no timing assertions."""
+"""The environments' speed benchmark command (voot.bench.measure.env_speed, ``voot-bench
+measure env-speed``) runs; no timing assertions."""
 
 from __future__ import annotations
 
@@ -6,11 +7,11 @@ import re
 
 import pytest
 
-from voot.bench.measure import env_speed as speed
+from voot.bench.cli.main import main
 
 
 def test_run_and_report(capsys: pytest.CaptureFixture[str]) -> None:
-    speed.main(["--n", "4"])
+    assert main(["measure", "env-speed", "--n", "4"]) == 0
     out = capsys.readouterr().out
     assert "kitchen pick (6-D)" in out and "conveyor place x3 (9-D)" in out
     assert "snapshot restore" in out
@@ -18,6 +19,6 @@ def test_run_and_report(capsys: pytest.CaptureFixture[str]) -> None:
     assert re.search(r"first box: \d+\)", out)
 
 
-def test_bad_arguments() -> None:
-    with pytest.raises(SystemExit):
-        speed.main(["--n", "0"])
+def test_bad_arguments(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["measure", "env-speed", "--n", "0"]) == 2
+    assert "--n must be >= 1" in capsys.readouterr().err

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from voot.bench.measure.overhead import measure, measure_overhead, tree_main
-from voot.bench.measure.overhead import record_main as main
+from voot.bench.cli.main import main
+from voot.bench.measure.overhead import measure, measure_overhead
 
 
 def test_measure_counts_visits() -> None:
@@ -16,8 +16,9 @@ def test_measure_counts_visits() -> None:
     assert float(row["us_per_visit"]) > 0
 
 
-def test_tree_main_prints_a_table(capsys: pytest.CaptureFixture[str]) -> None:
-    assert tree_main(["--planners", "voot", "hoot", "--dims", "2", "--simulations", "20"]) == 0
+def test_the_overhead_command_prints_a_table(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["measure", "overhead", "--planners", "voot", "hoot", "--dims", "2"]
+    assert main([*argv, "--simulations", "20"]) == 0
     out = capsys.readouterr().out
     assert "us/visit" in out and "voot" in out and "hoot" in out
 
@@ -39,6 +40,7 @@ def test_shekel_chain_setup_and_errors(capsys: pytest.CaptureFixture[str]) -> No
         measure_overhead("nope")
     with pytest.raises(ValueError, match="repeats"):
         measure_overhead("null", repeats=0)
-    assert main(["--problems", "null", "--dim", "2", "--simulations", "10", "--repeats", "1"]) == 0
+    argv = ["measure", "record-overhead", "--problems", "null", "--dim", "2"]
+    assert main([*argv, "--simulations", "10", "--repeats", "1"]) == 0
     out = capsys.readouterr().out
     assert "ratio" in out and out.strip().splitlines()[-1].startswith("null")

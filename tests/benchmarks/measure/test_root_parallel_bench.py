@@ -13,7 +13,6 @@ import pytest
 from voot.bench.measure.root_parallel import (
     configurations,
     format_table,
-    main,
     make_setup,
     measure,
     plot,
@@ -61,13 +60,16 @@ def test_a_tiny_measurement_gives_a_table_and_a_figure(tmp_path: Path) -> None:
 
 
 def test_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    args = ["--dim", "3", "--budget", "4", "--trees", "1", "2", "--workers", "1"]
+    from voot.bench.cli.main import main
+
+    args = ["measure", "root-parallel", "--dim", "3", "--budget", "4", "--trees", "1", "2"]
+    args += ["--workers", "1"]
     assert main([*args, "--seeds", "1", "--figure", "", "--json", str(tmp_path / "t.json")]) == 0
     out = capsys.readouterr().out
     assert "| shekel3 | 2 | 1 | 2 |" in out and "load averages" in out
     assert (tmp_path / "t.json").read_text().startswith("{")
-    with pytest.raises(SystemExit):
-        main([*args, "--seeds", "0"])
+    assert main([*args, "--seeds", "0"]) == 2
+    assert "--seeds takes one count >= 1" in capsys.readouterr().err
 
 
 def test_importing_the_benchmark_loads_neither_matplotlib_nor_mujoco() -> None:

@@ -1,5 +1,8 @@
-"""``voot-bench mesh-speed``: the cost of the trimesh object meshes, per shape and per
-scene, cold and cached, and of a grasp lookup (:mod:`voot.bench.measure.mesh_speed`)."""
+"""What the environments cost, under ``voot-bench measure``: ``env-speed`` (step costs and
+sparsity of the robot domains, :mod:`voot.bench.measure.env_speed`) and ``mesh-speed``
+(the trimesh object meshes, per shape and per scene, cold and cached, and a grasp lookup,
+:mod:`voot.bench.measure.mesh_speed`). Both need the ``envs`` extra, imported only when
+the command runs."""
 
 from __future__ import annotations
 
@@ -8,9 +11,20 @@ import time
 from typing import TYPE_CHECKING
 
 from voot.bench.cli.common import CLIError
+from voot.bench.cli.types import seed_argument
 
 if TYPE_CHECKING:
     from voot.bench.cli.common import Subparsers
+
+
+def cmd_env_speed(args: argparse.Namespace) -> int:
+    """Print the step costs and sparsity of the robot domains (:mod:`voot.bench.measure.env_speed`)."""
+    from voot.bench.measure.env_speed import report, run
+
+    if args.n < 1:
+        raise CLIError("--n must be >= 1")
+    print(report(run(args.n, args.seed)))
+    return 0
 
 
 def cmd_mesh_speed(args: argparse.Namespace) -> int:
@@ -64,7 +78,16 @@ def cmd_mesh_speed(args: argparse.Namespace) -> int:
 
 
 def register(sub: Subparsers) -> None:
-    """Add ``mesh-speed``."""
+    """Add ``env-speed`` and ``mesh-speed``."""
+    p = sub.add_parser(
+        "env-speed",
+        help="step costs and sparsity of the robot domains",
+        description="Speed benchmark of the two environments (a command, not a test).",
+    )
+    p.add_argument("--n", type=int, default=1000, help="random actions per operator (default 1000)")
+    p.add_argument("--seed", type=seed_argument, default=0, help="seed of the random actions")
+    p.set_defaults(func=cmd_env_speed)
+
     p = sub.add_parser(
         "mesh-speed",
         help="cost of the trimesh object meshes: per shape and per scene, cold and cached,"
