@@ -25,15 +25,15 @@ if TYPE_CHECKING:
 
 
 def cmd_bbfo(args: argparse.Namespace) -> int:
+    from voot.bench.sweep.backends import make_backend
     from voot.bench.sweep.bbfo import (
         PAPER_DIMS,
         PAPER_FUNCTIONS,
         PAPER_METHODS,
         build_specs,
-        make_backend,
-        run_sweep,
         summarize_specs,
     )
+    from voot.bench.sweep.engine import run_sweep
 
     seeds = parse_range(args.seeds, "--seeds")
     specs = build_specs(
@@ -72,7 +72,8 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
 
 def register(sub: Subparsers) -> None:
     """Add ``bbfo``."""
-    from voot.bench.sweep.bbfo import BACKENDS, GRIDS
+    from voot.bench.sweep.backends import BACKENDS
+    from voot.bench.sweep.engine import GRIDS
 
     p = sub.add_parser("bbfo", help="run the black-box sweep of Figure 3 (resumable)")
     p.add_argument(

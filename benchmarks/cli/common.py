@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 from voot.bench.store.format import StoreError
 from voot.bench.store.result_store import ResultStore
-from voot.bench.sweep.bbfo import Spec
+from voot.bench.sweep.engine import Spec
 
 if TYPE_CHECKING:
     #: The object ``add_subparsers`` returns; every ``register`` adds its parsers to it.
@@ -137,7 +137,7 @@ def open_store(path: str, compact: Any = None) -> ResultStore:
 
 def stored_note(path: str, specs: Sequence[Spec]) -> str:
     """``"; N already in the store"`` if the store at ``path`` exists and holds some."""
-    from voot.bench.sweep.bbfo import pending_specs
+    from voot.bench.sweep.engine import pending_specs
 
     store = existing_store(path)
     if store is None:

@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 from voot.bench.protocol.select import method_order
 from voot.bench.report.bbfo_plot import curve_style
 from voot.bench.report.plan_runs import PlannerRuns, mean_ci, ordered_cells
-from voot.bench.sweep.plan import PLAN_PLANNERS
+from voot.bench.sweep.planners import PLAN_PLANNERS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

@@ -19,24 +19,20 @@ import pytest
 from voot.bench.store.format import Row, StoreError
 from voot.bench.store.lock import LOCK_NAME, StoreBusyError, WriterLock
 from voot.bench.store.result_store import ResultStore
+from voot.bench.sweep.backends import ProcessBackend, SerialBackend, make_backend
 from voot.bench.sweep.bbfo import (
     PAPER_METHODS,
-    ProcessBackend,
     RunSpec,
-    SerialBackend,
     build_specs,
     describe_config,
-    execution_order,
     initial_point,
     instance_of,
-    make_backend,
     method_grid,
     paper_budget,
-    pending_specs,
     run_spec,
-    run_sweep,
     summarize_specs,
 )
+from voot.bench.sweep.engine import execution_order, pending_specs, run_sweep
 from voot.functions import get_function
 from voot.optim.voo import VOOConfig
 
@@ -424,7 +420,7 @@ def test_shifted_instance_keeps_the_initial_point_and_defeats_the_centre() -> No
 def test_runs_execute_with_one_blas_thread() -> None:
     from threadpoolctl import threadpool_info
 
-    from voot.bench.sweep.bbfo import one_blas_thread
+    from voot.bench.sweep.engine import one_blas_thread
 
     @one_blas_thread
     def threads(_: object) -> list[int]:
@@ -451,7 +447,7 @@ def test_fixed_parameters_join_every_setting_and_are_checked() -> None:
 
 # ----- the registry of spec kinds -------------------------------------------------------------
 def test_run_any_dispatches_on_the_registered_kinds() -> None:
-    from voot.bench.sweep import bbfo as sweep
+    from voot.bench.sweep import engine as sweep
 
     assert sweep.RUNNERS["bbfo"] is run_spec
     spec = RunSpec("rastrigin", 3, "random", (), 5, 0)
@@ -469,7 +465,8 @@ def test_sweep_does_not_import_the_plan_sweep() -> None:
 def test_duplicate_specs_run_once(tmp_path: Path) -> None:
     """The same run listed twice (e.g. overlapping grids) is run and stored once."""
     from voot.bench.store.result_store import ResultStore
-    from voot.bench.sweep.bbfo import build_specs, run_sweep
+    from voot.bench.sweep.bbfo import build_specs
+    from voot.bench.sweep.engine import run_sweep
 
     specs = build_specs(["shekel"], [3], ["voo"], range(2), budget=10, grid="default")
     doubled = [*specs, *specs[::-1]]
