@@ -1,7 +1,7 @@
 r"""The three x axes of the planning curves: simulations, simulator calls, CPU seconds.
 
 A planner that is ahead per simulation can be behind per unit of work, so every curve
-of the full protocol is drawn three times (issue 14):
+of the full protocol is drawn three times:
 
 ``simulations``
     the paper's axis: the best return after the k-th simulation (``best_so_far[k-1]``).

@@ -113,7 +113,7 @@ class Claim:
             raise ValueError(f"claim {self.claim!r}: no planners given")
 
 
-#: The paper's claims about Figure 4 (issue 14). Thresholds: "almost every obstacle"
+#: The paper's claims about Figure 4. Thresholds: "almost every obstacle"
 #: = at most 1 obstacle left on average; "about 4" = above 3.5; "15 objects" = above
 #: 14.5 boxes; "12-13" = below 13.5; "1-2 obstacles" = below 2.5; "at most 8" = below 8.5.
 PAPER_CLAIMS: tuple[Claim, ...] = (

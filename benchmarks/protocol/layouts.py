@@ -1,4 +1,4 @@
-r"""Layout seeds: generated scenes as a sweep axis, and the held-out test set (issue 24).
+r"""Layout seeds: generated scenes as a sweep axis, and the held-out test set.
 
 A generated task family (``voot/KitchenClearing-v2``, ``voot/ConveyorPacking-v2``) builds
 its scene from the gymnasium keyword ``layout_seed``: one id, many layouts. A planner
@@ -27,7 +27,7 @@ construction. ``voot-bench plan --heldout`` runs the protocol (:mod:`voot.bench.
 
 Tuning on a held-out layout would be tuning on the test set: :func:`check_protocol`
 refuses overlapping layouts, naming them (and, when both phases use the same layouts,
-overlapping seeds, the seed protocol of issue 14).
+overlapping seeds).
 
 **Intervals.** Runs on one layout share it: they are not independent draws of the
 family. The unit of the intervals is therefore the layout (:func:`layout_means`): a

@@ -2,7 +2,7 @@
 
 The paper picked every planner's hyperparameters by best mean final value on the very
 seeds it reported, which flatters every planner by the luck of its selection. The full
-protocol (issue 14) selects instead on **tuning seeds** (e.g. 1000-1004) disjoint from
+protocol selects instead on **tuning seeds** (e.g. 1000-1004) disjoint from
 the **evaluation seeds** (e.g. 0-19) and reports only the evaluation seeds:
 
 1. every setting of every planner's grid runs on the tuning seeds;

@@ -109,6 +109,9 @@ class SpecBase:
     config_fields: ClassVar[tuple[str, ...]]
     mapping_fields: ClassVar[tuple[str, ...]] = ("params",)
     optional_fields: ClassVar[tuple[str, ...]] = ()
+    #: The hyperparameters set by the grid, sorted ``(name, value)`` pairs (a field of
+    #: every spec).
+    params: tuple[tuple[str, Any], ...]
 
     @property
     def params_dict(self) -> dict[str, Any]:
