@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 from layout_fixtures import LAYOUT_ENV_ID
+from store_fixtures import Interrupting
 
 from voot.bench.protocol import problems as P
 from voot.bench.store.format import Row
@@ -173,21 +174,6 @@ def test_same_spec_same_row_across_processes() -> None:
     rows = list(ProcessBackend(workers=2).map_unordered(run_plan_spec, specs))
     there = {r["run_id"]: strip_timings(r) for r in rows}
     assert there == here  # bit-identical curves, plans and counters
-
-
-class Interrupting:
-    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
-
-    name = "interrupting"
-
-    def __init__(self, after: int) -> None:
-        self.after = after
-
-    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
-        for i, item in enumerate(items):
-            if i == self.after:
-                raise KeyboardInterrupt
-            yield fn(item)
 
 
 def test_interrupted_plan_sweep_resumes(tmp_path: Path) -> None:

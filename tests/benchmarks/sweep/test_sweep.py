@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from store_fixtures import Interrupting
 
 from voot.bench.store.format import Row, StoreError
 from voot.bench.store.lock import LOCK_NAME, StoreBusyError, WriterLock
@@ -165,21 +166,6 @@ def test_execution_order_is_seed_major_and_deterministic() -> None:
     assert sorted(map(id, order)) == sorted(map(id, specs))
     assert [s.seed for s in order] == sorted(s.seed for s in specs)
     assert order == execution_order(specs)
-
-
-class Interrupting:
-    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
-
-    name = "interrupting"
-
-    def __init__(self, after: int) -> None:
-        self.after = after
-
-    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
-        for i, item in enumerate(items):
-            if i == self.after:
-                raise KeyboardInterrupt
-            yield fn(item)
 
 
 def test_interrupted_sweep_resumes_without_redoing_or_losing(tmp_path: Path) -> None:
