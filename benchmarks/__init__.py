@@ -3,8 +3,11 @@
 * :mod:`voot.bench.store.result_store`: the result store (one atomic JSON row per finished run), with
   :mod:`voot.bench.store.format` (rows), :mod:`voot.bench.store.index` (atomic writes,
   the index) and :mod:`voot.bench.measure.store_speed` (its benchmark);
-* :mod:`voot.bench.sweep.bbfo`: the black-box sweep (Figure 3), the sweep loop and backends;
-* :mod:`voot.bench.protocol.problems`, :mod:`voot.bench.sweep.plan`: the planning sweep (Figure 4);
+* :mod:`voot.bench.sweep.engine`: the resumable sweep loop, on the backends of
+  :mod:`voot.bench.sweep.backends`; :mod:`voot.bench.sweep.bbfo`: the black-box sweep (Figure 3);
+* :mod:`voot.bench.protocol.problems`, :mod:`voot.bench.sweep.planners`,
+  :mod:`voot.bench.sweep.plan`: the planning sweep (Figure 4), its runs in
+  :mod:`voot.bench.sweep.search` and :mod:`voot.bench.sweep.rl`;
 * :mod:`voot.bench.sweep.ray_backend`: sweeps on a Ray cluster;
 * :mod:`voot.bench.protocol.select`: the paper's hyperparameter selection (best mean final value);
 * :mod:`voot.bench.protocol.tuning`, :mod:`voot.bench.protocol.layouts`: tuning apart from evaluation, on

@@ -75,7 +75,7 @@ def test_v1_fingerprints_of_every_planner(hashes: object) -> None:
 def test_every_rl_planner_is_pinned_and_the_tolerance_catches_a_real_change(
     hashes: object,
 ) -> None:
-    from voot.bench.sweep.rl import RL_PLANNERS
+    from voot.bench.sweep.planners import RL_PLANNERS
 
     assert set(hashes.V1_RL_PLANNERS) == set(RL_PLANNERS)  # type: ignore[attr-defined]
     changes = hashes.v1_rl_changes  # type: ignore[attr-defined]

@@ -35,8 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from voot.bench.sweep.plan import PLAN_PLANNERS
-from voot.bench.sweep.rl import RL_PLANNERS
+from voot.bench.sweep.planners import PLAN_PLANNERS, RL_PLANNERS
 
 TIMING_KEYS = {
     "wall_time",
@@ -345,7 +344,8 @@ def _demo() -> dict[str, str]:
 def _sweeps() -> dict[str, str]:
     """Whole sweeps through the store (bbfo and plan), rows hashed without timings."""
     from voot.bench.store.result_store import ResultStore
-    from voot.bench.sweep.bbfo import build_specs, run_sweep
+    from voot.bench.sweep.bbfo import build_specs
+    from voot.bench.sweep.engine import run_sweep
     from voot.bench.sweep.plan import build_plan_specs
 
     out = {}

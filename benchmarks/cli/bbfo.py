@@ -17,6 +17,7 @@ if TYPE_CHECKING:
 def cmd_bbfo(args: argparse.Namespace) -> int:
     """Run (or, with ``--dry-run``, list) the black-box sweep of :mod:`voot.bench.sweep.bbfo`."""
     from voot.bench.sweep import bbfo as B
+    from voot.bench.sweep.backends import make_backend
 
     seeds = C.parse_range(args.seeds, "--seeds")
     specs = B.build_specs(
@@ -43,14 +44,15 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
         print(B.summarize_specs(specs))
         return 0
     store = C.open_store(args.out)
-    backend = B.make_backend(args.backend, args.workers)
+    backend = make_backend(args.backend, args.workers)
     print(f"results: {store.path}", file=sys.stderr)
     return 1 if C.run_specs(args, specs, store, backend).failed else 0
 
 
 def register(sub: Subparsers) -> None:
     """Add ``bbfo``."""
-    from voot.bench.sweep.bbfo import BACKENDS, GRIDS
+    from voot.bench.sweep.backends import BACKENDS
+    from voot.bench.sweep.engine import GRIDS
 
     p = sub.add_parser("bbfo", help="run the black-box sweep of Figure 3 (resumable)")
     p.add_argument(

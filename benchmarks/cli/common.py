@@ -22,11 +22,11 @@ from typing import TYPE_CHECKING, Any
 
 from voot.bench.store.format import StoreError
 from voot.bench.store.result_store import ResultStore
-from voot.bench.sweep.bbfo import Spec
+from voot.bench.sweep.engine import Spec
 
 if TYPE_CHECKING:
     from voot.bench.sweep.backends import Backend
-    from voot.bench.sweep.bbfo import SweepSummary
+    from voot.bench.sweep.engine import SweepSummary
 
     #: The object ``add_subparsers`` returns; every ``register`` adds its parsers to it.
     Subparsers = argparse._SubParsersAction[argparse.ArgumentParser]
@@ -144,7 +144,7 @@ def open_store(path: str, compact: Any = None) -> ResultStore:
 
 def stored_note(path: str, specs: Sequence[Spec]) -> str:
     """``"; N already in the store"`` if the store at ``path`` exists and holds some."""
-    from voot.bench.sweep.bbfo import pending_specs
+    from voot.bench.sweep.engine import pending_specs
 
     store = existing_store(path)
     if store is None:
@@ -253,7 +253,7 @@ def run_specs(
 ) -> SweepSummary:
     """Run ``specs`` into ``store`` on ``backend`` as the options of :func:`add_run_options`
     say (SIGTERM as Ctrl-C); print the sweep's summary and return it."""
-    from voot.bench.sweep.bbfo import run_sweep
+    from voot.bench.sweep.engine import run_sweep
 
     with sigterm_as_interrupt():
         summary = run_sweep(

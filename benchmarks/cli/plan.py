@@ -19,7 +19,7 @@ from voot.bench.store.result_store import ResultStore
 
 if TYPE_CHECKING:
     from voot.bench.cli.common import Subparsers
-    from voot.bench.sweep.bbfo import SweepSummary
+    from voot.bench.sweep.engine import SweepSummary
     from voot.bench.sweep.plan import PlanSpec
 
 
@@ -103,7 +103,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
 def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
     """Print the estimated CPU-hours of ``specs`` (:mod:`voot.bench.protocol.estimate`); run nothing."""
     from voot.bench.protocol.estimate import estimate, format_estimate
-    from voot.bench.sweep.bbfo import pending_specs
+    from voot.bench.sweep.engine import pending_specs
 
     store = C.existing_store(args.out)
     rows = store.load(status="ok") if store is not None else []
@@ -119,7 +119,8 @@ def _run_plan_specs(
     args: argparse.Namespace, specs: Sequence[PlanSpec], store: ResultStore
 ) -> SweepSummary:
     """Run ``specs`` into ``store`` with the backend of ``args``; the sweep's summary."""
-    from voot.bench.sweep.bbfo import make_backend
+    from voot.bench.sweep.backends import make_backend
+    from voot.bench.sweep.engine import run_sweep
 
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
@@ -284,7 +285,7 @@ def parse_layout_seeds(values: Sequence[str], what: str) -> list[int]:
 
 
 def _pending(specs: Sequence[PlanSpec], store: ResultStore) -> list[PlanSpec]:
-    from voot.bench.sweep.bbfo import pending_specs
+    from voot.bench.sweep.engine import pending_specs
 
     return list(pending_specs(specs, store))
 
@@ -305,7 +306,7 @@ def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
 
 def register(sub: Subparsers) -> None:
     """Add ``plan``."""
-    from voot.bench.sweep.bbfo import GRIDS
+    from voot.bench.sweep.engine import GRIDS
 
     p = sub.add_parser(
         "plan",

@@ -94,7 +94,7 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
     from voot.bench.report.plan_plot import plot_plan_figure
     from voot.bench.report.plan_runs import plan_data
     from voot.bench.report.plan_tables import plan_report
-    from voot.bench.sweep.plan import normalize_plan_planner as normalize_planner
+    from voot.bench.sweep.planners import normalize_plan_planner as normalize_planner
 
     if args.regret or args.log or args.functions or args.dims or args.methods:
         raise CLIError(

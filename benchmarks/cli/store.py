@@ -31,6 +31,17 @@ def cmd_compact(args: argparse.Namespace) -> int:
     return 0
 
 
+def _plot_command(argv: list[str]) -> int:
+    """``voot-bench plot ...`` by the ``plot`` subcommand alone (the whole command line,
+    :mod:`voot.bench.cli.main`, imports this module)."""
+    from voot.bench.cli import report as cli_report
+
+    parser = argparse.ArgumentParser(prog="voot-bench")
+    cli_report.register(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    return int(args.func(args))
+
+
 def cmd_shipped(args: argparse.Namespace) -> int:
     """Check the committed stores against their manifest and redraw their figures
     (:mod:`voot.bench.store.shipped`); with ``--write``, rewrite the manifest."""
@@ -56,7 +67,7 @@ def cmd_shipped(args: argparse.Namespace) -> int:
         got = shipped.check_store(root, path.name)
         line = f"{path.name}: {got['rows']} rows, checksums and manifest ok"
         if out is not None:
-            files = shipped.redraw(path, out / path.name)
+            files = shipped.redraw(path, out / path.name, _plot_command)
             line += f"; redrawn: {', '.join(f.name for f in files)}"
         print(line, flush=True)
     return 0

@@ -124,7 +124,8 @@ def measure_search_memory(
         ValueError: bad counts, or a planner without a tree (the message says which).
     """
     from voot.bench.protocol import problems as P
-    from voot.bench.sweep.plan import build_plan_specs, search_seed
+    from voot.bench.sweep.plan import build_plan_specs
+    from voot.bench.sweep.search import search_seed
     from voot.tree.mcts import MCTS, MCTSConfig
 
     V.integer(simulations, "simulations", 1)

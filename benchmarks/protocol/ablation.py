@@ -46,7 +46,8 @@ from types import MappingProxyType
 from typing import Any
 
 from voot.bench.protocol import problems as P
-from voot.bench.sweep.plan import UCB_CS, PlanSpec, planner_grid
+from voot.bench.sweep.plan import PlanSpec
+from voot.bench.sweep.planners import UCB_CS, planner_grid
 
 #: The planners the ablation compares.
 ABLATION_PLANNERS: tuple[str, ...] = ("voot", "pw_uct")

@@ -156,24 +156,35 @@ def node_stats(
     rng = np.random.default_rng(seed)
     out = []
     for name, snapshot in _nodes(problem):
-        problem.restore(snapshot)
-        bounds = problem.action_bounds()
-        passed = executed = 0
-        failures: Counter[str] = Counter()
-        for _ in range(samples):
-            a = bounds.sample(rng)
-            problem.restore(snapshot)
-            if not problem.is_feasible(a):
-                continue
-            passed += 1
-            res = problem.step(a)
-            if res.feasible:
-                executed += 1
-            else:
-                failures[short_reason(StepInfo.of(res.info).reason)] += 1
-        problem.restore(snapshot)
+        passed, executed, failures = uniform_draws(problem, snapshot, samples, rng)
         out.append(NodeStats(env_id, name, samples, passed, executed, dict(failures)))
     return out
+
+
+def uniform_draws(
+    problem: Any, snapshot: Any, samples: int, rng: np.random.Generator
+) -> tuple[int, int, Counter[str]]:
+    """Draw ``samples`` uniform actions at the node ``snapshot`` of ``problem`` (an
+    :class:`~voot.envs.core.problem.EnvProblem`), each from that node: how many pass the
+    pre-check, how many of those execute, and the execution failures by
+    :func:`short_reason`. The problem is left at ``snapshot``."""
+    problem.restore(snapshot)
+    bounds = problem.action_bounds()
+    passed = executed = 0
+    failures: Counter[str] = Counter()
+    for _ in range(samples):
+        a = bounds.sample(rng)
+        problem.restore(snapshot)
+        if not problem.is_feasible(a):
+            continue
+        passed += 1
+        res = problem.step(a)
+        if res.feasible:
+            executed += 1
+        else:
+            failures[short_reason(StepInfo.of(res.info).reason)] += 1
+    problem.restore(snapshot)
+    return passed, executed, failures
 
 
 def rollout_stats(

@@ -27,7 +27,7 @@ construction. ``voot-bench plan --heldout`` runs the protocol (:mod:`voot.bench.
 
 Tuning on a held-out layout would be tuning on the test set: :func:`check_protocol`
 refuses overlapping layouts, naming them (and, when both phases use the same layouts,
-overlapping seeds, as :mod:`voot.bench.protocol.tuning` does).
+overlapping seeds).
 
 **Intervals.** Runs on one layout share it: they are not independent draws of the
 family. The unit of the intervals is therefore the layout (:func:`layout_means`): a
@@ -88,6 +88,21 @@ def check_layouts_disjoint(training: Iterable[int], heldout: Iterable[int]) -> N
         )
 
 
+def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int]) -> None:
+    """Raise ValueError if a seed is both a tuning and an evaluation seed, or none is tuned."""
+    tuning = set(int(s) for s in tuning_seeds)
+    if not tuning:
+        raise ValueError("no tuning seeds given")
+    both = tuning & set(int(s) for s in evaluation_seeds)
+    if both:
+        raise ValueError(
+            f"seeds {layouts_text(both)} are both tuning and evaluation seeds: that would be"
+            " tuning on the test set (a setting selected on a seed flatters its result"
+            " there); tuning seeds must be disjoint from the evaluation seeds (e.g."
+            " --tuning-seeds 1000:1005 --seeds 0:20)"
+        )
+
+
 @dataclass(frozen=True)
 class LayoutSet:
     """A family's fixed split of layout seeds: ``training`` (tuning) and ``heldout``
@@ -140,13 +155,11 @@ def check_protocol(
     With tuning layouts, they must be disjoint from the evaluation layouts (the seeds
     may then repeat: a seed on another layout is another problem). Without (both phases
     on the same layouts, or none), the seeds must be disjoint
-    (:func:`voot.bench.protocol.tuning.check_disjoint`).
+    (:func:`check_disjoint`).
 
     Raises:
         ValueError: naming the overlapping layout seeds or seeds.
     """
-    from voot.bench.protocol.tuning import check_disjoint
-
     if tuning_layouts is None:
         check_disjoint(tuning_seeds, evaluation_seeds)
         return

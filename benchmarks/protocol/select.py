@@ -32,8 +32,9 @@ import numpy as np
 from voot.bench.protocol.layouts import family_kwargs
 from voot.bench.protocol.problems import ALIASES, CHAINS, problem_label
 from voot.bench.store.format import Row
-from voot.bench.sweep.bbfo import PAPER_FUNCTIONS, PAPER_METHODS, instance_of, params_key
-from voot.bench.sweep.plan import PLAN_PLANNERS
+from voot.bench.sweep.bbfo import PAPER_FUNCTIONS, PAPER_METHODS, instance_of
+from voot.bench.sweep.engine import params_key
+from voot.bench.sweep.planners import PLAN_PLANNERS
 
 #: (function, dim, budget, method); for plan rows (problem, dim or 0, simulations, planner)
 CellKey = tuple[str, int, int, str]

@@ -29,7 +29,8 @@ from typing import Any
 import numpy as np
 
 from voot.bench.protocol.difficulty import short_reason
-from voot.bench.sweep.plan import PlanSpec, search_seed
+from voot.bench.sweep.plan import PlanSpec
+from voot.bench.sweep.search import search_seed
 from voot.tree.mcts import MCTS
 from voot.tree.node import Node
 from voot.tree.step_info import StepInfo

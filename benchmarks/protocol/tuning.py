@@ -41,7 +41,7 @@ from voot.bench.protocol.select import (
     selected_rows,
 )
 from voot.bench.store.format import Row
-from voot.bench.sweep.bbfo import params_key
+from voot.bench.sweep.engine import params_key
 
 
 def seeds_text(seeds: Iterable[int]) -> str:
@@ -70,21 +70,6 @@ def tuning_sentence(tuning_seeds: Iterable[int], tuning_layouts: Iterable[int] =
     """:func:`tuning_note` as a sentence (capital letter, full stop)."""
     note = tuning_note(tuning_seeds, tuning_layouts)
     return note[:1].upper() + note[1:] + "."
-
-
-def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int]) -> None:
-    """Raise ValueError if a seed is both a tuning and an evaluation seed, or none is tuned."""
-    tuning = set(int(s) for s in tuning_seeds)
-    if not tuning:
-        raise ValueError("no tuning seeds given")
-    both = tuning & set(int(s) for s in evaluation_seeds)
-    if both:
-        raise ValueError(
-            f"seeds {seeds_text(both)} are both tuning and evaluation seeds: that would be"
-            " tuning on the test set (a setting selected on a seed flatters its result"
-            " there); tuning seeds must be disjoint from the evaluation seeds (e.g."
-            " --tuning-seeds 1000:1005 --seeds 0:20)"
-        )
 
 
 def check_tuning_split(rows: Iterable[Row], tuning_seeds: Iterable[int]) -> None:
@@ -204,7 +189,7 @@ def select_on_tuning(
 def _has_no_grid(row: Row) -> bool:
     """Whether the row's planner has a single setting in every grid (nothing to tune)."""
     from voot.bench.protocol.problems import family
-    from voot.bench.sweep.plan import planner_grid
+    from voot.bench.sweep.planners import planner_grid
 
     cfg = row["config"]
     try:

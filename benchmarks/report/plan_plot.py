@@ -38,8 +38,8 @@ from numpy.typing import NDArray
 
 from voot.bench.protocol.select import method_order
 from voot.bench.report.bbfo_plot import curve_style
-from voot.bench.report.plan_runs import PlannerRuns, mean_ci, ordered_cells
-from voot.bench.sweep.plan import PLAN_PLANNERS
+from voot.bench.report.plan_runs import PlannerRuns, mean_ci, ordered_cells, table_order
+from voot.bench.sweep.planners import PLAN_PLANNERS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -147,6 +147,7 @@ def plot_plan_figure(
         )
     cells = ordered_cells(data)
     planners = method_order(d.planner for d in data)
+    ordered = table_order(data)
     colors = planner_colors(planners)
     ncols = 2 if any(d.objects_left is not None for d in data) else 1
     fig = Figure(figsize=(5.0 * ncols, 3.3 * len(cells)), layout="constrained")
@@ -154,7 +155,7 @@ def plot_plan_figure(
     axes = fig.subplots(len(cells), ncols, squeeze=False)
     handles: dict[str, Line2D] = {}
     for i, cell in enumerate(cells):
-        runs = sorted((d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner))
+        runs = [d for d in ordered if d.cell == cell]
         panels = [("returns", "best return")]
         if ncols == 2:
             panels.append(("objects_left", "objects left"))

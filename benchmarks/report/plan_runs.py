@@ -37,6 +37,7 @@ from voot.bench.protocol.select import (
     cell_of,
     function_order,
     largest_budget,
+    method_order,
     select_hyperparameters,
     selected_rows,
 )
@@ -354,3 +355,11 @@ def ordered_cells(data: Sequence[PlannerRuns]) -> list[tuple[str, int]]:
     problems = function_order(d.problem for d in data)
     cells = sorted({d.cell for d in data}, key=lambda c: (problems.index(c[0]), c[1]))
     return cells
+
+
+def table_order(data: Sequence[PlannerRuns]) -> list[PlannerRuns]:
+    """``data`` in display order: by cell (:func:`ordered_cells`), then by planner
+    (:func:`voot.bench.protocol.select.method_order`)."""
+    cells = ordered_cells(data)
+    planners = method_order(d.planner for d in data)
+    return sorted(data, key=lambda d: (cells.index(d.cell), planners.index(d.planner)))

@@ -33,6 +33,7 @@ from voot.bench.report.plan_runs import (
     median_ci,
     ordered_cells,
     settled_reach,
+    table_order,
 )
 
 #: Simulation counts of the tables, kept where below the budget (the budget is added).
@@ -146,35 +147,30 @@ def completion_table(data: Sequence[PlannerRuns]) -> str:
         " | seeds cleared at the end | median simulations, for good | 95% CI |",
         "| --- | --- | ---: | ---: | --- | ---: | ---: | --- |",
     ]
-    planners = method_order(d.planner for d in data)
-    for cell in ordered_cells(data):
-        for d in sorted(
-            (d for d in data if d.cell == cell and d.objects_left is not None),
-            key=lambda d: planners.index(d.planner),
-        ):
-            assert d.objects_left is not None
-            first = first_reach(d.objects_left)
-            med, lo, hi = median_ci(d.unit_medians(first))
-            got = int(np.isfinite(first).sum())
-            settled = settled_reach(d.objects_left)
-            s_med, s_lo, s_hi = median_ci(d.unit_medians(settled))
-            s_got = int(np.isfinite(settled).sum())
+    for d in (d for d in table_order(data) if d.objects_left is not None):
+        assert d.objects_left is not None
+        first = first_reach(d.objects_left)
+        med, lo, hi = median_ci(d.unit_medians(first))
+        got = int(np.isfinite(first).sum())
+        settled = settled_reach(d.objects_left)
+        s_med, s_lo, s_hi = median_ci(d.unit_medians(settled))
+        s_got = int(np.isfinite(settled).sum())
 
-            def show(v: float, budget: int = d.simulations) -> str:
-                if math.isnan(v):
-                    return "—"
-                return f"> {budget}" if math.isinf(v) else f"{v:.0f}"
+        def show(v: float, budget: int = d.simulations) -> str:
+            if math.isnan(v):
+                return "—"
+            return f"> {budget}" if math.isinf(v) else f"{v:.0f}"
 
-            def interval(lo: float, hi: float) -> str:
-                return "—" if math.isnan(lo) else f"[{show(lo)}, {show(hi)}]"
+        def interval(lo: float, hi: float) -> str:
+            return "—" if math.isnan(lo) else f"[{show(lo)}, {show(hi)}]"
 
-            def share(k: int, n: int = d.n_seeds) -> str:
-                return f"{k}/{n} ({100.0 * k / n:.0f}%)"
+        def share(k: int, n: int = d.n_seeds) -> str:
+            return f"{k}/{n} ({100.0 * k / n:.0f}%)"
 
-            lines.append(
-                f"| {d.title} | {d.planner} | {share(got)} | {show(med)} | {interval(lo, hi)}"
-                f" | {share(s_got)} | {show(s_med)} | {interval(s_lo, s_hi)} |"
-            )
+        lines.append(
+            f"| {d.title} | {d.planner} | {share(got)} | {show(med)} | {interval(lo, hi)}"
+            f" | {share(s_got)} | {show(s_med)} | {interval(s_lo, s_hi)} |"
+        )
     if len(lines) == 2:
         return ""
     layouts = (
@@ -197,26 +193,22 @@ def cost_table(data: Sequence[PlannerRuns]) -> str:
         "| problem | planner | ms per simulation | simulator calls per simulation | search seconds |",
         "| --- | --- | ---: | ---: | ---: |",
     ]
-    planners = method_order(d.planner for d in data)
-    for cell in ordered_cells(data):
-        for d in sorted(
-            (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
-        ):
-            total = np.array([np.nanmax(e) if np.any(~np.isnan(e)) else np.nan for e in d.elapsed])
-            ms = (
-                1000.0 * float(np.nanmean(total)) / d.simulations
-                if np.any(~np.isnan(total))
-                else math.nan
-            )
-            calls = (
-                float(np.nanmean(d.simulator_calls)) / d.simulations
-                if np.any(~np.isnan(d.simulator_calls))
-                else math.nan
-            )
-            seconds = float(np.nanmean(total)) if np.any(~np.isnan(total)) else math.nan
-            lines.append(
-                f"| {d.title} | {d.planner} | {_fmt(ms, 3)} | {_fmt(calls, 3)} | {_fmt(seconds, 3)} |"
-            )
+    for d in table_order(data):
+        total = np.array([np.nanmax(e) if np.any(~np.isnan(e)) else np.nan for e in d.elapsed])
+        ms = (
+            1000.0 * float(np.nanmean(total)) / d.simulations
+            if np.any(~np.isnan(total))
+            else math.nan
+        )
+        calls = (
+            float(np.nanmean(d.simulator_calls)) / d.simulations
+            if np.any(~np.isnan(d.simulator_calls))
+            else math.nan
+        )
+        seconds = float(np.nanmean(total)) if np.any(~np.isnan(total)) else math.nan
+        lines.append(
+            f"| {d.title} | {d.planner} | {_fmt(ms, 3)} | {_fmt(calls, 3)} | {_fmt(seconds, 3)} |"
+        )
     return "\n".join(lines)
 
 
@@ -232,23 +224,19 @@ def calls_table(data: Sequence[PlannerRuns]) -> str:
         " | pre-checks per step | seeds with calls_curve |",
         "| --- | --- | ---: | ---: | ---: | ---: |",
     ]
-    planners = method_order(d.planner for d in data)
-    for cell in ordered_cells(data):
-        for d in sorted(
-            (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
-        ):
-            if d.n_steps is None or d.n_feasibility_checks is None:
-                continue
-            steps = float(np.nanmean(d.n_steps)) if np.any(np.isfinite(d.n_steps)) else math.nan
-            checks = d.n_feasibility_checks
-            pre = float(np.nanmean(checks)) if np.any(np.isfinite(checks)) else math.nan
-            with_curve = 0 if d.calls is None else int(has_axis_data(d.calls).sum())
-            ratio = pre / steps if steps > 0 else math.nan
-            lines.append(
-                f"| {d.title} | {d.planner} | {_fmt(steps / d.simulations, 3)}"
-                f" | {_fmt(pre / d.simulations, 3)} | {_fmt(ratio, 3)}"
-                f" | {with_curve}/{d.n_seeds} |"
-            )
+    for d in table_order(data):
+        if d.n_steps is None or d.n_feasibility_checks is None:
+            continue
+        steps = float(np.nanmean(d.n_steps)) if np.any(np.isfinite(d.n_steps)) else math.nan
+        checks = d.n_feasibility_checks
+        pre = float(np.nanmean(checks)) if np.any(np.isfinite(checks)) else math.nan
+        with_curve = 0 if d.calls is None else int(has_axis_data(d.calls).sum())
+        ratio = pre / steps if steps > 0 else math.nan
+        lines.append(
+            f"| {d.title} | {d.planner} | {_fmt(steps / d.simulations, 3)}"
+            f" | {_fmt(pre / d.simulations, 3)} | {_fmt(ratio, 3)}"
+            f" | {with_curve}/{d.n_seeds} |"
+        )
     if len(lines) == 2:
         return ""
     return "\n".join(lines) + (
@@ -321,12 +309,8 @@ def plan_settings_table(data: Sequence[PlannerRuns]) -> str:
     """The selected hyperparameters per problem and planner (and the seeds they were
     selected on when those were tuning seeds)."""
     lines = ["| problem | planner | selected setting | seeds |", "| --- | --- | --- | ---: |"]
-    planners = method_order(d.planner for d in data)
-    for cell in ordered_cells(data):
-        for d in sorted(
-            (d for d in data if d.cell == cell), key=lambda d: planners.index(d.planner)
-        ):
-            lines.append(f"| {d.title} | {d.planner} | {d.label} | {_runs_text(d)} |")
+    for d in table_order(data):
+        lines.append(f"| {d.title} | {d.planner} | {d.label} | {_runs_text(d)} |")
     notes = _tuning_notes(data)
     if notes:
         lines.append("")

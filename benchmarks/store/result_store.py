@@ -35,7 +35,7 @@ Guarantees:
   every write and every ``utime``, so restoring the mtime does not hide a change; a
   changed file is parsed and its checksum verified. :meth:`ResultStore.verify` re-hashes
   every file regardless (a full audit).
-* **One writer.** A sweep (:func:`~voot.bench.sweep.bbfo.run_sweep`, so ``plan``, ``bbfo``,
+* **One writer.** A sweep (:func:`~voot.bench.sweep.engine.run_sweep`, so ``plan``, ``bbfo``,
   ``ablation``) and :func:`compact_store` write inside :meth:`ResultStore.writing`, which
   holds the store's writer lock (:mod:`voot.bench.store.lock`): a second writer of the
   same directory is refused with the holder's pid, host, start time and command, and a

@@ -23,7 +23,7 @@ import hashlib
 import json
 import shutil
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -171,17 +171,21 @@ def store_copy(path: str | Path) -> Iterator[Path]:
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def redraw(path: str | Path, out_dir: str | Path) -> list[Path]:
+def redraw(
+    path: str | Path, out_dir: str | Path, command: Callable[[list[str]], int]
+) -> list[Path]:
     """``voot-bench plot`` of the store at ``path`` into ``out_dir``: the figures against
     simulations and (plan stores) seconds, and the tables as markdown. Returns the files.
+
+    ``command`` runs one ``voot-bench`` command line (its words after ``voot-bench``) and
+    returns its exit status, e.g. :func:`voot.bench.cli.main.main`: the store layer
+    does not import the command line, which imports it.
 
     Raises:
         StoreError: the store cannot be read; RuntimeError: ``voot-bench plot`` failed.
     """
     import contextlib
     import io
-
-    from voot.bench.cli.main import main
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -199,7 +203,10 @@ def redraw(path: str | Path, out_dir: str | Path) -> list[Path]:
                 contextlib.redirect_stdout(io.StringIO()),
                 contextlib.redirect_stderr(io.StringIO()) as err,
             ):
-                status = main(args)
+                try:
+                    status = command(args)
+                except Exception as exc:
+                    raise RuntimeError(f"voot-bench {' '.join(args)} failed: {exc}") from exc
             if status != 0:
                 raise RuntimeError(f"voot-bench {' '.join(args)} failed: {err.getvalue().strip()}")
             files += [Path(a) for a in args if a.startswith(str(stem))]

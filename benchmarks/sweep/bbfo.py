@@ -2,11 +2,9 @@
 
 A sweep is a grid of functions x dimensions x optimisers (each with its hyperparameter
 grid) x seeds. :func:`build_specs` turns the grid into :class:`RunSpec` values,
-:func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store.result_store`), and
-:func:`run_sweep` runs every spec not yet in a :class:`~voot.bench.store.result_store.ResultStore` on a
-backend (:mod:`voot.bench.sweep.backends`: in-process, a local process pool, or Ray), writing
-each row as soon as its run finishes. The
-planning sweep (:mod:`voot.bench.sweep.plan`) runs through the same :func:`run_sweep`.
+:func:`run_spec` runs one and returns its result row (see :mod:`voot.bench.store.result_store`);
+:func:`voot.bench.sweep.engine.run_sweep` runs the specs not yet in a store, as it runs
+the planning sweep's (:mod:`voot.bench.sweep.plan`).
 
 The protocol of one run (``PROTOCOL = 1``):
 
@@ -36,36 +34,26 @@ Same spec -> bit-identical ``best_so_far``, in any process and on any backend.
 
 from __future__ import annotations
 
-import functools
-import hashlib
 import itertools
 import math
-import sys
-import time
-from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
-from typing import Any, ClassVar, Protocol, TypeVar
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, ClassVar
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from voot import validation as V
-from voot.bench.store.format import (  # failed_row, exception_row: re-exported
-    Row,
-    StoreError,
-    exception_row,
-    failed_row,  # noqa: F401 - re-exported (voot.bench.sweep.bbfo.failed_row)
-    make_row,
-    make_run_id,
-)
-from voot.bench.store.lock import describe_holder
-from voot.bench.store.result_store import ResultStore
-from voot.bench.sweep.backends import (  # re-exported: voot.bench.sweep.bbfo.make_backend ...
-    BACKENDS,  # noqa: F401
-    Backend,
-    ProcessBackend,  # noqa: F401
-    SerialBackend,
-    make_backend,  # noqa: F401
+from voot.bench.store.format import Row
+from voot.bench.sweep.engine import (
+    SpecBase,
+    check_grid,
+    int_list,
+    jsonable,
+    name_key,
+    one_blas_thread,
+    params_key,
+    register_runner,
+    timed_row,
 )
 from voot.optim.base import FloatArray
 from voot.optim.registry import make_config, make_optimizer, normalize_method, optimizer_class
@@ -90,8 +78,6 @@ PAPER_METHODS: tuple[str, ...] = (
 )
 #: Seeds per configuration in the paper.
 PAPER_SEEDS = 20
-#: Hyperparameter grids: each method's ``paper_grid()``, or its defaults only.
-GRIDS: tuple[str, ...] = ("paper", "default")
 #: Methods the paper did not run in low dimensions: method -> smallest dimension run.
 #: ("We also omit testing REMBO in problems with 3-dimensional search spaces.")
 MIN_DIM: dict[str, int] = {"rembo": 4}
@@ -105,11 +91,6 @@ def paper_budget(function: str, dim: int) -> int:
     if function == "shekel" and dim >= 20:
         return 5000
     return 1000
-
-
-def name_key(name: str) -> int:
-    """A process-independent 32-bit integer for a name (SHA-256 based)."""
-    return int.from_bytes(hashlib.sha256(name.encode()).digest()[:4], "little")
 
 
 def initial_point(
@@ -134,13 +115,15 @@ def optimizer_seed(seed: int, function: str, dim: int, method: str) -> np.random
 
 
 @dataclass(frozen=True)
-class RunSpec:
+class RunSpec(SpecBase):
     """One black-box optimisation run: ``method`` with ``params`` on ``function`` in ``dim``
     dimensions, ``budget`` evaluations, ``seed``, on test-function ``instance`` (0: the
     paper's function).
 
     ``params`` holds only the hyperparameters set by the grid (sorted ``(name, value)``
-    pairs); the rest are the method's defaults.
+    pairs); the rest are the method's defaults. The row's ``config`` has
+    ``"instance"`` only when nonzero (instance 0 keeps the run ids it had before
+    instances existed).
     """
 
     function: str
@@ -152,32 +135,16 @@ class RunSpec:
     instance: int = 0
 
     kind: ClassVar[str] = "bbfo"
-
-    @property
-    def params_dict(self) -> dict[str, Any]:
-        return dict(self.params)
-
-    def config(self) -> dict[str, Any]:
-        """The row's ``config`` (JSON-serialisable; hashed into the run id).
-
-        ``"instance"`` is there only when nonzero (instance 0 keeps the run ids it had
-        before instances existed)."""
-        config: dict[str, Any] = {
-            "function": self.function,
-            "dim": self.dim,
-            "method": self.method,
-            "params": self.params_dict,
-            "budget": self.budget,
-            "seed": self.seed,
-            "protocol": PROTOCOL,
-        }
-        if self.instance:
-            config["instance"] = self.instance
-        return config
-
-    @property
-    def run_id(self) -> str:
-        return make_run_id(self.kind, self.config())
+    protocol: ClassVar[int] = PROTOCOL
+    config_fields: ClassVar[tuple[str, ...]] = (
+        "function",
+        "dim",
+        "method",
+        "params",
+        "budget",
+        "seed",
+    )
+    optional_fields: ClassVar[tuple[str, ...]] = ("instance",)
 
 
 def method_grid(method: str, grid: str = "paper") -> list[dict[str, Any]]:
@@ -188,8 +155,7 @@ def method_grid(method: str, grid: str = "paper") -> list[dict[str, Any]]:
         ValueError: unknown method or grid, or the method's module cannot be imported
             (not implemented yet); the message lists the valid choices.
     """
-    if grid not in GRIDS:
-        raise ValueError(f"unknown grid {grid!r}; valid grids are: {', '.join(GRIDS)}")
+    check_grid(grid)
     key = normalize_method(method)
     try:
         cls = optimizer_class(key)
@@ -206,13 +172,6 @@ def method_grid(method: str, grid: str = "paper") -> list[dict[str, Any]]:
     names = sorted(axes)
     combos = itertools.product(*(list(axes[n]) for n in names))
     return [dict(zip(names, values, strict=True)) for values in combos]
-
-
-def _check_int_list(values: Iterable[Any], what: str, minimum: int) -> list[int]:
-    out = V.integers(values, what, minimum)
-    if not out:
-        raise ValueError(f"no {what} given")
-    return out
 
 
 def check_functions(functions: Iterable[str]) -> list[str]:
@@ -269,15 +228,15 @@ def build_specs(
     Methods listed in :data:`MIN_DIM` are skipped below their smallest dimension.
     """
     funcs = check_functions(functions)
-    dim_list = _check_int_list(dims, "dims", 1)
-    seed_list = _check_int_list(seeds, "seeds", 0)
+    dim_list = int_list(dims, "dims", 1)
+    seed_list = int_list(seeds, "seeds", 0)
     method_list = [normalize_method(m) for m in methods]
     if not method_list:
         raise ValueError("no methods given")
     if not (V.is_number(budget_scale) and 0 < budget_scale < math.inf):  # type: ignore[operator]
         raise ValueError(f"budget_scale must be > 0 and finite, got {budget_scale!r}")
     if budget is not None:
-        _check_int_list([budget], "budget", 1)
+        int_list([budget], "budget", 1)
     instance = V.integer(instance, "instance", 0, hint="0 = the paper's functions")
     extra = dict(fixed or {})
     grids = {m: method_grid(m, grid) for m in dict.fromkeys(method_list)}
@@ -294,11 +253,11 @@ def build_specs(
     from voot.functions import get_function
 
     for function in dict.fromkeys(funcs):  # e.g. Shekel exists in 3, 10 and 20 dimensions only
-        for dim in dict.fromkeys(dim_list):
+        for dim in dim_list:
             get_function(function, dim, instance)
     specs: list[RunSpec] = []
     for function in dict.fromkeys(funcs):
-        for dim in dict.fromkeys(dim_list):
+        for dim in dim_list:
             n = (
                 budget
                 if budget is not None
@@ -309,290 +268,56 @@ def build_specs(
                     continue
                 for params in grids[method]:
                     items = tuple(sorted(params.items()))
-                    for seed in dict.fromkeys(seed_list):
+                    for seed in seed_list:
                         specs.append(RunSpec(function, dim, method, items, int(n), seed, instance))
     return specs
-
-
-def _jsonable(value: Any) -> Any:
-    if isinstance(value, str | int | float | bool) or value is None:
-        return value
-    if isinstance(value, list | tuple):
-        return [_jsonable(v) for v in value]
-    return repr(value)
-
-
-_Spec = TypeVar("_Spec")
-_Out = TypeVar("_Out")
-
-
-def one_blas_thread(run: Callable[[_Spec], _Out]) -> Callable[[_Spec], _Out]:
-    """Run ``run(spec)`` with one BLAS/OpenMP thread, in whatever process executes it.
-
-    Results of the GP-based optimisers differ in their last bits between BLAS thread
-    counts, so a run is bit-identical across processes and machines only at a fixed
-    count; one thread also keeps parallel runs from oversubscribing the cores.
-    """
-
-    @functools.wraps(run)
-    def wrapper(spec: _Spec) -> _Out:
-        with threadpool_limits(limits=1):
-            return run(spec)
-
-    return wrapper
 
 
 @one_blas_thread
 def run_spec(spec: RunSpec) -> Row:
     """Run one spec and return its row (status ``"failed"`` with the error on exception)."""
+    return timed_row(spec, lambda: _run_fields(spec))
+
+
+def _run_fields(spec: RunSpec) -> dict[str, Any]:
+    """Run ``spec``: its row's fields (``best_so_far``, ``best_x``, ``method_config``)."""
     from voot.functions import get_function
 
-    start = time.perf_counter()
-    best: list[float] = []
-    try:
-        f = get_function(spec.function, spec.dim, spec.instance)
-        bounds = f.bounds
-        x0 = initial_point(spec.function, spec.dim, spec.seed, bounds.lower, bounds.upper)
-        config = make_config(spec.method, **spec.params_dict)
-        opt = make_optimizer(
-            spec.method,
-            bounds,
-            seed=optimizer_seed(spec.seed, spec.function, spec.dim, spec.method),
-            initial_point=x0,
-            config=config,
-        )
-        for _ in range(spec.budget):
-            x = opt.ask()
-            opt.tell(x, float(f(x)))
-        best = np.maximum.accumulate(opt.values).tolist()
-        best_x = opt.best_x
-        return make_row(
-            spec.kind,
-            spec.config(),
-            status="ok",
-            wall_time=time.perf_counter() - start,
-            best_so_far=best,
-            best_x=None if best_x is None else best_x.tolist(),
-            method_config={k: _jsonable(v) for k, v in config.to_dict().items()},
-        )
-    except Exception as exc:
-        return exception_row(spec, exc, start, best)
-
-
-#: The run function of each spec kind (``RunSpec.kind`` -> :func:`run_spec`); modules
-#: defining other kinds add theirs with :func:`register_runner` when imported (e.g.
-#: :mod:`voot.bench.sweep.plan`: ``"plan"`` -> ``run_plan_spec``). Unpickling a spec in a
-#: worker imports its module, so the worker knows its run function too.
-RUNNERS: dict[str, Callable[[Any], Row]] = {}
-
-
-def register_runner(kind: str, run: Callable[[Any], Row]) -> None:
-    """Make :func:`run_any` run specs of ``kind`` with ``run``."""
-    RUNNERS[kind] = run
-
-
-def run_any(spec: Any) -> Row:
-    """Run a spec of any registered kind (:data:`RUNNERS`): :func:`run_spec` for a
-    :class:`RunSpec`, :func:`voot.bench.sweep.plan.run_plan_spec` for a plan spec."""
-    run = RUNNERS.get(getattr(spec, "kind", None))  # type: ignore[arg-type]
-    if run is None:
-        raise TypeError(
-            f"cannot run a {type(spec).__name__}; expected a spec of a registered kind"
-            f" ({', '.join(sorted(RUNNERS))}), e.g. a RunSpec or a PlanSpec"
-        )
-    return run(spec)
-
-
-register_runner(RunSpec.kind, run_spec)
+    f = get_function(spec.function, spec.dim, spec.instance)
+    bounds = f.bounds
+    x0 = initial_point(spec.function, spec.dim, spec.seed, bounds.lower, bounds.upper)
+    config = make_config(spec.method, **spec.params_dict)
+    opt = make_optimizer(
+        spec.method,
+        bounds,
+        seed=optimizer_seed(spec.seed, spec.function, spec.dim, spec.method),
+        initial_point=x0,
+        config=config,
+    )
+    for _ in range(spec.budget):
+        x = opt.ask()
+        opt.tell(x, float(f(x)))
+    best_x = opt.best_x
+    return {
+        "best_so_far": np.maximum.accumulate(opt.values).tolist(),
+        "best_x": None if best_x is None else best_x.tolist(),
+        "method_config": {k: jsonable(v) for k, v in config.to_dict().items()},
+    }
 
 
 def describe_config(config: Mapping[str, Any]) -> str:
-    """A one-line description of a run from its row's ``config`` (any kind)."""
+    """A one-line description of a black-box run from its row's ``config``."""
     params = config.get("params") or {}
-    text = ", ".join(f"{k}={params[k]}" for k in sorted(params)) or "default"
-    if "planner" in config:
-        from voot.bench.protocol.problems import problem_label
-
-        label = problem_label(str(config.get("problem")), config.get("env_kwargs"))
-        if config.get("dim") is not None:
-            label += f"-{config['dim']}D"
-        return f"{config.get('planner')} [{text}] on {label} seed {config.get('seed')}"
     instance = instance_of(config)
     return (
-        f"{config.get('method')} [{text}] on {config.get('function')}-{config.get('dim')}D"
+        f"{config.get('method')} [{params_key(params)}] on"
+        f" {config.get('function')}-{config.get('dim')}D"
         + (f" instance {instance}" if instance else "")
         + f" seed {config.get('seed')}"
     )
 
 
-# ----- the sweep -----------------------------------------------------------------------
-class Spec(Protocol):
-    """What the sweep needs of a run's spec (:class:`RunSpec`, a plan spec)."""
-
-    @property
-    def kind(self) -> str: ...
-
-    @property
-    def seed(self) -> int: ...
-
-    @property
-    def run_id(self) -> str: ...
-
-    def config(self) -> dict[str, Any]: ...
-
-
-S = TypeVar("S", bound=Spec)
-
-
-@dataclass
-class SweepSummary:
-    """What :func:`run_sweep` did."""
-
-    total: int = 0
-    skipped: int = 0
-    ran: int = 0
-    failed: int = 0
-    failed_errors: list[str] = field(default_factory=list)
-
-    def __str__(self) -> str:
-        text = (
-            f"{self.total} runs: {self.skipped} already in the store, {self.ran} ran"
-            f" ({self.failed} failed)"
-        )
-        if self.failed_errors:
-            text += "\nfirst failures:\n  " + "\n  ".join(self.failed_errors[:5])
-        return text
-
-
-def execution_order(specs: Sequence[S]) -> list[S]:
-    """Seed-major order, shuffled (deterministically) within each seed.
-
-    Every block of one seed holds the same mix of cheap and costly runs, so the progress
-    bar's time estimate is fair from the start, and an interrupted sweep leaves complete
-    seeds rather than complete methods.
-    """
-    rng = np.random.default_rng(0)
-    by_seed: dict[int, list[S]] = {}
-    for s in specs:
-        by_seed.setdefault(s.seed, []).append(s)
-    out: list[S] = []
-    for seed in sorted(by_seed):
-        block = by_seed[seed]
-        out.extend(block[i] for i in rng.permutation(len(block)))
-    return out
-
-
-def pending_specs(specs: Sequence[S], store: ResultStore, *, retry_failed: bool = True) -> list[S]:
-    """The specs whose run is not finished in ``store`` (duplicates removed).
-
-    A run with an ``"ok"`` row is finished. With ``retry_failed=False`` a run with a
-    ``"failed"`` row counts as finished too.
-    """
-    rows = store.load(status=None, arrays=True, expand=False)
-    done = {r["run_id"] for r in rows if r["status"] == "ok" or not retry_failed}
-    unique: dict[str, S] = {}
-    for s in specs:
-        unique.setdefault(s.run_id, s)
-    return [s for rid, s in unique.items() if rid not in done]
-
-
-def _progress_bar(total: int, enabled: bool, desc: str) -> Any:
-    if not enabled or total == 0:  # nothing to run: no bar (tqdm would draw it twice)
-        return None
-    try:
-        from tqdm import tqdm
-    except ImportError:  # pragma: no cover - tqdm is in the [bench] extra
-        return None
-    return tqdm(
-        total=total, desc=desc, unit="run", file=sys.stderr, smoothing=0.05, dynamic_ncols=True
-    )
-
-
-def run_sweep(
-    specs: Sequence[S],
-    store: ResultStore,
-    backend: Backend | None = None,
-    *,
-    progress: bool = True,
-    retry_failed: bool = True,
-    run: Callable[[Any], Row] = run_any,
-) -> SweepSummary:
-    """Run every spec not finished in ``store``, writing each row as its run finishes.
-
-    Interrupting (Ctrl-C, an exception, a kill) loses only the runs in flight; calling
-    again with the same specs resumes. The sweep holds the store's writer lock
-    (:meth:`~voot.bench.store.result_store.ResultStore.writing`) from before it reads what is finished
-    until its last row is written: a second sweep on the same store raises
-    :class:`~voot.bench.store.lock.StoreBusyError` naming this one, before running anything.
-    """
-    with store.writing() as lock:
-        if lock.stale:
-            print(
-                f"{store.path}: took over the writer lock of a sweep that did not release it"
-                f" ({describe_holder(lock.stale)}; no longer running)",
-                file=sys.stderr,
-            )
-        return _run_pending(specs, store, backend, progress, retry_failed, run)
-
-
-def _run_pending(
-    specs: Sequence[S],
-    store: ResultStore,
-    backend: Backend | None,
-    progress: bool,
-    retry_failed: bool,
-    run: Callable[[Any], Row],
-) -> SweepSummary:
-    """The body of :func:`run_sweep`, under the store's writer lock."""
-    backend = backend if backend is not None else SerialBackend()
-    unique = {s.run_id for s in specs}
-    todo = execution_order(pending_specs(specs, store, retry_failed=retry_failed))
-    summary = SweepSummary(total=len(unique), skipped=len(unique) - len(todo))
-    bar = _progress_bar(
-        len(todo), progress, f"{specs[0].kind if specs else 'sweep'} ({backend.name})"
-    )
-    rows = backend.map_unordered(run, todo)
-    try:
-        for row in rows:
-            write_row(store, row)
-            summary.ran += 1
-            if row["status"] != "ok":
-                summary.failed += 1
-                summary.failed_errors.append(
-                    f"{describe_config(row['config'])}: {row.get('error')}"
-                )
-            if bar is not None:
-                bar.update(1)
-                if summary.failed:
-                    bar.set_postfix(failed=summary.failed, refresh=False)
-    finally:
-        close = getattr(rows, "close", None)
-        if close is not None:  # a generator backend: cancel what has not started
-            close()
-        if bar is not None:
-            bar.close()
-    return summary
-
-
-def write_row(store: ResultStore, row: Row) -> None:
-    """Write ``row`` into ``store``; a write the file system refuses stops the sweep.
-
-    A full disk (``ENOSPC``), a quota or an I/O error while writing a row is a
-    :class:`~voot.bench.store.format.StoreError` naming the store, the run and the cause
-    (not a traceback, and not a failed row: the run itself did not fail). The store's
-    atomic write leaves no part of that row behind (its temporary file is removed), so
-    the store stays loadable with every row written before; the same command, run again
-    once there is room, redoes that run and those not yet finished, and no other.
-    """
-    try:
-        store.write(row)
-    except OSError as exc:
-        cause = exc.strerror or type(exc).__name__
-        raise StoreError(
-            f"{store.path}: could not write the row of run {row.get('run_id')!r}"
-            f" ({cause}); the sweep stopped. The rows written before are kept; free the"
-            " space (or fix the cause) and run the same command again to resume"
-        ) from exc
+register_runner(RunSpec.kind, run_spec, describe_config)
 
 
 def summarize_specs(specs: Sequence[RunSpec]) -> str:
@@ -607,10 +332,3 @@ def summarize_specs(specs: Sequence[RunSpec]) -> str:
         tag = f" instance {instance}" if instance else ""
         lines.append(f"{function}-{dim}D{tag} budget {budget}: {per}")
     return "\n".join(lines)
-
-
-def params_key(params: Mapping[str, Any]) -> str:
-    """A short stable label of a hyperparameter setting (``"omega=0.001"``; ``"default"``)."""
-    if not params:
-        return "default"
-    return ", ".join(f"{k}={params[k]}" for k in sorted(params))

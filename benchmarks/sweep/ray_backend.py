@@ -1,7 +1,7 @@
 """Run a sweep on Ray: a local Ray instance or an existing cluster (``--backend ray``).
 
 :class:`RayBackend` is a :class:`voot.parallel.Executor` (so a
-:class:`~voot.bench.sweep.bbfo.Backend`): the same runs, the same rows, the same store as the
+:class:`~voot.bench.sweep.backends.Backend`): the same runs, the same rows, the same store as the
 local backends; only where the runs execute changes. Its ``map`` (results in order,
 exceptions raised) serves any function, e.g. the trees of
 :func:`voot.tree.root_parallel.plan_root_parallel` (``executor=RayBackend(...)``).

@@ -28,12 +28,11 @@ tree search and reports the best trajectory found during training. An RL run on
 The RL env is the problem's gymnasium env (a chain name becomes its gymnasium id with
 ``dim``), made fresh for the run and wrapped by :class:`voot.rl.PlanningTask` with the
 run's seed and the reference planner's discount. The algorithm's seed is drawn from the
-run's search seed (:func:`~voot.bench.sweep.plan.search_seed`).
+run's search seed (:func:`~voot.bench.sweep.search.search_seed`).
 """
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -41,63 +40,17 @@ from typing import Any
 import numpy as np
 
 from voot.bench.protocol import problems as P
+from voot.bench.store.format import Row
+from voot.bench.sweep.engine import timed_row
+from voot.bench.sweep.planners import split_params
+from voot.bench.sweep.search import run_search_spec, search_seed
 
-#: The RL planners of ``voot-bench plan`` (their ``planner_grid`` is the one default
-#: setting in both grids: the paper gives no RL hyperparameters to search).
-RL_PLANNERS: tuple[str, ...] = ("ppo", "ddpg")
-#: The run parameter naming the reference search's planner.
-MATCH_PARAM = "match"
-#: The default reference planner: the paper's.
-DEFAULT_MATCH = "voot"
 #: Chain problem names -> their gymnasium ids (the RL env of a chain).
 CHAIN_GYM_IDS: Mapping[str, str] = {
     "shekel_chain": "voot/ShekelChain-v0",
     "griewank_chain": "voot/GriewankChain-v0",
     "rastrigin_chain": "voot/RastriginChain-v0",
 }
-
-
-def is_rl_planner(name: object) -> bool:
-    """Whether ``name`` is an RL planner (``"PPO"``, ``"ddpg"``)."""
-    return isinstance(name, str) and name.strip().lower() in RL_PLANNERS
-
-
-def split_params(planner: str, params: Mapping[str, Any]) -> tuple[str, dict[str, Any]]:
-    """``(reference planner, algorithm options)`` of an RL run's ``params``.
-
-    Raises:
-        ValueError: the reference is unknown, is itself an RL planner, or an option is
-            not a field of the algorithm's config (the message lists the valid ones).
-    """
-    from voot.rl import rl_config
-    from voot.tree.shooting import normalize_any_planner
-
-    options = dict(params)
-    match = normalize_any_planner(str(options.pop(MATCH_PARAM, DEFAULT_MATCH)))
-    if "gamma" in options:
-        raise ValueError(
-            f"{planner}: gamma is the problem's discount (the reference search's); it is not"
-            " a parameter of an RL run"
-        )
-    rl_config(planner, **options)  # unknown options name the valid ones
-    return match, options
-
-
-def rl_run_config(
-    problem: str,
-    dim: int | None,
-    planner: str,
-    params: Mapping[str, Any],
-    env_kwargs: Mapping[str, Any] | None = None,
-) -> Any:
-    """The :class:`~voot.rl.RLConfig` of an RL run: SB3's defaults, the problem's discount
-    (the reference planner's ``gamma`` on this problem), ``params``."""
-    from voot.bench.sweep.plan import run_config
-    from voot.rl import rl_config
-
-    match, options = split_params(planner, params)
-    gamma = float(run_config(problem, dim, match, {}, env_kwargs).gamma)
-    return rl_config(planner, gamma=gamma, **options)
 
 
 def make_rl_env(problem: str, dim: int | None, env_kwargs: Mapping[str, Any]) -> Any:
@@ -147,14 +100,12 @@ def reference_search(spec: Any) -> Reference:
     """Run (or recall) the reference search of the RL run ``spec``."""
     from dataclasses import replace
 
-    from voot.bench.sweep.plan import run_plan_spec
-
     match, _ = split_params(spec.planner, spec.params_dict)
     ref = replace(spec, planner=match, params=(), record=None)
     hit = _REFERENCES.get(ref.run_id)
     if hit is not None:
         return hit
-    row = run_plan_spec(ref)
+    row = run_search_spec(ref)
     if row.get("status") != "ok":
         raise RuntimeError(f"the reference {match} search failed: {row.get('error')}")
     out = Reference(
@@ -179,8 +130,6 @@ def matched_steps(rl_steps: int, simulations: int) -> list[int]:
 
 def algorithm_seed(spec: Any) -> int:
     """The algorithm's seed: a 32-bit integer from the run's search seed."""
-    from voot.bench.sweep.plan import search_seed
-
     return int(search_seed(spec).generate_state(1, dtype=np.uint32)[0])
 
 
@@ -227,22 +176,6 @@ def rl_row_fields(spec: Any) -> dict[str, Any]:
     return fields
 
 
-def run_rl_spec(spec: Any) -> dict[str, Any]:
+def run_rl_spec(spec: Any) -> Row:
     """The row of the RL spec (called by :func:`voot.bench.sweep.plan.run_plan_spec`)."""
-    from voot.bench.store.format import make_row
-    from voot.bench.sweep.bbfo import exception_row
-
-    start = time.perf_counter()
-    try:
-        fields = rl_row_fields(spec)
-        best = fields.pop("best_so_far")
-        return make_row(
-            spec.kind,
-            spec.config(),
-            status="ok",
-            wall_time=time.perf_counter() - start,
-            best_so_far=best,
-            **fields,
-        )
-    except Exception as exc:
-        return exception_row(spec, exc, start, [], problem_label=spec.label)
+    return timed_row(spec, lambda: rl_row_fields(spec), problem_label=spec.label)

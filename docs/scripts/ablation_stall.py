@@ -1,4 +1,4 @@
-"""The diagnosis of VOOT's stall on the kitchen (issue 23): where it commits and why.
+"""The diagnosis of VOOT's stall on the kitchen: where it commits and why.
 
 Re-runs (traced, bit-identical to the stored rows) the evaluation runs of VOOT and PW-UCT
 on KitchenClearing-v1 seeds 0-19 with the settings the protocol selected on the tuning

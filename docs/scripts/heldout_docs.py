@@ -1,4 +1,4 @@
-"""Redraw the held-out protocol's figures and tables from the committed stores (issue 24).
+"""Redraw the held-out protocol's figures and tables from the committed stores.
 
 For each store of :data:`STORES` (``docs/data/heldout-kitchen-v2`` ...), runs ``voot-bench
 plot STORE --heldout`` (settings selected on the training layouts 1000-1019, reported on
@@ -10,29 +10,20 @@ tables between the ``<!-- <name>:tables -->`` markers of ``docs/results-planning
 
 from __future__ import annotations
 
-import contextlib
-import io
-import re
 import tempfile
 from pathlib import Path
 
 from voot.bench.cli.main import main as bench
+from voot.bench.report import docs_pages
 
 #: The committed held-out stores (under docs/data/) the page shows.
 STORES = ("heldout-kitchen-v2", "heldout-conveyor-v2")
 PAGE = Path("docs/results-planning.md")
 
 
-def _block(name: str) -> re.Pattern[str]:
-    return re.compile(rf"(<!-- {name}:tables -->\n)(.*?)(<!-- /{name}:tables -->)", re.S)
-
-
 def marked(text: str, name: str) -> str:
     """The block between the page's ``<!-- NAME:tables -->`` markers."""
-    m = _block(name).search(text)
-    if m is None:
-        raise SystemExit(f"{PAGE} has no <!-- {name}:tables --> markers")
-    return m.group(2)
+    return docs_pages.marked(text, f"{name}:tables")
 
 
 def render(store: str | Path, figures: str | Path) -> str:
@@ -41,10 +32,7 @@ def render(store: str | Path, figures: str | Path) -> str:
         md = Path(tmp) / "heldout.md"
         argv = ["plot", str(store), "--heldout", "--png", str(Path(figures) / "plan.png")]
         argv += ["--axes-dir", str(figures), "--markdown", str(md)]
-        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-            code = bench(argv)
-        if code != 0:
-            raise SystemExit(f"voot-bench {' '.join(argv)} failed ({code})")
+        docs_pages.run_quietly(bench, argv)
         return md.read_text().strip() + "\n"
 
 
@@ -53,9 +41,8 @@ def main() -> None:
     for name in STORES:
         figures = Path("docs/figures") / name
         figures.mkdir(parents=True, exist_ok=True)
-        marked(text, name)
         body = render(Path("docs/data") / name, figures)
-        text = _block(name).sub(lambda m, body=body: m.group(1) + body + m.group(3), text)
+        text = docs_pages.replace_block(text, f"{name}:tables", body)
         print(f"{name}: tables redrawn into {PAGE}; figures in {figures}")
     PAGE.write_text(text)
 

@@ -10,37 +10,16 @@ markers of ``docs/results-planning.md``, so the page always shows what the store
 
 from __future__ import annotations
 
-import contextlib
-import io
-import re
 import tempfile
 from pathlib import Path
 
 from voot.bench.cli.main import main as bench
+from voot.bench.report import docs_pages
 
 STORE = "docs/data/protocol-v1"
 FIGURES = Path("docs/figures/protocol-v1")
 PAGE = Path("docs/results-planning.md")
 TUNING = "1000:1005"
-
-
-def _run(argv: list[str]) -> None:
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        code = bench(argv)
-    if code != 0:
-        raise SystemExit(f"voot-bench {' '.join(argv)} failed ({code})")
-
-
-def _block(name: str) -> re.Pattern[str]:
-    """The ``<!-- protocol-v1:NAME -->`` ... ``<!-- /protocol-v1:NAME -->`` block: (start, body, end)."""
-    return re.compile(rf"(<!-- protocol-v1:{name} -->\n)(.*?)(<!-- /protocol-v1:{name} -->)", re.S)
-
-
-def _replace(text: str, name: str, body: str) -> str:
-    pattern = _block(name)
-    if not pattern.search(text):
-        raise SystemExit(f"{PAGE} has no <!-- protocol-v1:{name} --> markers")
-    return pattern.sub(lambda m: m.group(1) + body + m.group(3), text)
 
 
 def render(store: str | Path = STORE, figures: str | Path = FIGURES) -> dict[str, str]:
@@ -49,8 +28,10 @@ def render(store: str | Path = STORE, figures: str | Path = FIGURES) -> dict[str
     with tempfile.TemporaryDirectory() as tmp:
         tables, claims = Path(tmp) / "tables.md", Path(tmp) / "claims.md"
         plot = ["plot", str(store), "--tuning-seeds", TUNING, "--axes-dir", str(figures)]
-        _run([*plot, "--markdown", str(tables)])
-        _run(["claims", str(store), "--tuning-seeds", TUNING, "--markdown", str(claims)])
+        docs_pages.run_quietly(bench, [*plot, "--markdown", str(tables)])
+        docs_pages.run_quietly(
+            bench, ["claims", str(store), "--tuning-seeds", TUNING, "--markdown", str(claims)]
+        )
         # the page has its own headings and figure captions; keep the tables
         body = tables.read_text().split("### Figures")[0].replace("### ", "#### ")
         return {"tables": body.strip() + "\n", "claims": claims.read_text().strip() + "\n"}
@@ -58,16 +39,13 @@ def render(store: str | Path = STORE, figures: str | Path = FIGURES) -> dict[str
 
 def marked(text: str, name: str) -> str:
     """The block between the ``<!-- protocol-v1:NAME -->`` markers of ``text``."""
-    match = _block(name).search(text)
-    if match is None:
-        raise SystemExit(f"no <!-- protocol-v1:{name} --> markers")
-    return match.group(2)
+    return docs_pages.marked(text, f"protocol-v1:{name}")
 
 
 def main() -> None:
     text = PAGE.read_text()
     for name, body in render().items():
-        text = _replace(text, name, body)
+        text = docs_pages.replace_block(text, f"protocol-v1:{name}", body)
     PAGE.write_text(text)
     print(f"figures in {FIGURES}, tables in {PAGE}")
 

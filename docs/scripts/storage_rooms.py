@@ -173,7 +173,7 @@ def benchmark(layouts: int) -> None:
 
 def difficulty(layouts: int, samples: int) -> None:
     """Uniform actions at the first node per level (see the module docstring)."""
-    from voot.bench.protocol.difficulty import short_reason
+    from voot.bench.protocol.difficulty import uniform_draws
     from voot.envs.conveyor.generated.env import witness_return
     from voot.envs.core.problem import EnvProblem
 
@@ -186,21 +186,10 @@ def difficulty(layouts: int, samples: int) -> None:
             env = _make(seed, level)
             returns.append(witness_return(env, 0.99))  # type: ignore[arg-type]
             problem = EnvProblem(env, seed=0)  # type: ignore[arg-type]  (resets the env)
-            start = problem.snapshot()
             rng = np.random.default_rng(seed)
-            bounds = problem.action_bounds()
-            for _ in range(samples):
-                a = bounds.sample(rng)
-                problem.restore(start)
-                total += 1
-                if not problem.is_feasible(a):
-                    continue
-                passed += 1
-                res = problem.step(a)
-                if res.feasible:
-                    executed += 1
-                else:
-                    failures[short_reason(res.info["reason"])] += 1
+            got = uniform_draws(problem, problem.snapshot(), samples, rng)
+            passed, executed, total = passed + got[0], executed + got[1], total + samples
+            failures += got[2]
         fails = ", ".join(f"{k} {v / total:.1%}" for k, v in failures.most_common())
         exe = f"{executed / passed:.1%}" if passed else "-"
         rows.append(

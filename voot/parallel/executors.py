@@ -1,7 +1,7 @@
 """Executors: where a function runs over many items, in this process or in workers.
 
 One interface (:class:`Executor`) for every parallel job of voot: the runs of a
-benchmark sweep (``voot.bench.sweep.bbfo.run_sweep``) and the trees of a root-parallel search
+benchmark sweep (``voot.bench.sweep.engine.run_sweep``) and the trees of a root-parallel search
 (``voot.tree.root_parallel.plan_root_parallel``). An executor
 
 * ``map(fn, items)``: yields ``fn(item)`` for every item, **in the items' order**;

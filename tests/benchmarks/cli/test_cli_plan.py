@@ -306,7 +306,7 @@ def test_plan_held_out_protocol_resumes(
 
     from voot.bench.cli.main import EXIT_INTERRUPTED
     from voot.bench.protocol import layouts
-    from voot.bench.sweep import bbfo as sweep
+    from voot.bench.sweep import backends as sweep
 
     class Interrupting:
         """A serial backend stopped (like Ctrl-C) after ``after`` rows."""

@@ -14,7 +14,7 @@ from voot.bench.protocol.ablation import (
     variant_grid,
 )
 from voot.bench.protocol.select import cell_of
-from voot.bench.sweep.plan import planner_grid
+from voot.bench.sweep.planners import planner_grid
 
 
 def test_every_switch_is_a_valid_planner_config_on_its_domains() -> None:

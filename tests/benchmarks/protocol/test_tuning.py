@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from voot.bench.protocol.layouts import check_disjoint
 from voot.bench.protocol.tuning import (
-    check_disjoint,
     check_tuning_split,
     seeds_text,
     select_on_tuning,

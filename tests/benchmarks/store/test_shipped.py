@@ -48,7 +48,9 @@ def test_a_committed_store_reads_back_and_redraws(name: str, tmp_path: Path) -> 
     before = sorted(p.name for p in (DATA / name).rglob("*") if p.name != INDEX_NAME)
     got = shipped.check_store(DATA, name)
     assert got["rows"] == len(ResultStore(DATA / name, create=False).row_files()) > 0
-    files = shipped.redraw(DATA / name, tmp_path)
+    from voot.bench.cli.main import main
+
+    files = shipped.redraw(DATA / name, tmp_path, main)
     pngs = [f for f in files if f.suffix == ".png"]
     assert pngs and all(f.stat().st_size > 10_000 for f in pngs)
     tables = [f.read_text() for f in files if f.suffix == ".md"]
@@ -223,7 +225,7 @@ def test_the_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
 def test_the_documented_sweep_resumes_from_the_committed_store_running_nothing(
     name: str, tmp_path: Path
 ) -> None:
-    from voot.bench.sweep.bbfo import run_sweep
+    from voot.bench.sweep.engine import run_sweep
 
     specs = documented_sweeps()[name]
     copy = tmp_path / name

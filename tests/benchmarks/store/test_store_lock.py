@@ -24,7 +24,8 @@ from voot.bench.store.lock import (
     describe_holder,
 )
 from voot.bench.store.result_store import ResultStore, compact_store
-from voot.bench.sweep.bbfo import build_specs, run_sweep
+from voot.bench.sweep.bbfo import build_specs
+from voot.bench.sweep.engine import run_sweep
 
 
 def test_a_second_lock_is_refused_with_the_holder_named(tmp_path: Path) -> None:

@@ -15,7 +15,6 @@ from pathlib import Path
 import pytest
 
 from voot.bench.sweep import backends
-from voot.bench.sweep import bbfo as sweep
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 
 
@@ -33,11 +32,6 @@ def test_backends_are_executors() -> None:
     assert process._pool is None  # a pool per call, shut down when it ends
     assert isinstance(backends.make_backend("serial"), Executor)
     assert backends.BACKENDS == ("process", "serial", "ray")
-
-
-def test_sweep_re_exports_the_backends() -> None:
-    for name in ("Backend", "SerialBackend", "ProcessBackend", "make_backend", "BACKENDS"):
-        assert getattr(sweep, name) is getattr(backends, name)
 
 
 def test_bad_workers_are_named_as_the_sweep_names_them() -> None:

@@ -14,24 +14,23 @@ from typing import Any
 import numpy as np
 import pytest
 from layout_fixtures import LAYOUT_ENV_ID
+from store_fixtures import Interrupting
 
 from voot.bench.protocol import problems as P
 from voot.bench.store.format import Row
 from voot.bench.store.result_store import ResultStore
-from voot.bench.sweep.bbfo import ProcessBackend, SerialBackend, run_sweep
+from voot.bench.sweep.backends import ProcessBackend, SerialBackend
+from voot.bench.sweep.engine import run_sweep
 from voot.bench.sweep.plan import (
-    EPSILONS,
-    OMEGAS,
-    REEVALUATIONS,
     PlanSpec,
     build_plan_specs,
-    planner_grid,
     record_paths,
     run_plan_spec,
-    search_seed,
     strip_timings,
     summarize_plan_specs,
 )
+from voot.bench.sweep.planners import EPSILONS, OMEGAS, REEVALUATIONS, planner_grid
+from voot.bench.sweep.search import search_seed
 
 
 def tiny(
@@ -177,21 +176,6 @@ def test_same_spec_same_row_across_processes() -> None:
     assert there == here  # bit-identical curves, plans and counters
 
 
-class Interrupting:
-    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
-
-    name = "interrupting"
-
-    def __init__(self, after: int) -> None:
-        self.after = after
-
-    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
-        for i, item in enumerate(items):
-            if i == self.after:
-                raise KeyboardInterrupt
-            yield fn(item)
-
-
 def test_interrupted_plan_sweep_resumes(tmp_path: Path) -> None:
     specs = tiny(sims=10)
     store = ResultStore(tmp_path / "r")
@@ -281,7 +265,7 @@ def test_kitchen_run_records_objects() -> None:
 
 
 def test_plan_specs_are_registered_with_run_any() -> None:
-    from voot.bench.sweep.bbfo import RUNNERS, run_any
+    from voot.bench.sweep.engine import RUNNERS, run_any
 
     assert RUNNERS["plan"] is run_plan_spec
     spec = PlanSpec("shekel_chain", 3, (), "voot", (), 10, 0)
@@ -328,7 +312,8 @@ def test_kitchen_v1_run_with_a_sampling_based_planner() -> None:
 
 def test_one_horizon_for_tree_and_sampling_planners() -> None:
     """--horizon H: a tree's depth limit from the root (no commitment), a sequence length."""
-    from voot.bench.sweep.plan import build_plan_specs, run_config
+    from voot.bench.sweep.plan import build_plan_specs
+    from voot.bench.sweep.planners import run_config
 
     specs = build_plan_specs(
         ["shekel_chain"], [3], ["voot", "cem"], [0], simulations=5, grid="default", horizon=7
@@ -407,7 +392,7 @@ def test_a_variant_is_in_the_config_and_run_id_only_when_set() -> None:
     )
     assert "variant" not in plain.config() and tagged.config()["variant"] == "x"
     assert plain.run_id != tagged.run_id
-    from voot.bench.sweep.plan import search_seed
+    from voot.bench.sweep.search import search_seed
 
     # common random numbers: a variant searches with the plain run's seed
     assert search_seed(plain).entropy == search_seed(tagged).entropy

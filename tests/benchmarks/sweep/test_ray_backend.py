@@ -18,7 +18,8 @@ import pytest
 
 from voot.bench.store.format import Row
 from voot.bench.store.result_store import ResultStore
-from voot.bench.sweep.bbfo import SerialBackend, make_backend, run_sweep
+from voot.bench.sweep.backends import SerialBackend, make_backend
+from voot.bench.sweep.engine import run_sweep
 from voot.bench.sweep.plan import PlanSpec, build_plan_specs, run_plan_spec, strip_timings
 
 ray = pytest.importorskip("ray")

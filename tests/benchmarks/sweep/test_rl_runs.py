@@ -15,17 +15,17 @@ from typing import Any
 import pytest
 
 from voot.bench.sweep import rl as R
-from voot.bench.sweep.plan import (
+from voot.bench.sweep.plan import build_plan_specs, strip_timings
+from voot.bench.sweep.planners import (
     PLAN_PLANNERS,
-    build_plan_specs,
+    RL_PLANNERS,
     normalize_plan_planner,
     planner_grid,
-    strip_timings,
 )
 
 
 def test_rl_planners_are_plan_planners_with_one_default_setting() -> None:
-    assert set(R.RL_PLANNERS) <= set(PLAN_PLANNERS)
+    assert set(RL_PLANNERS) <= set(PLAN_PLANNERS)
     for grid in ("paper", "default"):
         assert planner_grid("ppo", "robot", grid) == [{}]
         assert planner_grid("DDPG", "chain", grid) == [{}]
@@ -43,7 +43,7 @@ def test_matched_steps_round_half_up_and_end_at_the_budget() -> None:
 
 
 def test_rl_run_config_takes_the_reference_planners_discount() -> None:
-    from voot.bench.sweep.plan import run_config
+    from voot.bench.sweep.planners import run_config
 
     kitchen = run_config("voot/KitchenClearing-v1", None, "ppo", {})
     conveyor = run_config("voot/ConveyorPacking-v1", None, "ddpg", {"tau": 0.01})

@@ -15,28 +15,25 @@ from typing import Any
 
 import numpy as np
 import pytest
+from store_fixtures import Interrupting
 
 from voot.bench.store.format import Row, StoreError
 from voot.bench.store.lock import LOCK_NAME, StoreBusyError, WriterLock
 from voot.bench.store.result_store import ResultStore
+from voot.bench.sweep.backends import ProcessBackend, SerialBackend, make_backend
 from voot.bench.sweep.bbfo import (
     PAPER_METHODS,
-    ProcessBackend,
     RunSpec,
-    SerialBackend,
     build_specs,
     describe_config,
-    execution_order,
     initial_point,
     instance_of,
-    make_backend,
     method_grid,
     paper_budget,
-    pending_specs,
     run_spec,
-    run_sweep,
     summarize_specs,
 )
+from voot.bench.sweep.engine import execution_order, pending_specs, run_sweep
 from voot.functions import get_function
 from voot.optim.voo import VOOConfig
 
@@ -169,21 +166,6 @@ def test_execution_order_is_seed_major_and_deterministic() -> None:
     assert sorted(map(id, order)) == sorted(map(id, specs))
     assert [s.seed for s in order] == sorted(s.seed for s in specs)
     assert order == execution_order(specs)
-
-
-class Interrupting:
-    """A serial backend that dies (like Ctrl-C) after ``after`` rows."""
-
-    name = "interrupting"
-
-    def __init__(self, after: int) -> None:
-        self.after = after
-
-    def map_unordered(self, fn: Callable[[Any], Row], items: Sequence[Any]) -> Iterator[Row]:
-        for i, item in enumerate(items):
-            if i == self.after:
-                raise KeyboardInterrupt
-            yield fn(item)
 
 
 def test_interrupted_sweep_resumes_without_redoing_or_losing(tmp_path: Path) -> None:
@@ -424,7 +406,7 @@ def test_shifted_instance_keeps_the_initial_point_and_defeats_the_centre() -> No
 def test_runs_execute_with_one_blas_thread() -> None:
     from threadpoolctl import threadpool_info
 
-    from voot.bench.sweep.bbfo import one_blas_thread
+    from voot.bench.sweep.engine import one_blas_thread
 
     @one_blas_thread
     def threads(_: object) -> list[int]:
@@ -451,7 +433,7 @@ def test_fixed_parameters_join_every_setting_and_are_checked() -> None:
 
 # ----- the registry of spec kinds -------------------------------------------------------------
 def test_run_any_dispatches_on_the_registered_kinds() -> None:
-    from voot.bench.sweep import bbfo as sweep
+    from voot.bench.sweep import engine as sweep
 
     assert sweep.RUNNERS["bbfo"] is run_spec
     spec = RunSpec("rastrigin", 3, "random", (), 5, 0)
@@ -469,7 +451,8 @@ def test_sweep_does_not_import_the_plan_sweep() -> None:
 def test_duplicate_specs_run_once(tmp_path: Path) -> None:
     """The same run listed twice (e.g. overlapping grids) is run and stored once."""
     from voot.bench.store.result_store import ResultStore
-    from voot.bench.sweep.bbfo import build_specs, run_sweep
+    from voot.bench.sweep.bbfo import build_specs
+    from voot.bench.sweep.engine import run_sweep
 
     specs = build_specs(["shekel"], [3], ["voo"], range(2), budget=10, grid="default")
     doubled = [*specs, *specs[::-1]]
