@@ -120,7 +120,6 @@ def _run_plan_specs(
 ) -> SweepSummary:
     """Run ``specs`` into ``store`` with the backend of ``args``; the sweep's summary."""
     from voot.bench.sweep.backends import make_backend
-    from voot.bench.sweep.engine import run_sweep
 
     backend = make_backend(
         args.backend, args.workers, address=args.address, max_tries=args.max_tries
