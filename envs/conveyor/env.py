@@ -41,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
 from voot.envs.core.env import ManipulationEnv
+from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.presets import env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, rect_inside, set_object_pose
@@ -343,7 +344,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
 
     def _info_reset(self) -> dict[str, Any]:
         return {
-            "next_operator": "place",
+            "next_operator": Operator.PLACE,
             "objects_left": self.n,
             "next_objects": self._next_names(),
         }
@@ -384,14 +385,15 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         lengths: list[float] = []
         paths: list[FloatArray] = []
         col_time = plan_time = 0.0
-        reason = ""
+        reason: str = ""
+        failed = None
         for k in range(m):
             i = t.placed + k
             reason, dt_col, dt_plan = self._check_place(i, params[k], moved, lengths, paths)
             col_time += dt_col
             plan_time += dt_plan
             if reason:
-                reason = f"box {k + 1}/{m} ({names[k]}): {reason}"
+                reason, failed = _of_box(reason, k, m, names[k]), k
                 break
         self.last_timing = StepTiming(
             collision=col_time, planning=plan_time, total=time.perf_counter() - start_time
@@ -412,26 +414,22 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         t = self.task
         terminated = t.done
         truncated = (not terminated) and t.steps >= cfg.horizon
-        info: dict[str, Any] = {
-            "operator": "place",
-            "objects": names,
-            "feasible": feasible,
-            "reason": reason,
-            "base_path_length": float(sum(lengths)) if feasible else 0.0,
-            "base_path_lengths": lengths if feasible else [],
-            "base_paths": paths if feasible else [],
-            "parameters": params,
-            "base_pose": bases[0],
-            "placement": placements[0],
-            "base_poses": bases,
-            "placements": placements,
-            "action_clipped": clipped,
-            "next_operator": "place",
-            "next_objects": self._next_names(),
-            "objects_left": self.n - t.placed,
-            "objects_placed": t.placed,
-            "goal_bonus": 0.0,
-        }
+        info = _placements_info(reason, failed, bases, placements)
+        info.update(
+            {
+                "objects": names,
+                "base_path_length": float(sum(lengths)) if feasible else 0.0,
+                "base_path_lengths": lengths if feasible else [],
+                "base_paths": paths if feasible else [],
+                "parameters": params,
+                "action_clipped": clipped,
+                "next_operator": Operator.PLACE,
+                "next_objects": self._next_names(),
+                "objects_left": self.n - t.placed,
+                "objects_placed": t.placed,
+                "goal_bonus": 0.0,
+            }
+        )
         return float(reward), terminated, truncated, info
 
     def _check_place(
@@ -464,7 +462,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
         plan_time = time.perf_counter() - t0
         if path is None:
-            return "no base path", col_time, plan_time
+            return Failure(Reason.NO_BASE_PATH, "no base path"), col_time, plan_time
         base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
         moved[i] = (x, y, 0.0, theta)
         lengths.append(float(base_path.length))
@@ -487,10 +485,12 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         x, y, theta = (float(v) for v in xyt)
         box = object_footprint(self.objects[i], x, y, theta)
         if not rect_inside(box, cfg.loading_region):
-            return "outside region: the box leaves the loading region", 0.0, None
+            text = "outside region: the box leaves the loading region"
+            return Failure(Reason.OUTSIDE_REGION, text), 0.0, None
         base = self.place_base_pose(i, (x, y, theta))
         if not rect_inside(base_footprint(base), cfg.workspace):
-            return "outside region: the robot leaves the workspace", 0.0, base
+            text = "outside region: the robot leaves the workspace"
+            return Failure(Reason.OUTSIDE_REGION, text), 0.0, base
         t0 = time.perf_counter()
         poses = dict(moved)
         poses[i] = (x, y, 0.0, theta)
@@ -499,7 +499,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         )
         col_time = time.perf_counter() - t0
         if not report.free:
-            return "collision: " + ", ".join(report.hits), col_time, base
+            return Failure(Reason.COLLISION, "collision: " + ", ".join(report.hits)), col_time, base
         return "", col_time, base
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
@@ -520,24 +520,17 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         placements = tuple(pose_tuple(p) for p in params)
         bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
         moved: dict[int, tuple[float, float, float, float]] = {}
-        reason = ""
+        reason: str = ""
+        failed = None
         for k in range(m):
             i = t.placed + k
             reason, _, _ = self._place_kinematics(i, params[k], moved)
             if reason:
-                reason = f"box {k + 1}/{m} ({self.objects[i].name}): {reason}"
+                reason, failed = _of_box(reason, k, m, self.objects[i].name), k
                 break
             x, y, theta = placements[k]
             moved[i] = (x, y, 0.0, theta)
-        return not reason, {
-            "operator": "place",
-            "feasible": not reason,
-            "reason": reason,
-            "placement": placements[0],
-            "base_pose": bases[0],
-            "placements": placements,
-            "base_poses": bases,
-        }
+        return not reason, _placements_info(reason, failed, bases, placements)
 
     # ----- rendering -----------------------------------------------------------------------
     def _decorate(self, scene: mujoco.MjvScene) -> None:
@@ -551,3 +544,32 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             0.0,
             (1.0, 0.85, 0.1, 0.10),
         )
+
+
+def _of_box(reason: str, k: int, m: int, name: str) -> Failure:
+    """The failure of box ``k`` (of the action's ``m``, named ``name``): its text names it."""
+    assert isinstance(reason, Failure)
+    return reason.prefixed(f"box {k + 1}/{m} ({name}): ")
+
+
+def _placements_info(
+    reason: str,
+    failed: int | None,
+    bases: tuple[tuple[float, float, float], ...],
+    placements: tuple[tuple[float, float, float], ...],
+) -> dict[str, Any]:
+    """The info of an action's placements, the keys a step's info and a pre-check's share
+    (the step adds its paths, counts and the next boxes): whether it passes, why not
+    (``reason``, ``reason_code``, and ``failed_box``, the index in the action of the first
+    box that failed, None if none), every box's placement and base pose."""
+    return {
+        "operator": Operator.PLACE,
+        "feasible": not reason,
+        "reason": str(reason),
+        "reason_code": reason_code(reason),
+        "failed_box": failed,
+        "placement": placements[0],
+        "base_pose": bases[0],
+        "placements": placements,
+        "base_poses": bases,
+    }
