@@ -76,13 +76,13 @@ def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
     if env_id == "voot/KitchenClearing-v2":  # a generated kitchen: its witness plan
         script = u.witness_actions()[:4]
     elif env_id.startswith("voot/KitchenClearing"):
-        from voot.envs.scripted import kitchen_actions
+        from voot.envs.kitchen.scripted import kitchen_actions
 
         script = kitchen_actions(u)[:4]  # pick, place, pick: then an object is held
     elif hasattr(u, "witness_actions"):  # a generated layout: the packing that proves it
         script = u.witness_actions()[:3]
     elif env_id.startswith("voot/ConveyorPacking"):
-        from voot.envs.scripted import conveyor_actions
+        from voot.envs.conveyor.scripted import conveyor_actions
 
         script = conveyor_actions(u)[:3]
     else:

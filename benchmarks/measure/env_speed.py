@@ -14,7 +14,7 @@ kitchen place, conveyor 3-box place):
 and the median cost of ``get_state()`` and ``set_state()`` (snapshot restore).
 
 Timed states: the start state and the states along the scripted solutions
-(:mod:`voot.envs.scripted`), N uniformly random actions spread over them. Run it on an
+(:mod:`voot.envs.kitchen.scripted`, :mod:`voot.envs.conveyor.scripted`), N uniformly random actions spread over them. Run it on an
 otherwise idle core (``OMP_NUM_THREADS=1``) for figures comparable with the goals: a pick
 check under 2 ms, a place including its base path under 5 ms, a restore under 50 us.
 """
@@ -35,7 +35,8 @@ from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.state import EnvState
 from voot.envs.kitchen.env import KitchenClearingEnv
-from voot.envs.scripted import conveyor_actions, kitchen_actions
+from voot.envs.conveyor.scripted import conveyor_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 
 
 @dataclass

@@ -12,7 +12,7 @@ Planner-agnostic statistics of a domain version (v0 or v1), from uniform random 
   executed), then executed; a rollout ends at an infeasible action or the goal. The
   fraction of rollouts that clear everything estimates the chance that a random
   pre-check-feasible rollout solves the task, with a 95% Wilson interval;
-* **the scripted solution** (:mod:`voot.envs.scripted`): whether it still solves the
+* **the scripted solution** (:mod:`voot.envs.kitchen.scripted`, :mod:`voot.envs.conveyor.scripted`): whether it still solves the
   version, and its return.
 
 Same arguments and seed -> the same numbers (the envs and the draws are deterministic).
@@ -120,10 +120,11 @@ def solution_actions(env: Any) -> list[Any]:
     """A known solution of ``env`` from its start, as normalised actions.
 
     A generated instance carries the witness its generator proved it solvable with
-    (``witness_actions()``); the fixed v0/v1 scenes have :mod:`voot.envs.scripted`'s.
+    (``witness_actions()``); the fixed v0/v1 scenes have :mod:`voot.envs.kitchen.scripted`, :mod:`voot.envs.conveyor.scripted`'s.
     """
     from voot.envs.kitchen.env import KitchenClearingEnv
-    from voot.envs.scripted import conveyor_actions, kitchen_actions
+    from voot.envs.conveyor.scripted import conveyor_actions
+    from voot.envs.kitchen.scripted import kitchen_actions
 
     witness = getattr(env, "witness_actions", None)
     if callable(witness):

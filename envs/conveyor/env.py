@@ -32,7 +32,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import Any, ClassVar
 
 import gymnasium as gym
 import mujoco
@@ -40,7 +40,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
+from voot.envs.core.metrics import Distance, place_distance
 from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.presets import env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
@@ -213,6 +215,8 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         RuntimeError: If the fixed grasp of some box is infeasible (a broken scene).
     """
 
+    family: ClassVar[str] = FAMILY
+
     def __init__(
         self,
         config: ConveyorConfig | None = None,
@@ -361,6 +365,24 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     def action_bounds(self) -> Bounds:
         """The 9-D action box in normalised units."""
         return Bounds.cube(-1.0, 1.0, 3 * OBJECTS_PER_ACTION)
+
+    def current_operator(self) -> Operator:
+        """Always a place (the boxes come to the robot)."""
+        return Operator.PLACE
+
+    def operator_ranges(self, operator: Operator) -> tuple[tuple[float, float], ...]:
+        """The placement ranges (x, y, theta) of each of the action's boxes."""
+        return tuple(self.config.place_ranges) * OBJECTS_PER_ACTION
+
+    def operator_distance(self, operator: Operator) -> Distance:
+        """The authors' place distance over the action's placements."""
+        return place_distance(OBJECTS_PER_ACTION)
+
+    def solution_actions(self) -> list[FloatArray]:
+        """The hand-chosen packing of the paper's conveyor (:mod:`voot.envs.conveyor.scripted`)."""
+        from voot.envs.conveyor.scripted import conveyor_actions
+
+        return conveyor_actions(self)
 
     # ----- stepping ------------------------------------------------------------------------
     def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:

@@ -59,13 +59,14 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from typing import Any
+from typing import Any, ClassVar
 
 import gymnasium as gym
 import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.core.metrics import Distance, pick_distance, place_distance
 from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.presets import env_config
 from voot.envs.core.rendering import add_marker_box, add_marker_segment
@@ -75,6 +76,7 @@ from voot.envs.core.units import denormalize
 from voot.envs.kitchen.checks import KitchenChecks
 from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig, kitchen_config
 from voot.envs.kitchen.path import ClearingPath
+from voot.envs.kitchen.problems import FAMILY
 from voot.envs.kitchen.task import KitchenTask, pick_reward, place_reward, task_error
 from voot.envs.motion.planner import BasePath
 from voot.optim.base import Bounds
@@ -97,6 +99,8 @@ class KitchenClearingEnv(KitchenChecks):
         **options: :class:`KitchenConfig` fields overriding the config's (so that
             ``gym.make("voot/KitchenClearing-v1", pick_requires_free_carry=True)`` works).
     """
+
+    family: ClassVar[str] = FAMILY
 
     def __init__(
         self,
@@ -224,6 +228,28 @@ class KitchenClearingEnv(KitchenChecks):
         if t.operator == Operator.PLACE:
             return self.objects[t.held].name
         return self.objects[t.on_path[0]].name if t.on_path else ""
+
+    def current_operator(self) -> Operator:
+        """The operator of the current node (the task record's)."""
+        return self.task.operator
+
+    def operator_ranges(self, operator: Operator) -> tuple[tuple[float, float], ...]:
+        """The pick's 6 parameter ranges, or the place's 3 (x, y, theta)."""
+        cfg = self.config
+        return cfg.pick_ranges if operator == Operator.PICK else cfg.place_ranges
+
+    def operator_distance(self, operator: Operator) -> Distance:
+        """The authors' pick distance (grasp, base with the planner's rotation weight) or
+        place distance (:mod:`voot.envs.core.metrics`)."""
+        if operator == Operator.PICK:
+            return pick_distance(self.config.planner.rotation_weight)
+        return place_distance()
+
+    def solution_actions(self) -> list[FloatArray]:
+        """The hand-chosen solution of the paper's kitchen (:mod:`voot.envs.kitchen.scripted`)."""
+        from voot.envs.kitchen.scripted import kitchen_actions
+
+        return kitchen_actions(self)
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (6-D pick, 3-D place)."""

@@ -13,7 +13,7 @@ pytest.importorskip("matplotlib")
 
 from voot.bench.demos.figure5 import ProposalLog, figure5
 from voot.bench.demos.kitchen_demo import make_problem
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.record.reader import read_recording
 
 
