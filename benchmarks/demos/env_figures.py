@@ -23,9 +23,9 @@ import mujoco
 import numpy as np
 
 from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.rendering import ensure_headless_gl
 from voot.envs.kitchen.env import KitchenClearingEnv
-from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.kitchen.scripted import kitchen_actions
 
 SIZE = (1280, 960)

@@ -32,10 +32,10 @@ import numpy as np
 
 from voot.bench.cli.types import seed_argument
 from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.state import EnvState
 from voot.envs.kitchen.env import KitchenClearingEnv
-from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.kitchen.scripted import kitchen_actions
 
 
@@ -103,7 +103,7 @@ def _count_feasible(
         env.set_state(state)
         _, _, _, _, info = env.step(rng.uniform(-1.0, 1.0, dim))
         count += bool(info["feasible"])
-        first += bool(info["feasible"]) or not str(info["reason"]).startswith("box 1/")
+        first += bool(info["feasible"]) or info.get("failed_box") != 0
     return count, first
 
 

@@ -378,6 +378,10 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         """The authors' place distance over the action's placements."""
         return place_distance(OBJECTS_PER_ACTION)
 
+    def node_label(self, operator: Operator) -> str:
+        """``"place (3 boxes)"``: an action places up to three boxes."""
+        return f"{operator} ({OBJECTS_PER_ACTION} boxes)"
+
     def solution_actions(self) -> list[FloatArray]:
         """The hand-chosen packing of the paper's conveyor (:mod:`voot.envs.conveyor.scripted`)."""
         from voot.envs.conveyor.scripted import conveyor_actions

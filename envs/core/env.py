@@ -216,6 +216,11 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         (:mod:`voot.envs.core.metrics`; VOO's cells with ``use_problem_metric``)."""
         raise NotImplementedError
 
+    def node_label(self, operator: Operator) -> str:
+        """How reports name a node of ``operator`` (``"pick"``; the conveyor says how many
+        boxes an action places)."""
+        return str(operator)
+
     def solution_actions(self) -> list[FloatArray]:
         """A known solution from the start, as normalised actions: the scripted one of a
         fixed scene, or the witness a generated instance was proven solvable with."""
