@@ -43,7 +43,7 @@ from voot import validation as V
 from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
-from voot.envs.core.names import Failure, Operator, Reason, reason_code
+from voot.envs.core.names import Failure, Operator, Precheck, Reason, choices, reason_code
 from voot.envs.core.presets import env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, rect_inside, set_object_pose
@@ -68,7 +68,7 @@ from voot.optim.base import Bounds
 FloatArray = NDArray[np.float64]
 
 #: What a planner's pre-check of an action covers (:attr:`ConveyorConfig.precheck`).
-PRECHECKS = ("full_step", "kinematic")
+PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
@@ -120,7 +120,7 @@ class ConveyorConfig:
     infeasible_reward: float = -2.0
     horizon: int = 20
     render_overlays: bool = True
-    precheck: str = "full_step"
+    precheck: Precheck = Precheck.FULL_STEP
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -146,8 +146,9 @@ class ConveyorConfig:
         V.integer(self.horizon, "ConveyorConfig.horizon", 1)
         if self.precheck not in PRECHECKS:
             raise ValueError(
-                f"ConveyorConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+                f"ConveyorConfig.precheck must be one of {choices(Precheck)}, got {self.precheck!r}"
             )
+        object.__setattr__(self, "precheck", Precheck(self.precheck))
         if not isinstance(self.ik, IKConfig):
             raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
         if not isinstance(self.planner, BasePlannerConfig):
@@ -165,7 +166,7 @@ class ConveyorConfig:
 #: Named versions of the domain: :class:`ConveyorConfig` overrides (see
 #: :data:`voot.envs.kitchen.config.KITCHEN_PRESETS`).
 CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
-    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
+    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": Precheck.KINEMATIC})}
 )
 
 

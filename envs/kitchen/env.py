@@ -289,10 +289,12 @@ class KitchenClearingEnv(KitchenChecks):
         self,
         operator: Operator,
         obj: int,
-        reason: Failure,
+        reason: str,
         base: ArrayLike,
         placement: ArrayLike | None = None,
     ) -> tuple[float, dict[str, Any]]:
+        """The reward and info of an infeasible pick or place (``reason``: a check's
+        :class:`~voot.envs.core.names.Failure`); only the step count moves on."""
         self.task = replace(self.task, steps=self.task.steps + 1)
         return self.config.infeasible_reward, self._action_info(
             operator, obj, reason, base, None if placement is None else pose_tuple(placement)
