@@ -19,7 +19,7 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
@@ -46,6 +46,7 @@ CHAIN_PLANNERS: tuple[str, ...] = ("voot", "doot", "rand_doot", "pw_uct", "voron
 ROBOT_PLANNERS: tuple[str, ...] = ("voot", "rand_doot", "pw_uct", "voronoi_pw", "doot")
 #: Budget of a problem the paper does not run (and of any unrecorded environment).
 DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)
+
 
 @dataclass(frozen=True)
 class ProblemRecord:
@@ -188,3 +189,37 @@ def problem_record(id_or_alias: str) -> ProblemRecord:
         names = ", ".join([*_RECORDS, *_ALIASES])
         raise KeyError(f"no problem record for {id_or_alias!r}; recorded: {names}")
     return record
+
+
+def robot_versions(
+    v0: ProblemRecord, root_commitment: int, generated_entry_point: str
+) -> tuple[ProblemRecord, ProblemRecord, ProblemRecord]:
+    """A robot family's three versions from its ``v0`` record (the paper's scene).
+
+    ``-v1`` is the same entry point at its ``"v1"`` preset (the authors' two-stage
+    protocol) with the authors' tree rules at ``root_commitment`` and VOO's per-operator
+    distance; ``-v2`` is ``generated_entry_point`` (instances generated from
+    ``layout_seed`` at every :class:`Difficulty`) with the v1 settings. Each alias gets
+    the version's suffix (``kitchen`` -> ``kitchen_v1``, ``kitchen_v2``).
+    """
+    stem = v0.id.rsplit("-v", 1)[0]
+    v1 = replace(
+        v0,
+        id=f"{stem}-v1",
+        kwargs={"preset": "v1"},
+        aliases=tuple(f"{a}_v1" for a in v0.aliases),
+        root_commitment=root_commitment,
+        v1_rules=True,
+        voo_metric=True,
+        pw_retries=None,
+    )
+    v2 = replace(
+        v1,
+        id=f"{stem}-v2",
+        entry_point=generated_entry_point,
+        kwargs={},
+        aliases=tuple(f"{a}_v2" for a in v0.aliases),
+        layouts=True,
+        difficulties=tuple(Difficulty),
+    )
+    return v0, v1, v2

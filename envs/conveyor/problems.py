@@ -16,8 +16,7 @@ imports no env code.
 
 from __future__ import annotations
 
-from voot.envs.core.names import Difficulty
-from voot.problems import ROBOT_PLANNERS, PaperSetup, ProblemRecord
+from voot.problems import ROBOT_PLANNERS, PaperSetup, ProblemRecord, robot_versions
 
 #: The family's name (:attr:`voot.envs.core.env.ManipulationEnv.family` of its envs).
 FAMILY = "conveyor"
@@ -25,46 +24,20 @@ FAMILY = "conveyor"
 CONVEYOR_SETUP = PaperSetup(3_000, 50, ROBOT_PLANNERS)
 #: The discount the authors plan the conveyor with.
 CONVEYOR_DISCOUNT = 0.99
-_ENTRY = "voot.envs.conveyor.env:ConveyorPackingEnv"
-_VOO = {"sampler": "uniform", "omega": 0.3}
 
-#: The conveyor's gymnasium ids.
-RECORDS: tuple[ProblemRecord, ...] = (
+#: The conveyor's gymnasium ids: v0 (with the progressive-widening planners' 200
+#: retries), then v1 and v2 on the authors' rules (commitment 1).
+RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ProblemRecord(
         id="voot/ConveyorPacking-v0",
         family=FAMILY,
-        entry_point=_ENTRY,
+        entry_point="voot.envs.conveyor.env:ConveyorPackingEnv",
         aliases=("conveyor",),
         paper_setup=CONVEYOR_SETUP,
         discount=CONVEYOR_DISCOUNT,
-        voo_options=_VOO,
+        voo_options={"sampler": "uniform", "omega": 0.3},
         pw_retries=200,
     ),
-    ProblemRecord(
-        id="voot/ConveyorPacking-v1",
-        family=FAMILY,
-        entry_point=_ENTRY,
-        kwargs={"preset": "v1"},
-        aliases=("conveyor_v1",),
-        paper_setup=CONVEYOR_SETUP,
-        discount=CONVEYOR_DISCOUNT,
-        root_commitment=1,
-        v1_rules=True,
-        voo_options=_VOO,
-        voo_metric=True,
-    ),
-    ProblemRecord(
-        id="voot/ConveyorPacking-v2",
-        family=FAMILY,
-        entry_point="voot.envs.conveyor.generated.env:ConveyorFamilyEnv",
-        aliases=("conveyor_v2",),
-        paper_setup=CONVEYOR_SETUP,
-        discount=CONVEYOR_DISCOUNT,
-        root_commitment=1,
-        v1_rules=True,
-        voo_options=_VOO,
-        voo_metric=True,
-        layouts=True,
-        difficulties=tuple(Difficulty),
-    ),
+    root_commitment=1,
+    generated_entry_point="voot.envs.conveyor.generated.env:ConveyorFamilyEnv",
 )

@@ -15,8 +15,7 @@ imports no env code.
 
 from __future__ import annotations
 
-from voot.envs.core.names import Difficulty
-from voot.problems import ROBOT_PLANNERS, PaperSetup, ProblemRecord
+from voot.problems import ROBOT_PLANNERS, PaperSetup, ProblemRecord, robot_versions
 
 #: The family's name (:attr:`voot.envs.core.env.ManipulationEnv.family` of its envs).
 FAMILY = "kitchen"
@@ -24,45 +23,18 @@ FAMILY = "kitchen"
 KITCHEN_SETUP = PaperSetup(2_000, 20, ROBOT_PLANNERS)
 #: The discount the authors plan the kitchen with.
 KITCHEN_DISCOUNT = 0.9
-_ENTRY = "voot.envs.kitchen.env:KitchenClearingEnv"
-_VOO = {"sampler": "uniform"}
 
-#: The kitchen's gymnasium ids.
-RECORDS: tuple[ProblemRecord, ...] = (
+#: The kitchen's gymnasium ids: v0, then v1 and v2 on the authors' rules (commitment 10).
+RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ProblemRecord(
         id="voot/KitchenClearing-v0",
         family=FAMILY,
-        entry_point=_ENTRY,
+        entry_point="voot.envs.kitchen.env:KitchenClearingEnv",
         aliases=("kitchen",),
         paper_setup=KITCHEN_SETUP,
         discount=KITCHEN_DISCOUNT,
-        voo_options=_VOO,
+        voo_options={"sampler": "uniform"},
     ),
-    ProblemRecord(
-        id="voot/KitchenClearing-v1",
-        family=FAMILY,
-        entry_point=_ENTRY,
-        kwargs={"preset": "v1"},
-        aliases=("kitchen_v1",),
-        paper_setup=KITCHEN_SETUP,
-        discount=KITCHEN_DISCOUNT,
-        root_commitment=10,
-        v1_rules=True,
-        voo_options=_VOO,
-        voo_metric=True,
-    ),
-    ProblemRecord(
-        id="voot/KitchenClearing-v2",
-        family=FAMILY,
-        entry_point="voot.envs.kitchen.generated.env:GeneratedKitchenEnv",
-        aliases=("kitchen_v2",),
-        paper_setup=KITCHEN_SETUP,
-        discount=KITCHEN_DISCOUNT,
-        root_commitment=10,
-        v1_rules=True,
-        voo_options=_VOO,
-        voo_metric=True,
-        layouts=True,
-        difficulties=tuple(Difficulty),
-    ),
+    root_commitment=10,
+    generated_entry_point="voot.envs.kitchen.generated.env:GeneratedKitchenEnv",
 )
