@@ -16,7 +16,7 @@ from __future__ import annotations
 import gymnasium
 import numpy as np
 
-from voot.envs.chains import SyntheticChainEnv
+from voot.envs.chains.env import SyntheticChainEnv
 
 LAYOUT_ENV_ID = "voot-test/LayoutChain-v0"
 #: A chain env whose constructor takes no layout seed (nor ``**kwargs``).

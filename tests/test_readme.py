@@ -79,12 +79,18 @@ def test_readme_examples_run_at_the_repository_root(tmp_path: Path) -> None:
 def test_without_the_source_tree_finder_the_root_would_shadow_the_install(
     tmp_path: Path,
 ) -> None:
-    # the failure the finder prevents: the root's voot/ without its sibling folders
+    # the failure the finder prevents: the root's voot/ without its sibling folders (import
+    # voot already needs voot.envs: it registers the ids from the families' records there)
     site = stage_wheel_layout(tmp_path / "site")
     code = PRELUDE.format(site=str(site)) + (
-        "import voot._source_tree as s\n"
-        "sys.meta_path[:] = [f for f in sys.meta_path if not isinstance(f, s.SourceTreeFinder)]\n"
-        "import voot.envs\n"
+        "import importlib.util\n"
+        "spec = importlib.util.spec_from_file_location('voot._source_tree',"
+        f" {str(ROOT / 'voot' / '_source_tree.py')!r})\n"
+        "s = importlib.util.module_from_spec(spec)\n"
+        "spec.loader.exec_module(s)\n"
+        "s.install = lambda package_file: None\n"
+        "sys.modules['voot._source_tree'] = s\n"
+        "import voot\n"
     )
     out = subprocess.run(
         [sys.executable, "-"], input=code, cwd=ROOT, capture_output=True, text=True, timeout=120

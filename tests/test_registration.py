@@ -1,4 +1,5 @@
-"""Tests of the gymnasium ids (voot._registration): every id, and copies of its env.
+"""Tests of the gymnasium ids (voot._registration, from the families' problem records):
+every id, its record, and copies of its env.
 
 A copy of an env (``copy.deepcopy``, or ``pickle`` in this process or another) must step
 as the env: from the same snapshot, the same action gives bit-identical observation,
@@ -24,16 +25,43 @@ import pytest
 from gymnasium.utils.env_checker import data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
-from voot._registration import ENV_IDS, ENV_KWARGS
+from voot.problems import ProblemRecord, problem_record, problem_records
 
-IDS = sorted(ENV_IDS)
+IDS = sorted(r.id for r in problem_records())
 
 
 def test_every_id_is_registered_with_its_entry_point_and_kwargs() -> None:
+    assert len(IDS) == 9
     for env_id in IDS:
         spec = gym.spec(env_id)
-        assert spec.entry_point == ENV_IDS[env_id]
-        assert spec.kwargs == ENV_KWARGS.get(env_id, {})
+        record = problem_record(env_id)
+        assert spec.entry_point == record.entry_point
+        assert spec.kwargs == dict(record.kwargs)
+        for alias in record.aliases:
+            assert problem_record(alias) is record
+            assert problem_record(alias.upper().replace("_", "-")) is record
+
+
+def test_a_record_is_checked_when_built() -> None:
+    entry = "voot.envs.kitchen.env:KitchenClearingEnv"
+    with pytest.raises(ValueError, match="namespace/Name-vN"):
+        ProblemRecord(id="Kitchen", family="kitchen", entry_point=entry)
+    with pytest.raises(ValueError, match="module:Class"):
+        ProblemRecord(id="x/Y-v0", family="kitchen", entry_point="kitchen")
+    with pytest.raises(ValueError, match="root_commitment"):
+        ProblemRecord(id="x/Y-v0", family="kitchen", entry_point=entry, v1_rules=True)
+    with pytest.raises(ValueError, match="'hardest' is not a valid Difficulty"):
+        ProblemRecord(
+            id="x/Y-v0", family="k", entry_point=entry, layouts=True, difficulties=("hardest",)
+        )
+    with pytest.raises(ValueError, match="layouts"):
+        ProblemRecord(id="x/Y-v0", family="k", entry_point=entry, difficulties=("easy",))
+    with pytest.raises(KeyError, match="no problem record for 'nope'; recorded: voot/"):
+        problem_record("nope")
+    record = problem_record("kitchen_v2")
+    assert record.layouts and record.difficulties == ("easy", "medium", "hard")
+    with pytest.raises(TypeError):
+        record.kwargs["preset"] = "v0"  # type: ignore[index]
 
 
 def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
@@ -48,13 +76,13 @@ def _walk(env_id: str) -> tuple[Any, list[Any], list[list[np.ndarray]]]:
     if env_id == "voot/KitchenClearing-v2":  # a generated kitchen: its witness plan
         script = u.witness_actions()[:4]
     elif env_id.startswith("voot/KitchenClearing"):
-        from voot.envs.scripted import kitchen_actions
+        from voot.envs.kitchen.scripted import kitchen_actions
 
         script = kitchen_actions(u)[:4]  # pick, place, pick: then an object is held
     elif hasattr(u, "witness_actions"):  # a generated layout: the packing that proves it
         script = u.witness_actions()[:3]
     elif env_id.startswith("voot/ConveyorPacking"):
-        from voot.envs.scripted import conveyor_actions
+        from voot.envs.conveyor.scripted import conveyor_actions
 
         script = conveyor_actions(u)[:3]
     else:

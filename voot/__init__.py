@@ -14,9 +14,10 @@ importing MuJoCo; the environments load it when made.
 """
 
 from voot import _source_tree
-from voot._registration import register_envs
 
-_source_tree.install(__file__)
+_source_tree.install(__file__)  # first: the families' records live in voot.envs
+
+from voot._registration import register_envs  # noqa: E402
 
 __version__ = "0.1.0"
 

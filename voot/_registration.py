@@ -1,45 +1,42 @@
 """Gymnasium ids of voot's environments, registered when ``voot`` is imported.
 
-Registration stores entry-point strings only, so it costs nothing and imports no MuJoCo.
+Each family of environments declares one problem record per id beside its env
+(:mod:`voot.problems`); :data:`FAMILIES` names the modules that hold them, one line per
+family. Registration reads the records (data only) and stores entry-point strings, so it
+costs little and imports no MuJoCo and no env code.
 """
 
 from __future__ import annotations
 
-#: id -> entry point ("module:Class"). Filled in by the environment modules' issues.
-ENV_IDS: dict[str, str] = {
-    # Synthetic planning chains (voot.envs.chains); keyword: dim=3 | 10 | 20.
-    "voot/ShekelChain-v0": "voot.envs.chains:ShekelChainEnv",
-    "voot/GriewankChain-v0": "voot.envs.chains:GriewankChainEnv",
-    "voot/RastriginChain-v0": "voot.envs.chains:RastriginChainEnv",
-    # MuJoCo benchmark domains (voot.envs; need the [envs] extra); keyword: config=...
-    "voot/KitchenClearing-v0": "voot.envs.kitchen.env:KitchenClearingEnv",
-    "voot/ConveyorPacking-v0": "voot.envs.conveyor.env:ConveyorPackingEnv",
-    # The same domains under the authors' protocol (two-stage feasibility, see
-    # docs/environments.md): the entry points above at their "v1" preset.
-    "voot/KitchenClearing-v1": "voot.envs.kitchen.env:KitchenClearingEnv",
-    "voot/ConveyorPacking-v1": "voot.envs.conveyor.env:ConveyorPackingEnv",
-    # Kitchens generated from a seed under the v1 rules (docs/environments.md, "Generated
-    # kitchens"); keywords: layout_seed=int, difficulty="easy" | "medium" | "hard".
-    "voot/KitchenClearing-v2": "voot.envs.kitchen.generated.env:GeneratedKitchenEnv",
-    # Generated storage rooms on the v1 rules (issue 24); keywords: layout_seed=int,
-    # difficulty="easy" | "medium" | "hard" (voot.envs.conveyor.generated.env).
-    "voot/ConveyorPacking-v2": "voot.envs.conveyor.generated.env:ConveyorFamilyEnv",
-}
-#: id -> keyword arguments registered with it.
-ENV_KWARGS: dict[str, dict[str, str]] = {
-    "voot/KitchenClearing-v1": {"preset": "v1"},
-    "voot/ConveyorPacking-v1": {"preset": "v1"},
-}
+import importlib
+
+from voot.problems import ProblemRecord, add_records, problem_records
+
+#: The records modules of the families, each with its ``RECORDS``: adding a family is
+#: one line here and a folder of its own.
+FAMILIES: tuple[str, ...] = (
+    "voot.envs.chains.problems",
+    "voot.envs.kitchen.problems",
+    "voot.envs.conveyor.problems",
+)
+
+
+def _family_records(module: str) -> tuple[ProblemRecord, ...]:
+    records: tuple[ProblemRecord, ...] = importlib.import_module(module).RECORDS
+    return records
 
 
 def register_envs() -> None:
-    """Register every id in :data:`ENV_IDS` with gymnasium (idempotent)."""
+    """Add every family's records (:func:`voot.problems.add_records`) and register their
+    ids with gymnasium, each with its entry point and keywords (idempotent)."""
+    for module in FAMILIES:
+        add_records(_family_records(module))
     try:
         import gymnasium
     except ImportError:  # pragma: no cover - gymnasium is a core dependency
         return
-    for env_id, entry_point in ENV_IDS.items():
-        if env_id not in gymnasium.registry:
+    for record in problem_records():
+        if record.id not in gymnasium.registry:
             gymnasium.register(
-                id=env_id, entry_point=entry_point, kwargs=dict(ENV_KWARGS.get(env_id, {}))
+                id=record.id, entry_point=record.entry_point, kwargs=dict(record.kwargs)
             )

@@ -5,7 +5,7 @@
 * ``kitchen_top_down.png``, ``kitchen_perspective.png``: the kitchen at the start, with
   the swept corridor of the fixed path (blue) and the forbidden rooms (red);
 * ``kitchen_cleared_top_down.png``: after the scripted solution
-  (:mod:`voot.envs.scripted`);
+  (:mod:`voot.envs.kitchen.scripted`, :mod:`voot.envs.conveyor.scripted`);
 * ``conveyor_top_down.png``, ``conveyor_perspective.png``: the storage rooms and the
   belt at the start, the loading region tinted yellow;
 * ``conveyor_packed_top_down.png``: after the scripted solution (20 boxes packed);
@@ -21,9 +21,10 @@ import mujoco
 import numpy as np
 
 from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.rendering import ensure_headless_gl
 from voot.envs.kitchen.env import KitchenClearingEnv
-from voot.envs.scripted import conveyor_actions, kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 
 SIZE = (1280, 960)
 

@@ -8,8 +8,8 @@ same seed, and draws them side by side from the recordings over the kitchen's fl
 Every placement drawn at the node is counted in one category (:class:`Figure5Run`):
 rejected by the pre-check (the feasibility check the retries make; on v1 the cheap
 kinematic one), executed and feasible, or executed and failed, by the reason in the
-environment's step info (:func:`failure_category`: on v1 ``forbidden room`` and ``no
-base path``, which only execution finds). The counts are shown next to each panel of the
+environment's step info (its ``reason_code``: on v1 ``forbidden room`` and ``no base
+path``, which only execution finds). The counts are shown next to each panel of the
 image, in the recording (a text panel) and written as JSON beside the image.
 """
 
@@ -64,9 +64,9 @@ class Figure5Run:
         entity: the recording's entity of the node's placements (coloured by Q-hat);
             the rejected proposals are in the sibling entity ``.../rejected``.
         view: the name of the 3-D view in the recording's layout.
-        execution_failures: executed placements that failed, per
-            :func:`failure_category` of their step info's ``reason``.
-        precheck_failures: rejected proposals per category of the pre-check's reason.
+        execution_failures: executed placements that failed, per ``reason_code`` of
+            their step info.
+        precheck_failures: rejected proposals per ``reason_code`` of the pre-check's info.
     """
 
     planner: str
@@ -133,15 +133,6 @@ class Figure5Run:
         return self.entity.rsplit("/", 1)[0] + "/rejected"
 
 
-def failure_category(reason: str) -> str:
-    """The category of an infeasible step's ``reason``: its words before the first ``:``
-    or `` (`` (``"forbidden room: the object ..."`` -> ``"forbidden room"``, ``"no base
-    path"`` as it is, ``"collision: wall"`` -> ``"collision"``); ``""`` for a feasible
-    step."""
-    head = reason.split(":", 1)[0].split(" (", 1)[0]
-    return head.strip()
-
-
 def _state_key(snapshot: Any) -> tuple[Any, bytes]:
     """A hashable key of an environment snapshot (task progress and physics)."""
     return snapshot.task, snapshot.physics.tobytes()
@@ -201,10 +192,12 @@ class ProposalLog:
         ]
         return np.array(poses, dtype=np.float64).reshape(-1, 3)
 
-    def rejected_reasons(self, snapshot: Any) -> list[str]:
-        """The pre-check's reasons of the rejected proposals made in ``snapshot``."""
+    def rejected_codes(self, snapshot: Any) -> list[str]:
+        """The pre-check's reason codes of the rejected proposals made in ``snapshot``."""
         state = _state_key(snapshot)
-        return [str(info.get("reason", "")) for k, info, ok in self.checks if not ok and k == state]
+        return [
+            StepInfo.of(info).reason_code for k, info, ok in self.checks if not ok and k == state
+        ]
 
 
 def _first_place_node(mcts: MCTS, visits: int) -> int | None:
@@ -309,14 +302,12 @@ def figure5(
                 view=view,
                 execution_failures=dict(
                     Counter(
-                        failure_category(StepInfo.of(child.info).reason)
+                        StepInfo.of(child.info).reason_code
                         for child, ok in zip(node.children, node.feasible, strict=True)
                         if not ok
                     )
                 ),
-                precheck_failures=dict(
-                    Counter(failure_category(r) for r in problem.rejected_reasons(node.snapshot))
-                ),
+                precheck_failures=dict(Counter(problem.rejected_codes(node.snapshot))),
             )
             rec.rec.reset_time()
             rec.rec.set_time(SEARCH_TIMELINE, sequence=n_sims - 1)

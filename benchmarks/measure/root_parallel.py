@@ -46,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from voot.bench.protocol.problems import ALIASES, domain_options
+from voot.bench.protocol.problems import domain_options
 from voot.tree.chains import make_chain
 from voot.tree.config import MCTSConfig, planner_config
 from voot.tree.problem import PlanningProblem
@@ -112,7 +112,7 @@ def make_setup(name: str, budget: int | None = None, dim: int = 10) -> Setup:
             budget or DEFAULT_BUDGETS["shekel"],
         )
     if name == "kitchen":
-        cfg = planner_config("voot", **domain_options(ALIASES["kitchen"], None, "voot"))
+        cfg = planner_config("voot", **domain_options("voot/KitchenClearing-v0", None, "voot"))
         return Setup(
             "kitchen",
             functools.partial(kitchen_problem, 0),

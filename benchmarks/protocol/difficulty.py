@@ -5,14 +5,15 @@ Planner-agnostic statistics of a domain version (v0 or v1), from uniform random 
 * **per node type** (kitchen: the first pick and the first place; conveyor: the first
   place of three boxes), the fraction of uniform actions that pass the pre-check
   (stage 1, :mod:`voot.tree.problem`) and, of those, the fraction that then pass
-  execution (stage 2), with the reasons of the execution failures. Under v0 the
+  execution (stage 2), with the reasons of the execution failures (by the step info's
+  ``reason_code``). Under v0 the
   pre-check is the whole step, so every action that passes it is executed successfully;
 * **random rollouts**: from the start, every action is drawn uniformly until it passes
   the pre-check (at most ``retries`` draws, the planners' 50; if all fail the last is
   executed), then executed; a rollout ends at an infeasible action or the goal. The
   fraction of rollouts that clear everything estimates the chance that a random
   pre-check-feasible rollout solves the task, with a 95% Wilson interval;
-* **the scripted solution** (:mod:`voot.envs.scripted`): whether it still solves the
+* **the scripted solution** (:mod:`voot.envs.kitchen.scripted`, :mod:`voot.envs.conveyor.scripted`): whether it still solves the
   version, and its return.
 
 Same arguments and seed -> the same numbers (the envs and the draws are deterministic).
@@ -29,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
+from voot.problems import problem_record
 from voot.tree.step_info import StepInfo
 
 #: Domain versions reported by default.
@@ -100,52 +102,31 @@ def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:
     return (max(0.0, centre - half), min(1.0, centre + half))
 
 
-def short_reason(reason: str) -> str:
-    """A failure reason without the object names (``collision: robot-wall`` -> ``collision``)."""
-    text = reason.split("): ", 1)[-1] if reason.startswith("box ") else reason
-    return text.split(":", 1)[0].split(" (", 1)[0]
-
-
 def _problem(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> Any:
     import gymnasium
 
-    import voot  # noqa: F401 - registers the ids
     from voot.envs.core.problem import EnvProblem
 
     env = gymnasium.make(env_id, disable_env_checker=True, **dict(env_kwargs or {}))
     return EnvProblem(env.unwrapped, seed=0)
 
 
-def solution_actions(env: Any) -> list[Any]:
-    """A known solution of ``env`` from its start, as normalised actions.
-
-    A generated instance carries the witness its generator proved it solvable with
-    (``witness_actions()``); the fixed v0/v1 scenes have :mod:`voot.envs.scripted`'s.
-    """
-    from voot.envs.kitchen.env import KitchenClearingEnv
-    from voot.envs.scripted import conveyor_actions, kitchen_actions
-
-    witness = getattr(env, "witness_actions", None)
-    if callable(witness):
-        return list(witness())
-    return kitchen_actions(env) if isinstance(env, KitchenClearingEnv) else conveyor_actions(env)
-
-
 def _nodes(problem: Any) -> list[tuple[str, Any]]:
-    """(name, snapshot) of the node types measured: the first pick and place, or place."""
-    from voot.envs.kitchen.env import KitchenClearingEnv
-
+    """(name, snapshot) of the node types measured: the start's, and the node after the
+    env's known solution's first action if its operator differs (the kitchen's first pick
+    and place; the conveyor's first place)."""
     u = problem.unwrapped
     start = problem.snapshot()
-    if not isinstance(u, KitchenClearingEnv):
-        return [("place (3 boxes)", start)]
-    first_pick = solution_actions(u)[0]
-    res = problem.step(first_pick)
-    if not res.feasible:  # pragma: no cover - the scripted pick is tested
-        raise RuntimeError(f"the scripted first pick is infeasible: {res.info['reason']}")
-    place_node = problem.snapshot()
+    first = u.current_operator()
+    nodes = [(u.node_label(first), start)]
+    res = problem.step(u.solution_actions()[0][: problem.action_bounds().dim])
+    if not res.feasible:  # pragma: no cover - the known solutions are tested
+        raise RuntimeError(f"the known solution's first action is infeasible: {res.info['reason']}")
+    operator = u.current_operator()
+    if operator != first:
+        nodes.append((u.node_label(operator), problem.snapshot()))
     problem.restore(start)
-    return [("pick", start), ("place", place_node)]
+    return nodes
 
 
 def node_stats(
@@ -166,8 +147,8 @@ def uniform_draws(
 ) -> tuple[int, int, Counter[str]]:
     """Draw ``samples`` uniform actions at the node ``snapshot`` of ``problem`` (an
     :class:`~voot.envs.core.problem.EnvProblem`), each from that node: how many pass the
-    pre-check, how many of those execute, and the execution failures by
-    :func:`short_reason`. The problem is left at ``snapshot``."""
+    pre-check, how many of those execute, and the execution failures by reason code
+    (:attr:`~voot.tree.step_info.StepInfo.reason_code`). The problem is left at ``snapshot``."""
     problem.restore(snapshot)
     bounds = problem.action_bounds()
     passed = executed = 0
@@ -182,7 +163,7 @@ def uniform_draws(
         if res.feasible:
             executed += 1
         else:
-            failures[short_reason(StepInfo.of(res.info).reason)] += 1
+            failures[StepInfo.of(res.info).reason_code] += 1
     problem.restore(snapshot)
     return passed, executed, failures
 
@@ -221,13 +202,12 @@ def rollout_stats(
 
 
 def scripted_stats(env_id: str, env_kwargs: Mapping[str, Any] | None = None) -> ScriptedStats:
-    """Replay the known solution (:func:`solution_actions`) on ``env_id``."""
-    from voot.envs.kitchen.env import KitchenClearingEnv
-
+    """Replay the env's known solution (``solution_actions()``) on ``env_id``, discounted
+    by the authors' discount of the problem (its record's)."""
     problem = _problem(env_id, env_kwargs)
     u = problem.unwrapped
-    actions = solution_actions(u)
-    gamma = 0.9 if isinstance(u, KitchenClearingEnv) else 0.99
+    actions = u.solution_actions()
+    gamma = problem_record(env_id).discount or 1.0
     total, discount, failure, n = 0.0, 1.0, "", 0
     for a in actions:
         res = problem.step(a[: problem.action_bounds().dim])
@@ -286,7 +266,8 @@ def report(
         "|---|---:|---:|---:|",
         *rollout_rows,
         "",
-        "The scripted solution (voot.envs.scripted):",
+        "The scripted solution (the env's solution_actions(): voot.envs.kitchen.scripted,"
+        " voot.envs.conveyor.scripted):",
         "",
         "| environment | solves | actions | discounted return | failure |",
         "|---|---|---:|---:|---|",

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from voot import validation as V
-from voot.bench.protocol.difficulty import node_stats, rollout_stats, short_reason, wilson
+from voot.bench.protocol.difficulty import node_stats, rollout_stats, wilson
 
 #: The levels of the generated families, easiest first.
 LEVELS: tuple[str, ...] = ("easy", "medium", "hard")
@@ -49,7 +49,7 @@ class LevelStats:
         samples: Uniform actions per node type and layout.
         precheck: Node name -> actions that passed the pre-check (all layouts).
         executed: Node name -> of those, actions executed feasibly.
-        failures: Node name -> execution failures by short reason.
+        failures: Node name -> execution failures by reason code (the step info's ``reason_code``).
         rollouts: Random rollouts (all layouts).
         solved: Rollouts that solved their instance.
         handled: Mean share of the objects a rollout handled.
@@ -203,7 +203,7 @@ def ladder_report(
         for node in nodes:
             pre, exe = s.precheck.get(node, 0), s.executed.get(node, 0)
             fails = ", ".join(
-                f"{short_reason(k)} {v / n:.1%}"
+                f"{k} {v / n:.1%}"
                 for k, v in sorted(s.failures.get(node, {}).items(), key=lambda kv: -kv[1])
             )
             rate = f"{exe / pre:.1%}" if pre else "-"

@@ -21,18 +21,18 @@ its env with the run's seed, so a kept env behaves exactly as a fresh one, while
 MuJoCo model is loaded once per process (or Ray actor) instead of once per run.
 
 Per-problem planner settings (:func:`domain_options`) are the authors' where the
-reference page gives them: on the chains ``w = 100`` re-evaluations, no decay, root
-commitment 5 / 5 / 3, :math:`\\gamma = 0.9`; on the kitchen :math:`\\gamma = 0.9`, on the
-conveyor :math:`\\gamma = 0.99` with :math:`\\omega = 0.3` (v0: and 200 feasibility retries
-for progressive widening); VOO samples its best cell in ``centered_uniform`` mode on the
-chains and ``uniform`` mode on the robot domains. The v1 domains add the authors'
-tree-side rules (:data:`V1_TREE_RULES`: 50 retries for every planner, commitment
-counting root actions with reward >= 0 at thresholds 10 / 1, the return to the
-original root after a goal, VOO's per-operator distance). ``voot/KitchenClearing-v2``
-(alias ``kitchen_v2``: kitchens generated from ``layout_seed`` and ``difficulty``, env
-keywords) plays the v1 rules and gets the v1 kitchen's settings. ``voot/ConveyorPacking-v2``
-(alias ``conveyor_v2``: generated storage rooms on the v1 rules, env keywords
-``layout_seed`` and ``difficulty``) gets the v1 conveyor's options on every layout.
+reference page gives them, read from each problem's record (:mod:`voot.problems`, declared
+by its family beside its env: ``voot.envs.kitchen.problems`` ...): on the chains ``w = 100``
+re-evaluations, no decay, root commitment 5 / 5 / 3, :math:`\\gamma = 0.9`; on the kitchen
+:math:`\\gamma = 0.9`, on the conveyor :math:`\\gamma = 0.99` with :math:`\\omega = 0.3` (v0: and
+200 feasibility retries for progressive widening); VOO samples its best cell in
+``centered_uniform`` mode on the chains and ``uniform`` mode on the robot domains. The v1
+domains add the authors' tree-side rules (:data:`V1_TREE_RULES`: 50 retries for every
+planner, commitment counting root actions with reward >= 0 at thresholds 10 / 1, the
+return to the original root after a goal, VOO's per-operator distance). The generated
+families (``voot/KitchenClearing-v2``, alias ``kitchen_v2``, and ``voot/ConveyorPacking-v2``,
+``conveyor_v2``: env keywords ``layout_seed`` and ``difficulty``) play the v1 rules with
+the v1 domain's settings on every layout.
 """
 
 from __future__ import annotations
@@ -45,49 +45,31 @@ from dataclasses import dataclass
 from typing import Any
 
 from voot.parallel import CACHE_SIZE, clear_worker_cache, worker_cache
+from voot.problems import (  # the paper's planner lists, re-exported for the benchmark
+    CHAIN_PLANNERS,  # noqa: F401
+    DEFAULT_SETUP,
+    ROBOT_PLANNERS,  # noqa: F401
+    PaperSetup,
+    ProblemRecord,
+    find_record,
+    problem_records,
+)
 
-#: The synthetic chains, by problem name -> function name.
+#: The synthetic chains planned without an env, by problem name -> function name (their
+#: settings are those of the chain env of that function, :func:`problem_settings`).
 CHAINS: Mapping[str, str] = {
     "shekel_chain": "shekel",
     "griewank_chain": "griewank",
     "rastrigin_chain": "rastrigin",
 }
-#: Short names of gymnasium ids.
-ALIASES: Mapping[str, str] = {
-    "kitchen": "voot/KitchenClearing-v0",
-    "conveyor": "voot/ConveyorPacking-v0",
-    "kitchen_v1": "voot/KitchenClearing-v1",
-    "conveyor_v1": "voot/ConveyorPacking-v1",
-    "kitchen_v2": "voot/KitchenClearing-v2",
-    "conveyor_v2": "voot/ConveyorPacking-v2",
-}
-#: The robot domains under the authors' two-stage protocol, and their tree-side rules
-#: (reference page, "What the original code checks inside the retries"): commitment
+#: The authors' tree-side rules on the problems that play them (a record's ``v1_rules``;
+#: reference page, "What the original code checks inside the retries"): commitment
 #: counts root actions with reward >= 0 and returns to the original root once a goal
 #: leaf exists; VOO measures the per-operator distance; 50 retries for every planner.
 V1_TREE_RULES: Mapping[str, Any] = {
     "commit_min_reward": 0.0,
     "commit_reset_on_goal": True,
     "feasibility_retries": 50,
-}
-#: Root commitment thresholds of the v1 domains (kitchen 10, conveyor 1).
-V1_COMMITMENT: Mapping[str, int] = {
-    "voot/KitchenClearing-v1": 10,
-    "voot/KitchenClearing-v2": 10,
-    "voot/ConveyorPacking-v1": 1,
-    "voot/ConveyorPacking-v2": 1,
-}
-KITCHEN_IDS = frozenset(
-    {"voot/KitchenClearing-v0", "voot/KitchenClearing-v1", "voot/KitchenClearing-v2"}
-)
-CONVEYOR_IDS = frozenset(
-    {"voot/ConveyorPacking-v0", "voot/ConveyorPacking-v1", "voot/ConveyorPacking-v2"}
-)
-#: The chains' gymnasium ids -> function name (their ``dim`` keyword picks the settings).
-CHAIN_ENV_IDS: Mapping[str, str] = {
-    "voot/ShekelChain-v0": "shekel",
-    "voot/GriewankChain-v0": "griewank",
-    "voot/RastriginChain-v0": "rastrigin",
 }
 #: Planners whose per-node sampler is VOO (they get the domain's VOO settings).
 VOO_PLANNERS = frozenset({"voot", "voronoi_pw"})
@@ -98,33 +80,6 @@ OBJECTS_KEY = "objects_left"
 #: Objects each process keeps (environments among them; the least recently used one is
 #: closed): the size of the process's worker cache.
 ENV_CACHE_SIZE = CACHE_SIZE
-
-
-@dataclass(frozen=True)
-class PaperSetup:
-    """The paper's budget for a problem: simulations per run, seeds, planners compared."""
-
-    simulations: int
-    seeds: int
-    planners: tuple[str, ...]
-
-
-#: Planners of the paper's chain experiments (the six samplers).
-CHAIN_PLANNERS: tuple[str, ...] = ("voot", "doot", "rand_doot", "pw_uct", "voronoi_pw", "hoot")
-#: Planners of the paper's Figure 4.
-ROBOT_PLANNERS: tuple[str, ...] = ("voot", "rand_doot", "pw_uct", "voronoi_pw", "doot")
-#: The paper's setups (chains: the authors' code; robots: Figure 4).
-PAPER_SETUPS: Mapping[str, PaperSetup] = {
-    "chain": PaperSetup(10_000, 20, CHAIN_PLANNERS),
-    "voot/KitchenClearing-v0": PaperSetup(2_000, 20, ROBOT_PLANNERS),
-    "voot/ConveyorPacking-v0": PaperSetup(3_000, 50, ROBOT_PLANNERS),
-    "voot/KitchenClearing-v1": PaperSetup(2_000, 20, ROBOT_PLANNERS),
-    "voot/KitchenClearing-v2": PaperSetup(2_000, 20, ROBOT_PLANNERS),
-    "voot/ConveyorPacking-v1": PaperSetup(3_000, 50, ROBOT_PLANNERS),
-    "voot/ConveyorPacking-v2": PaperSetup(3_000, 50, ROBOT_PLANNERS),
-}
-#: Budget of any other environment.
-DEFAULT_SETUP = PaperSetup(1_000, 20, ROBOT_PLANNERS)
 #: The default problems of ``voot-bench plan``: the Shekel chain in 10-D and 20-D.
 DEFAULT_PROBLEMS: tuple[str, ...] = ("shekel_chain",)
 DEFAULT_CHAIN_DIMS: tuple[int, ...] = (10, 20)
@@ -132,6 +87,21 @@ DEFAULT_CHAIN_DIMS: tuple[int, ...] = (10, 20)
 
 def is_chain(problem: str) -> bool:
     return problem in CHAINS
+
+
+def problem_settings(problem: str) -> ProblemRecord | None:
+    """The record of ``problem`` (:mod:`voot.problems`): a recorded id, or the chain env's
+    record of a chain planned without an env; None for any other environment."""
+    if is_chain(problem):
+        return next(r for r in problem_records() if r.chain == CHAINS[problem])
+    return find_record(problem) if "/" in problem else None
+
+
+def aliases() -> dict[str, str]:
+    """Every alias -> its id, by version first (v0 of each family, then v1 ...), as the
+    paper's tables order the problems."""
+    records = sorted(problem_records(), key=lambda r: int(r.id.rsplit("-v", 1)[1]))
+    return {a: r.id for r in records for a in r.aliases}
 
 
 def normalize_problem(name: str) -> str:
@@ -146,24 +116,24 @@ def normalize_problem(name: str) -> str:
     key = text.lower().replace("-", "_")
     if key in CHAINS:
         return key
-    if key in ALIASES:
-        return ALIASES[key]
+    short = aliases()
+    if key in short:
+        return short[key]
     import gymnasium
-
-    import voot  # noqa: F401 - registers the voot/... ids
 
     if text in gymnasium.registry:
         return text
     raise ValueError(
         f"unknown problem {name!r}; valid problems are the chains {', '.join(CHAINS)}, the"
-        f" aliases {', '.join(f'{a} ({i})' for a, i in ALIASES.items())}, or any registered"
+        f" aliases {', '.join(f'{a} ({i})' for a, i in short.items())}, or any registered"
         " gymnasium id whose env has get_state()/set_state() (e.g. voot/ShekelChain-v0)"
     )
 
 
 def problem_label(problem: str, env_kwargs: Mapping[str, Any] | None = None) -> str:
     """A short display name: the alias of an id if it has one, env keywords appended."""
-    short = {v: k for k, v in ALIASES.items()}.get(problem, problem)
+    record = find_record(problem) if "/" in problem else None
+    short = record.short_name if record is not None and record.id == problem else problem
     if env_kwargs:
         inner = ", ".join(f"{k}={env_kwargs[k]}" for k in sorted(env_kwargs))
         return f"{short}({inner})"
@@ -172,14 +142,14 @@ def problem_label(problem: str, env_kwargs: Mapping[str, Any] | None = None) -> 
 
 def paper_setup(problem: str) -> PaperSetup:
     """Budget, seeds and planners of ``problem`` in the paper (or :data:`DEFAULT_SETUP`)."""
-    if is_chain(problem) or problem in CHAIN_ENV_IDS:
-        return PAPER_SETUPS["chain"]
-    return PAPER_SETUPS.get(problem, DEFAULT_SETUP)
+    record = problem_settings(problem)
+    return record.paper_setup if record is not None else DEFAULT_SETUP
 
 
 def family(problem: str) -> str:
     """``"chain"`` for the synthetic chains (also through gymnasium), else ``"robot"``."""
-    return "chain" if is_chain(problem) or problem in CHAIN_ENV_IDS else "robot"
+    record = problem_settings(problem)
+    return "chain" if record is not None and record.chain is not None else "robot"
 
 
 def check_env_kwargs(env_kwargs: Mapping[str, Any] | None) -> dict[str, Any]:
@@ -197,33 +167,29 @@ def domain_options(
 ) -> dict[str, Any]:
     """:class:`~voot.tree.MCTSConfig` overrides the authors used on ``problem`` for ``planner``.
 
-    See the module docstring; ``sampler_options`` is included for the VOO planners.
+    Read from the problem's record (:func:`problem_settings`; none for an unrecorded env):
+    a chain's options by dimension (``dim``, else the ``dim`` keyword, else 10), the
+    discount, the progressive-widening planners' retries, the v1 tree rules with the root
+    commitment, and for the VOO planners the sampler options and the problem's metric.
     """
-    from voot.tree.chains import chain_planner_options
-
-    kwargs = dict(env_kwargs or {})
-    if is_chain(problem) or problem in CHAIN_ENV_IDS:
-        function = CHAINS.get(problem) or CHAIN_ENV_IDS[problem]
-        d = dim if dim is not None else int(kwargs.get("dim", 10))
-        chain = chain_planner_options(function, d)
-        if planner in VOO_PLANNERS:
-            chain["sampler_options"] = {"sampler": "centered_uniform"}
-        return chain
+    record = problem_settings(problem)
+    if record is None:
+        return {}
     options: dict[str, Any] = {}
-    if problem in KITCHEN_IDS:
-        options["gamma"] = 0.9
-    elif problem in CONVEYOR_IDS:
-        options["gamma"] = 0.99
-        if planner in PW_PLANNERS and problem == ALIASES["conveyor"]:
-            options["feasibility_retries"] = 200
-    if problem in V1_COMMITMENT:
-        options.update(V1_TREE_RULES, root_commitment=V1_COMMITMENT[problem])
-    if problem in ALIASES.values() and planner in VOO_PLANNERS:
-        voo: dict[str, Any] = {"sampler": "uniform"}
-        if problem in CONVEYOR_IDS:
-            voo["omega"] = 0.3
-        options["sampler_options"] = voo
-        if problem in V1_COMMITMENT:
+    if record.chain is not None:
+        from voot.tree.chains import chain_planner_options
+
+        d = dim if dim is not None else int(dict(env_kwargs or {}).get("dim", 10))
+        options = chain_planner_options(record.chain, d)
+    if record.discount is not None:
+        options["gamma"] = record.discount
+    if record.pw_retries is not None and planner in PW_PLANNERS:
+        options["feasibility_retries"] = record.pw_retries
+    if record.v1_rules:
+        options.update(V1_TREE_RULES, root_commitment=record.root_commitment)
+    if record.voo_options is not None and planner in VOO_PLANNERS:
+        options["sampler_options"] = dict(record.voo_options)
+        if record.voo_metric:
             options["use_problem_metric"] = True
     return options
 

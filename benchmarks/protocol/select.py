@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from voot.bench.protocol.layouts import family_kwargs
-from voot.bench.protocol.problems import ALIASES, CHAINS, problem_label
+from voot.bench.protocol.problems import CHAINS, aliases, problem_label
 from voot.bench.store.format import Row
 from voot.bench.sweep.bbfo import PAPER_FUNCTIONS, PAPER_METHODS, instance_of
 from voot.bench.sweep.engine import params_key
@@ -40,7 +40,7 @@ from voot.bench.sweep.planners import PLAN_PLANNERS
 CellKey = tuple[str, int, int, str]
 
 #: Problems of the planning sweep in plotting order (the robot domains, then the chains).
-PLAN_PROBLEMS: tuple[str, ...] = (*ALIASES, *CHAINS)
+PLAN_PROBLEMS: tuple[str, ...] = (*aliases(), *CHAINS)
 
 
 def planner_label(planner: str, variant: str | None = None) -> str:

@@ -28,7 +28,6 @@ from typing import Any
 
 import numpy as np
 
-from voot.bench.protocol.difficulty import short_reason
 from voot.bench.sweep.plan import PlanSpec
 from voot.bench.sweep.search import search_seed
 from voot.tree.mcts import MCTS
@@ -93,8 +92,7 @@ class _TracedProblem:
     def _is_feasible(self, action: Any) -> bool:
         ok = bool(self._p.is_feasible(action))
         if not ok:
-            reason = StepInfo.of(self._p.last_check.info).reason
-            self._record("precheck", short_reason(reason), action)
+            self._record("precheck", StepInfo.of(self._p.last_check.info).reason_code, action)
         return ok
 
     def step(self, action: Any) -> Any:
@@ -102,7 +100,7 @@ class _TracedProblem:
         if res.feasible:
             self._record("feasible", "", action)
         else:
-            self._record("execution", short_reason(StepInfo.of(res.info).reason), action)
+            self._record("execution", StepInfo.of(res.info).reason_code, action)
         return res
 
 

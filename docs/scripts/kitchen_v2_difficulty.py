@@ -35,7 +35,7 @@ def _shares(
             _, _, _, _, info = env.step(a)
             ok += info["feasible"]
             if not info["feasible"]:
-                reasons[info["reason"].split(":")[0][:28]] += 1
+                reasons[info["reason_code"]] += 1
             env.set_state(state)
     return pre, ok
 

@@ -173,9 +173,8 @@ def benchmark(layouts: int) -> None:
 
 def difficulty(layouts: int, samples: int) -> None:
     """Uniform actions at the first node per level (see the module docstring)."""
-    from voot.bench.protocol.difficulty import uniform_draws
+    from voot.bench.protocol.difficulty import node_stats
     from voot.envs.conveyor.generated.env import witness_return
-    from voot.envs.core.problem import EnvProblem
 
     rows = []
     for level in LEVELS:
@@ -183,13 +182,13 @@ def difficulty(layouts: int, samples: int) -> None:
         failures: Counter[str] = Counter()
         returns = []
         for seed in range(layouts):
-            env = _make(seed, level)
-            returns.append(witness_return(env, 0.99))  # type: ignore[arg-type]
-            problem = EnvProblem(env, seed=0)  # type: ignore[arg-type]  (resets the env)
-            rng = np.random.default_rng(seed)
-            got = uniform_draws(problem, problem.snapshot(), samples, rng)
-            passed, executed, total = passed + got[0], executed + got[1], total + samples
-            failures += got[2]
+            returns.append(witness_return(_make(seed, level), 0.99))  # type: ignore[arg-type]
+            kwargs = {"layout_seed": seed, "difficulty": level}
+            (stats,) = node_stats("voot/ConveyorPacking-v2", samples, seed, kwargs)
+            total += stats.samples
+            passed += stats.passed_precheck
+            executed += stats.passed_execution
+            failures.update(stats.execution_failures)
         fails = ", ".join(f"{k} {v / total:.1%}" for k, v in failures.most_common())
         exe = f"{executed / passed:.1%}" if passed else "-"
         rows.append(

@@ -32,7 +32,7 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import Any, ClassVar
 
 import gymnasium as gym
 import mujoco
@@ -40,7 +40,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
+from voot.envs.core.metrics import Distance, place_distance
+from voot.envs.core.names import Failure, Operator, Precheck, Reason, choices, reason_code
 from voot.envs.core.presets import env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, rect_inside, set_object_pose
@@ -65,7 +68,7 @@ from voot.optim.base import Bounds
 FloatArray = NDArray[np.float64]
 
 #: What a planner's pre-check of an action covers (:attr:`ConveyorConfig.precheck`).
-PRECHECKS = ("full_step", "kinematic")
+PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
@@ -117,7 +120,7 @@ class ConveyorConfig:
     infeasible_reward: float = -2.0
     horizon: int = 20
     render_overlays: bool = True
-    precheck: str = "full_step"
+    precheck: Precheck = Precheck.FULL_STEP
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -143,8 +146,9 @@ class ConveyorConfig:
         V.integer(self.horizon, "ConveyorConfig.horizon", 1)
         if self.precheck not in PRECHECKS:
             raise ValueError(
-                f"ConveyorConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+                f"ConveyorConfig.precheck must be one of {choices(Precheck)}, got {self.precheck!r}"
             )
+        object.__setattr__(self, "precheck", Precheck(self.precheck))
         if not isinstance(self.ik, IKConfig):
             raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
         if not isinstance(self.planner, BasePlannerConfig):
@@ -162,7 +166,7 @@ class ConveyorConfig:
 #: Named versions of the domain: :class:`ConveyorConfig` overrides (see
 #: :data:`voot.envs.kitchen.config.KITCHEN_PRESETS`).
 CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
-    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": "kinematic"})}
+    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": Precheck.KINEMATIC})}
 )
 
 
@@ -211,6 +215,8 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     Raises:
         RuntimeError: If the fixed grasp of some box is infeasible (a broken scene).
     """
+
+    family: ClassVar[str] = FAMILY
 
     def __init__(
         self,
@@ -343,7 +349,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
 
     def _info_reset(self) -> dict[str, Any]:
         return {
-            "next_operator": "place",
+            "next_operator": Operator.PLACE,
             "objects_left": self.n,
             "next_objects": self._next_names(),
         }
@@ -360,6 +366,28 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     def action_bounds(self) -> Bounds:
         """The 9-D action box in normalised units."""
         return Bounds.cube(-1.0, 1.0, 3 * OBJECTS_PER_ACTION)
+
+    def current_operator(self) -> Operator:
+        """Always a place (the boxes come to the robot)."""
+        return Operator.PLACE
+
+    def operator_ranges(self, operator: Operator) -> tuple[tuple[float, float], ...]:
+        """The placement ranges (x, y, theta) of each of the action's boxes."""
+        return tuple(self.config.place_ranges) * OBJECTS_PER_ACTION
+
+    def operator_distance(self, operator: Operator) -> Distance:
+        """The authors' place distance over the action's placements."""
+        return place_distance(OBJECTS_PER_ACTION)
+
+    def node_label(self, operator: Operator) -> str:
+        """``"place (3 boxes)"``: an action places up to three boxes."""
+        return f"{operator} ({OBJECTS_PER_ACTION} boxes)"
+
+    def solution_actions(self) -> list[FloatArray]:
+        """The hand-chosen packing of the paper's conveyor (:mod:`voot.envs.conveyor.scripted`)."""
+        from voot.envs.conveyor.scripted import conveyor_actions
+
+        return conveyor_actions(self)
 
     # ----- stepping ------------------------------------------------------------------------
     def place_base_pose(self, i: int, obj_pose: ArrayLike) -> FloatArray:
@@ -384,14 +412,15 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         lengths: list[float] = []
         paths: list[FloatArray] = []
         col_time = plan_time = 0.0
-        reason = ""
+        reason: str = ""
+        failed = None
         for k in range(m):
             i = t.placed + k
             reason, dt_col, dt_plan = self._check_place(i, params[k], moved, lengths, paths)
             col_time += dt_col
             plan_time += dt_plan
             if reason:
-                reason = f"box {k + 1}/{m} ({names[k]}): {reason}"
+                reason, failed = _of_box(reason, k, m, names[k]), k
                 break
         self.last_timing = StepTiming(
             collision=col_time, planning=plan_time, total=time.perf_counter() - start_time
@@ -412,26 +441,22 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         t = self.task
         terminated = t.done
         truncated = (not terminated) and t.steps >= cfg.horizon
-        info: dict[str, Any] = {
-            "operator": "place",
-            "objects": names,
-            "feasible": feasible,
-            "reason": reason,
-            "base_path_length": float(sum(lengths)) if feasible else 0.0,
-            "base_path_lengths": lengths if feasible else [],
-            "base_paths": paths if feasible else [],
-            "parameters": params,
-            "base_pose": bases[0],
-            "placement": placements[0],
-            "base_poses": bases,
-            "placements": placements,
-            "action_clipped": clipped,
-            "next_operator": "place",
-            "next_objects": self._next_names(),
-            "objects_left": self.n - t.placed,
-            "objects_placed": t.placed,
-            "goal_bonus": 0.0,
-        }
+        info = _placements_info(reason, failed, bases, placements)
+        info.update(
+            {
+                "objects": names,
+                "base_path_length": float(sum(lengths)) if feasible else 0.0,
+                "base_path_lengths": lengths if feasible else [],
+                "base_paths": paths if feasible else [],
+                "parameters": params,
+                "action_clipped": clipped,
+                "next_operator": Operator.PLACE,
+                "next_objects": self._next_names(),
+                "objects_left": self.n - t.placed,
+                "objects_placed": t.placed,
+                "goal_bonus": 0.0,
+            }
+        )
         return float(reward), terminated, truncated, info
 
     def _check_place(
@@ -464,7 +489,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
         plan_time = time.perf_counter() - t0
         if path is None:
-            return "no base path", col_time, plan_time
+            return Failure(Reason.NO_BASE_PATH, "no base path"), col_time, plan_time
         base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
         moved[i] = (x, y, 0.0, theta)
         lengths.append(float(base_path.length))
@@ -487,10 +512,12 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         x, y, theta = (float(v) for v in xyt)
         box = object_footprint(self.objects[i], x, y, theta)
         if not rect_inside(box, cfg.loading_region):
-            return "outside region: the box leaves the loading region", 0.0, None
+            text = "outside region: the box leaves the loading region"
+            return Failure(Reason.OUTSIDE_REGION, text), 0.0, None
         base = self.place_base_pose(i, (x, y, theta))
         if not rect_inside(base_footprint(base), cfg.workspace):
-            return "outside region: the robot leaves the workspace", 0.0, base
+            text = "outside region: the robot leaves the workspace"
+            return Failure(Reason.OUTSIDE_REGION, text), 0.0, base
         t0 = time.perf_counter()
         poses = dict(moved)
         poses[i] = (x, y, 0.0, theta)
@@ -499,7 +526,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         )
         col_time = time.perf_counter() - t0
         if not report.free:
-            return "collision: " + ", ".join(report.hits), col_time, base
+            return Failure(Reason.COLLISION, "collision: " + ", ".join(report.hits)), col_time, base
         return "", col_time, base
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
@@ -520,24 +547,17 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         placements = tuple(pose_tuple(p) for p in params)
         bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
         moved: dict[int, tuple[float, float, float, float]] = {}
-        reason = ""
+        reason: str = ""
+        failed = None
         for k in range(m):
             i = t.placed + k
             reason, _, _ = self._place_kinematics(i, params[k], moved)
             if reason:
-                reason = f"box {k + 1}/{m} ({self.objects[i].name}): {reason}"
+                reason, failed = _of_box(reason, k, m, self.objects[i].name), k
                 break
             x, y, theta = placements[k]
             moved[i] = (x, y, 0.0, theta)
-        return not reason, {
-            "operator": "place",
-            "feasible": not reason,
-            "reason": reason,
-            "placement": placements[0],
-            "base_pose": bases[0],
-            "placements": placements,
-            "base_poses": bases,
-        }
+        return not reason, _placements_info(reason, failed, bases, placements)
 
     # ----- rendering -----------------------------------------------------------------------
     def _decorate(self, scene: mujoco.MjvScene) -> None:
@@ -551,3 +571,32 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             0.0,
             (1.0, 0.85, 0.1, 0.10),
         )
+
+
+def _of_box(reason: str, k: int, m: int, name: str) -> Failure:
+    """The failure of box ``k`` (of the action's ``m``, named ``name``): its text names it."""
+    assert isinstance(reason, Failure)
+    return reason.prefixed(f"box {k + 1}/{m} ({name}): ")
+
+
+def _placements_info(
+    reason: str,
+    failed: int | None,
+    bases: tuple[tuple[float, float, float], ...],
+    placements: tuple[tuple[float, float, float], ...],
+) -> dict[str, Any]:
+    """The info of an action's placements, the keys a step's info and a pre-check's share
+    (the step adds its paths, counts and the next boxes): whether it passes, why not
+    (``reason``, ``reason_code``, and ``failed_box``, the index in the action of the first
+    box that failed, None if none), every box's placement and base pose."""
+    return {
+        "operator": Operator.PLACE,
+        "feasible": not reason,
+        "reason": str(reason),
+        "reason_code": reason_code(reason),
+        "failed_box": failed,
+        "placement": placements[0],
+        "base_pose": bases[0],
+        "placements": placements,
+        "base_poses": bases,
+    }

@@ -51,6 +51,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.core.metrics import Distance
+from voot.envs.core.names import Operator
 from voot.envs.core.rendering import CAMERAS, RENDER_MODES, ensure_headless_gl
 from voot.envs.core.scene import (
     load_model,
@@ -96,6 +98,8 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     #: move the robot and objects only once every check has passed). A subclass that
     #: breaks it must set this to False.
     INFEASIBLE_CHANGES_TASK_ONLY: ClassVar[bool] = True
+    #: The family of the env (its problem records' ``family``, :mod:`voot.problems`).
+    family: ClassVar[str] = ""
     #: Signature of the physics part of snapshots.
     STATE_SIGNATURE: ClassVar[int] = int(mujoco.mjtState.mjSTATE_INTEGRATION)
 
@@ -195,6 +199,31 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
         """The cheap kinematic check of ``action`` now, changing nothing (see subclasses)."""
+        raise NotImplementedError
+
+    def current_operator(self) -> Operator:
+        """The operator of the current node: what the next action does (pick or place)."""
+        raise NotImplementedError
+
+    def operator_ranges(self, operator: Operator) -> Sequence[tuple[float, float]]:
+        """The ranges of a planner's action parameters at an ``operator`` node, in action
+        order: the paper's units of each normalised entry (the env action's first
+        entries; a shorter action is padded with zeros)."""
+        raise NotImplementedError
+
+    def operator_distance(self, operator: Operator) -> Distance:
+        """The authors' distance between two actions of ``operator`` in the paper's units
+        (:mod:`voot.envs.core.metrics`; VOO's cells with ``use_problem_metric``)."""
+        raise NotImplementedError
+
+    def node_label(self, operator: Operator) -> str:
+        """How reports name a node of ``operator`` (``"pick"``; the conveyor says how many
+        boxes an action places)."""
+        return str(operator)
+
+    def solution_actions(self) -> list[FloatArray]:
+        """A known solution from the start, as normalised actions: the scripted one of a
+        fixed scene, or the witness a generated instance was proven solvable with."""
         raise NotImplementedError
 
     def planning_problem(self, env: Any = None) -> Any:

@@ -35,7 +35,7 @@ from voot.envs.robot.model import ARM_REACH
 FloatArray = NDArray[np.float64]
 
 
-class _Distance:
+class Distance:
     """A distance from many points to one, computed as one row of :meth:`pairwise`.
 
     ``pairwise(points (n, d), ys (m, d)) -> (m, n)`` is what VOO uses to test a batch of
@@ -60,7 +60,7 @@ def _norm(diff: FloatArray) -> FloatArray:
     return out
 
 
-class PlaceDistance(_Distance):
+class PlaceDistance(Distance):
     """Distance of the placed objects' (x, y), ignoring their headings.
 
     Args:
@@ -77,7 +77,7 @@ class PlaceDistance(_Distance):
         return _norm(p[None, :, :] - q[:, None, :])
 
 
-class PickDistance(_Distance):
+class PickDistance(Distance):
     """Weighted SE(2) distance of the pick base poses plus the grasp parameters' norm.
 
     Args:
@@ -118,10 +118,10 @@ def pick_distance(rotation_weight: float = 1.0) -> PickDistance:
     return PickDistance(rotation_weight)
 
 
-class ScaledDistance(_Distance):
+class ScaledDistance(Distance):
     """``metric`` applied to actions mapped to the paper's units by ``a * scale + offset``."""
 
-    def __init__(self, metric: _Distance, scale: FloatArray, offset: FloatArray):
+    def __init__(self, metric: Distance, scale: FloatArray, offset: FloatArray):
         self.metric = metric
         self.scale = np.asarray(scale, dtype=np.float64)
         self.offset = np.asarray(offset, dtype=np.float64)
@@ -131,6 +131,6 @@ class ScaledDistance(_Distance):
         return self.metric.pairwise(np.asarray(points) * s + o, np.asarray(ys) * s + o)
 
 
-def to_action_units(metric: _Distance, scale: FloatArray, offset: FloatArray) -> ScaledDistance:
+def to_action_units(metric: Distance, scale: FloatArray, offset: FloatArray) -> ScaledDistance:
     """``metric`` for actions ``a`` whose paper-unit value is ``a * scale + offset``."""
     return ScaledDistance(metric, scale, offset)

@@ -1,8 +1,10 @@
 """The benchmark environments as :mod:`voot.tree` planning problems.
 
-:class:`EnvProblem` adapts :class:`~voot.envs.kitchen.env.KitchenClearingEnv` or
-:class:`~voot.envs.conveyor.env.ConveyorPackingEnv` (or a ``gym.make`` of them) to the
-:class:`~voot.tree.problem.PlanningProblem` protocol:
+:class:`EnvProblem` adapts any robot env (:class:`~voot.envs.core.env.ManipulationEnv`:
+the kitchen, the conveyor, their generated families, or a ``gym.make`` of them) to the
+:class:`~voot.tree.problem.PlanningProblem` protocol, asking the env for what differs
+between tasks (the current operator, its parameter ranges and distance) instead of
+knowing the tasks:
 
 * ``snapshot()`` / ``restore()`` are the env's ``get_state()`` / ``set_state()``;
 * ``action_bounds()`` is the *current* operator's box: 6-D at a kitchen pick, 3-D at a
@@ -49,34 +51,39 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.conveyor.env import OBJECTS_PER_ACTION, ConveyorPackingEnv
-from voot.envs.core.env import ManipulationEnv
-from voot.envs.core.metrics import pick_distance, place_distance, to_action_units
+from voot.envs.core.metrics import to_action_units
+from voot.envs.core.names import Operator, Precheck, Units, choices
 from voot.envs.core.state import EnvState
 from voot.envs.core.units import normalize
-from voot.envs.kitchen.env import KitchenClearingEnv
 from voot.optim.base import Bounds
 from voot.tree.problem import ActionDistance, StepResult
+
+if TYPE_CHECKING:  # the env base offers planning_problem(): no import back at run time
+    from voot.envs.core.env import ManipulationEnv
 
 FloatArray = NDArray[np.float64]
 _F64 = np.dtype(np.float64)
 
-#: Action units an :class:`EnvProblem` can expose.
-UNITS = ("normalized", "paper")
+#: Action units an :class:`EnvProblem` can expose (:class:`~voot.envs.core.names.Units`).
+UNITS: tuple[Units, ...] = tuple(Units)
+#: What :class:`EnvProblem` asks of the env, beyond gymnasium's API (the env base's).
+_ENV_METHODS = ("transition", "precheck", "current_operator", "operator_ranges", "get_state")
 
 
 class EnvProblem:
     """A voot benchmark environment as a planning problem (see the module docstring).
 
     Args:
-        env: A :class:`KitchenClearingEnv` or :class:`ConveyorPackingEnv`, possibly
-            wrapped (``gym.make("voot/KitchenClearing-v0")``).
+        env: A robot env (a :class:`~voot.envs.core.env.ManipulationEnv`: the kitchen,
+            the conveyor, their generated families), possibly wrapped
+            (``gym.make("voot/KitchenClearing-v0")``). The problem asks it for the current
+            operator, its parameter ranges and distance; it knows no concrete task.
         seed: If not None, ``env.reset(seed=seed)`` first; otherwise the problem starts
             from the env's current state.
         units: ``"normalized"`` (``[-1, 1]`` boxes) or ``"paper"`` (the parameters'
@@ -94,61 +101,55 @@ class EnvProblem:
         self,
         env: Any,
         seed: int | None = None,
-        units: str = "normalized",
+        units: str = Units.NORMALIZED,
         prescreen: bool = True,
     ) -> None:
         u = getattr(env, "unwrapped", env)
-        if not isinstance(u, KitchenClearingEnv | ConveyorPackingEnv):
+        if not all(callable(getattr(u, name, None)) for name in _ENV_METHODS):
             raise ValueError(
-                "EnvProblem needs a KitchenClearingEnv or ConveyorPackingEnv (or a gym.make of"
-                f" one); got {type(u).__name__}"
+                "EnvProblem needs a voot robot env (a ManipulationEnv such as the kitchen or"
+                f" the conveyor, or a gym.make of one); got {type(u).__name__}"
             )
         if units not in UNITS:
-            raise ValueError(f"units must be one of {', '.join(UNITS)}; got {units!r}")
+            raise ValueError(f"units must be one of {choices(Units)}; got {units!r}")
         self.env = env
         self.unwrapped: ManipulationEnv[Any] = u
-        self.units = units
+        self.units = Units(units)
         self._dim = u.action_dim
-        self._is_kitchen = isinstance(u, KitchenClearingEnv)
         self._version = 0
         self._cache: tuple[int, bytes, StepResult, EnvState[Any], EnvState[Any]] | None = None
         # a snapshot equal to the env's current state, or None if unknown
         self._here: EnvState[Any] | None = None
-        self._bounds: dict[str, Bounds] = {}
+        self._bounds: dict[Operator, Bounds] = {}
         self._last_check: StepResult | None = None
         # the last check the env's pre-screen settled: (version, action bytes, the
         # snapshot it was made in); its result is computed only if asked for
         self._screened: tuple[int, bytes, EnvState[Any]] | None = None
         self._pending = False  # is last_check the result of _screened (not computed)?
-        self._kinematic = u.config.precheck == "kinematic"
+        self._kinematic = u.config.precheck == Precheck.KINEMATIC
         if not isinstance(prescreen, bool):
             raise ValueError(f"prescreen must be True or False, got {prescreen!r}")
         #: Whether full-step checks ask the env's exact pre-screen first (see the class).
         self.prescreen = prescreen
         #: Runs of the env's simulator (``transition``), pre-checks that step included.
         self.n_simulator_calls = 0
-        self._metrics: dict[str, ActionDistance] = {}
+        self._metrics: dict[Operator, ActionDistance] = {}
         if seed is not None:
             u.reset(seed=seed)
 
     # ----- units ---------------------------------------------------------------------------
     def _ranges(self) -> Sequence[tuple[float, float]]:
-        u = self.unwrapped
-        if isinstance(u, KitchenClearingEnv):
-            cfg = u.config
-            return cfg.pick_ranges if u.task.operator == "pick" else cfg.place_ranges
-        assert isinstance(u, ConveyorPackingEnv)
-        return tuple(u.config.place_ranges) * OBJECTS_PER_ACTION
+        return self.unwrapped.operator_ranges(self._operator())
 
-    def _operator(self) -> str:
-        return self.unwrapped.task.operator if self._is_kitchen else "place"
+    def _operator(self) -> Operator:
+        return self.unwrapped.current_operator()
 
     def action_bounds(self) -> Bounds:
         """The current operator's action box (built once per operator and shared)."""
         key = self._operator()
         box = self._bounds.get(key)
         if box is None:
-            if self.units == "paper":
+            if self.units == Units.PAPER:
                 r = self._ranges()
                 box = Bounds([lo for lo, _ in r], [hi for _, hi in r])
             else:
@@ -174,7 +175,7 @@ class EnvProblem:
         if not np.isfinite(a).all():
             bad = np.flatnonzero(~np.isfinite(a)).tolist()
             raise ValueError(f"action has NaN or infinite entries at indices {bad}: {a.tolist()}")
-        if self.units == "paper":
+        if self.units == Units.PAPER:
             a = normalize(a, self._ranges())
         if dim < self._dim:
             padded = np.zeros(self._dim)
@@ -356,7 +357,7 @@ class EnvProblem:
         # the native float64 descriptor is a singleton: another one goes the general way
         if type(action) is not np.ndarray or action.dtype is not _F64 or action.ndim != 1:
             return None
-        if self.units != "normalized":
+        if self.units != Units.NORMALIZED:
             return None
         values: list[float] = action.tolist()
         box = self._bounds.get(self._operator())
@@ -370,25 +371,17 @@ class EnvProblem:
 
     def action_metric(self) -> ActionDistance:
         """The authors' distance between actions of the current operator (planner units)."""
-        u = self.unwrapped
-        key = u.task.operator if isinstance(u, KitchenClearingEnv) else "place"
+        key = self._operator()
         metric = self._metrics.get(key)
         if metric is None:
             ranges = self._ranges()
             lo = np.array([r[0] for r in ranges])
             hi = np.array([r[1] for r in ranges])
-            if self.units == "paper":
+            if self.units == Units.PAPER:
                 scale, offset = np.ones_like(lo), np.zeros_like(lo)
             else:  # paper = lo + (a + 1) (hi - lo) / 2
                 scale, offset = 0.5 * (hi - lo), lo + 0.5 * (hi - lo)
-            if isinstance(u, KitchenClearingEnv):
-                base = (
-                    pick_distance(u.config.planner.rotation_weight)
-                    if key == "pick"
-                    else place_distance()
-                )
-            else:
-                base = place_distance(OBJECTS_PER_ACTION)
+            base = self.unwrapped.operator_distance(key)
             metric = to_action_units(base, scale, offset)
             self._metrics[key] = metric
         return metric

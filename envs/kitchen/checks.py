@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.scene import object_footprint, rect_inside, rect_overlaps
 from voot.envs.core.state import StepTiming, pose_tuple
 from voot.envs.core.units import denormalize
@@ -36,6 +37,11 @@ from voot.envs.robot.model import TUCK, base_footprint
 from voot.envs.robot.rotations import rot_z
 
 FloatArray = NDArray[np.float64]
+
+
+def _collision(hits: Any) -> Failure:
+    """The failure of a collision check with ``hits`` (the colliding pairs' names)."""
+    return Failure(Reason.COLLISION, "collision: " + ", ".join(hits))
 
 
 class KitchenChecks(KitchenScreen):
@@ -86,18 +92,23 @@ class KitchenChecks(KitchenScreen):
         base = self.pick_base_pose(obj, params)
         if not rect_inside(base_footprint(base), cfg.house):
             self.last_timing = StepTiming()
-            return "outside region: the robot leaves the house", base, None, no_rel
+            return (
+                Failure(Reason.OUTSIDE_REGION, "outside region: the robot leaves the house"),
+                base,
+                None,
+                no_rel,
+            )
         pose = self.object_pose(obj)
         grasp, miss = self._grasp_pose(obj, pose, float(base[2]), params)
-        if grasp is None:
+        if grasp is None:  # the hook's contract: no grasp pose means the grasp misses
             self.last_timing = StepTiming()
-            return miss, base, None, no_rel
+            return Failure(Reason.GRASP_MISSES, miss), base, None, no_rel
         t0 = time.perf_counter()
         base_report = self.collision.check(self.data.qpos, base, TUCK)  # cheap early exit
         col_time = time.perf_counter() - t0
         if not base_report.free:
             self.last_timing = StepTiming(collision=col_time)
-            return "collision: " + ", ".join(base_report.hits), base, None, no_rel
+            return _collision(base_report.hits), base, None, no_rel
         rb = rot_z(float(base[2]))
         target_p = rb.T @ (grasp.position - np.array([base[0], base[1], 0.0]))
         target_r = rb.T @ grasp.rotation
@@ -106,13 +117,13 @@ class KitchenChecks(KitchenScreen):
         ik_time = time.perf_counter() - t0
         if not ik.success or ik.q is None:
             self.last_timing = StepTiming(ik=ik_time, collision=col_time)
-            return f"IK failed: {ik.reason}", base, None, no_rel
+            return Failure(Reason.IK_FAILED, f"IK failed: {ik.reason}"), base, None, no_rel
         t0 = time.perf_counter()
         report = self.collision.check(self.data.qpos, base, ik.q, held=obj)
         col_time += time.perf_counter() - t0
         self.last_timing = StepTiming(ik=ik_time, collision=col_time)
         if not report.free:
-            return "collision: " + ", ".join(report.hits), base, None, no_rel
+            return _collision(report.hits), base, None, no_rel
         held_rel = relative_pose(base, pose)
         if cfg.pick_requires_free_carry:  # last, so the other reasons stay as without it
             t0 = time.perf_counter()
@@ -141,19 +152,21 @@ class KitchenChecks(KitchenScreen):
         placement = (x, y, theta)
         z = float(self.object_pose(obj)[2])
         if not rect_inside(new_box, cfg.house):
-            return "outside region: the object leaves the house", base, placement, z, 0.0
+            text = "outside region: the object leaves the house"
+            return Failure(Reason.OUTSIDE_REGION, text), base, placement, z, 0.0
         if forbidden_rooms and rect_overlaps(new_box, cfg.forbidden):
-            reason = "forbidden room: the object is in the rooms behind the door"
-            return reason, base, placement, z, 0.0
+            text = "forbidden room: the object is in the rooms behind the door"
+            return Failure(Reason.FORBIDDEN_ROOM, text), base, placement, z, 0.0
         if not rect_inside(base_footprint(base), cfg.house):
-            return "outside region: the robot leaves the house", base, placement, z, 0.0
+            text = "outside region: the robot leaves the house"
+            return Failure(Reason.OUTSIDE_REGION, text), base, placement, z, 0.0
         t0 = time.perf_counter()
         report = self.collision.check(
             self.data.qpos, base, t.grasp_q, held=obj, object_poses={obj: (x, y, z, theta)}
         )
         col_time = time.perf_counter() - t0
         if not report.free:
-            return "collision: " + ", ".join(report.hits), base, placement, z, col_time
+            return _collision(report.hits), base, placement, z, col_time
         return "", base, placement, z, col_time
 
     def precheck(self, action: ArrayLike) -> tuple[bool, dict[str, Any]]:
@@ -172,7 +185,7 @@ class KitchenChecks(KitchenScreen):
         if t.done or t.steps >= self.config.horizon:
             raise ValueError("the episode has ended (terminated or truncated); call reset()")
         placement: tuple[float, float, float] | None = None
-        if t.operator == "pick":
+        if t.operator == Operator.PICK:
             obj = t.on_path[0]
             reason, base, _, _ = self._pick_kinematics(denormalize(a, self.config.pick_ranges))
         else:
@@ -184,7 +197,8 @@ class KitchenChecks(KitchenScreen):
             "operator": t.operator,
             "object": self.objects[obj].name,
             "feasible": not reason,
-            "reason": reason,
+            "reason": str(reason),
+            "reason_code": reason_code(reason),
             "base_pose": pose_tuple(base),
             "placement": placement,
         }

@@ -21,13 +21,14 @@ from types import MappingProxyType
 from typing import Any
 
 from voot import validation as V
+from voot.envs.core.names import Precheck, choices
 from voot.envs.core.presets import preset_config
 from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.model import BASE_HALF, ROBOT_RADIUS
 
 #: What a planner's pre-check of an action covers (:attr:`KitchenConfig.precheck`).
-PRECHECKS = ("full_step", "kinematic")
+PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Named versions of the domain: :class:`KitchenConfig` overrides. ``v0`` is the first
 #: release (every check inside the planners' retries); ``v1`` is the authors' protocol
 #: (two-stage feasibility, see the reference page and docs/environments.md).
@@ -36,7 +37,7 @@ KITCHEN_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
         "v0": MappingProxyType({}),
         "v1": MappingProxyType(
             {
-                "precheck": "kinematic",
+                "precheck": Precheck.KINEMATIC,
                 "nonclearing_penalty_infeasible": True,
                 "pick_requires_free_carry": False,
                 "pick_base_path": True,
@@ -128,7 +129,7 @@ class KitchenConfig:
     horizon: int = 50
     render_overlays: bool = True
     pick_requires_free_carry: bool = True
-    precheck: str = "full_step"
+    precheck: Precheck = Precheck.FULL_STEP
     nonclearing_penalty_infeasible: bool = False
     pick_base_path: bool = False
     pick_path_radius: float = BASE_HALF
@@ -169,8 +170,9 @@ class KitchenConfig:
         V.integer(self.horizon, "KitchenConfig.horizon", 1)
         if self.precheck not in PRECHECKS:
             raise ValueError(
-                f"KitchenConfig.precheck must be one of {', '.join(PRECHECKS)}, got {self.precheck!r}"
+                f"KitchenConfig.precheck must be one of {choices(Precheck)}, got {self.precheck!r}"
             )
+        object.__setattr__(self, "precheck", Precheck(self.precheck))
         for name in (
             "pick_requires_free_carry",
             "nonclearing_penalty_infeasible",

@@ -59,13 +59,15 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from typing import Any
+from typing import Any, ClassVar
 
 import gymnasium as gym
 import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.core.metrics import Distance, pick_distance, place_distance
+from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.presets import env_config
 from voot.envs.core.rendering import add_marker_box, add_marker_segment
 from voot.envs.core.scene import set_object_pose
@@ -74,6 +76,7 @@ from voot.envs.core.units import denormalize
 from voot.envs.kitchen.checks import KitchenChecks
 from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig, kitchen_config
 from voot.envs.kitchen.path import ClearingPath
+from voot.envs.kitchen.problems import FAMILY
 from voot.envs.kitchen.task import KitchenTask, pick_reward, place_reward, task_error
 from voot.envs.motion.planner import BasePath
 from voot.optim.base import Bounds
@@ -96,6 +99,8 @@ class KitchenClearingEnv(KitchenChecks):
         **options: :class:`KitchenConfig` fields overriding the config's (so that
             ``gym.make("voot/KitchenClearing-v1", pick_requires_free_carry=True)`` works).
     """
+
+    family: ClassVar[str] = FAMILY
 
     def __init__(
         self,
@@ -169,7 +174,7 @@ class KitchenClearingEnv(KitchenChecks):
     def _initial_task(self) -> KitchenTask:
         return KitchenTask(
             steps=0,
-            operator="pick",
+            operator=Operator.PICK,
             held=-1,
             held_rel=(0.0, 0.0, 0.0),
             grasp_q=(),
@@ -187,7 +192,7 @@ class KitchenClearingEnv(KitchenChecks):
             x, y, _, yaw = self.object_pose(i)
             parts += [x, y, math.cos(yaw), math.sin(yaw), float(i in on), float(i == t.held)]
         parts += [
-            float(t.operator == "place"),
+            float(t.operator == Operator.PLACE),
             len(t.on_path) / self.initial_obstacles,
             t.steps / self.config.horizon,
         ]
@@ -220,13 +225,35 @@ class KitchenClearingEnv(KitchenChecks):
     def next_object_name(self) -> str:
         """Name of the object the next action handles ('' when done)."""
         t = self.task
-        if t.operator == "place":
+        if t.operator == Operator.PLACE:
             return self.objects[t.held].name
         return self.objects[t.on_path[0]].name if t.on_path else ""
 
+    def current_operator(self) -> Operator:
+        """The operator of the current node (the task record's)."""
+        return self.task.operator
+
+    def operator_ranges(self, operator: Operator) -> tuple[tuple[float, float], ...]:
+        """The pick's 6 parameter ranges, or the place's 3 (x, y, theta)."""
+        cfg = self.config
+        return cfg.pick_ranges if operator == Operator.PICK else cfg.place_ranges
+
+    def operator_distance(self, operator: Operator) -> Distance:
+        """The authors' pick distance (grasp, base with the planner's rotation weight) or
+        place distance (:mod:`voot.envs.core.metrics`)."""
+        if operator == Operator.PICK:
+            return pick_distance(self.config.planner.rotation_weight)
+        return place_distance()
+
+    def solution_actions(self) -> list[FloatArray]:
+        """The hand-chosen solution of the paper's kitchen (:mod:`voot.envs.kitchen.scripted`)."""
+        from voot.envs.kitchen.scripted import kitchen_actions
+
+        return kitchen_actions(self)
+
     def action_bounds(self) -> Bounds:
         """The current operator's action box in normalised units (6-D pick, 3-D place)."""
-        dim = 6 if self.task.operator == "pick" else 3
+        dim = 6 if self.task.operator == Operator.PICK else 3
         return Bounds.cube(-1.0, 1.0, dim)
 
     # ----- stepping ------------------------------------------------------------------------
@@ -237,7 +264,7 @@ class KitchenClearingEnv(KitchenChecks):
         if t.done or t.steps >= self.config.horizon:
             raise ValueError("the episode has ended (terminated or truncated); call reset()")
         start = time.perf_counter()
-        if t.operator == "pick":
+        if t.operator == Operator.PICK:
             params = denormalize(a, self.config.pick_ranges)
             reward, info = self._pick(params)
         else:
@@ -260,22 +287,41 @@ class KitchenClearingEnv(KitchenChecks):
 
     def _infeasible(
         self,
-        operator: str,
+        operator: Operator,
         obj: int,
         reason: str,
         base: ArrayLike,
         placement: ArrayLike | None = None,
     ) -> tuple[float, dict[str, Any]]:
+        """The reward and info of an infeasible pick or place (``reason``: a check's
+        :class:`~voot.envs.core.names.Failure`); only the step count moves on."""
         self.task = replace(self.task, steps=self.task.steps + 1)
-        return self.config.infeasible_reward, {
+        return self.config.infeasible_reward, self._action_info(
+            operator, obj, reason, base, None if placement is None else pose_tuple(placement)
+        )
+
+    def _action_info(
+        self,
+        operator: Operator,
+        obj: int,
+        reason: str,
+        base: ArrayLike,
+        placement: tuple[float, float, float] | None,
+        path_length: float = 0.0,
+        path: Any = None,
+    ) -> dict[str, Any]:
+        """The step info of a pick or place (every step's info is built here; the step
+        adds what follows it: the parameters, the next operator and the counts)."""
+        return {
             "operator": operator,
             "object": self.objects[obj].name,
-            "feasible": False,
-            "reason": reason,
-            "base_path_length": 0.0,
-            "base_path": None,
+            "feasible": not reason,
+            "reason": str(reason),
+            "reason_code": reason_code(reason),
+            "base_path_length": path_length,
+            "base_path": path,
             "base_pose": pose_tuple(base),
-            "placement": None if placement is None else pose_tuple(placement),
+            "placement": placement,
         }
 
     def _pick(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
@@ -283,7 +329,7 @@ class KitchenClearingEnv(KitchenChecks):
         obj = t.on_path[0]
         reason, base, q, held_rel = self._pick_kinematics(params)
         if reason:
-            return self._infeasible("pick", obj, reason, base)
+            return self._infeasible(Operator.PICK, obj, reason, base)
         assert q is not None
         path_length, path_points = 0.0, None
         if cfg.pick_base_path:
@@ -298,28 +344,22 @@ class KitchenClearingEnv(KitchenChecks):
             timing = self.last_timing
             self.last_timing = replace(timing, planning=time.perf_counter() - t0)
             if path is None:
-                return self._infeasible("pick", obj, "no base path to the pick", base)
+                failure = Failure(Reason.NO_BASE_PATH_TO_PICK, "no base path to the pick")
+                return self._infeasible(Operator.PICK, obj, failure, base)
             path_length, path_points = float(path.length), path.waypoints
         self._set_robot(base, q)
         reward = pick_reward(cfg, t.last_place_cleared)
         self.task = replace(
             t,
             steps=t.steps + 1,
-            operator="place",
+            operator=Operator.PLACE,
             held=obj,
             held_rel=held_rel,
             grasp_q=tuple(float(v) for v in q),
         )
-        return reward, {
-            "operator": "pick",
-            "object": self.objects[obj].name,
-            "feasible": True,
-            "reason": "",
-            "base_path_length": path_length,
-            "base_path": path_points,
-            "base_pose": pose_tuple(base),
-            "placement": None,
-        }
+        return reward, self._action_info(
+            Operator.PICK, obj, "", base, None, path_length, path_points
+        )
 
     def _place(self, params: FloatArray) -> tuple[float, dict[str, Any]]:
         cfg, t = self.config, self.task
@@ -327,7 +367,7 @@ class KitchenClearingEnv(KitchenChecks):
         reason, base, placement, z, col_time = self._place_checks(params, forbidden_rooms=True)
         self.last_timing = StepTiming(collision=col_time)
         if reason:
-            return self._infeasible("place", obj, reason, base, placement)
+            return self._infeasible(Operator.PLACE, obj, reason, base, placement)
         x, y, theta = placement
         t0 = time.perf_counter()
         disc = self.held_disc()
@@ -340,7 +380,8 @@ class KitchenClearingEnv(KitchenChecks):
         plan_time = time.perf_counter() - t0
         self.last_timing = StepTiming(collision=col_time, planning=plan_time)
         if path is None:
-            return self._infeasible("place", obj, "no base path", base, placement)
+            failure = Failure(Reason.NO_BASE_PATH, "no base path")
+            return self._infeasible(Operator.PLACE, obj, failure, base, placement)
         base_path = BasePath._from_owned(disc.base(path.waypoints), cfg.planner.rotation_weight)
         before = self.data.qpos.copy() if cfg.nonclearing_penalty_infeasible else None
         set_object_pose(self.data, self.objects[obj], (x, y, z, theta))
@@ -350,19 +391,17 @@ class KitchenClearingEnv(KitchenChecks):
         length = float(base_path.length)
         if before is not None and not cleared and length >= cfg.max_place_penalty:
             self.data.qpos[:] = before
-            return self._infeasible(
-                "place",
-                obj,
+            failure = Failure(
+                Reason.PENALTY_CAP,
                 f"non-clearing place at the penalty cap (base path {length:.2f} m >="
                 f" {cfg.max_place_penalty:g})",
-                base,
-                placement,
             )
+            return self._infeasible(Operator.PLACE, obj, failure, base, placement)
         reward = place_reward(cfg, cleared, length)
         self.task = replace(
             t,
             steps=t.steps + 1,
-            operator="pick",
+            operator=Operator.PICK,
             held=-1,
             held_rel=(0.0, 0.0, 0.0),
             grasp_q=(),
@@ -370,16 +409,9 @@ class KitchenClearingEnv(KitchenChecks):
             last_place_cleared=cleared,
             done=not on_path,
         )
-        return reward, {
-            "operator": "place",
-            "object": self.objects[obj].name,
-            "feasible": True,
-            "reason": "",
-            "base_path_length": length,
-            "base_path": base_path.waypoints,
-            "base_pose": pose_tuple(base),
-            "placement": placement,
-        }
+        return reward, self._action_info(
+            Operator.PLACE, obj, "", base, placement, length, base_path.waypoints
+        )
 
     # ----- rendering -----------------------------------------------------------------------
     def _decorate(self, scene: mujoco.MjvScene) -> None:

@@ -24,13 +24,14 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.core.names import Operator
 from voot.envs.motion.planner import Box2D
 from voot.envs.robot.model import ARM_REACH, compose2d, inverse2d
 
 FloatArray = NDArray[np.float64]
 
 #: Operators, in the order actions alternate.
-OPERATORS = ("pick", "place")
+OPERATORS: tuple[Operator, ...] = (Operator.PICK, Operator.PLACE)
 
 
 def pick_base(box: Box2D, params: ArrayLike) -> FloatArray:

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot.envs.core.env import ManipulationEnv
+from voot.envs.core.names import Failure, Operator, Reason
 from voot.envs.core.scene import object_footprint, rect_fields_inside, rect_fields_overlap
 from voot.envs.core.state import replace
 from voot.envs.core.units import denormalize_floats
@@ -145,7 +146,7 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         """
         b = np.asarray(base, dtype=np.float64)
         ctx = self._screen_context()
-        if ctx.task.operator == "pick" and ctx.obj == obj:
+        if ctx.task.operator == Operator.PICK and ctx.obj == obj:
             bx, by, heading = b.tolist()
             if self._carry_verdict(ctx, held_rel, bx, by, heading) is False:
                 return ""
@@ -171,7 +172,7 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
             hits = hits[1:]
         if hits:
             parts.append("collides with " + ", ".join(hits))
-        return "carry footprint " + " and ".join(parts)
+        return Failure(Reason.CARRY_FOOTPRINT, "carry footprint " + " and ".join(parts))
 
     #: Metres within which :meth:`_carry_verdict` defers to the exact carry test: far
     #: above the float difference (~1e-15 m) of :func:`carry_disc_floats`.
@@ -230,7 +231,7 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         if t.done or t.steps >= self.config.horizon or len(values) != self.action_dim:
             return False  # the step raises (or the action is not one)
         ctx = self._screen_context()
-        if t.operator == "place":
+        if t.operator == Operator.PLACE:
             return self._place_screened(ctx, values)
         return self._pick_screened(ctx, values)
 
@@ -241,12 +242,12 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         if ctx is not None and ctx.task is t and ctx.qpos == qpos:
             return ctx
         cfg = self.config
-        obj = t.held if t.operator == "place" else t.on_path[0]
+        obj = t.held if t.operator == Operator.PLACE else t.on_path[0]
         info = self.objects[obj]
         ox, oy = info.center.tolist()
         hx, hy = info.half.tolist()
         pose = self.object_pose(obj)
-        place = t.operator == "place"
+        place = t.operator == Operator.PLACE
         inverse = tuple(inverse2d(t.held_rel).tolist()) if place else (0.0, 0.0, 0.0)
         ranges = cfg.place_ranges if place else cfg.pick_ranges
         disc = self.held_disc() if place else None

@@ -18,6 +18,7 @@ import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from voot.envs.core.names import Operator
 from voot.envs.core.state import is_count, is_finite_tuple
 from voot.envs.kitchen.config import KitchenConfig
 from voot.envs.robot.model import ARM_JOINTS
@@ -39,7 +40,7 @@ class KitchenTask:
     """
 
     steps: int
-    operator: str
+    operator: Operator
     held: int
     held_rel: tuple[float, float, float]
     grasp_q: tuple[float, ...]
@@ -68,7 +69,7 @@ def task_error(
     n = n_objects
     if not is_count(task.steps, 0, horizon):
         return f"steps must be an int in 0..{horizon} (the horizon), got {task.steps!r}"
-    if task.operator == "pick":
+    if task.operator == Operator.PICK:
         if task.held != -1 or type(task.held) is not int:
             return f"held must be -1 before a pick (nothing in the gripper), got {task.held!r}"
         if (
@@ -81,7 +82,7 @@ def task_error(
                 "held_rel and grasp_q must be (0.0, 0.0, 0.0) and () before a pick (no grasp),"
                 f" got {task.held_rel!r} and {task.grasp_q!r}"
             )
-    elif task.operator == "place":
+    elif task.operator == Operator.PLACE:
         if not is_count(task.held, 0, n - 1):
             return f"held must be an object index in 0..{n - 1} before a place, got {task.held!r}"
         if not is_finite_tuple(task.held_rel, 3):

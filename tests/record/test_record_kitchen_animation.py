@@ -10,7 +10,7 @@ pytest.importorskip("mujoco")
 pytest.importorskip("matplotlib")
 
 from voot.bench.demos.kitchen_demo import make_problem
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.record.kitchen_animation import (
     GENERATED_VIEW_DISTANCE,
     KITCHEN_VIEW,

@@ -32,8 +32,9 @@ def test_defaults_and_malformed_values() -> None:
     ],
 )
 def test_every_robot_env_publishes_the_core_keys(env_id: str) -> None:
+    from voot.envs.conveyor.scripted import conveyor_actions
     from voot.envs.kitchen.env import KitchenClearingEnv
-    from voot.envs.scripted import conveyor_actions, kitchen_actions
+    from voot.envs.kitchen.scripted import kitchen_actions
 
     env = gym.make(env_id).unwrapped
     env.reset(seed=0)

@@ -42,17 +42,16 @@ def kitchen_view(env: Any) -> dict[str, Any]:
     r"""The GIF's free camera for the kitchen ``env``.
 
     The paper's kitchen (v0, v1) gets :data:`KITCHEN_VIEW`. A generated kitchen
-    (:class:`~voot.envs.kitchen.generated.env.GeneratedKitchenEnv`, ``voot/KitchenClearing-v2``)
-    has its own size and room layout, so the camera is fitted to its house
+    (``voot/KitchenClearing-v2``, whose env carries its ``layout``) has its own size and
+    room layout, so the camera is fitted to its house
     :math:`[x_0, x_1] \times [y_0, y_1]`: it looks at the house's centre from the west
     (azimuth 0, as :data:`KITCHEN_VIEW`, 60 degrees down) at
     :data:`GENERATED_VIEW_DISTANCE` :math:`\cdot \max(x_1 - x_0, y_1 - y_0)`.
     """
-    from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
-
-    if not isinstance(env, GeneratedKitchenEnv):
+    layout = getattr(env, "layout", None)  # a generated kitchen's floor plan
+    if layout is None:
         return dict(KITCHEN_VIEW)
-    x0, x1, y0, y1 = (float(v) for v in env.layout.house)
+    x0, x1, y0, y1 = (float(v) for v in layout.house)
     return {
         "lookat": (0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0),
         "distance": GENERATED_VIEW_DISTANCE * max(x1 - x0, y1 - y0),
@@ -133,12 +132,13 @@ def plan_animation(
         max_motion_frames: at most this many frames per base motion.
         arm_frames: frames of each arm motion.
     """
+    from voot.envs.core.names import Operator
     from voot.envs.core.scene import set_object_pose
-    from voot.envs.kitchen.env import KitchenClearingEnv
+    from voot.envs.kitchen.problems import FAMILY
     from voot.envs.robot.model import TUCK, compose2d
 
     env = problem.unwrapped
-    if not isinstance(env, KitchenClearingEnv):
+    if getattr(env, "family", None) != FAMILY:
         raise ValueError(f"plan_animation needs the kitchen, got {type(env).__name__}")
     render = _KitchenRenderer(env, size, view if view is not None else kitchen_view(env))
     data, robot = env.data, env.robot
@@ -162,7 +162,7 @@ def plan_animation(
             obj_name = str(info.object).removeprefix("obj_")
             text = caption(f"step {t}/{n}: {info.operator} {obj_name}, {info.objects_left} left")
             env.set_state(before)
-            if info.operator == "pick":
+            if info.operator == Operator.PICK:
                 goal = np.asarray(info.base_pose)
                 for w in _resample(_drive(env, base0, goal), spacing, max_motion_frames):
                     robot.set_base(data, w)

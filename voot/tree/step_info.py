@@ -49,7 +49,10 @@ class StepInfo:
 
     Attributes:
         feasible: whether the action was feasible (default True when not published).
-        reason: why it was infeasible (``""`` if feasible).
+        reason: why it was infeasible (``""`` if feasible), a sentence for a reader.
+        reason_code: the code of that reason (``""`` if feasible; voot's envs publish a
+            :class:`voot.envs.core.names.Reason`, equal to its string): what a caller
+            counts or compares, instead of parsing the text.
         operator: the operator of the action (``"pick"``, ``"place"``), or None.
         object: the object it handled (a kitchen action), or None.
         next_operator: the operator of the next action, or None.
@@ -63,6 +66,7 @@ class StepInfo:
 
     feasible: bool = True
     reason: str = ""
+    reason_code: str = ""
     operator: str | None = None
     object: str | None = None
     next_operator: str | None = None
@@ -84,6 +88,7 @@ class StepInfo:
         return cls(
             feasible=bool(info.get("feasible", True)),
             reason=str(info.get("reason") or ""),
+            reason_code=info.get("reason_code") or "",
             operator=_text(info.get("operator")),
             object=_text(info.get("object")),
             next_operator=_text(info.get("next_operator")),
@@ -104,6 +109,7 @@ StepInfo.KEYS = tuple(f.name for f in fields(StepInfo))
 CORE_KEYS: tuple[str, ...] = (
     "feasible",
     "reason",
+    "reason_code",
     "operator",
     "next_operator",
     "objects_left",

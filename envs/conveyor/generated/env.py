@@ -96,6 +96,10 @@ class ConveyorFamilyEnv(ConveyorPackingEnv):
             raise RuntimeError("the generated scene was already loaded")
         return model
 
+    def solution_actions(self) -> list[FloatArray]:
+        """The witness (:meth:`witness_actions`): the known solution of a generated instance."""
+        return self.witness_actions()
+
     def witness_actions(self) -> list[FloatArray]:
         """The witness packing as normalised actions: from a reset, they pack every box
         (with the default grasp and planner settings)."""

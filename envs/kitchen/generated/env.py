@@ -20,7 +20,7 @@ generator drew on the path); otherwise it is rejected and the next attempt of th
 is drawn (a derived random stream, so the outcome is deterministic), up to
 :data:`MAX_ATTEMPTS`. The feasible actions found are the **witness** plan:
 :meth:`GeneratedKitchenEnv.witness_actions`, normalised actions that solve the episode from
-``reset()`` (a scripted solution, as :mod:`voot.envs.scripted` is for v1).
+``reset()`` (a scripted solution, as :mod:`voot.envs.kitchen.scripted` is for v1).
 
 Generated kitchens are kept per ``(layout_seed, difficulty, GENERATOR_VERSION)`` in
 this process (:func:`generated_kitchen`, the last :data:`KITCHEN_CACHE_SIZE`): the
@@ -256,6 +256,10 @@ class GeneratedKitchenEnv(KitchenClearingEnv):
     def layout(self) -> KitchenLayout:
         """The generated floor plan."""
         return self.kitchen.layout
+
+    def solution_actions(self) -> list[FloatArray]:
+        """The witness (:meth:`witness_actions`): the known solution of a generated instance."""
+        return self.witness_actions()
 
     def witness_actions(self) -> list[FloatArray]:
         """The constructive solver's plan: normalised actions that clear the path from

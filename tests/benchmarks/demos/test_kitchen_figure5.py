@@ -13,7 +13,7 @@ pytest.importorskip("matplotlib")
 
 from voot.bench.demos.figure5 import ProposalLog, figure5
 from voot.bench.demos.kitchen_demo import make_problem
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.record.reader import read_recording
 
 
@@ -58,25 +58,10 @@ def test_bad_input(tmp_path: Path) -> None:
         figure5(tmp_path, env_id="voot/KitchenClearing-v2")  # the demo takes v2, figure5 not
 
 
-def test_failure_category_is_the_reason_before_its_details() -> None:
-    from voot.bench.demos.figure5 import failure_category
-
-    assert failure_category("forbidden room: the object is in the rooms behind the door") == (
-        "forbidden room"
-    )
-    assert failure_category("no base path") == "no base path"
-    assert failure_category("collision: wall_3, table") == "collision"
-    assert failure_category("non-clearing place at the penalty cap (base path 3.1 m >= 3)") == (
-        "non-clearing place at the penalty cap"
-    )
-    assert failure_category("") == ""
-
-
 def test_v1_counts_add_up_and_come_from_the_env_step_info(tmp_path: Path) -> None:
     import json
     from collections import Counter
 
-    from voot.bench.demos.figure5 import failure_category
     from voot.bench.demos.kitchen_demo import options_for
     from voot.tree.mcts import plan
 
@@ -101,7 +86,7 @@ def test_v1_counts_add_up_and_come_from_the_env_step_info(tmp_path: Path) -> Non
         assert counts["executed"] == counts["feasible"] + sum(r.execution_failures.values())
         assert counts["precheck_failed"] == sum(r.precheck_failures.values())
         assert "" not in r.execution_failures and "" not in r.precheck_failures
-        # replay every executed placement through env.step: the same categories
+        # replay every executed placement through env.step: the same reason codes
         res = plan(make_problem(0, env_id), key, r.n_simulations, 0, **options_for(env_id, key))
         assert res.mcts is not None
         node = res.mcts.nodes[r.node_id]
@@ -112,7 +97,7 @@ def test_v1_counts_add_up_and_come_from_the_env_step_info(tmp_path: Path) -> Non
             problem.restore(node.snapshot)
             step = problem.step(action)
             if not step.feasible:
-                replayed[failure_category(str(step.info["reason"]))] += 1
+                replayed[step.info["reason_code"]] += 1
         assert dict(replayed) == r.execution_failures
         assert set(r.execution_failures) <= {"forbidden room", "no base path"}
         rec = read_recording(r.recording)

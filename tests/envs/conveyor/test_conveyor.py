@@ -13,8 +13,8 @@ from gymnasium.utils.env_match import check_environments_match
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv
+from voot.envs.conveyor.scripted import CONVEYOR_SOLUTION, conveyor_actions
 from voot.envs.core.units import normalize
-from voot.envs.scripted import CONVEYOR_SOLUTION, conveyor_actions
 
 DOOR = 1.62  # the first room's door (models/generate_scenes.py)
 

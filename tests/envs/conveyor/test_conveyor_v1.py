@@ -13,8 +13,8 @@ from gymnasium.utils.env_checker import check_env
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorPackingEnv, conveyor_config
+from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.problem import EnvProblem
-from voot.envs.scripted import conveyor_actions
 
 
 def test_v1_precheck_is_region_and_collision_only() -> None:

@@ -12,10 +12,11 @@ import pytest
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorPackingEnv
+from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.problem import EnvProblem
 from voot.envs.kitchen.env import KitchenClearingEnv
 from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
-from voot.envs.scripted import conveyor_actions, kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.tree.problem import FeasibilityCheck, PlanningProblem, StepResult
 
 
@@ -96,7 +97,7 @@ def test_conveyor_problem() -> None:
 
 
 def test_rejects_other_envs() -> None:
-    with pytest.raises(ValueError, match="KitchenClearingEnv or ConveyorPackingEnv"):
+    with pytest.raises(ValueError, match=r"needs a voot robot env \(a ManipulationEnv"):
         EnvProblem(gym.make("voot/ShekelChain-v0"))
 
 

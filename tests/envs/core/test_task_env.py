@@ -133,7 +133,7 @@ def test_object_boxes_follow_the_state(kitchen: KitchenClearingEnv) -> None:
 def _impossible_tasks(which: str) -> tuple[Any, list[tuple[Any, Any, str]]]:
     """An env, and (snapshot, task record no episode of it reaches, error) triples."""
     from voot.envs.conveyor.env import ConveyorPackingEnv
-    from voot.envs.scripted import kitchen_actions
+    from voot.envs.kitchen.scripted import kitchen_actions
 
     R = dataclasses.replace
     if which == "conveyor":

@@ -22,8 +22,8 @@ from kitchen_fixtures import place_action
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.kitchen.env import KitchenClearingEnv, KitchenConfig
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.envs.robot.model import compose2d, inverse2d
-from voot.envs.scripted import kitchen_actions
 
 
 @pytest.fixture(scope="module")

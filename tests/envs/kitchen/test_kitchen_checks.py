@@ -11,7 +11,7 @@ import voot  # noqa: F401  (registers the ids)
 from voot.envs.core.units import normalize
 from voot.envs.kitchen.env import KitchenClearingEnv
 from voot.envs.kitchen.poses import pick_base
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 
 
 @pytest.fixture(scope="module")

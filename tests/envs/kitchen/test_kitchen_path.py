@@ -9,8 +9,8 @@ import pytest
 
 from voot.envs.kitchen.env import KitchenClearingEnv
 from voot.envs.kitchen.path import ClearingPath
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.envs.motion.swept_volume import obstacles_on_path
-from voot.envs.scripted import kitchen_actions
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ import pytest
 from voot.envs.core.units import denormalize
 from voot.envs.kitchen.env import KitchenClearingEnv, KitchenConfig
 from voot.envs.kitchen.poses import relative_pose, relative_pose_floats
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 
 
 @pytest.fixture(scope="module")

@@ -21,7 +21,7 @@ from voot.envs.core.problem import EnvProblem
 from voot.envs.core.scene import object_footprint, rect_overlaps
 from voot.envs.core.units import denormalize, normalize
 from voot.envs.kitchen.env import KITCHEN_PRESETS, KitchenClearingEnv, kitchen_config
-from voot.envs.scripted import kitchen_actions
+from voot.envs.kitchen.scripted import kitchen_actions
 from voot.tree import MCTS, planner_config
 
 
