@@ -40,9 +40,10 @@ from numpy.typing import NDArray
 
 from voot.envs.conveyor.env import OBJECTS_PER_ACTION, ConveyorPackingEnv
 from voot.envs.conveyor.generated.layout import StorageLayout
-from voot.envs.core.scene import object_footprint, rect_inside
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.units import denormalize, normalize
 from voot.envs.motion.planar import Box2D
+from voot.envs.motion.rects import rect_inside
 
 FloatArray = NDArray[np.float64]
 

@@ -18,9 +18,10 @@ from gymnasium.utils.env_checker import check_env
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.core.problem import EnvProblem
-from voot.envs.core.scene import object_footprint, rect_overlaps
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.units import denormalize, normalize
 from voot.envs.kitchen.env import KITCHEN_PRESETS, KitchenClearingEnv, kitchen_config
+from voot.envs.motion.rects import rect_overlaps
 from voot.envs.scripted import kitchen_actions
 from voot.tree import MCTS, planner_config
 
