@@ -5,14 +5,13 @@ from __future__ import annotations
 import copy
 import itertools
 import pickle
-import subprocess
-import sys
 import warnings
 
 import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env, data_equivalence
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.core.scene import object_footprint
@@ -147,14 +146,7 @@ def test_the_same_seed_steps_the_same_in_another_process() -> None:
         "steps = [env.step(a) for a in [*env.witness_actions()[:3], *probes]]\n"
         "sys.stdout.buffer.write(pickle.dumps((env.kitchen.xml_sha256, env.kitchen.witness, steps)))\n"
     )
-    out = subprocess.run(
-        [sys.executable, "-c", code],
-        input=pickle.dumps(probes),
-        capture_output=True,
-        check=True,
-        timeout=300,
-    )
-    digest, witness, steps = pickle.loads(out.stdout)
+    digest, witness, steps = run_pickled(code, probes, timeout=300)
     assert digest == env.kitchen.xml_sha256 and witness == env.kitchen.witness
     assert data_equivalence(local, steps, exact=True)
 
