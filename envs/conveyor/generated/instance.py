@@ -100,7 +100,9 @@ class SceneConveyorEnv(ConveyorPackingEnv):
     Args:
         model: The compiled scene.
         config: Settings (:func:`layout_config`).
-        render_mode, render_camera, render_size: As :class:`ConveyorPackingEnv`'s.
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
     """
 
     def __init__(

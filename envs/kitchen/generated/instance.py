@@ -119,7 +119,9 @@ class SceneKitchenEnv(KitchenClearingEnv):
     Args:
         kitchen: The kitchen (its layout and model; its witness is not read).
         config: Settings (:func:`kitchen_config`).
-        render_mode, render_camera, render_size: As :class:`KitchenClearingEnv`'s.
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
     """
 
     def __init__(
