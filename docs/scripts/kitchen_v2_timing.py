@@ -5,7 +5,7 @@ CATALOGUE`): built with trimesh if the mesh cache is empty, else read from it. T
 each difficulty level and layout seeds ``0 .. n-1`` (one process, no kitchen cached at
 the start), prints:
 
-* **cold**: :func:`~voot.envs.kitchen.generated.env.generated_kitchen` the first time (every
+* **cold**: :func:`~voot.envs.kitchen.generated.instance.generated_kitchen` the first time (every
   attempt drawn, compiled and checked by the constructive solver, rejections included);
 * **rejections** per accepted kitchen, and the solver's stepped actions;
 * **cached scene**: the kept kitchen's model loaded again, as an env does it (a copy of
@@ -26,7 +26,8 @@ import statistics
 import time
 
 from voot.envs.assets.meshes import ShapeSpec, mesh_assets
-from voot.envs.kitchen.generated.env import GeneratedKitchenEnv, generated_kitchen
+from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
+from voot.envs.kitchen.generated.instance import generated_kitchen
 from voot.envs.kitchen.generated.layout import CATALOGUE, DIFFICULTIES
 from voot.envs.kitchen.generated.scene import compile_kitchen
 from voot.envs.robot.mesh_grasp import grasp_set

@@ -41,7 +41,7 @@ from voot.envs.assets.mesh_shapes import (
     build_shape,
     built_shape,
 )
-from voot.envs.core.scene import OBJECT_PREFIX
+from voot.envs.assets.mjcf import OBJECT_PREFIX, ROBOT_INCLUDE, collision_defaults
 
 FloatArray = NDArray[np.float64]
 
@@ -261,7 +261,7 @@ def object_body_xml(
     """The MJCF ``<body>`` of a movable object of shape ``spec``.
 
     ``<body name=name pos="x y z" euler="0 0 yaw">`` (the scene's compiler must use
-    ``angle="radian"``, as models/generate_scenes.py's do) with a ``<freejoint>`` of the
+    ``angle="radian"``, as :func:`voot.envs.assets.mjcf.header`'s does) with a ``<freejoint>`` of the
     same name, the ``<inertial>`` from the mesh, one collision geom (class ``object``,
     ``type="mesh"``, group 3, hidden in the viewer) per convex part and the visual mesh
     (class ``decor``). ``pose`` is ``(x, y, z, yaw)`` with ``z`` the support height (the
@@ -319,11 +319,8 @@ def objects_scene_xml(
     <material name="stuff" rgba="0.8 0.5 0.3 1"/>
 {shape_assets_xml(specs)}  </asset>
   <default>
-    <default class="scene"><geom contype="2" conaffinity="5" group="0"/></default>
-    <default class="object"><geom contype="4" conaffinity="7" group="0" density="100"/></default>
-    <default class="decor"><geom contype="0" conaffinity="0" group="1"/></default>
-  </default>
-  <include file="robot.xml"/>
+{collision_defaults(one_line=True)}  </default>
+  <include file="{ROBOT_INCLUDE}"/>
   <worldbody>
     <geom name="floor" class="scene" type="plane" size="8 8 0.1"/>
 {bodies}  </worldbody>
@@ -337,6 +334,6 @@ def compile_scene(xml: str, specs: Iterable[ShapeSpec]) -> mujoco.MjModel:
     The assets handed to MuJoCo are ``robot.xml`` from ``voot.models`` and
     :func:`mesh_assets` of the specs.
     """
-    robot = resources.files("voot.models").joinpath("robot.xml").read_bytes()
-    assets = {"robot.xml": robot, **mesh_assets(specs)}
+    robot = resources.files("voot.models").joinpath(ROBOT_INCLUDE).read_bytes()
+    assets = {ROBOT_INCLUDE: robot, **mesh_assets(specs)}
     return mujoco.MjModel.from_xml_string(xml, assets=assets)

@@ -40,16 +40,18 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.assets.mjcf import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y
 from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
 from voot.envs.core.names import Failure, Operator, Precheck, Reason, choices, reason_code
 from voot.envs.core.presets import env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
-from voot.envs.core.scene import object_footprint, rect_inside, set_object_pose
+from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.core.units import denormalize
 from voot.envs.motion.planner import BasePath, BasePlannerConfig
+from voot.envs.motion.rects import rect_inside
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.grasp import side_grasp
 from voot.envs.robot.model import (
@@ -71,11 +73,6 @@ FloatArray = NDArray[np.float64]
 PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
-#: Belt queue layout (must match models/generate_scenes.py): first box x, spacing, y, z.
-BELT_FIRST_X = 2.3
-BELT_SPACING = 1.1
-BELT_Y = 1.05
-BELT_TOP = 0.06
 
 
 @dataclass(frozen=True)

@@ -6,6 +6,8 @@
 * :mod:`.units`: the affine map between ``[-1, 1]^d`` and parameter ranges;
 * :mod:`.presets`: named config versions (``v0``, ``v1``);
 * :mod:`.scene`: loading MJCF scenes, reading their floor plan back as footprints;
+* :mod:`.generation`: what the generated families share (levels, seeds, the rejection
+  loop, the instance record and its cache);
 * :mod:`.rendering`: cameras, headless OpenGL, visual-only markers;
 * :mod:`.problem`: :class:`EnvProblem`, a robot env as a :mod:`voot.tree` planning problem;
 * :mod:`.metrics`: the authors' per-operator distances between actions (VOO's cells);

@@ -12,6 +12,10 @@ compiled :class:`mujoco.MjModel` into what the task layer needs:
 * :func:`object_pose` and :func:`set_object_pose`: an object's ``(x, y, z, yaw)``
   read from and written to its free joint's ``qpos``.
 
+The conventions it reads (collision bits, the ``obj_`` prefix) are the MJCF writers'
+(:mod:`voot.envs.assets.mjcf`); tests of a footprint against a region are
+:mod:`voot.envs.motion.rects`.
+
 A footprint is the bounding rectangle, in the geom's (or object's) own horizontal frame,
 of the geom's axis-aligned bounding box (``model.geom_aabb``): exact for boxes standing
 upright, a tight rectangle around cylinders and capsules; for a mesh geom, the rectangle
@@ -29,19 +33,30 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from voot.envs.assets.mjcf import OBJECT_BIT, OBJECT_PREFIX, ROBOT_BIT, SCENE_BIT
 from voot.envs.motion.planar import Box2D
+
+__all__ = [
+    "OBJECT_BIT",
+    "OBJECT_PREFIX",
+    "ROBOT_BIT",
+    "SCENES",
+    "SCENE_BIT",
+    "ObjectInfo",
+    "load_model",
+    "model_path",
+    "movable_objects",
+    "object_footprint",
+    "object_pose",
+    "quat_of_yaw",
+    "set_object_pose",
+    "static_footprints",
+    "yaw_of_quat",
+]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.intp]
 
-#: Collision bit of the robot's geoms (contype 1).
-ROBOT_BIT = 1
-#: Collision bit of static scene geoms (contype 2).
-SCENE_BIT = 2
-#: Collision bit of movable objects (contype 4).
-OBJECT_BIT = 4
-#: Name prefix of the movable objects' bodies (and free joints).
-OBJECT_PREFIX = "obj_"
 #: Scenes shipped in ``voot.models``.
 SCENES = ("kitchen", "conveyor", "robot")
 
@@ -219,11 +234,6 @@ def object_footprint(obj: ObjectInfo, x: float, y: float, yaw: float) -> Box2D:
     return Box2D.fast(cx, cy, hx, hy, yaw, obj.name)
 
 
-#: Margin (metres) of the float shortcuts of :func:`rect_inside` and :func:`rect_overlaps`:
-#: far above the rounding difference (~1e-14 m) between them and the corner arrays.
-_SURE = 1e-9
-
-
 def set_object_pose(data: mujoco.MjData, obj: ObjectInfo, pose: ArrayLike) -> None:
     """Put ``obj``'s body at ``(x, y, z, yaw)`` (free joint qpos)."""
     if type(pose) is tuple and len(pose) == 4:
@@ -241,147 +251,3 @@ def object_pose(data: mujoco.MjData, obj: ObjectInfo) -> FloatArray:
     x, y, z, q0, q1, q2, q3 = data.qpos[a : a + 7].tolist()
     yaw = math.atan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2**2 + q3**2))
     return np.array([x, y, z, yaw])
-
-
-def _aabb(
-    cx: float, cy: float, half_x: float, half_y: float, yaw: float
-) -> tuple[float, float, float, float]:
-    """``(xmin, xmax, ymin, ymax)`` of the axis-aligned box around the rectangle."""
-    c, s = abs(math.cos(yaw)), abs(math.sin(yaw))
-    ex, ey = half_x * c + half_y * s, half_x * s + half_y * c
-    return cx - ex, cx + ex, cy - ey, cy + ey
-
-
-def rect_inside(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
-    """Is the rectangle ``box`` inside the axis-aligned ``(xmin, xmax, ymin, ymax)``?
-
-    Decided from the rectangle's extent with plain floats when it is inside or outside by
-    more than 1e-9 m; only a rectangle within that of an edge is tested with its corner
-    array (as before), so the answer is always the corner test's.
-    """
-    return rect_fields_inside(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
-
-
-def rect_fields_inside(
-    cx: float,
-    cy: float,
-    half_x: float,
-    half_y: float,
-    yaw: float,
-    bounds: tuple[float, float, float, float],
-) -> bool:
-    """:func:`rect_inside` of the rectangle with these :class:`Box2D` fields (floats).
-
-    For a caller that has the numbers and no box: the box is built only for a rectangle
-    within 1e-9 m of an edge.
-    """
-    xmin, xmax, ymin, ymax = bounds
-    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
-    if (
-        lo_x >= xmin + _SURE
-        and hi_x <= xmax - _SURE
-        and lo_y >= ymin + _SURE
-        and hi_y <= ymax - _SURE
-    ):
-        return True
-    if lo_x < xmin - _SURE or hi_x > xmax + _SURE or lo_y < ymin - _SURE or hi_y > ymax + _SURE:
-        return False
-    return _rect_inside_corners(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
-
-
-def _rect_inside_corners(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
-    c = box.corners()
-    xmin, xmax, ymin, ymax = bounds
-    return bool(
-        np.all(c[:, 0] >= xmin)
-        and np.all(c[:, 0] <= xmax)
-        and np.all(c[:, 1] >= ymin)
-        and np.all(c[:, 1] <= ymax)
-    )
-
-
-def rect_overlaps(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
-    """Does the rectangle ``box`` overlap the open axis-aligned ``(xmin, xmax, ymin, ymax)``?
-
-    Separating-axis test between the oriented rectangle and the axis-aligned one. A
-    rectangle clearly apart from the region (by more than 1e-9 m along x or y) or
-    clearly inside it is decided with plain floats; the others run the test on arrays,
-    as before.
-    """
-    return rect_fields_overlap(box.cx, box.cy, box.half_x, box.half_y, box.yaw, bounds)
-
-
-def rect_fields_overlap(
-    cx: float,
-    cy: float,
-    half_x: float,
-    half_y: float,
-    yaw: float,
-    bounds: tuple[float, float, float, float],
-) -> bool:
-    """:func:`rect_overlaps` of the rectangle with these :class:`Box2D` fields (floats)."""
-    xmin, xmax, ymin, ymax = bounds
-    lo_x, hi_x, lo_y, hi_y = _aabb(cx, cy, half_x, half_y, yaw)
-    if hi_x < xmin - _SURE or lo_x > xmax + _SURE or hi_y < ymin - _SURE or lo_y > ymax + _SURE:
-        return False
-    if lo_x > xmin + _SURE and hi_x < xmax - _SURE and lo_y > ymin + _SURE and hi_y < ymax - _SURE:
-        return True
-    sure = _rect_overlaps_floats(cx, cy, half_x, half_y, yaw, bounds)
-    if sure is not None:
-        return sure
-    return _rect_overlaps_sat(Box2D.fast(cx, cy, half_x, half_y, yaw, "rect"), bounds)
-
-
-def _rect_overlaps_floats(
-    cx: float,
-    cy: float,
-    half_x: float,
-    half_y: float,
-    yaw: float,
-    bounds: tuple[float, float, float, float],
-) -> bool | None:
-    """:func:`_rect_overlaps_sat` on floats where every test clears it by 1e-9 m; else None.
-
-    The same separating-axis tests on corners rotated with scalar products (the array
-    code's matrix products may round differently in the last bits): an answer is given
-    only when no comparison is within the margin of flipping.
-    """
-    c, s = math.cos(yaw), math.sin(yaw)
-    xs, ys = [], []
-    for lx, ly in ((half_x, half_y), (-half_x, half_y), (-half_x, -half_y), (half_x, -half_y)):
-        xs.append(lx * c - ly * s + cx)
-        ys.append(lx * s + ly * c + cy)
-    xmin, xmax, ymin, ymax = bounds
-    unsure = False
-    # each test is "separated if a <= b"
-    tests = [(max(xs), xmin), (xmax, min(xs)), (max(ys), ymin), (ymax, min(ys))]
-    corners = ((xmin, ymin), (xmax, ymin), (xmax, ymax), (xmin, ymax))
-    for ux, uy in ((c, s), (-s, c)):
-        pa = [x * ux + y * uy for x, y in corners]
-        pb = [x * ux + y * uy for x, y in zip(xs, ys, strict=True)]
-        tests.append((max(pa), min(pb)))
-        tests.append((max(pb), min(pa)))
-    for a, b in tests:
-        if a < b - _SURE:
-            return False
-        if a <= b + _SURE:
-            unsure = True
-    return None if unsure else True
-
-
-def _rect_overlaps_sat(box: Box2D, bounds: tuple[float, float, float, float]) -> bool:
-    xmin, xmax, ymin, ymax = bounds
-    c = box.corners()
-    if c[:, 0].max() <= xmin or c[:, 0].min() >= xmax:
-        return False
-    if c[:, 1].max() <= ymin or c[:, 1].min() >= ymax:
-        return False
-    aabb = np.array([[xmin, ymin], [xmax, ymin], [xmax, ymax], [xmin, ymax]])
-    for axis in (
-        np.array([math.cos(box.yaw), math.sin(box.yaw)]),
-        np.array([-math.sin(box.yaw), math.cos(box.yaw)]),
-    ):
-        pa, pb = aabb @ axis, c @ axis
-        if pa.max() <= pb.min() or pb.max() <= pa.min():
-            return False
-    return True

@@ -27,11 +27,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot.envs.core.names import Failure, Operator, Reason, reason_code
-from voot.envs.core.scene import object_footprint, rect_inside, rect_overlaps
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.state import StepTiming, pose_tuple
 from voot.envs.core.units import denormalize
 from voot.envs.kitchen.poses import pick_base, place_base, relative_pose
 from voot.envs.kitchen.screen import KitchenScreen
+from voot.envs.motion.rects import rect_inside, rect_overlaps
 from voot.envs.robot.grasp import GraspPose, side_grasp
 from voot.envs.robot.model import TUCK, base_footprint
 from voot.envs.robot.rotations import rot_z

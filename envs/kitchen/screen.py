@@ -30,13 +30,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.names import Failure, Operator, Reason
-from voot.envs.core.scene import object_footprint, rect_fields_inside, rect_fields_overlap
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.state import replace
 from voot.envs.core.units import denormalize_floats
 from voot.envs.kitchen.config import KitchenConfig
 from voot.envs.kitchen.poses import relative_pose_floats
 from voot.envs.kitchen.task import KitchenTask
 from voot.envs.motion.planner import Box2D, DiscProbe
+from voot.envs.motion.rects import rect_fields_inside, rect_fields_overlap
 from voot.envs.robot.model import (
     ARM_REACH,
     BASE_HALF,

@@ -3,6 +3,7 @@
 * :mod:`.planner`: :class:`BasePlanner`, the facade (queries, caches, ``DiscProbe``);
 * :mod:`.planar`: ``Pose2D``, ``Box2D``, ``BasePath``, SE(2) path length;
 * :mod:`.disc_geometry`: exact disc-against-box tests (arrays and floats);
+* :mod:`.rects`: a rectangle inside or overlapping an axis-aligned region;
 * :mod:`.visibility_graph`: the reduced visibility graph; :mod:`.graph_search`: A* on it;
 * :mod:`.swept_volume`: the floor area swept along a path and the objects it meets.
 """

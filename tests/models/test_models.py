@@ -8,6 +8,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from voot.envs.assets import fixed_scenes, mjcf
 from voot.envs.core.scene import (
     OBJECT_BIT,
     ROBOT_BIT,
@@ -35,7 +36,7 @@ def test_unknown_scene_lists_choices() -> None:
 
 @pytest.mark.parametrize(
     ("name", "build"),
-    [("kitchen.xml", generate_scenes.kitchen_xml), ("conveyor.xml", generate_scenes.conveyor_xml)],
+    [("kitchen.xml", fixed_scenes.kitchen_xml), ("conveyor.xml", fixed_scenes.conveyor_xml)],
 )
 def test_committed_xml_is_what_the_generator_writes(name: str, build: object) -> None:
     assert callable(build)
@@ -101,7 +102,7 @@ def test_collision_groups(scene: str) -> None:
 
 
 def test_scenes_start_without_contacts() -> None:
-    starts = {"kitchen": generate_scenes.KITCHEN_START, "conveyor": generate_scenes.CONVEYOR_START}
+    starts = {"kitchen": mjcf.KITCHEN_START, "conveyor": mjcf.CONVEYOR_START}
     for scene, start in starts.items():
         model = load_model(scene)
         data = mujoco.MjData(model)
@@ -129,9 +130,7 @@ def test_conveyor_boxes_have_the_original_sizes() -> None:
             assert 0.6 <= sx <= 0.7 and sy == pytest.approx(0.7)
         else:
             assert 0.4 <= sx <= 0.5 and 0.5 <= sy <= 0.6
-    assert sizes == [
-        tuple(pytest.approx(v) for v in s) for s in generate_scenes.conveyor_box_sizes()
-    ]
+    assert sizes == [tuple(pytest.approx(v) for v in s) for s in fixed_scenes.conveyor_box_sizes()]
 
 
 def test_cameras() -> None:

@@ -21,24 +21,31 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import mujoco
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.conveyor.env import ConveyorPackingEnv
-from voot.envs.conveyor.generated.instance import layout_config, storage_instance
+from voot.envs.conveyor.generated.instance import (
+    SceneConveyorEnv,
+    layout_config,
+    storage_instance,
+)
 from voot.envs.conveyor.generated.layout import StorageLayout
 from voot.envs.conveyor.generated.witness import Witness
+from voot.envs.core.generation import Rejection, witness_arrays
+from voot.envs.core.names import Difficulty
+
+__all__ = ["ConveyorFamilyEnv", "witness_return"]
 
 FloatArray = NDArray[np.float64]
 
 
-class ConveyorFamilyEnv(ConveyorPackingEnv):
+class ConveyorFamilyEnv(SceneConveyorEnv):
     """The conveyor packing task on a generated, solvable storage layout (module docstring).
 
     Args:
         layout_seed: The layout's seed (an integer >= 0).
-        difficulty: ``"easy"``, ``"medium"`` or ``"hard"``.
+        difficulty: ``"easy"``, ``"medium"`` or ``"hard"``
+            (:class:`~voot.envs.core.names.Difficulty`).
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"`` (framed on the layout).
         render_size: ``(width, height)`` of rendered images.
@@ -72,10 +79,10 @@ class ConveyorFamilyEnv(ConveyorPackingEnv):
         config = layout_config(instance.layout, **options)
         self.layout: StorageLayout = instance.layout
         self.witness: Witness = instance.witness
-        self.rejections: tuple[str, ...] = instance.rejections
-        self._pending_model: mujoco.MjModel | None = instance.model_copy()
+        self.rejections: tuple[Rejection, ...] = instance.rejections
         super().__init__(
-            config=config,
+            instance.model_copy(),
+            config,
             render_mode=render_mode,
             render_camera=render_camera,
             render_size=render_size,
@@ -86,15 +93,8 @@ class ConveyorFamilyEnv(ConveyorPackingEnv):
         return self.layout.layout_seed
 
     @property
-    def difficulty(self) -> str:
+    def difficulty(self) -> Difficulty:
         return self.layout.difficulty
-
-    def _scene_model(self) -> mujoco.MjModel:
-        """The generated scene (handed over once: the env keeps no second reference)."""
-        model, self._pending_model = self._pending_model, None
-        if model is None:  # pragma: no cover - called once, by __init__
-            raise RuntimeError("the generated scene was already loaded")
-        return model
 
     def solution_actions(self) -> list[FloatArray]:
         """The witness (:meth:`witness_actions`): the known solution of a generated instance."""
@@ -103,12 +103,12 @@ class ConveyorFamilyEnv(ConveyorPackingEnv):
     def witness_actions(self) -> list[FloatArray]:
         """The witness packing as normalised actions: from a reset, they pack every box
         (with the default grasp and planner settings)."""
-        return [np.array(a, dtype=np.float64) for a in self.witness.actions]
+        return witness_arrays(self.witness.actions)
 
     def _info_reset(self) -> dict[str, Any]:
         info = super()._info_reset()
         info["layout_seed"] = self.layout.layout_seed
-        info["difficulty"] = self.layout.difficulty
+        info["difficulty"] = str(self.layout.difficulty)
         return info
 
 

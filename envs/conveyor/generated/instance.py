@@ -5,11 +5,12 @@ layout (:func:`~voot.envs.conveyor.generated.layout.generate_storage_layout`, at
 its scene (:mod:`voot.envs.conveyor.generated.scene`), builds the env on it and proves it solvable
 (:func:`~voot.envs.conveyor.generated.witness.find_witness`); a layout that fails (no witness
 packing, or a box whose fixed grasp is infeasible) is **rejected** and the next attempt
-of the same seed drawn, deterministically, up to :data:`MAX_ATTEMPTS`. The rejections are
-counted and their reasons kept (:attr:`StorageInstance.rejections`).
+of the same seed drawn, deterministically, up to :data:`MAX_ATTEMPTS`
+(:func:`voot.envs.core.generation.first_accepted`). The rejections are counted and their
+reasons kept (:attr:`StorageInstance.rejections`).
 
-Caching. The accepted instance is kept in the process (a dict: a second env of the same
-layout costs a model copy) and on disk, keyed by ``(layout_seed, difficulty)`` in a
+Caching. The accepted instance is kept in the process (:data:`INSTANCES`: a second env of
+the same layout costs a model copy) and on disk, keyed by ``(layout_seed, difficulty)`` in a
 folder named after the generator's version and MuJoCo's (``storage-g1-mj3.x.y``: the
 compiled model is stored in MuJoCo's binary format, which is version specific): a JSON
 record (the attempt, the rejections, the witness, a hash of the scene's MJCF) and the
@@ -27,12 +28,11 @@ renamed), so concurrent processes can share the cache.
 from __future__ import annotations
 
 import copy
-import hashlib
 import json
 import os
 import tempfile
 import zlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -40,16 +40,26 @@ import mujoco
 import numpy as np
 
 from voot.envs.assets.meshes import cache_dir as voot_cache_dir
+from voot.envs.assets.mjcf import mjcf_sha256
 from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv, conveyor_config
 from voot.envs.conveyor.generated.layout import (
+    DIFFICULTIES,
     GENERATOR_VERSION,
     StorageLayout,
-    check_layout_seed,
-    difficulty_level,
     generate_storage_layout,
 )
 from voot.envs.conveyor.generated.scene import compile_storage_scene, storage_xml
 from voot.envs.conveyor.generated.witness import Witness, find_witness
+from voot.envs.core.generation import (
+    GeneratedInstance,
+    InstanceCache,
+    Rejection,
+    check_layout_seed,
+    first_accepted,
+    parse_difficulty,
+    reject_layout_fields,
+)
+from voot.envs.core.names import Difficulty
 
 #: Attempts of one seed before giving up (none has needed more than a few).
 MAX_ATTEMPTS = 50
@@ -58,27 +68,10 @@ LAYOUT_FIELDS = frozenset({"loading_region", "workspace", "n_objects"})
 
 
 @dataclass(frozen=True, eq=False)
-class StorageInstance:
-    """An accepted layout with its compiled scene and the proof that it is solvable.
-
-    Attributes:
-        layout: The layout (its ``attempt`` is the accepted draw).
-        model: The compiled scene; copy it before use (:meth:`model_copy`): an env may
-            change its model's collision filter.
-        witness: The packing that solves it (:mod:`voot.envs.conveyor.generated.witness`).
-        rejections: Why each earlier attempt of this seed was rejected.
-        xml_sha256: Hash of the scene's MJCF (the cache's consistency check).
-    """
-
-    layout: StorageLayout
-    model: mujoco.MjModel
-    witness: Witness
-    rejections: tuple[str, ...]
-    xml_sha256: str
-
-    def model_copy(self) -> mujoco.MjModel:
-        """A private copy of :attr:`model`."""
-        return copy.copy(self.model)
+class StorageInstance(GeneratedInstance[StorageLayout, Witness]):
+    """An accepted storage layout with its compiled scene and the proof that it is
+    solvable (the packing: :class:`~voot.envs.conveyor.generated.witness.Witness`); the
+    fields are :class:`~voot.envs.core.generation.GeneratedInstance`'s."""
 
 
 def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
@@ -88,12 +81,7 @@ def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
     Raises:
         ValueError: An option is one of :data:`LAYOUT_FIELDS` or no config field.
     """
-    fixed = sorted(LAYOUT_FIELDS & set(options))
-    if fixed:
-        raise ValueError(
-            f"{', '.join(fixed)} come from the generated layout; choose another layout_seed"
-            " or difficulty instead"
-        )
+    reject_layout_fields(options, LAYOUT_FIELDS)
     return conveyor_config(
         "v1",
         loading_region=layout.loading_region,
@@ -105,16 +93,39 @@ def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
 
 class SceneConveyorEnv(ConveyorPackingEnv):
     """The conveyor on a given compiled scene with a given config: what the solvability
-    search steps (:func:`generate_instance`), and a way to run a layout's scene without
-    the cache. ``model`` is taken over (pass a copy to keep yours unchanged)."""
+    search steps (:func:`generate_instance`), the base of ``voot/ConveyorPacking-v2``'s
+    env, and a way to run a layout's scene without the cache. ``model`` is taken over
+    (pass a copy to keep yours unchanged).
 
-    def __init__(self, model: mujoco.MjModel, config: ConveyorConfig) -> None:
+    Args:
+        model: The compiled scene.
+        config: Settings (:func:`layout_config`).
+        render_mode: None or ``"rgb_array"``.
+        render_camera: ``"perspective"`` or ``"top_down"``.
+        render_size: ``(width, height)`` of rendered images.
+    """
+
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        config: ConveyorConfig,
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+    ) -> None:
         self._pending_model: mujoco.MjModel | None = model
-        super().__init__(config=config)
+        super().__init__(
+            config=config,
+            render_mode=render_mode,
+            render_camera=render_camera,
+            render_size=render_size,
+        )
 
     def _scene_model(self) -> mujoco.MjModel:
+        """The given scene (handed over once: the env keeps no second reference)."""
         model, self._pending_model = self._pending_model, None
-        assert model is not None
+        if model is None:  # pragma: no cover - called once, by __init__
+            raise RuntimeError("the generated scene was already loaded")
         return model
 
 
@@ -124,28 +135,28 @@ def cache_dir() -> Path:
 
 
 #: The instances made or loaded in this process, by ``(layout_seed, difficulty)``.
-_MEMO: dict[tuple[int, str], StorageInstance] = {}
+INSTANCES: InstanceCache[tuple[int, Difficulty], StorageInstance] = InstanceCache(None)
 
 
 def clear_memo() -> None:
     """Forget the instances kept in this process (the disk cache stays)."""
-    _MEMO.clear()
+    INSTANCES.clear()
 
 
 def storage_instance(layout_seed: int, difficulty: str, *, disk: bool = True) -> StorageInstance:
     """The solvable instance of ``(layout_seed, difficulty)``: from this process's memo,
     else from the disk cache (``disk=True``), else generated (and cached)."""
     seed = check_layout_seed(layout_seed)
-    difficulty_level(difficulty)
-    key = (seed, difficulty)
-    hit = _MEMO.get(key)
+    level = parse_difficulty(difficulty, DIFFICULTIES)
+    return INSTANCES.get_or_make((seed, level), lambda: _load_or_generate(seed, level, disk))
+
+
+def _load_or_generate(layout_seed: int, difficulty: Difficulty, disk: bool) -> StorageInstance:
+    hit = _load(layout_seed, difficulty) if disk else None
     if hit is None:
-        hit = _load(seed, difficulty) if disk else None
-        if hit is None:
-            hit = generate_instance(seed, difficulty)
-            if disk:
-                _store(hit)
-        _MEMO[key] = hit
+        hit = generate_instance(layout_seed, difficulty)
+        if disk:
+            _store(hit)
     return hit
 
 
@@ -155,29 +166,24 @@ def generate_instance(layout_seed: int, difficulty: str) -> StorageInstance:
     Raises:
         RuntimeError: No attempt of :data:`MAX_ATTEMPTS` was solvable.
     """
-    rejections: list[str] = []
-    for attempt in range(MAX_ATTEMPTS):
-        layout = generate_storage_layout(layout_seed, difficulty, attempt)
+
+    def attempt(k: int) -> StorageInstance | str:
+        layout = generate_storage_layout(layout_seed, difficulty, k)
         xml = storage_xml(layout)
         model = compile_storage_scene(layout, xml)
         try:
             env = SceneConveyorEnv(copy.copy(model), layout_config(layout))
         except RuntimeError as exc:  # a fixed grasp that fails: the layout is rejected
-            rejections.append(f"attempt {attempt}: {exc}")
-            continue
+            return str(exc)
         witness = find_witness(env, layout)
         env.close()
-        if witness.solved:
-            return StorageInstance(layout, model, witness, tuple(rejections), _sha(xml))
-        rejections.append(f"attempt {attempt}: {witness.reason}")
-    raise RuntimeError(
-        f"no solvable layout for layout_seed={layout_seed}, difficulty={difficulty!r} in"
-        f" {MAX_ATTEMPTS} attempts: {'; '.join(rejections[-3:])}"
-    )
+        if not witness.solved:
+            return witness.reason
+        return StorageInstance(layout, model, witness, (), mjcf_sha256(xml))
 
-
-def _sha(xml: str) -> str:
-    return hashlib.sha256(xml.encode()).hexdigest()
+    what = f"layout for layout_seed={layout_seed}, difficulty='{difficulty}'"
+    instance, rejections = first_accepted(attempt, MAX_ATTEMPTS, what)
+    return replace(instance, rejections=rejections)
 
 
 def _paths(layout_seed: int, difficulty: str) -> tuple[Path, Path]:
@@ -191,13 +197,13 @@ def _load(layout_seed: int, difficulty: str) -> StorageInstance | None:
     try:
         record = json.loads(record_path.read_text())
         layout = generate_storage_layout(layout_seed, difficulty, int(record["attempt"]))
-        sha = _sha(storage_xml(layout))
+        sha = mjcf_sha256(storage_xml(layout))
         if record["xml_sha256"] != sha:
             return None
         blob = zlib.decompress(model_path.read_bytes())
         model = mujoco.MjModel.from_binary_path("model.mjb", {"model.mjb": blob})
         witness = Witness.from_json(record["witness"])
-        rejections = tuple(str(r) for r in record["rejections"])
+        rejections = tuple(Rejection(int(k), str(why)) for k, why in record["rejections"])
     except (OSError, ValueError, KeyError, TypeError, zlib.error):
         return None
     return StorageInstance(layout, model, witness, rejections, sha)
@@ -212,7 +218,7 @@ def _store(instance: StorageInstance) -> None:
         "difficulty": layout.difficulty,
         "generator_version": GENERATOR_VERSION,
         "attempt": layout.attempt,
-        "rejections": list(instance.rejections),
+        "rejections": [list(r) for r in instance.rejections],
         "witness": instance.witness.to_json(),
         "xml_sha256": instance.xml_sha256,
     }

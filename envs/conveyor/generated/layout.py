@@ -36,7 +36,8 @@ every box, medium doors (1.65 to 2.0 m) stop some big boxes, most hard doors (1.
 :mod:`voot.envs.conveyor.generated.witness` proves it for each layout (or the layout is rejected and
 the next ``attempt`` drawn, :mod:`voot.envs.conveyor.generated.instance`).
 
-The difficulty levels (:data:`DIFFICULTIES`) go from a large area with few rooms, wide
+The difficulty levels (:data:`DIFFICULTIES`, a :class:`StorageLevel` per
+:class:`~voot.envs.core.names.Difficulty`) go from a large area with few rooms, wide
 doors and a few small boxes (``"easy"``) to a smaller area cut into more, smaller rooms
 behind narrower doors, holding more and bigger boxes (``"hard"``).
 """
@@ -51,6 +52,9 @@ from types import MappingProxyType
 import numpy as np
 
 from voot import validation as V
+from voot.envs.assets.mjcf import WALL_THICKNESS
+from voot.envs.core.generation import check_layout_seed, parse_difficulty
+from voot.envs.core.names import Difficulty
 
 #: Version of the generator: part of every cache key; bump it when a layout changes.
 GENERATOR_VERSION = 1
@@ -60,10 +64,6 @@ AREA_EAST = -0.7
 AREA_NORTH = 3.0
 #: The entrance in the east wall: y range (the v1 scene's).
 ENTRANCE = (0.0, 2.6)
-#: Thickness of every wall (metres); inner walls are centred on their line.
-WALL_THICKNESS = 0.1
-#: Height of the walls.
-WALL_HEIGHT = 1.2
 #: The shortest side of a room (metres): room for a row of boxes and the carry disc.
 MIN_ROOM_SIDE = 2.6
 #: Wall kept on either side of a door (metres).
@@ -81,8 +81,9 @@ _SALT = 0x5707A6E
 
 
 @dataclass(frozen=True)
-class DifficultyLevel:
-    """The ranges one difficulty level draws a layout from (all inclusive).
+class StorageLevel:
+    """The ranges one difficulty level of the storage rooms draws a layout from (all
+    inclusive).
 
     Attributes:
         rooms: Fewest and most rooms.
@@ -115,22 +116,22 @@ class DifficultyLevel:
     def __post_init__(self) -> None:
         for name in ("rooms", "boxes", "big_boxes"):
             lo, hi = getattr(self, name)
-            V.integer(lo, f"DifficultyLevel.{name}[0]", 0 if name == "big_boxes" else 1)
-            V.integer(hi, f"DifficultyLevel.{name}[1]", lo)
-        V.integer(self.boxes[1], "DifficultyLevel.boxes[1]", high=MAX_BOXES)
-        V.integer(self.big_boxes[1], "DifficultyLevel.big_boxes[1]", high=self.boxes[0])
+            V.integer(lo, f"StorageLevel.{name}[0]", 0 if name == "big_boxes" else 1)
+            V.integer(hi, f"StorageLevel.{name}[1]", lo)
+        V.integer(self.boxes[1], "StorageLevel.boxes[1]", high=MAX_BOXES)
+        V.integer(self.big_boxes[1], "StorageLevel.big_boxes[1]", high=self.boxes[0])
         for name in ("width", "depth", "door_width", "small_x", "small_y", "big_x", "big_y"):
             lo, hi = getattr(self, name)
-            V.positive(lo, f"DifficultyLevel.{name}[0]")
-            V.number(hi, f"DifficultyLevel.{name}[1]", lo)
-        V.probability(self.extra_door, "DifficultyLevel.extra_door")
+            V.positive(lo, f"StorageLevel.{name}[0]")
+            V.number(hi, f"StorageLevel.{name}[1]", lo)
+        V.probability(self.extra_door, "StorageLevel.extra_door")
 
 
 #: The named difficulty levels, easiest first. Harder: a smaller area cut into more and
 #: smaller rooms, narrower doors, more boxes, more of them big, bigger small boxes.
-DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
+DIFFICULTIES: Mapping[Difficulty, StorageLevel] = MappingProxyType(
     {
-        "easy": DifficultyLevel(
+        Difficulty.EASY: StorageLevel(
             rooms=(2, 3),
             width=(6.0, 7.5),
             depth=(8.0, 10.0),
@@ -141,7 +142,7 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             small_x=(0.35, 0.45),
             small_y=(0.45, 0.55),
         ),
-        "medium": DifficultyLevel(
+        Difficulty.MEDIUM: StorageLevel(
             rooms=(3, 4),
             width=(5.8, 7.0),
             depth=(7.5, 9.5),
@@ -152,7 +153,7 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             small_x=(0.4, 0.5),
             small_y=(0.5, 0.6),
         ),
-        "hard": DifficultyLevel(
+        Difficulty.HARD: StorageLevel(
             rooms=(4, 5),
             width=(5.6, 6.8),
             depth=(7.0, 9.0),
@@ -263,7 +264,7 @@ class StorageLayout:
 
     Attributes:
         layout_seed: The seed it was drawn from.
-        difficulty: The level's name (a key of :data:`DIFFICULTIES`).
+        difficulty: The level (a key of :data:`DIFFICULTIES`).
         attempt: Which draw of this seed and level it is (0 first; the solvability check
             rejects a layout by moving to the next attempt).
         area: The storage area's interior ``(xmin, xmax, ymin, ymax)``.
@@ -274,7 +275,7 @@ class StorageLayout:
     """
 
     layout_seed: int
-    difficulty: str
+    difficulty: Difficulty
     attempt: int
     area: tuple[float, float, float, float]
     rooms: tuple[Room, ...]
@@ -306,21 +307,14 @@ class StorageLayout:
         return -1
 
 
-def difficulty_level(difficulty: str) -> DifficultyLevel:
-    """The :class:`DifficultyLevel` named ``difficulty`` (an error names the valid ones)."""
-    if not isinstance(difficulty, str) or difficulty not in DIFFICULTIES:
-        raise ValueError(f"difficulty must be one of {', '.join(DIFFICULTIES)}, got {difficulty!r}")
-    return DIFFICULTIES[difficulty]
-
-
-def check_layout_seed(layout_seed: object) -> int:
-    """``layout_seed`` as an ``int`` in ``[0, 2**63)`` (a ValueError otherwise)."""
-    return V.integer(layout_seed, "layout_seed", 0, 2**63 - 1)
+def difficulty_level(difficulty: str) -> StorageLevel:
+    """The :class:`StorageLevel` of ``difficulty`` (an error names the valid ones)."""
+    return DIFFICULTIES[parse_difficulty(difficulty, DIFFICULTIES)]
 
 
 def layout_rng(layout_seed: int, difficulty: str, attempt: int) -> np.random.Generator:
     """The generator of one draw: independent streams for every seed, level and attempt."""
-    level = list(DIFFICULTIES).index(difficulty)
+    level = list(DIFFICULTIES).index(Difficulty(difficulty))
     entropy = [int(layout_seed), level, int(attempt), GENERATOR_VERSION, _SALT]
     return np.random.default_rng(np.random.SeedSequence(entropy))
 
@@ -335,7 +329,8 @@ def generate_storage_layout(
             attempt that is not an integer >= 0.
     """
     seed = check_layout_seed(layout_seed)
-    level = difficulty_level(difficulty)
+    difficulty = parse_difficulty(difficulty, DIFFICULTIES)
+    level = DIFFICULTIES[difficulty]
     attempt = V.integer(attempt, "attempt", 0)
     rng = layout_rng(seed, difficulty, attempt)
     # a partition whose rooms cannot all be joined by doors is redrawn from the same
@@ -440,7 +435,7 @@ def _shared(a: _Rect, b: _Rect) -> tuple[str, float, float, float] | None:
 def _door(
     shared: tuple[str, float, float, float],
     pair: tuple[int, int],
-    level: DifficultyLevel,
+    level: StorageLevel,
     rng: np.random.Generator,
 ) -> Door | None:
     """A door of a drawn width at a drawn place on a shared wall (None if it cannot fit)."""
@@ -464,7 +459,7 @@ def _facing(room: _Rect, door: Door | None) -> float:
 
 
 def _connect(
-    rects: list[_Rect], level: DifficultyLevel, rng: np.random.Generator
+    rects: list[_Rect], level: StorageLevel, rng: np.random.Generator
 ) -> tuple[tuple[Room, ...], tuple[Door, ...]] | None:
     """Doors along a random breadth-first spanning tree from the entrance room, then
     extra doors; the rooms with their depth and facing. None if some room stays cut off."""
@@ -554,7 +549,7 @@ def _inner_walls(cuts: list[_Cut], doors: tuple[Door, ...]) -> tuple[Wall, ...]:
     return tuple(out)
 
 
-def _draw_boxes(level: DifficultyLevel, rng: np.random.Generator) -> tuple[BoxSpec, ...]:
+def _draw_boxes(level: StorageLevel, rng: np.random.Generator) -> tuple[BoxSpec, ...]:
     """The boxes in belt order: the count, which are big, every size (millimetres),
     shape and variant."""
     n = int(rng.integers(level.boxes[0], level.boxes[1] + 1))

@@ -1,8 +1,8 @@
 """A generated storage layout as a MuJoCo scene: the MJCF text and the compiled model.
 
 :func:`storage_xml` writes the scene of a :class:`~voot.envs.conveyor.generated.layout.StorageLayout`
-with the same building blocks as the fixed ``conveyor.xml`` (imported from
-:mod:`voot.models.generate_scenes`: the header with its materials and collision classes,
+with the same building blocks as the fixed ``conveyor.xml`` (:mod:`voot.envs.assets.mjcf`:
+the header with its materials and collision classes,
 walls, the belt, cameras), so a generated scene follows every convention the
 environments read back (:mod:`voot.envs.core.scene`): static walls of class ``scene``, boxes
 as bodies ``obj_NN`` with a free joint, queued on the belt in belt order. The boxes are
@@ -22,18 +22,24 @@ from __future__ import annotations
 import mujoco
 
 from voot.envs.assets.meshes import ShapeSpec, compile_scene, object_body_xml, shape_assets_xml
-from voot.envs.conveyor.generated.layout import WALL_HEIGHT, StorageLayout
-from voot.models.generate_scenes import (
+from voot.envs.assets.mjcf import (
     BELT_FIRST_X,
     BELT_SPACING,
     BELT_TOP,
+    BELT_Y,
     CONVEYOR_START,
-    _cameras,
-    _header,
-    _v,
-    _wall,
-    conveyor_belt_xml,
+    CONVEYOR_WALL_HEIGHT,
+    START_RGBA,
+    belt_xml,
+    cameras,
+    floor_plane,
+    header,
+    marker,
+    sun_light,
+    vec,
+    wall,
 )
+from voot.envs.conveyor.generated.layout import StorageLayout
 
 #: East edge of the top-down camera's view (past the start, over the belt's head).
 _VIEW_EAST = 2.6
@@ -68,21 +74,19 @@ def storage_xml(layout: StorageLayout) -> str:
     fovy = max(view[3] - view[2], (view[1] - view[0]) / _ASPECT)
     name = f"voot_storage_{layout.difficulty}_{layout.layout_seed}_{layout.attempt}"
     shapes = box_shapes(layout)
-    out = [_header(name, max(fovy, 12.0) + 4.0, (cx, cy, 0.5))]
+    out = [header(name, max(fovy, 12.0) + 4.0, (cx, cy, 0.5))]
     out.append(f"  <asset>\n{shape_assets_xml(shapes)}  </asset>\n")
     out.append("  <worldbody>\n")
-    out.append(
-        f'    <light name="sun" pos="{_v(cx, cy, 10)}" dir="0.3 0.4 -1" directional="true" castshadow="true" diffuse="0.45 0.45 0.45"/>\n'
-    )
+    out.append(sun_light(cx, cy, 10))
     # the floor reaches the belt's far end like conveyor.xml's (x up to 25)
     fx0, fx1 = x0 - 1.0, 25.0
     fy0, fy1 = y0 - 1.0, y1 + 1.5
     out.append(
-        f'    <geom name="floor" class="decor" type="plane" size="{_v(0.5 * (fx1 - fx0), 0.5 * (fy1 - fy0), 0.1)}" pos="{_v(0.5 * (fx0 + fx1), 0.5 * (fy0 + fy1), 0)}" material="floor"/>\n'
+        floor_plane(0.5 * (fx0 + fx1), 0.5 * (fy0 + fy1), 0.5 * (fx1 - fx0), 0.5 * (fy1 - fy0))
     )
     target = (cx - 0.6, cy, 0.0)
     out.append(
-        _cameras(
+        cameras(
             top_center=(cx, cy),
             top_height=15.0,
             top_extent=fovy,
@@ -94,23 +98,20 @@ def storage_xml(layout: StorageLayout) -> str:
     for k, room in enumerate(layout.rooms):
         rx0, rx1, ry0, ry1 = room.interior()
         out.append(
-            f'    <geom name="room_{k}_floor" class="decor" type="box" size="{_v(0.5 * (rx1 - rx0), 0.5 * (ry1 - ry0), 0.002)}" pos="{_v(0.5 * (rx0 + rx1), 0.5 * (ry0 + ry1), 0.004)}" rgba="{_ROOM_TINTS[k % len(_ROOM_TINTS)]}"/>\n'
+            f'    <geom name="room_{k}_floor" class="decor" type="box" size="{vec(0.5 * (rx1 - rx0), 0.5 * (ry1 - ry0), 0.002)}" pos="{vec(0.5 * (rx0 + rx1), 0.5 * (ry0 + ry1), 0.004)}" rgba="{_ROOM_TINTS[k % len(_ROOM_TINTS)]}"/>\n'
         )
     for w in layout.walls:
-        out.append("    " + _wall(w.name, w.xmin, w.xmax, w.ymin, w.ymax, WALL_HEIGHT) + "\n")
+        out.append(wall(w.name, w.xmin, w.xmax, w.ymin, w.ymax, CONVEYOR_WALL_HEIGHT))
     for k, door in enumerate(layout.doors):
         dx, dy = door.center
         hx, hy = (0.06, 0.5 * door.width) if door.axis == "x" else (0.5 * door.width, 0.06)
         out.append(
-            f'    <geom name="door_{k}" class="decor" type="box" size="{_v(hx, hy, 0.002)}" pos="{_v(dx, dy, 0.003)}" rgba="0.2 0.7 0.3 1"/>\n'
+            f'    <geom name="door_{k}" class="decor" type="box" size="{vec(hx, hy, 0.002)}" pos="{vec(dx, dy, 0.003)}" rgba="0.2 0.7 0.3 1"/>\n'
         )
-    out.append(conveyor_belt_xml())
-    sx, sy, _ = CONVEYOR_START
-    out.append(
-        f'    <geom name="start_marker" class="decor" type="cylinder" size="0.12 0.002" pos="{_v(sx, sy, 0.003)}" rgba="0.1 0.6 1 1"/>\n'
-    )
+    out.append(belt_xml())
+    out.append(marker("start_marker", CONVEYOR_START[0], CONVEYOR_START[1], START_RGBA))
     for i, (box, shape) in enumerate(zip(layout.boxes, shapes, strict=True)):
-        pose = (BELT_FIRST_X + BELT_SPACING * i, 1.05, BELT_TOP, 0.0)
+        pose = (BELT_FIRST_X + BELT_SPACING * i, BELT_Y, BELT_TOP, 0.0)
         out.append(object_body_xml(f"obj_{i:02d}", shape, pose, box_material(box.big, box.kind)))
     out.append("  </worldbody>\n</mujoco>\n")
     return "".join(out)

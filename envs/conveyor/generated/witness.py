@@ -40,9 +40,10 @@ from numpy.typing import NDArray
 
 from voot.envs.conveyor.env import OBJECTS_PER_ACTION, ConveyorPackingEnv
 from voot.envs.conveyor.generated.layout import StorageLayout
-from voot.envs.core.scene import object_footprint, rect_inside
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.units import denormalize, normalize
 from voot.envs.motion.planar import Box2D
+from voot.envs.motion.rects import rect_inside
 
 FloatArray = NDArray[np.float64]
 
@@ -196,6 +197,12 @@ def find_witness(
     checks = 0
     total = 0.0
     ranges = cfg.place_ranges
+
+    def outcome(reason: str) -> Witness:
+        """The witness so far: solved iff no ``reason`` to fail."""
+        placed = (tuple(actions), tuple(placements), tuple(rooms), checks, total)
+        return Witness(not reason, *placed, reason)
+
     while env.task.placed < n:
         placed = env.task.placed
         m = min(OBJECTS_PER_ACTION, n - placed)
@@ -230,15 +237,7 @@ def find_witness(
                 if chosen is not None:
                     break
             if chosen is None:
-                return Witness(
-                    False,
-                    tuple(actions),
-                    tuple(placements),
-                    tuple(rooms),
-                    checks,
-                    total,
-                    f"{env.objects[i].name} fits in no room",
-                )
+                return outcome(f"{env.objects[i].name} fits in no room")
             room, s, a, xyt, box = chosen
             used.add((room, s))
             footprints.append(box)
@@ -247,18 +246,10 @@ def find_witness(
             rooms.append(room)
         _, reward, _, _, info = env.step(action)
         if not info["feasible"]:  # pragma: no cover - the step repeats the same checks
-            return Witness(
-                False,
-                tuple(actions),
-                tuple(placements),
-                tuple(rooms),
-                checks,
-                total,
-                f"the step refused the packing: {info['reason']}",
-            )
+            return outcome(f"the step refused the packing: {info['reason']}")
         total += float(reward)
         actions.append(tuple(float(v) for v in action))
-    return Witness(True, tuple(actions), tuple(placements), tuple(rooms), checks, total)
+    return outcome("")
 
 
 def _overlap(a: Box2D, b: Box2D) -> bool:

@@ -4,8 +4,8 @@
 a kitchen drawn from ``(layout_seed, difficulty)``. This module draws the floor plan as
 plain numbers (no MuJoCo): the house, the static furniture, the start, the sink pose at
 the end of the fixed path, the forbidden rooms and the movable objects with their shapes
-and poses. :mod:`voot.envs.kitchen.generated.scene` writes it as MJCF; the family module checks
-that the task it poses is solvable.
+and poses. :mod:`voot.envs.kitchen.generated.scene` writes it as MJCF;
+:mod:`voot.envs.kitchen.generated.witness` proves the task it poses solvable.
 
 The plan (metres; the house interior is ``x in [0, W]``, ``y in [0, D]``):
 
@@ -25,14 +25,15 @@ The plan (metres; the house interior is ``x in [0, W]``, ``y in [0, D]``):
 
 The fixed path here is :class:`~voot.envs.motion.planner.BasePlanner`'s shortest path among
 the static footprints, the one the env plans (it plans again from the compiled model and
-the family module checks the obstacles on it). The generator is a pure function of
+:mod:`voot.envs.kitchen.generated.instance` checks the obstacles on it). The generator is a pure function of
 ``(layout_seed, difficulty, attempt)``: one :func:`numpy.random.default_rng` per call, on
 a :class:`numpy.random.SeedSequence` of a fixed tag, :data:`GENERATOR_VERSION`, the level
 and the two integers, so seeds are independent streams and the same numbers come out in
-every process. ``attempt`` is the family module's rejection counter: an instance that is
+every process. ``attempt`` is :mod:`voot.envs.kitchen.generated.instance`'s rejection counter: an instance that is
 rejected is drawn again from the next attempt's stream.
 
-The levels (:data:`DIFFICULTIES`, ranges are uniform draws; sizes are metres):
+The levels (:data:`DIFFICULTIES`, a :class:`KitchenLevel` per
+:class:`~voot.envs.core.names.Difficulty`; ranges are uniform draws; sizes are metres):
 
 =================  ================  ================  ================
                    easy              medium            hard
@@ -65,6 +66,14 @@ from types import MappingProxyType
 import numpy as np
 
 from voot import validation as V
+from voot.envs.assets.mjcf import (
+    COUNTER_DEPTH,
+    COUNTER_HEIGHT,
+    KITCHEN_WALL_HEIGHT,
+    WALL_THICKNESS,
+)
+from voot.envs.core.generation import check_layout_seed, parse_difficulty
+from voot.envs.core.names import Difficulty
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.robot.model import ROBOT_RADIUS
 
@@ -75,8 +84,8 @@ __all__ = [
     "SIZE_CLASSES",
     "Block",
     "CatalogueItem",
-    "DifficultyLevel",
     "KitchenLayout",
+    "KitchenLevel",
     "LayoutError",
     "ObjectSpec",
     "generate_kitchen_layout",
@@ -87,11 +96,6 @@ __all__ = [
 GENERATOR_VERSION = 1
 #: Tag of the random streams (ASCII "vkit"): keeps them apart from other seeded draws.
 _STREAM_TAG = 0x766B6974
-#: Counter depth, counter height, wall thickness and height (metres).
-COUNTER_DEPTH = 0.65
-COUNTER_HEIGHT = 0.86
-WALL_T = 0.1
-WALL_HEIGHT = 1.1
 #: Distance of the goal base pose from the front of the north counter (v1: 0.85 m).
 GOAL_SETBACK = 0.85
 
@@ -149,16 +153,17 @@ ISLAND_PASSAGE = 1.7
 class LayoutError(ValueError):
     """The drawn numbers do not make a kitchen (no fixed path, no room for an object).
 
-    The family module counts it as a rejection and draws the next attempt.
+    :mod:`voot.envs.kitchen.generated.instance` counts it as a rejection and draws the
+    next attempt.
     """
 
 
 @dataclass(frozen=True)
-class DifficultyLevel:
-    """The ranges of one difficulty level (see the table in the module docstring).
+class KitchenLevel:
+    """The ranges of one difficulty level of the generated kitchens (see the table in the module docstring).
 
     Attributes:
-        name: The level's name.
+        name: The level.
         kitchen_width: Range of the kitchen's width ``Wk`` (x extent, metres).
         depth: Range of the house's depth ``D`` (y extent, metres).
         rooms_width: Range of the forbidden rooms' width (x extent, metres).
@@ -170,7 +175,7 @@ class DifficultyLevel:
         sizes: The size classes drawn (of :data:`SIZE_CLASSES`).
     """
 
-    name: str
+    name: Difficulty
     kitchen_width: tuple[float, float]
     depth: tuple[float, float]
     rooms_width: tuple[float, float]
@@ -183,24 +188,24 @@ class DifficultyLevel:
 
     def __post_init__(self) -> None:
         for name in ("kitchen_width", "depth", "rooms_width"):
-            V.range_pair(f"DifficultyLevel.{name}", getattr(self, name))
+            V.range_pair(f"KitchenLevel.{name}", getattr(self, name))
         if self.shape == "passage":
-            V.range_pair("DifficultyLevel.passage", self.passage)
-        V.one_of(self.shape, "DifficultyLevel.shape", PATH_SHAPES)
+            V.range_pair("KitchenLevel.passage", self.passage)
+        V.one_of(self.shape, "KitchenLevel.shape", PATH_SHAPES)
         for name in ("on_path", "clutter"):
             lo, hi = getattr(self, name)
-            V.integer(lo, f"DifficultyLevel.{name}[0]", 0)
-            V.integer(hi, f"DifficultyLevel.{name}[1]", lo)
+            V.integer(lo, f"KitchenLevel.{name}[0]", 0)
+            V.integer(hi, f"KitchenLevel.{name}[1]", lo)
         if self.on_path[0] < 1:
-            raise ValueError(f"DifficultyLevel.on_path must start at >= 1, got {self.on_path}")
+            raise ValueError(f"KitchenLevel.on_path must start at >= 1, got {self.on_path}")
         kinds = {item.kind for item in CATALOGUE}
         for kind in self.kinds:
-            V.one_of(kind, "DifficultyLevel.kinds", sorted(kinds))
+            V.one_of(kind, "KitchenLevel.kinds", sorted(kinds))
         for size in self.sizes:
-            V.one_of(size, "DifficultyLevel.sizes", SIZE_CLASSES)
+            V.one_of(size, "KitchenLevel.sizes", SIZE_CLASSES)
         if not self.items():
             raise ValueError(
-                f"DifficultyLevel {self.name!r}: no catalogue object is of kinds {self.kinds}"
+                f"KitchenLevel '{self.name}': no catalogue object is of kinds {self.kinds}"
                 f" and sizes {self.sizes}"
             )
 
@@ -212,10 +217,10 @@ class DifficultyLevel:
 #: The path's shapes a level can ask for.
 PATH_SHAPES = ("straight", "island", "passage")
 #: The difficulty levels, easiest first.
-DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
+DIFFICULTIES: Mapping[Difficulty, KitchenLevel] = MappingProxyType(
     {
-        "easy": DifficultyLevel(
-            name="easy",
+        Difficulty.EASY: KitchenLevel(
+            name=Difficulty.EASY,
             kitchen_width=(5.0, 5.8),
             depth=(6.4, 7.2),
             rooms_width=(2.2, 3.0),
@@ -226,8 +231,8 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             kinds=("box", "crate", "bucket"),
             sizes=("small", "medium"),
         ),
-        "medium": DifficultyLevel(
-            name="medium",
+        Difficulty.MEDIUM: KitchenLevel(
+            name=Difficulty.MEDIUM,
             kitchen_width=(4.9, 5.6),
             depth=(6.0, 6.8),
             rooms_width=(2.2, 3.0),
@@ -238,8 +243,8 @@ DIFFICULTIES: Mapping[str, DifficultyLevel] = MappingProxyType(
             kinds=("box", "crate", "bucket", "bin", "jug"),
             sizes=SIZE_CLASSES,
         ),
-        "hard": DifficultyLevel(
-            name="hard",
+        Difficulty.HARD: KitchenLevel(
+            name=Difficulty.HARD,
             kitchen_width=(4.3, 5.0),
             depth=(6.2, 6.8),
             rooms_width=(2.2, 3.0),
@@ -311,7 +316,7 @@ class KitchenLayout:
 
     Attributes:
         layout_seed: The seed it was drawn from.
-        difficulty: Its level's name.
+        difficulty: Its level.
         attempt: The attempt of that seed it was drawn in (0 unless earlier ones were
             rejected).
         house: The house interior ``(xmin, xmax, ymin, ymax)``.
@@ -327,7 +332,7 @@ class KitchenLayout:
     """
 
     layout_seed: int
-    difficulty: str
+    difficulty: Difficulty
     attempt: int
     house: tuple[float, float, float, float]
     forbidden: tuple[float, float, float, float]
@@ -350,18 +355,14 @@ class KitchenLayout:
         return [b.footprint() for b in self.blocks]
 
 
-def difficulty_level(difficulty: str) -> DifficultyLevel:
-    """The :class:`DifficultyLevel` named ``difficulty`` (an error names the valid ones)."""
-    if difficulty not in DIFFICULTIES:
-        raise ValueError(
-            f"unknown difficulty {difficulty!r}; valid levels are: {', '.join(DIFFICULTIES)}"
-        )
-    return DIFFICULTIES[difficulty]
+def difficulty_level(difficulty: str) -> KitchenLevel:
+    """The :class:`KitchenLevel` of ``difficulty`` (an error names the valid ones)."""
+    return DIFFICULTIES[parse_difficulty(difficulty, DIFFICULTIES)]
 
 
 def layout_rng(layout_seed: int, difficulty: str, attempt: int) -> np.random.Generator:
     """The random stream of one attempt: independent per (seed, level, attempt, version)."""
-    level = list(DIFFICULTIES).index(difficulty)
+    level = list(DIFFICULTIES).index(Difficulty(difficulty))
     entropy = [_STREAM_TAG, GENERATOR_VERSION, level, int(layout_seed), int(attempt)]
     return np.random.default_rng(np.random.SeedSequence(entropy))
 
@@ -382,12 +383,12 @@ def generate_kitchen_layout(layout_seed: int, difficulty: str, attempt: int = 0)
     Raises:
         ValueError: a bad seed, level or attempt.
         LayoutError: the drawn numbers leave no fixed path or no room for an object
-            (the family module then draws the next attempt).
+            (:mod:`voot.envs.kitchen.generated.instance` then draws the next attempt).
     """
-    seed = V.integer(layout_seed, "layout_seed", 0)
+    seed = check_layout_seed(layout_seed)
     attempt = V.integer(attempt, "attempt", 0)
     level = difficulty_level(difficulty)
-    rng = layout_rng(seed, difficulty, attempt)
+    rng = layout_rng(seed, level.name, attempt)
     wk = _r(_uniform(rng, level.kitchen_width))
     depth = _r(_uniform(rng, level.depth))
     width = _r(wk + _uniform(rng, level.rooms_width))
@@ -436,7 +437,7 @@ def generate_kitchen_layout(layout_seed: int, difficulty: str, attempt: int = 0)
     objects = _draw_objects(rng, level, n_on, n_clutter, path, blocks, (0.0, wk, 0.0, depth), start)
     return KitchenLayout(
         layout_seed=seed,
-        difficulty=difficulty,
+        difficulty=level.name,
         attempt=attempt,
         house=house,
         forbidden=forbidden,
@@ -454,7 +455,7 @@ def generate_kitchen_layout(layout_seed: int, difficulty: str, attempt: int = 0)
 def _walls(rng: np.random.Generator, wk: float, width: float, depth: float) -> list[Block]:
     """The outer walls (outside the interior), the rooms' wall with its 1 m door, the wall
     between the rooms with its door, and a bed in the north room."""
-    t, h = WALL_T, WALL_HEIGHT
+    t, h = WALL_THICKNESS, KITCHEN_WALL_HEIGHT
     door_y = _r(rng.uniform(0.9, depth - 2.0))
     mid_y = _r(0.5 * depth)
     door_x = _r(rng.uniform(wk + t + 0.2, width - 1.2))
@@ -513,7 +514,7 @@ def _island(
 
 
 def _peninsula(
-    rng: np.random.Generator, level: DifficultyLevel, start_y: float, top: float, wk: float
+    rng: np.random.Generator, level: KitchenLevel, start_y: float, top: float, wk: float
 ) -> Block:
     """A counter from the kitchen's east wall to ``passage`` metres from the west wall:
     the start's side and the sink's side meet only through that passage."""
@@ -564,7 +565,7 @@ def _rect_distance(x: float, y: float, rect: tuple[float, float, float, float]) 
     return math.hypot(dx, dy)
 
 
-def _draw_item(rng: np.random.Generator, level: DifficultyLevel) -> CatalogueItem:
+def _draw_item(rng: np.random.Generator, level: KitchenLevel) -> CatalogueItem:
     """One of the level's catalogue entries, uniformly."""
     items = level.items()
     return items[int(rng.integers(len(items)))]
@@ -594,7 +595,7 @@ def _fits(
 
 def _draw_objects(
     rng: np.random.Generator,
-    level: DifficultyLevel,
+    level: KitchenLevel,
     n_on: int,
     n_clutter: int,
     path: np.ndarray,

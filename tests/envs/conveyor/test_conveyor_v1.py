@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import pickle
-import subprocess
-import sys
 import textwrap
 
 import gymnasium as gym
 import numpy as np
 from gymnasium.utils.env_checker import check_env
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorPackingEnv, conveyor_config
@@ -75,14 +73,7 @@ def test_determinism_across_processes() -> None:
         sys.stdout.buffer.write(pickle.dumps(out))
         """
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", script],
-        input=pickle.dumps(probes),
-        capture_output=True,
-        check=True,
-        timeout=120,
-    )
-    remote = pickle.loads(proc.stdout)
+    remote = run_pickled(script, probes)
     from gymnasium.utils.env_checker import data_equivalence
 
     assert data_equivalence(local, remote, exact=True)

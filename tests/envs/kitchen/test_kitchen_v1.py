@@ -6,22 +6,21 @@ v1 preset's options.)
 
 from __future__ import annotations
 
-import pickle
-import subprocess
-import sys
 import textwrap
 
 import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.core.problem import EnvProblem
-from voot.envs.core.scene import object_footprint, rect_overlaps
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.units import denormalize, normalize
 from voot.envs.kitchen.env import KITCHEN_PRESETS, KitchenClearingEnv, kitchen_config
 from voot.envs.kitchen.scripted import kitchen_actions
+from voot.envs.motion.rects import rect_overlaps
 from voot.tree import MCTS, planner_config
 
 
@@ -190,14 +189,7 @@ def test_gymnasium_checks_and_determinism_across_processes() -> None:
         sys.stdout.buffer.write(pickle.dumps((res.best_return_curve, res.n_steps)))
         """
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", script],
-        input=pickle.dumps(opts),
-        capture_output=True,
-        check=True,
-        timeout=120,
-    )
-    curve, n_steps = pickle.loads(proc.stdout)
+    curve, n_steps = run_pickled(script, opts)
     assert curve.tobytes() == local.best_return_curve.tobytes()
     assert n_steps == local.n_steps
 

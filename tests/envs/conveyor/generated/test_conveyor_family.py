@@ -3,10 +3,7 @@
 from __future__ import annotations
 
 import copy
-import os
 import pickle
-import subprocess
-import sys
 import textwrap
 from collections.abc import Iterator
 from pathlib import Path
@@ -15,6 +12,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env, data_equivalence
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorPackingEnv
@@ -119,15 +117,7 @@ def test_deterministic_across_processes_with_and_without_the_cache(cache: Path) 
         """
     )
     for cache_dir in (str(cache), str(cache / "other")):  # cached, then generated anew
-        proc = subprocess.run(
-            [sys.executable, "-c", script],
-            input=pickle.dumps(probes),
-            capture_output=True,
-            check=True,
-            timeout=120,
-            env={**os.environ, "VOOT_CACHE": cache_dir},
-        )
-        layout, remote = pickle.loads(proc.stdout)
+        layout, remote = run_pickled(script, probes, env={"VOOT_CACHE": cache_dir})
         assert layout == repr(env.layout)
         assert data_equivalence(local, remote, exact=True)
     assert local[-1][2]  # the witness terminated the episode

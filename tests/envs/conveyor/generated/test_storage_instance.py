@@ -38,8 +38,8 @@ def test_rejected_attempts_are_counted_and_the_next_draw_kept() -> None:
     seed = _hard_seed_with_rejections()
     inst = SI.generate_instance(seed, "hard")
     assert inst.layout.attempt == len(inst.rejections) >= 1
-    for k, reason in enumerate(inst.rejections):
-        assert reason.startswith(f"attempt {k}: ")
+    for k, rejection in enumerate(inst.rejections):
+        assert rejection.attempt == k and str(rejection).startswith(f"attempt {k}: ")
     assert inst.layout == generate_storage_layout(seed, "hard", inst.layout.attempt)
     assert inst.witness.solved
     # deterministic: the same rejections and witness again

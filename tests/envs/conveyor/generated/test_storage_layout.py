@@ -20,8 +20,8 @@ from voot.envs.conveyor.generated.layout import (
     ENTRANCE,
     MIN_ROOM_SIDE,
     SHAPE_VARIANTS,
-    DifficultyLevel,
     StorageLayout,
+    StorageLevel,
     difficulty_level,
     generate_storage_layout,
 )
@@ -183,4 +183,4 @@ def test_bad_arguments_name_the_valid_choices() -> None:
         replace(level, door_width=(2.0, 1.0))
     with pytest.raises(ValueError, match="extra_door"):
         replace(level, extra_door=1.5)
-    assert isinstance(level, DifficultyLevel)
+    assert isinstance(level, StorageLevel)

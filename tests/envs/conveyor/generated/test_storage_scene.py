@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from voot.envs.assets.meshes import mesh_name
-from voot.envs.conveyor.env import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y
+from voot.envs.assets.mjcf import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y, CONVEYOR_START
 from voot.envs.conveyor.generated.layout import DIFFICULTIES, generate_storage_layout
 from voot.envs.conveyor.generated.scene import (
     box_material,
@@ -18,7 +18,6 @@ from voot.envs.conveyor.generated.scene import (
 from voot.envs.core.scene import movable_objects, object_pose, static_footprints
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig
 from voot.envs.robot.model import ROBOT_RADIUS, Robot
-from voot.models.generate_scenes import CONVEYOR_START
 
 
 @pytest.mark.parametrize("difficulty", list(DIFFICULTIES))

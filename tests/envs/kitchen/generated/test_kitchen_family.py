@@ -1,32 +1,28 @@
-"""Tests of voot/KitchenClearing-v2 (voot.envs.kitchen.generated.env): generated, solvable kitchens."""
+"""Tests of voot/KitchenClearing-v2 (voot.envs.kitchen.generated): generated, solvable kitchens."""
 
 from __future__ import annotations
 
 import copy
 import itertools
 import pickle
-import subprocess
-import sys
 import warnings
 
 import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env, data_equivalence
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
-from voot.envs.core.scene import object_footprint, rect_overlaps
+from voot.envs.core.scene import object_footprint
 from voot.envs.core.units import normalize
 from voot.envs.kitchen.env import KitchenClearingEnv
-from voot.envs.kitchen.generated import env as family
-from voot.envs.kitchen.generated.env import (
-    GeneratedKitchenEnv,
-    clear_kitchen_cache,
-    constructive_solution,
-    generated_kitchen,
-    placement_candidates,
-)
+from voot.envs.kitchen.generated import instance
+from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
+from voot.envs.kitchen.generated.instance import clear_kitchen_cache, generated_kitchen
 from voot.envs.kitchen.generated.layout import DIFFICULTIES
+from voot.envs.kitchen.generated.witness import constructive_solution, placement_candidates
+from voot.envs.motion.rects import rect_overlaps
 
 
 def play(env: GeneratedKitchenEnv, actions: list[np.ndarray]) -> list[tuple]:  # type: ignore[type-arg]
@@ -65,7 +61,7 @@ def test_generation_counts_rejections_and_caches_the_kitchen() -> None:
 
 
 def test_the_cache_keeps_the_most_recent_kitchens(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(family, "KITCHEN_CACHE_SIZE", 2)
+    monkeypatch.setattr(instance.KITCHENS, "size", 2)
     clear_kitchen_cache()
     a = generated_kitchen(0, "easy")
     generated_kitchen(1, "easy")
@@ -73,16 +69,16 @@ def test_the_cache_keeps_the_most_recent_kitchens(monkeypatch: pytest.MonkeyPatc
     generated_kitchen(2, "easy")  # forgets seed 1
     assert generated_kitchen(0, "easy") is a
     again = generated_kitchen(1, "easy")
-    assert again.digest == family._KITCHENS[(1, "easy", family.GENERATOR_VERSION)].digest
-    assert len(family._KITCHENS) == 2
+    assert again.xml_sha256 == instance.KITCHENS.get_or_make((1, "easy"), list).xml_sha256
+    assert len(instance.KITCHENS) == 2
     clear_kitchen_cache()
     b = generated_kitchen(0, "easy")
-    assert b is not a and b.digest == a.digest and b.witness == a.witness
+    assert b is not a and b.xml_sha256 == a.xml_sha256 and b.witness == a.witness
 
 
 def test_seeds_give_different_scenes_and_the_env_copies_the_model() -> None:
     a, b = GeneratedKitchenEnv(layout_seed=0), GeneratedKitchenEnv(layout_seed=1)
-    assert a.kitchen.digest != b.kitchen.digest
+    assert a.kitchen.xml_sha256 != b.kitchen.xml_sha256
     twin = GeneratedKitchenEnv(layout_seed=0)
     assert twin.kitchen is a.kitchen and twin.model is not a.model
 
@@ -148,17 +144,10 @@ def test_the_same_seed_steps_the_same_in_another_process() -> None:
         "env = GeneratedKitchenEnv(layout_seed=3, difficulty='medium')\n"
         "env.reset(seed=0)\n"
         "steps = [env.step(a) for a in [*env.witness_actions()[:3], *probes]]\n"
-        "sys.stdout.buffer.write(pickle.dumps((env.kitchen.digest, env.kitchen.witness, steps)))\n"
+        "sys.stdout.buffer.write(pickle.dumps((env.kitchen.xml_sha256, env.kitchen.witness, steps)))\n"
     )
-    out = subprocess.run(
-        [sys.executable, "-c", code],
-        input=pickle.dumps(probes),
-        capture_output=True,
-        check=True,
-        timeout=300,
-    )
-    digest, witness, steps = pickle.loads(out.stdout)
-    assert digest == env.kitchen.digest and witness == env.kitchen.witness
+    digest, witness, steps = run_pickled(code, probes, timeout=300)
+    assert digest == env.kitchen.xml_sha256 and witness == env.kitchen.witness
     assert data_equivalence(local, steps, exact=True)
 
 

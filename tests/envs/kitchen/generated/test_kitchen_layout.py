@@ -13,8 +13,8 @@ from voot.envs.kitchen.generated.layout import (
     DIFFICULTIES,
     GENERATOR_VERSION,
     SIZE_CLASSES,
-    DifficultyLevel,
     KitchenLayout,
+    KitchenLevel,
     LayoutError,
     generate_kitchen_layout,
     layout_rng,
@@ -142,4 +142,4 @@ def test_bad_arguments_name_the_valid_choices() -> None:
     with pytest.raises(ValueError, match="no catalogue object"):
         replace(DIFFICULTIES["easy"], kinds=("jug",), sizes=("large",))
     with pytest.raises(ValueError, match="on_path"):
-        DifficultyLevel(**{**DIFFICULTIES["easy"].__dict__, "on_path": (0, 2)})
+        KitchenLevel(**{**DIFFICULTIES["easy"].__dict__, "on_path": (0, 2)})
