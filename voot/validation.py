@@ -241,14 +241,40 @@ def positive_number(name: str, value: Any, allow_zero: bool = False) -> float:
     return v
 
 
-def config_options(config_class: Any, options: Mapping[str, Any]) -> None:
-    """Raise a ValueError naming the valid fields if ``options`` has an unknown one."""
+def config_options(config_class: Any, options: Mapping[str, Any], what: str = "") -> None:
+    """Raise a ValueError naming the valid fields if ``options`` has an unknown one.
+
+    ``what`` names the thing configured in the message (default: the class's name).
+    """
     valid = sorted(f.name for f in dataclasses.fields(config_class))
     unknown = sorted(set(options) - set(valid))
     if unknown:
         raise ValueError(
-            f"unknown option(s) {unknown} for {config_class.__name__}; valid options are: {valid}"
+            f"unknown option(s) {unknown} for {what or config_class.__name__};"
+            f" valid options are: {valid}"
         )
+
+
+# ----- names (planners, optimisers, algorithms) -----------------------------------------
+def name_key(value: object) -> str:
+    """A name as a registry key: stripped, lower-case, ``-`` as ``_`` (``"RAND-DOOT"`` ->
+    ``"rand_doot"``)."""
+    return str(value).strip().lower().replace("-", "_")
+
+
+def registered_name(value: object, valid: Iterable[str], what: str, plural: str = "") -> str:
+    """``value``'s :func:`name_key` if it is one of ``valid``, or an error listing them.
+
+    E.g. ``unknown planner 'vot'; valid planners are: doot, voot`` for ``what="planner"``;
+    ``plural`` is how the list is called (default: ``what`` + "s").
+    """
+    key = name_key(value)
+    names = sorted(valid)
+    if key not in names:
+        raise ValueError(
+            f"unknown {what} {value!r}; valid {plural or what + 's'} are: {', '.join(names)}"
+        )
+    return key
 
 
 def _integer_range(low: int | None, high: int | None) -> str:

@@ -169,7 +169,8 @@ def normalize_plan_planner(name: str) -> str:
     sampling-based one or an RL one (``ppo``, ``ddpg``); a ValueError listing all."""
     from voot.bench.sweep.rl import RL_PLANNERS, is_rl_planner
     from voot.tree.config import available_planners
-    from voot.tree.shooting import available_shooting_planners, normalize_any_planner
+    from voot.tree.planners import normalize_any_planner
+    from voot.tree.shooting import available_shooting_planners
 
     if is_rl_planner(name):
         return str(name).strip().lower()

@@ -70,7 +70,7 @@ def split_params(planner: str, params: Mapping[str, Any]) -> tuple[str, dict[str
             not a field of the algorithm's config (the message lists the valid ones).
     """
     from voot.rl import rl_config
-    from voot.tree.shooting import normalize_any_planner
+    from voot.tree.planners import normalize_any_planner
 
     options = dict(params)
     match = normalize_any_planner(str(options.pop(MATCH_PARAM, DEFAULT_MATCH)))

@@ -11,6 +11,7 @@ from problem_fixtures import BadReward
 from voot.optim.base import Bounds
 from voot.tree import plan
 from voot.tree.null_problem import NullProblem
+from voot.tree.planners import normalize_any_planner
 from voot.tree.problem import StepResult
 from voot.tree.shooting import (
     SHOOTING_PLANNERS,
@@ -20,7 +21,6 @@ from voot.tree.shooting import (
     ShootingPlanner,
     available_shooting_planners,
     is_shooting_planner,
-    normalize_any_planner,
     plan_shooting,
     shooting_config,
 )
