@@ -133,13 +133,14 @@ def seed(value: object, name: str = "seed") -> Any:
     return v
 
 
-def choice(enum: type[E], value: object, name: str) -> E:
-    """``value`` as a member of ``enum`` (by value), or an error listing the valid ones."""
+def choice(enum: type[E], value: object, name: str, plural: str = "choices") -> E:
+    """``value`` as a member of ``enum`` (by value), or an error listing the valid ones
+    (``unknown sampler 'x'; valid samplers are: ...`` with ``plural="samplers"``)."""
     try:
         return enum(value)
     except ValueError:
         valid = ", ".join(str(e.value) for e in enum)
-        raise ValueError(f"unknown {name} {value!r}; valid choices are: {valid}") from None
+        raise ValueError(f"unknown {name} {value!r}; valid {plural} are: {valid}") from None
 
 
 def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
