@@ -187,14 +187,10 @@ class BaMSOO(GeneratorOptimizer):
         #: Number of nodes in the tree.
         self.n_nodes = 0
 
-    def _to_box(self, u: FloatArray) -> FloatArray:
-        return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
-
     def _model(self) -> GaussianProcess:
         if self.surrogate.is_synced(self._n):
             return self.surrogate.gp
-        xs = (self.xs - self.bounds.lower) / self.bounds.width
-        return self.surrogate.sync(xs, self.values)
+        return self.surrogate.sync(self.bounds.to_unit(self.xs), self.values)
 
     def _bounds_at(self, u: FloatArray, n_considered: int) -> tuple[float, float]:
         """``(U_N(u), L_N(u))`` from the current GP."""
@@ -210,7 +206,7 @@ class BaMSOO(GeneratorOptimizer):
         anchored = cfg.root_point is RootPoint.RANDOM
         root_x = self.rng.random(d) if anchored else None
         root = _Node(np.zeros(d), np.ones(d), 0, root_x)
-        root.g = yield self._to_box(root.x)
+        root.g = yield self.bounds.from_unit(root.x)
         root.evaluated = True
         self.n_nodes = 1
         f_plus = max(root.g, self.best_value)
@@ -240,7 +236,7 @@ class BaMSOO(GeneratorOptimizer):
                     n_considered += 1
                     upper, lower = self._bounds_at(child.x, n_considered)
                     if upper >= f_plus or skips >= cfg.max_skips:
-                        child.g = yield self._to_box(child.x)
+                        child.g = yield self.bounds.from_unit(child.x)
                         child.evaluated = True
                         skips = 0
                     else:

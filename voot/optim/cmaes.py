@@ -228,7 +228,7 @@ class CMAES(Optimizer):
         cfg = self.config
         d = self.bounds.dim
         if self.initial_point is not None:
-            mean0 = (self.initial_point - self.bounds.lower) / self.bounds.width
+            mean0 = self.bounds.to_unit(self.initial_point)
         elif cfg.initial_mean is StartPoint.RANDOM:
             mean0 = self.rng.random(d)
         else:

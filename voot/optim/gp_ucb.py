@@ -53,16 +53,13 @@ class GPUCB(Optimizer):
         #: Acquisition value of the last GP-proposed point (diagnostic).
         self.last_acquisition = float("nan")
 
-    def _unit(self, x: FloatArray) -> FloatArray:
-        return (x - self.bounds.lower) / self.bounds.width
-
     def _ask(self) -> FloatArray:
         cfg = self.config
         if self._n < cfg.n_initial:
             return self.bounds.sample(self.rng)
-        gp = self.surrogate.sync(self._unit(self.xs), self.values)
+        gp = self.surrogate.sync(self.bounds.to_unit(self.xs), self.values)
         u, self.last_acquisition = cfg.maximize_ucb(gp, self.rng)
-        return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
+        return self.bounds.from_unit(u)
 
     def _revalue(self, index: int, value: float) -> None:
         self.surrogate.invalidate()
