@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from voot.tree.null_problem import NullProblem
@@ -20,3 +22,21 @@ class BadReward(NullProblem):
         if self.calls > self.after:
             return StepResult(self.bad_reward, bonus=self.bad_bonus)
         return super().step(action)
+
+
+class Quadratic(NullProblem):
+    """Reward :math:`1 - \\|a - c\\|^2 / s` on :math:`[-1, 1]^d`, the same at every step.
+
+    Stateless, so the optimum is known: every action at ``c`` (``optimum``, default
+    ``linspace(-0.5, 0.6, d)``), return :math:`\\sum_{t<H} \\gamma^t`; ``scale`` s
+    defaults to d.
+    """
+
+    def __init__(
+        self, dim: int = 4, optimum: Sequence[float] | None = None, scale: float | None = None
+    ) -> None:
+        super().__init__(dim, np.linspace(-0.5, 0.6, dim) if optimum is None else optimum)
+        self.scale = float(dim if scale is None else scale)
+
+    def step(self, action: np.ndarray) -> StepResult:
+        return StepResult(1.0 - float(np.sum((action - self.optimum) ** 2)) / self.scale)

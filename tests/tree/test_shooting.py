@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from problem_fixtures import BadReward
+from problem_fixtures import BadReward, Quadratic
 
 from voot.optim.base import Bounds
 from voot.tree import plan
@@ -26,31 +26,6 @@ from voot.tree.shooting import (
 )
 
 PLANNERS = available_shooting_planners()
-
-
-class Quadratic:
-    """A smooth H-step problem: reward 1 - |a - c|^2 / d per step on [-1, 1]^d.
-
-    Stateless (every step the same), so the optimum is known: every action at ``c``,
-    return :math:`\\sum_{t<H} \\gamma^t`.
-    """
-
-    def __init__(self, dim: int = 4) -> None:
-        self.bounds = Bounds.cube(-1.0, 1.0, dim)
-        self.c = np.linspace(-0.5, 0.6, dim)
-        self.dim = dim
-
-    def snapshot(self) -> None:
-        return None
-
-    def restore(self, snapshot: object) -> None:
-        pass
-
-    def action_bounds(self) -> Bounds:
-        return self.bounds
-
-    def step(self, action: np.ndarray) -> StepResult:
-        return StepResult(1.0 - float(np.sum((action - self.c) ** 2)) / self.dim)
 
 
 class Alternating:
@@ -111,7 +86,7 @@ def test_cem_and_mppi_beat_uniform_shooting_on_a_smooth_problem(planner: str) ->
 def test_predictive_sampling_improves_on_its_nominal() -> None:
     res = plan(Quadratic(), "predictive_sampling", n_simulations=300, seed=0, horizon=5)
     # the first simulation is the nominal (the box centre); the best grows from it
-    nominal = sum(0.9**t * (1.0 - float(np.sum(Quadratic().c ** 2)) / 4) for t in range(5))
+    nominal = sum(0.9**t * (1.0 - float(np.sum(Quadratic().optimum ** 2)) / 4) for t in range(5))
     assert res.best_return_curve[0] == pytest.approx(nominal)
     assert res.best_return > nominal + 0.3
 

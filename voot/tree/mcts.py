@@ -143,15 +143,8 @@ class MCTS(Search):
         callback: Callback | None = None,
         record_info: str | None = None,
     ) -> PlanResult:
-        """Run ``n_simulations`` more simulations and return the result so far.
-
-        Args:
-            n_simulations: number of simulations (>= 1).
-            callback: called as ``callback(mcts, i)`` after simulation ``i`` (0-based,
-                counted over the tree's life); returning True stops the search.
-            record_info: a step-info key (e.g. ``"objects_left"``) to record at the best
-                leaf after every simulation, into :attr:`PlanResult.info_curve`.
-        """
+        """:meth:`Search.search <voot.tree.search.Search.search>` on this tree (``callback``
+        gets the MCTS; ``record_info`` is read at the best leaf)."""
         self._at = None  # the caller may have moved the problem between searches
         # The tree only grows during a search, so Python's cyclic garbage collector would
         # only re-traverse it (about 15% of the search's time): pause it meanwhile.
