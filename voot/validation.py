@@ -205,14 +205,20 @@ def range_pair(name: str, value: Any) -> tuple[float, float]:
     return lo, hi
 
 
-def region(name: str, value: Any) -> tuple[float, float, float, float]:
-    """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
+def _finite_tuple(name: str, value: Any, fields: str, n: int) -> tuple[float, ...]:
+    """``n`` finite floats named ``fields`` (e.g. ``"(x, y, theta)"``), or a ValueError."""
     try:
         vals = _floats(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
-    if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 4 finite numbers (xmin, xmax, ymin, ymax), got {value!r}")
+        raise ValueError(f"{name} must be {fields}, got {value!r}") from None
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be {n} finite numbers {fields}, got {value!r}")
+    return vals
+
+
+def region(name: str, value: Any) -> tuple[float, float, float, float]:
+    """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
+    vals = _finite_tuple(name, value, "(xmin, xmax, ymin, ymax)", 4)
     if not (vals[0] < vals[1] and vals[2] < vals[3]):
         raise ValueError(f"{name} needs xmin < xmax and ymin < ymax, got {vals}")
     return vals[0], vals[1], vals[2], vals[3]
@@ -220,12 +226,7 @@ def region(name: str, value: Any) -> tuple[float, float, float, float]:
 
 def pose(name: str, value: Any) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose of finite floats."""
-    try:
-        vals = _floats(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 3 finite numbers (x, y, theta), got {value!r}")
+    vals = _finite_tuple(name, value, "(x, y, theta)", 3)
     return vals[0], vals[1], vals[2]
 
 
