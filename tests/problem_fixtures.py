@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
+import pytest
 
 from voot.tree.null_problem import NullProblem
 from voot.tree.problem import StepResult
@@ -40,3 +43,22 @@ class Quadratic(NullProblem):
 
     def step(self, action: np.ndarray) -> StepResult:
         return StepResult(1.0 - float(np.sum((action - self.optimum) ** 2)) / self.scale)
+
+
+#: ``(reward, bonus, what)``: a step that no planner may accept, and how its error names it.
+NON_FINITE_STEPS = [
+    (math.nan, 0.0, "reward=nan"),
+    (math.inf, 0.0, "reward=inf"),
+    (-math.inf, 0.0, "reward=-inf"),
+    (0.5, math.nan, "goal bonus=nan"),
+    (0.5, math.inf, "goal bonus=inf"),
+    (0.5, -math.inf, "goal bonus=-inf"),
+]
+
+
+def raises_non_finite(what: str) -> Any:
+    """``pytest.raises`` of the planners' error for a :class:`BadReward` step: it names the
+    step's action and ``what`` and says that rewards and bonuses must be finite."""
+    return pytest.raises(
+        ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}.*must be finite"
+    )

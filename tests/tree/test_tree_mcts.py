@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 import pytest
-from problem_fixtures import BadReward, Quadratic
+from problem_fixtures import NON_FINITE_STEPS, BadReward, Quadratic, raises_non_finite
 
 from voot.optim.base import Bounds
 from voot.tree import MCTS, MCTSConfig, Node, StepResult, plan, planner_config
@@ -754,26 +754,14 @@ def test_a_search_interrupted_by_a_step_error_continues_on_a_feasible_child() ->
 @pytest.mark.parametrize(
     "planner", ["voot", "pw_uct", "uniform_t", "hoot", "doot", "rand_doot", "voronoi_pw"]
 )
-@pytest.mark.parametrize(
-    ("reward", "bonus", "what"),
-    [
-        (math.nan, 0.0, "reward=nan"),
-        (math.inf, 0.0, "reward=inf"),
-        (-math.inf, 0.0, "reward=-inf"),
-        (0.5, math.nan, "goal bonus=nan"),
-        (0.5, -math.inf, "goal bonus=-inf"),
-    ],
-)
+@pytest.mark.parametrize(("reward", "bonus", "what"), NON_FINITE_STEPS)
 def test_non_finite_reward_or_bonus_stops_every_planner(
     planner: str, reward: float, bonus: float, what: str
 ) -> None:
     problem = BadReward(reward, bonus, after=3)
     mcts = MCTS(problem, planner_config(planner, depth_limit=3), seed=0)
-    with pytest.raises(
-        ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}"
-    ) as err:
+    with raises_non_finite(what):
         mcts.search(20)
-    assert "must be finite" in str(err.value)
     n_nodes = len(mcts.nodes)
     # The tree is unchanged by the failed step, and the next search restores the state.
     with pytest.raises(ValueError, match="must be finite"):
