@@ -133,13 +133,14 @@ def seed(value: object, name: str = "seed") -> Any:
     return v
 
 
-def choice(enum: type[E], value: object, name: str) -> E:
-    """``value`` as a member of ``enum`` (by value), or an error listing the valid ones."""
+def choice(enum: type[E], value: object, name: str, plural: str = "choices") -> E:
+    """``value`` as a member of ``enum`` (by value), or an error listing the valid ones
+    (``unknown sampler 'x'; valid samplers are: ...`` with ``plural="samplers"``)."""
     try:
         return enum(value)
     except ValueError:
         valid = ", ".join(str(e.value) for e in enum)
-        raise ValueError(f"unknown {name} {value!r}; valid choices are: {valid}") from None
+        raise ValueError(f"unknown {name} {value!r}; valid {plural} are: {valid}") from None
 
 
 def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
@@ -204,14 +205,20 @@ def range_pair(name: str, value: Any) -> tuple[float, float]:
     return lo, hi
 
 
-def region(name: str, value: Any) -> tuple[float, float, float, float]:
-    """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
+def _finite_tuple(name: str, value: Any, fields: str, n: int) -> tuple[float, ...]:
+    """``n`` finite floats named ``fields`` (e.g. ``"(x, y, theta)"``), or a ValueError."""
     try:
         vals = _floats(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (xmin, xmax, ymin, ymax), got {value!r}") from None
-    if len(vals) != 4 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 4 finite numbers (xmin, xmax, ymin, ymax), got {value!r}")
+        raise ValueError(f"{name} must be {fields}, got {value!r}") from None
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise ValueError(f"{name} must be {n} finite numbers {fields}, got {value!r}")
+    return vals
+
+
+def region(name: str, value: Any) -> tuple[float, float, float, float]:
+    """An axis-aligned region ``(xmin, xmax, ymin, ymax)`` of finite floats."""
+    vals = _finite_tuple(name, value, "(xmin, xmax, ymin, ymax)", 4)
     if not (vals[0] < vals[1] and vals[2] < vals[3]):
         raise ValueError(f"{name} needs xmin < xmax and ymin < ymax, got {vals}")
     return vals[0], vals[1], vals[2], vals[3]
@@ -219,12 +226,7 @@ def region(name: str, value: Any) -> tuple[float, float, float, float]:
 
 def pose(name: str, value: Any) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose of finite floats."""
-    try:
-        vals = _floats(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be (x, y, theta), got {value!r}") from None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        raise ValueError(f"{name} must be 3 finite numbers (x, y, theta), got {value!r}")
+    vals = _finite_tuple(name, value, "(x, y, theta)", 3)
     return vals[0], vals[1], vals[2]
 
 
@@ -241,14 +243,40 @@ def positive_number(name: str, value: Any, allow_zero: bool = False) -> float:
     return v
 
 
-def config_options(config_class: Any, options: Mapping[str, Any]) -> None:
-    """Raise a ValueError naming the valid fields if ``options`` has an unknown one."""
+def config_options(config_class: Any, options: Mapping[str, Any], what: str = "") -> None:
+    """Raise a ValueError naming the valid fields if ``options`` has an unknown one.
+
+    ``what`` names the thing configured in the message (default: the class's name).
+    """
     valid = sorted(f.name for f in dataclasses.fields(config_class))
     unknown = sorted(set(options) - set(valid))
     if unknown:
         raise ValueError(
-            f"unknown option(s) {unknown} for {config_class.__name__}; valid options are: {valid}"
+            f"unknown option(s) {unknown} for {what or config_class.__name__};"
+            f" valid options are: {valid}"
         )
+
+
+# ----- names (planners, optimisers, algorithms) -----------------------------------------
+def name_key(value: object) -> str:
+    """A name as a registry key: stripped, lower-case, ``-`` as ``_`` (``"RAND-DOOT"`` ->
+    ``"rand_doot"``)."""
+    return str(value).strip().lower().replace("-", "_")
+
+
+def registered_name(value: object, valid: Iterable[str], what: str, plural: str = "") -> str:
+    """``value``'s :func:`name_key` if it is one of ``valid``, or an error listing them.
+
+    E.g. ``unknown planner 'vot'; valid planners are: doot, voot`` for ``what="planner"``;
+    ``plural`` is how the list is called (default: ``what`` + "s").
+    """
+    key = name_key(value)
+    names = sorted(valid)
+    if key not in names:
+        raise ValueError(
+            f"unknown {what} {value!r}; valid {plural or what + 's'} are: {', '.join(names)}"
+        )
+    return key
 
 
 def _integer_range(low: int | None, high: int | None) -> str:

@@ -35,7 +35,9 @@ from voot.bench.demos.kitchen_demo import (
     options_for,
 )
 from voot.tree.config import normalize_planner
-from voot.tree.mcts import MCTS, check_n_simulations, plan
+from voot.tree.mcts import MCTS
+from voot.tree.planners import plan
+from voot.tree.search import check_n_simulations
 from voot.tree.step_info import StepInfo
 
 #: The kitchens Figure 5 is drawn on: the paper's one fixed kitchen (v0, v1).

@@ -29,7 +29,8 @@ from voot import validation as V
 from voot.bench.protocol.problems import domain_options
 from voot.record.kitchen_animation import plan_animation
 from voot.tree.config import normalize_planner
-from voot.tree.mcts import MCTS, PlanResult, check_n_simulations
+from voot.tree.mcts import MCTS
+from voot.tree.search import PlanResult, check_n_simulations
 from voot.tree.step_info import StepInfo
 
 #: The first release's kitchen (Figure 5 of :func:`figure5` and the v0 results).

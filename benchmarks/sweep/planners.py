@@ -123,7 +123,8 @@ def normalize_plan_planner(name: str) -> str:
     """The canonical name of any planner of ``voot-bench plan``: a tree planner, a
     sampling-based one or an RL one (``ppo``, ``ddpg``); a ValueError listing all."""
     from voot.tree.config import available_planners
-    from voot.tree.shooting import available_shooting_planners, normalize_any_planner
+    from voot.tree.planners import normalize_any_planner
+    from voot.tree.shooting import available_shooting_planners
 
     if is_rl_planner(name):
         return str(name).strip().lower()
@@ -149,7 +150,7 @@ def split_params(planner: str, params: Mapping[str, Any]) -> tuple[str, dict[str
             not a field of the algorithm's config (the message lists the valid ones).
     """
     from voot.rl import rl_config
-    from voot.tree.shooting import normalize_any_planner
+    from voot.tree.planners import normalize_any_planner
 
     options = dict(params)
     match = normalize_any_planner(str(options.pop(MATCH_PARAM, DEFAULT_MATCH)))

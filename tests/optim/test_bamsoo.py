@@ -6,23 +6,16 @@ import math
 
 import numpy as np
 import pytest
+from optim_fixtures import bowl, run_on
 
-from voot.optim import make_config, make_optimizer, maximize
+from voot.optim import make_config, maximize
 from voot.optim.bamsoo import BaMSOO, BaMSOOConfig, _Node
 
 FAST = {"fit_restarts": 1}
 
 
-def bowl(x: np.ndarray) -> float:
-    c = np.linspace(0.3, -0.2, x.size)
-    return -float(np.sum((x - c) ** 2))
-
-
 def run(seed: int, d: int = 2, budget: int = 15, f=bowl, **options) -> BaMSOO:
-    opt = make_optimizer("bamsoo", [[-1.0, 1.0]] * d, seed=seed, **{**FAST, **options})
-    for _ in range(budget):
-        x = opt.ask()
-        opt.tell(x, f(x))
+    opt = run_on("bamsoo", seed, d, budget, f, **{**FAST, **options})
     assert isinstance(opt, BaMSOO)
     return opt
 

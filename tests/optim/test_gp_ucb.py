@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from optim_fixtures import bowl, run_on
 
 from voot.optim import make_config, make_optimizer, maximize
 from voot.optim._surrogate import Surrogate, SurrogateConfig
@@ -12,16 +13,8 @@ from voot.optim.gp_ucb import GPUCB, GPUCBConfig
 FAST = {"n_candidates": 2000, "fit_restarts": 1}
 
 
-def bowl(x: np.ndarray) -> float:
-    c = np.linspace(0.3, -0.2, x.size)
-    return -float(np.sum((x - c) ** 2))
-
-
 def run(seed: int, d: int = 2, budget: int = 12, **options) -> GPUCB:
-    opt = make_optimizer("gp_ucb", [[-1.0, 1.0]] * d, seed=seed, **{**FAST, **options})
-    for _ in range(budget):
-        x = opt.ask()
-        opt.tell(x, bowl(x))
+    opt = run_on("gp_ucb", seed, d, budget, **{**FAST, **options})
     assert isinstance(opt, GPUCB)
     return opt
 

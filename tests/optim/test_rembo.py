@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from optim_fixtures import bowl, run_on
 
 from voot.optim import make_config, make_optimizer, maximize
 from voot.optim.rembo import REMBO, REMBOConfig, default_low_dim
@@ -13,16 +14,8 @@ from voot.optim.rembo import REMBO, REMBOConfig, default_low_dim
 FAST = {"n_candidates": 2000, "fit_restarts": 1}
 
 
-def bowl(x: np.ndarray) -> float:
-    c = np.linspace(0.3, -0.2, x.size)
-    return -float(np.sum((x - c) ** 2))
-
-
 def run(seed: int, d: int = 5, budget: int = 10, **options) -> REMBO:
-    opt = make_optimizer("rembo", [[-1.0, 1.0]] * d, seed=seed, **{**FAST, **options})
-    for _ in range(budget):
-        x = opt.ask()
-        opt.tell(x, bowl(x))
+    opt = run_on("rembo", seed, d, budget, **{**FAST, **options})
     assert isinstance(opt, REMBO)
     return opt
 

@@ -46,11 +46,6 @@ class SubsetRule(StrEnum):
     BEST_RECENT = "best_recent"
 
 
-def _is_int(value: object, low: int) -> bool:
-    """``value`` is an integer (not a bool) and ``>= low``."""
-    return V.is_integer(value) and int(value) >= low  # type: ignore[call-overload]
-
-
 def _check_pair(name: str, value: object) -> tuple[float, float]:
     if not isinstance(value, tuple | list) or len(value) != 2:
         raise ValueError(f"{name} must be a (low, high) pair, got {value!r}")
@@ -111,28 +106,56 @@ class SurrogateConfig(OptimizerConfig):
 
     def __post_init__(self) -> None:
         V.flag(self.ard, "ard")
-        try:
-            object.__setattr__(self, "gp_mean", GPMean(self.gp_mean))
-        except ValueError:
-            valid = ", ".join(m.value for m in GPMean)
-            raise ValueError(f"unknown gp_mean {self.gp_mean!r}; valid: {valid}") from None
+        object.__setattr__(self, "gp_mean", V.choice(GPMean, self.gp_mean, "gp_mean"))
         for name in ("lengthscale_bounds", "signal_variance_bounds", "noise_variance_bounds"):
             object.__setattr__(self, name, _check_pair(name, getattr(self, name)))
-        if not _is_int(self.fit_restarts, 0):
-            raise ValueError(f"fit_restarts must be an integer >= 0, got {self.fit_restarts!r}")
+        V.integer(self.fit_restarts, "fit_restarts", 0)
         for name in ("fit_maxiter", "refit_every"):
-            if not _is_int(getattr(self, name), 1):
-                raise ValueError(f"{name} must be an integer >= 1, got {getattr(self, name)!r}")
+            V.integer(getattr(self, name), name, 1)
         g = self.refit_growth
         if isinstance(g, bool) or not isinstance(g, int | float) or not 1.0 <= float(g) < 1e6:
             raise ValueError(f"refit_growth must be a number >= 1.0, got {g!r}")
-        if self.max_points is not None and not _is_int(self.max_points, 2):
-            raise ValueError(f"max_points must be None or an integer >= 2, got {self.max_points!r}")
-        try:
-            object.__setattr__(self, "subset", SubsetRule(self.subset))
-        except ValueError:
-            valid = ", ".join(s.value for s in SubsetRule)
-            raise ValueError(f"unknown subset {self.subset!r}; valid: {valid}") from None
+        V.optional_integer(self.max_points, "max_points", 2)
+        object.__setattr__(self, "subset", V.choice(SubsetRule, self.subset, "subset"))
+
+
+@dataclass(frozen=True)
+class UCBConfig(SurrogateConfig):
+    """The options of a GP-UCB acquisition step (GP-UCB, REMBO), on top of the GP's.
+
+    Attributes:
+        zeta: UCB exploration weight :math:`\\zeta \\ge 0`.
+        n_candidates: uniform random candidates scored per ask (paper: 10^4).
+        n_local_starts: L-BFGS-B runs from the best candidates (original code: 1).
+        local_maxiter: L-BFGS-B iterations per run (0 disables the local refinement).
+        n_initial: uniform random asks before the GP is used (including ``initial_point``).
+    """
+
+    zeta: float = 1.0
+    n_candidates: int = 10_000
+    n_local_starts: int = 1
+    local_maxiter: int = 100
+    n_initial: int = 1
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_zeta(self.zeta)
+        for name in ("n_candidates", "n_local_starts", "n_initial"):
+            V.integer(getattr(self, name), name, 1)
+        V.integer(self.local_maxiter, "local_maxiter", 0)
+
+    def maximize_ucb(
+        self, gp: GaussianProcess, rng: np.random.Generator
+    ) -> tuple[FloatArray, float]:
+        """:func:`maximize_ucb` with these options: the next point (unit cube) and its UCB."""
+        return maximize_ucb(
+            gp,
+            float(self.zeta),
+            rng,
+            n_candidates=self.n_candidates,
+            n_starts=self.n_local_starts,
+            maxiter=self.local_maxiter,
+        )
 
 
 def check_zeta(zeta: object, name: str = "zeta") -> None:

@@ -52,7 +52,7 @@ import numpy as np
 
 from voot import validation as V
 from voot.optim._generator import GeneratorOptimizer, Search
-from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int
+from voot.optim._surrogate import Surrogate, SurrogateConfig
 from voot.optim.base import FloatArray, OptimizerConfig
 from voot.optim.gp import GaussianProcess
 
@@ -95,13 +95,8 @@ class BaMSOOConfig(SurrogateConfig):
         super().__post_init__()
         e = self.eta
         V.number(e, "eta", 0.0, 1.0, open_low=True, open_high=True)
-        if not _is_int(self.branching, 2):
-            raise ValueError(f"branching must be an integer >= 2, got {self.branching!r}")
-        try:
-            object.__setattr__(self, "root_point", RootPoint(self.root_point))
-        except ValueError:
-            valid = ", ".join(r.value for r in RootPoint)
-            raise ValueError(f"unknown root_point {self.root_point!r}; valid: {valid}") from None
+        V.integer(self.branching, "branching", 2)
+        object.__setattr__(self, "root_point", V.choice(RootPoint, self.root_point, "root_point"))
         if self.root_point is RootPoint.RANDOM and self.branching != 2:
             raise ValueError(
                 f"root_point='random' (the authors' partition) needs branching=2, got {self.branching}"
@@ -109,8 +104,7 @@ class BaMSOOConfig(SurrogateConfig):
         p = self.h_max_exponent
         V.number(p, "h_max_exponent", 0.0, 1.0, open_low=True)
         V.flag(self.bound_uses_variance, "bound_uses_variance")
-        if not _is_int(self.max_skips, 1):
-            raise ValueError(f"max_skips must be an integer >= 1, got {self.max_skips!r}")
+        V.integer(self.max_skips, "max_skips", 1)
         w = self.min_width
         V.number(w, "min_width", 0.0, 1.0, open_low=True, open_high=True)
 
@@ -193,14 +187,10 @@ class BaMSOO(GeneratorOptimizer):
         #: Number of nodes in the tree.
         self.n_nodes = 0
 
-    def _to_box(self, u: FloatArray) -> FloatArray:
-        return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
-
     def _model(self) -> GaussianProcess:
         if self.surrogate.is_synced(self._n):
             return self.surrogate.gp
-        xs = (self.xs - self.bounds.lower) / self.bounds.width
-        return self.surrogate.sync(xs, self.values)
+        return self.surrogate.sync(self.bounds.to_unit(self.xs), self.values)
 
     def _bounds_at(self, u: FloatArray, n_considered: int) -> tuple[float, float]:
         """``(U_N(u), L_N(u))`` from the current GP."""
@@ -216,7 +206,7 @@ class BaMSOO(GeneratorOptimizer):
         anchored = cfg.root_point is RootPoint.RANDOM
         root_x = self.rng.random(d) if anchored else None
         root = _Node(np.zeros(d), np.ones(d), 0, root_x)
-        root.g = yield self._to_box(root.x)
+        root.g = yield self.bounds.from_unit(root.x)
         root.evaluated = True
         self.n_nodes = 1
         f_plus = max(root.g, self.best_value)
@@ -246,7 +236,7 @@ class BaMSOO(GeneratorOptimizer):
                     n_considered += 1
                     upper, lower = self._bounds_at(child.x, n_considered)
                     if upper >= f_plus or skips >= cfg.max_skips:
-                        child.g = yield self._to_box(child.x)
+                        child.g = yield self.bounds.from_unit(child.x)
                         child.evaluated = True
                         skips = 0
                     else:

@@ -184,6 +184,15 @@ class Bounds:
     def clip(self, x: ArrayLike) -> FloatArray:
         return np.clip(np.asarray(x, dtype=np.float64), self.lower, self.upper)
 
+    def to_unit(self, x: FloatArray) -> FloatArray:
+        """Point(s) ``x`` of the box in unit-cube coordinates, ``(x - lower) / width`` (the
+        coordinates a GP or pycma works in)."""
+        return (x - self.lower) / self.width
+
+    def from_unit(self, u: FloatArray) -> FloatArray:
+        """Unit-cube point(s) ``u`` back in the box, ``lower + u * width``, clipped onto it."""
+        return self.clip(self.lower + u * self.width)
+
     def contains(self, x: ArrayLike) -> bool:
         arr = np.asarray(x, dtype=np.float64)
         return bool(np.all(arr >= self.lower) and np.all(arr <= self.upper))

@@ -92,14 +92,6 @@ RESERVED_PYCMA_OPTIONS = frozenset(
 )
 
 
-def _choice(enum: type[StrEnum], value: Any, name: str) -> Any:
-    try:
-        return enum(value)
-    except ValueError:
-        valid = ", ".join(e.value for e in enum)
-        raise ValueError(f"unknown {name} {value!r}; valid values are: {valid}") from None
-
-
 @dataclass(frozen=True)
 class CMAESConfig(OptimizerConfig):
     """CMA-ES hyperparameters.
@@ -146,15 +138,19 @@ class CMAESConfig(OptimizerConfig):
             raise ValueError(
                 f"sigma0 must be a fraction of the box width in (0, 1], got {self.sigma0!r}"
             )
-        object.__setattr__(self, "restarts", _choice(RestartStrategy, self.restarts, "restarts"))
         object.__setattr__(
-            self, "bound_handling", _choice(BoundHandling, self.bound_handling, "bound_handling")
+            self, "restarts", V.choice(RestartStrategy, self.restarts, "restarts", "values")
         )
-        initial = _choice(StartPoint, self.initial_mean, "initial_mean")
+        object.__setattr__(
+            self,
+            "bound_handling",
+            V.choice(BoundHandling, self.bound_handling, "bound_handling", "values"),
+        )
+        initial = V.choice(StartPoint, self.initial_mean, "initial_mean", "values")
         if initial is StartPoint.INITIAL:
             raise ValueError("initial_mean must be 'center' or 'random', got 'initial'")
         object.__setattr__(self, "initial_mean", initial)
-        restart = _choice(StartPoint, self.restart_mean, "restart_mean")
+        restart = V.choice(StartPoint, self.restart_mean, "restart_mean", "values")
         if restart is StartPoint.CENTER:
             raise ValueError(
                 "restart_mean must be 'random' or 'initial' (use initial_mean='center'"
@@ -232,7 +228,7 @@ class CMAES(Optimizer):
         cfg = self.config
         d = self.bounds.dim
         if self.initial_point is not None:
-            mean0 = (self.initial_point - self.bounds.lower) / self.bounds.width
+            mean0 = self.bounds.to_unit(self.initial_point)
         elif cfg.initial_mean is StartPoint.RANDOM:
             mean0 = self.rng.random(d)
         else:

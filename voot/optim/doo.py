@@ -46,7 +46,6 @@ samples do not split.
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from dataclasses import dataclass
 from enum import StrEnum
@@ -111,22 +110,9 @@ class DOOConfig(OptimizerConfig):
     split_at_initial_point: bool = False
 
     def __post_init__(self) -> None:
-        eps = self.epsilon
-        if (
-            isinstance(eps, bool)
-            or not isinstance(eps, int | float)
-            or not math.isfinite(eps)
-            or eps < 0
-        ):
-            raise ValueError(f"epsilon must be a finite number >= 0, got {eps!r}")
+        V.positive(self.epsilon, "epsilon", allow_zero=True)
         object.__setattr__(self, "split", parse_split(self.split))
-        try:
-            object.__setattr__(self, "cell_size", CellSize(self.cell_size))
-        except ValueError:
-            valid = ", ".join(s.value for s in CellSize)
-            raise ValueError(
-                f"unknown cell_size {self.cell_size!r}; valid choices are: {valid}"
-            ) from None
+        object.__setattr__(self, "cell_size", V.choice(CellSize, self.cell_size, "cell_size"))
         object.__setattr__(self, "scale", parse_scale(self.scale))
         V.flag(self.split_at_initial_point, "split_at_initial_point")
         if self.split_at_initial_point and self.split is not Split.BISECT:

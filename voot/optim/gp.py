@@ -139,11 +139,7 @@ class GaussianProcess:
         V.integer(dim, "dim", 1)
         self.dim = int(dim)
         self.ard = bool(ard)
-        try:
-            self.mean = GPMean(mean)
-        except ValueError:
-            valid = ", ".join(m.value for m in GPMean)
-            raise ValueError(f"unknown mean {mean!r}; valid means are: {valid}") from None
+        self.mean = V.choice(GPMean, mean, "mean", "means")
         self.lengthscale_bounds = _check_bounds("lengthscale_bounds", lengthscale_bounds)
         self.signal_variance_bounds = _check_bounds(
             "signal_variance_bounds", signal_variance_bounds

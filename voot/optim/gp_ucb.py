@@ -24,37 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int, check_zeta, maximize_ucb
+from voot.optim._surrogate import Surrogate, UCBConfig
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
 @dataclass(frozen=True)
-class GPUCBConfig(SurrogateConfig):
-    """GP-UCB hyperparameters (GP options: see :class:`SurrogateConfig`).
-
-    Attributes:
-        zeta: UCB exploration weight :math:`\\zeta \\ge 0` (paper grid
-            {0.01, 0.1, 1, 5, 10, 30}).
-        n_candidates: uniform random candidates scored per ask (paper: 10^4).
-        n_local_starts: L-BFGS-B runs from the best candidates (original code: 1).
-        local_maxiter: L-BFGS-B iterations per run (0 disables the local refinement).
-        n_initial: uniform random asks before the GP is used (including ``initial_point``).
-    """
-
-    zeta: float = 1.0
-    n_candidates: int = 10_000
-    n_local_starts: int = 1
-    local_maxiter: int = 100
-    n_initial: int = 1
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        check_zeta(self.zeta)
-        for name in ("n_candidates", "n_local_starts", "n_initial"):
-            if not _is_int(getattr(self, name), 1):
-                raise ValueError(f"{name} must be an integer >= 1, got {getattr(self, name)!r}")
-        if not _is_int(self.local_maxiter, 0):
-            raise ValueError(f"local_maxiter must be an integer >= 0, got {self.local_maxiter!r}")
+class GPUCBConfig(UCBConfig):
+    """GP-UCB hyperparameters: the acquisition's (:class:`~voot.optim._surrogate.UCBConfig`;
+    the paper's grid of ``zeta`` is {0.01, 0.1, 1, 5, 10, 30}) and the GP's
+    (:class:`~voot.optim._surrogate.SurrogateConfig`)."""
 
     @classmethod
     def paper_grid(cls) -> dict[str, list[Any]]:
@@ -75,24 +53,13 @@ class GPUCB(Optimizer):
         #: Acquisition value of the last GP-proposed point (diagnostic).
         self.last_acquisition = float("nan")
 
-    def _unit(self, x: FloatArray) -> FloatArray:
-        return (x - self.bounds.lower) / self.bounds.width
-
     def _ask(self) -> FloatArray:
         cfg = self.config
         if self._n < cfg.n_initial:
             return self.bounds.sample(self.rng)
-        gp = self.surrogate.sync(self._unit(self.xs), self.values)
-        u, acq = maximize_ucb(
-            gp,
-            float(cfg.zeta),
-            self.rng,
-            n_candidates=cfg.n_candidates,
-            n_starts=cfg.n_local_starts,
-            maxiter=cfg.local_maxiter,
-        )
-        self.last_acquisition = acq
-        return self.bounds.clip(self.bounds.lower + u * self.bounds.width)
+        gp = self.surrogate.sync(self.bounds.to_unit(self.xs), self.values)
+        u, self.last_acquisition = cfg.maximize_ucb(gp, self.rng)
+        return self.bounds.from_unit(u)
 
     def _revalue(self, index: int, value: float) -> None:
         self.surrogate.invalidate()

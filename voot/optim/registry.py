@@ -34,12 +34,7 @@ def available_methods() -> list[str]:
 
 def normalize_method(method: str) -> str:
     """Lower-case and map ``-`` to ``_`` (``"RAND-DOO"`` -> ``"rand_doo"``); check it exists."""
-    key = str(method).strip().lower().replace("-", "_")
-    if key not in _REGISTRY:
-        raise ValueError(
-            f"unknown method {method!r}; valid methods are: {', '.join(available_methods())}"
-        )
-    return key
+    return V.registered_name(method, _REGISTRY, "method")
 
 
 def optimizer_class(method: str) -> type[Optimizer]:
@@ -53,12 +48,7 @@ def optimizer_class(method: str) -> type[Optimizer]:
 def make_config(method: str, **options: Any) -> OptimizerConfig:
     """Build ``method``'s config from keyword options (unknown keys raise ValueError)."""
     cls = optimizer_class(method).config_class
-    valid = set(cls.__dataclass_fields__)
-    unknown = sorted(set(options) - valid)
-    if unknown:
-        raise ValueError(
-            f"unknown option(s) {unknown} for method {method!r}; valid options are: {sorted(valid)}"
-        )
+    V.config_options(cls, options, f"method {method!r}")
     return cls(**options)
 
 

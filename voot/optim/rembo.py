@@ -38,7 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from voot import validation as V
-from voot.optim._surrogate import Surrogate, SurrogateConfig, _is_int, check_zeta, maximize_ucb
+from voot.optim._surrogate import Surrogate, UCBConfig
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
 
@@ -48,40 +48,26 @@ def default_low_dim(dim: int) -> int:
 
 
 @dataclass(frozen=True)
-class REMBOConfig(SurrogateConfig):
-    """REMBO hyperparameters (GP options: see :class:`SurrogateConfig`).
+class REMBOConfig(UCBConfig):
+    """REMBO hyperparameters: the embedding's (below), the acquisition's in the low box
+    (:class:`~voot.optim._surrogate.UCBConfig`: candidates are drawn in the low box, the
+    first ``n_initial`` points are uniform there; the authors' REMBO grid of ``zeta`` is
+    {0.01, 0.1, 0.5, 1}) and the GP's (:class:`~voot.optim._surrogate.SurrogateConfig`).
 
     Attributes:
         low_dim: embedding dimension d (None: :func:`default_low_dim`); must be < D.
         box_half_width: half-width of the low-dimensional box (None: :math:`\\sqrt d`).
-        zeta: UCB exploration weight (the authors' REMBO grid {0.01, 0.1, 0.5, 1}).
-        n_candidates: uniform random candidates in the low box per ask (10^4).
-        n_local_starts: L-BFGS-B runs from the best candidates.
-        local_maxiter: L-BFGS-B iterations per run (0 disables refinement).
-        n_initial: uniform random low-dimensional points before the GP is used.
     """
 
     low_dim: int | None = None
     box_half_width: float | None = None
-    zeta: float = 1.0
-    n_candidates: int = 10_000
-    n_local_starts: int = 1
-    local_maxiter: int = 100
-    n_initial: int = 1
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.low_dim is not None and not _is_int(self.low_dim, 1):
-            raise ValueError(f"low_dim must be None or an integer >= 1, got {self.low_dim!r}")
+        V.optional_integer(self.low_dim, "low_dim", 1)
         b = self.box_half_width
         if b is not None:
             V.positive(b, "box_half_width")
-        check_zeta(self.zeta)
-        for name in ("n_candidates", "n_local_starts", "n_initial"):
-            if not _is_int(getattr(self, name), 1):
-                raise ValueError(f"{name} must be an integer >= 1, got {getattr(self, name)!r}")
-        if not _is_int(self.local_maxiter, 0):
-            raise ValueError(f"local_maxiter must be an integer >= 0, got {self.local_maxiter!r}")
 
     @classmethod
     def paper_grid(cls) -> dict[str, list[Any]]:
@@ -136,14 +122,7 @@ class REMBO(Optimizer):
             u = self.rng.random(self.low_dim)
         else:
             gp = self.surrogate.sync(self._us, self._uvals)
-            u, self.last_acquisition = maximize_ucb(
-                gp,
-                float(cfg.zeta),
-                self.rng,
-                n_candidates=cfg.n_candidates,
-                n_starts=cfg.n_local_starts,
-                maxiter=cfg.local_maxiter,
-            )
+            u, self.last_acquisition = cfg.maximize_ucb(gp, self.rng)
         x = self.low_to_box(self._unit_to_low(u))
         self._pending_u, self._pending_x = u, x
         return x.copy()

@@ -109,13 +109,9 @@ class VOOConfig(OptimizerConfig):
     def __post_init__(self) -> None:
         if not (V.is_number(self.omega) and 0.0 <= float(self.omega) <= 1.0):
             raise ValueError(f"omega must be a probability in [0, 1], got {self.omega!r}")
-        try:
-            object.__setattr__(self, "sampler", BestCellSampler(self.sampler))
-        except ValueError:
-            valid = ", ".join(s.value for s in BestCellSampler)
-            raise ValueError(
-                f"unknown sampler {self.sampler!r}; valid samplers are: {valid}"
-            ) from None
+        object.__setattr__(
+            self, "sampler", V.choice(BestCellSampler, self.sampler, "sampler", "samplers")
+        )
         for name in ("max_tries", "uniform_max_tries", "batch_size"):
             value = getattr(self, name)
             V.integer(value, name, 1)

@@ -63,8 +63,9 @@ from voot.record.config import AUTO_CAMERA, BEST_PREFIX, PERSPECTIVE_CAMERA, ROO
 from voot.record.mujoco_scene import MujocoScene, camera_names, find_mujoco, model_camera_eye
 from voot.record.samples import BASE_POSE_KEY, PLACEMENT_KEY, NodeSamples, SampleLog, pose_of
 from voot.record.tree_graph import build_tree_graph, log_tree
-from voot.tree.mcts import MCTS, PlanResult
+from voot.tree.mcts import MCTS
 from voot.tree.node import Node
+from voot.tree.search import PlanResult
 
 Callback = Callable[[MCTS, int], Any]
 
@@ -498,7 +499,7 @@ def record_plan(
     layout (see :class:`SearchRecorder`); ``planner_options`` are
     :class:`~voot.tree.MCTSConfig` overrides, as for :func:`voot.tree.plan`.
     """
-    from voot.tree.mcts import plan
+    from voot.tree.planners import plan
 
     with SearchRecorder(path, problem, config, scene=scene, blueprint=blueprint) as recorder:
         result = plan(

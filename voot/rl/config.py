@@ -190,12 +190,7 @@ def available_algorithms() -> list[str]:
 
 def normalize_algorithm(name: object) -> str:
     """The canonical algorithm name (``"PPO"`` -> ``"ppo"``), or a ValueError listing them."""
-    key = str(name).strip().lower()
-    if key not in RL_ALGORITHMS:
-        raise ValueError(
-            f"unknown RL algorithm {name!r}; valid algorithms are: {', '.join(available_algorithms())}"
-        )
-    return key
+    return V.registered_name(name, RL_ALGORITHMS, "RL algorithm", "algorithms")
 
 
 def rl_config(name: str, **overrides: Any) -> RLConfig:

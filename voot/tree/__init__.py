@@ -35,8 +35,9 @@ from voot.tree.config import (
 from voot.tree.execute import EpisodeResult, run_episode
 from voot.tree.gym_adapters import GymProblem, MujocoGymProblem
 from voot.tree.hoo import HOO, HOOConfig
-from voot.tree.mcts import MCTS, PlanResult, plan
+from voot.tree.mcts import MCTS
 from voot.tree.node import Node
+from voot.tree.planners import plan
 from voot.tree.problem import (
     ActionMetric,
     FeasibilityCheck,
@@ -54,6 +55,7 @@ from voot.tree.root_parallel import (
     plan_root_parallel,
 )
 from voot.tree.samplers import ActionSampler, OptimizerSampler, UniformSampler
+from voot.tree.search import PlanResult
 from voot.tree.shooting import (
     SHOOTING_PLANNERS,
     CEMConfig,

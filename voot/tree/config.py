@@ -319,12 +319,7 @@ class MCTSConfig:
         if self.sampler == "hoo":
             from voot.tree.hoo import HOOConfig
 
-            valid = sorted(f.name for f in fields(HOOConfig))
-            unknown = sorted(set(options) - set(valid))
-            if unknown:
-                raise ValueError(
-                    f"unknown option(s) {unknown} for sampler 'hoo'; valid options are: {valid}"
-                )
+            V.config_options(HOOConfig, options, "sampler 'hoo'")
             return HOOConfig(**options)
         from voot.optim.registry import make_config
 
@@ -371,12 +366,7 @@ def available_planners() -> list[str]:
 
 def normalize_planner(name: str) -> str:
     """Lower-case, ``-`` to ``_`` (``"RAND-DOOT"`` -> ``"rand_doot"``); check it exists."""
-    key = str(name).strip().lower().replace("-", "_")
-    if key not in PLANNERS:
-        raise ValueError(
-            f"unknown planner {name!r}; valid planners are: {', '.join(available_planners())}"
-        )
-    return key
+    return V.registered_name(name, PLANNERS, "planner")
 
 
 def planner_config(name: str = "voot", **overrides: Any) -> MCTSConfig:
@@ -386,11 +376,6 @@ def planner_config(name: str = "voot", **overrides: Any) -> MCTSConfig:
     'uniform'
     """
     base = dict(PLANNERS[normalize_planner(name)])
-    valid = {f.name for f in fields(MCTSConfig)}
-    unknown = sorted(set(overrides) - valid)
-    if unknown:
-        raise ValueError(
-            f"unknown option(s) {unknown} for planner {name!r}; valid options are: {sorted(valid)}"
-        )
+    V.config_options(MCTSConfig, overrides, f"planner {name!r}")
     base.update(overrides)
     return MCTSConfig(**base)

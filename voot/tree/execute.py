@@ -9,7 +9,6 @@ the executed action's subtree instead of an empty tree.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,14 +18,9 @@ import numpy as np
 from voot import validation as V
 from voot.optim.base import FloatArray
 from voot.tree.config import MCTSConfig, planner_config
-from voot.tree.mcts import (
-    MCTS,
-    Callback,
-    PlanResult,
-    check_n_simulations,
-    non_finite_step_error,
-)
-from voot.tree.problem import PlanningProblem, StepResult
+from voot.tree.mcts import MCTS, Callback
+from voot.tree.problem import PlanningProblem, StepResult, step_values
+from voot.tree.search import PlanResult, check_n_simulations
 
 
 @dataclass(frozen=True)
@@ -107,12 +101,11 @@ def run_episode(
         action = mcts.root.actions[edge].copy()
         problem.restore(mcts.root.snapshot)
         step = problem.step(action)
-        if not (math.isfinite(float(step.reward)) and math.isfinite(float(step.bonus))):
-            raise non_finite_step_error(problem, action, float(step.reward), float(step.bonus))
+        reward, step_bonus = step_values(problem, action, step)
         actions.append(action)
         steps.append(step)
-        total += discount * float(step.reward)
-        bonus += float(step.bonus)
+        total += discount * reward
+        bonus += step_bonus
         discount *= config.gamma
         if step.terminal or not step.feasible:
             break

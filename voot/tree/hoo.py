@@ -69,11 +69,7 @@ class HOOConfig:
             V.positive(v, name, allow_zero=True)
         V.number(self.rho, "rho", 0.0, 1.0, open_low=True, open_high=True)
         V.integer(self.max_depth, "max_depth", 1)
-        try:
-            object.__setattr__(self, "point", HOOPoint(self.point))
-        except ValueError:
-            valid = ", ".join(p.value for p in HOOPoint)
-            raise ValueError(f"unknown point {self.point!r}; valid choices are: {valid}") from None
+        object.__setattr__(self, "point", V.choice(HOOPoint, self.point, "point"))
 
 
 class HOO:

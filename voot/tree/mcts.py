@@ -30,15 +30,14 @@ from __future__ import annotations
 import gc
 import heapq
 import math
-import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
 from voot import validation as V
-from voot.optim.base import Bounds, FloatArray
+from voot.optim.base import FloatArray
 from voot.tree.config import (
     Backup,
     BestReturnOver,
@@ -49,12 +48,10 @@ from voot.tree.config import (
 )
 from voot.tree.hoo import HOO, HOOConfig
 from voot.tree.node import Node
-from voot.tree.problem import PlanningProblem, StepResult
+from voot.tree.problem import PlanningProblem, check_problem, problem_bounds, step_values
 from voot.tree.samplers import UniformSampler, make_optimizer_sampler, same_point
+from voot.tree.search import PlanResult, Search
 from voot.tree.selection import SelectionRule, make_selection
-
-if TYPE_CHECKING:
-    from voot.tree.shooting import ShootingConfig
 
 #: ``callback(mcts, simulation_index)`` after every simulation; return True to stop early.
 Callback = Callable[["MCTS", int], Any]
@@ -64,110 +61,7 @@ Callback = Callable[["MCTS", int], Any]
 MAX_UNLIMITED_DEPTH = 10_000
 
 
-def check_n_simulations(n_simulations: object) -> int:
-    """A number of simulations must be an integer >= 1."""
-    if (
-        isinstance(n_simulations, bool)
-        or not isinstance(n_simulations, int | np.integer)
-        or n_simulations < 1
-    ):
-        raise ValueError(f"n_simulations must be an integer >= 1, got {n_simulations!r}")
-    return int(n_simulations)
-
-
-def non_finite_step_error(
-    problem: PlanningProblem, action: FloatArray, reward: float, bonus: float
-) -> ValueError:
-    """The error for a step whose reward or goal bonus is not a finite number.
-
-    Rewards and bonuses must be finite. NaN has no order, so a NaN return would
-    silently poison every :math:`\\hat Q` above it and the best-return curve (PW-UCT and
-    HOOT reported ``best_return=nan``). An infinite reward is refused as well: one
-    ``+inf`` makes every path through it the best whatever else it earns, one ``-inf``
-    makes every backed-up mean ``-inf`` (and NaN once mixed with a ``+inf``), and
-    neither can be told to an action optimiser. A failed action is reported as
-    ``feasible=False`` with a finite penalty (the chains and the environments use -2).
-    """
-    name = "reward" if not math.isfinite(reward) else "goal bonus"
-    value = reward if name == "reward" else bonus
-    return ValueError(
-        f"{type(problem).__name__}.step(action={np.asarray(action).tolist()}) returned"
-        f" {name}={value!r} (reward={reward!r}, bonus={bonus!r}); rewards and goal bonuses"
-        " must be finite numbers (report a failed action as feasible=False with a finite"
-        " penalty)"
-    )
-
-
-def problem_bounds(problem: PlanningProblem) -> Bounds:
-    """``problem.action_bounds()`` as a :class:`Bounds`, or a ValueError saying what is wrong."""
-    raw = problem.action_bounds()
-    if isinstance(raw, Bounds):
-        return raw
-    try:
-        return Bounds.coerce(raw)
-    except ValueError as exc:
-        raise ValueError(
-            f"{type(problem).__name__}.action_bounds() returned an invalid action box: {exc}"
-        ) from None
-
-
-@dataclass(frozen=True)
-class PlanResult:
-    """The outcome of a search (everything since the tree was created or re-rooted).
-
-    Attributes:
-        actions: the best plan: the actions from the root to the best leaf.
-        rewards: their rewards (goal bonus excluded).
-        bonuses: their goal bonuses.
-        feasible: whether each action of the plan was feasible.
-        best_return: :math:`\\sum_t \\gamma^t r_t` of the best plan (bonus excluded).
-        best_return_curve: best return after every simulation (the paper's curve).
-        info_curve: ``best leaf info[record_info]`` after every simulation, if asked.
-        best_action: the recommended root action (``final_action`` rule), None if the
-            root has no action.
-        best_leaf_info: the step info of the last action of the best plan.
-        n_simulations: simulations run.
-        n_nodes: nodes in the tree.
-        n_steps: calls of ``problem.step`` (simulator steps).
-        n_feasibility_checks: calls of ``problem.is_feasible``.
-        n_node_visits: node visits (actions taken inside simulations, new or not).
-        wall_time: seconds spent in :meth:`MCTS.search`.
-        mcts: the search object, for inspecting the tree.
-    """
-
-    actions: tuple[FloatArray, ...]
-    rewards: FloatArray
-    bonuses: FloatArray
-    feasible: tuple[bool, ...]
-    best_return: float
-    best_return_curve: FloatArray
-    info_curve: tuple[Any, ...] | None
-    best_action: FloatArray | None
-    best_leaf_info: Mapping[str, Any]
-    n_simulations: int
-    n_nodes: int
-    n_steps: int
-    n_feasibility_checks: int
-    n_node_visits: int
-    wall_time: float
-    mcts: MCTS | None = field(default=None, repr=False, compare=False)
-
-    def summary(self) -> dict[str, Any]:
-        """Plain values for a results row (the curve as a list)."""
-        return {
-            "best_return": self.best_return,
-            "plan_length": len(self.actions),
-            "n_simulations": self.n_simulations,
-            "n_nodes": self.n_nodes,
-            "n_steps": self.n_steps,
-            "n_feasibility_checks": self.n_feasibility_checks,
-            "n_node_visits": self.n_node_visits,
-            "wall_time": self.wall_time,
-            "best_return_curve": self.best_return_curve.tolist(),
-        }
-
-
-class MCTS:
+class MCTS(Search):
     """The tree search over a :class:`~voot.tree.problem.PlanningProblem`.
 
     Args:
@@ -193,11 +87,7 @@ class MCTS:
             raise TypeError(
                 f"config must be an MCTSConfig or a planner name, got {type(cfg).__name__}"
             )
-        for method in ("snapshot", "restore", "step", "action_bounds"):
-            if not callable(getattr(problem, method, None)):
-                raise TypeError(
-                    f"{type(problem).__name__} is not a PlanningProblem: it has no {method}()"
-                )
+        check_problem(problem)
         self.problem = problem
         self.config = cfg
         self.rng = np.random.default_rng(V.seed(seed))
@@ -243,11 +133,8 @@ class MCTS:
         self._leaves: list[tuple[float, int]] = [(-root.path_return, root.id)]
         self._best_node = root
         self._has_complete = False
-        self.best_return_curve: list[float] = []
-        self.info_curve: list[Any] = []
-        self.n_simulations = 0
         self.n_node_visits = 0
-        self.wall_time = 0.0
+        self._start_curve()
 
     # ----- public --------------------------------------------------------------------------
     def search(
@@ -256,38 +143,21 @@ class MCTS:
         callback: Callback | None = None,
         record_info: str | None = None,
     ) -> PlanResult:
-        """Run ``n_simulations`` more simulations and return the result so far.
-
-        Args:
-            n_simulations: number of simulations (>= 1).
-            callback: called as ``callback(mcts, i)`` after simulation ``i`` (0-based,
-                counted over the tree's life); returning True stops the search.
-            record_info: a step-info key (e.g. ``"objects_left"``) to record at the best
-                leaf after every simulation, into :attr:`PlanResult.info_curve`.
-        """
-        n = check_n_simulations(n_simulations)
+        """:meth:`Search.search <voot.tree.search.Search.search>` on this tree (``callback``
+        gets the MCTS; ``record_info`` is read at the best leaf)."""
         self._at = None  # the caller may have moved the problem between searches
         # The tree only grows during a search, so Python's cyclic garbage collector would
         # only re-traverse it (about 15% of the search's time): pause it meanwhile.
         gc_was_enabled = gc.isenabled()
         gc.disable()
-        t0 = time.perf_counter()
         try:
-            for _ in range(n):
-                self._maybe_commit()
-                self._simulate()
-                self.n_simulations += 1
-                best = self.best_node()
-                self.best_return_curve.append(self.best_return)
-                if record_info is not None:
-                    self.info_curve.append(best.info.get(record_info))
-                if callback is not None and callback(self, self.n_simulations - 1):
-                    break
+            return super().search(n_simulations, callback, record_info)
         finally:
-            self.wall_time += time.perf_counter() - t0
             if gc_was_enabled:
                 gc.enable()
-        return self.result(record_info is not None)
+
+    def _best_info(self) -> Mapping[str, Any]:
+        return self.best_node().info
 
     def best_node(self) -> Node:
         """The end of the best path from the root (see ``best_return_over``).
@@ -396,6 +266,7 @@ class MCTS:
 
     # ----- one simulation --------------------------------------------------------------------
     def _simulate(self) -> None:
+        self._maybe_commit()
         H = self._H
         node = self.current_root
         path_nodes: list[Node] = []
@@ -544,15 +415,8 @@ class MCTS:
         """Step the problem (which is at ``node``) with ``x``; add the edge and its child."""
         res = self.problem.step(x)
         self.n_steps += 1
-        if not isinstance(res, StepResult):
-            raise TypeError(
-                f"{type(self.problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
-            )
-        reward = float(res.reward)
-        bonus = float(res.bonus)
-        if not (math.isfinite(reward) and math.isfinite(bonus)):
-            self._at = None  # the problem has moved, no child records where to
-            raise non_finite_step_error(self.problem, x, reward, bonus)
+        self._at = None  # the problem has moved; the child records where, once made
+        reward, bonus = step_values(self.problem, x, res)
         feasible = bool(res.feasible)
         terminal = bool(res.terminal)
         expandable = feasible and not terminal
@@ -639,55 +503,3 @@ class MCTS:
             return
         self._prefix.append((root, best))
         self.current_root = root.children[best]
-
-
-def plan(
-    problem: PlanningProblem,
-    planner: str | MCTSConfig | ShootingConfig = "voot",
-    n_simulations: int = 1000,
-    seed: int | None = 0,
-    *,
-    callback: Callback | None = None,
-    record_info: str | None = None,
-    **options: Any,
-) -> PlanResult:
-    """Run one planner on one problem with one seed: the unit of a benchmark.
-
-    Args:
-        problem: the planning problem (its current state is the root).
-        planner: a planner name (see :func:`voot.tree.available_planners`) or a config;
-            a sampling-based planner's name or config
-            (:func:`voot.tree.shooting.available_shooting_planners`) runs
-            :func:`voot.tree.shooting.plan_shooting` instead.
-        n_simulations: number of simulations.
-        seed: seed of the search.
-        callback: see :meth:`MCTS.search`.
-        record_info: see :meth:`MCTS.search`.
-        **options: config fields overriding the planner's.
-
-    >>> from voot.tree.null_problem import NullProblem
-    >>> res = plan(NullProblem(dim=2), "voot", n_simulations=50, seed=0, depth_limit=3)
-    >>> res.best_return_curve.shape
-    (50,)
-    """
-    check_n_simulations(n_simulations)
-    V.seed(seed)
-    from voot.tree import shooting
-
-    if isinstance(planner, shooting.ShootingConfig) or shooting.is_shooting_planner(planner):
-        return shooting.plan_shooting(
-            problem,
-            planner,  # type: ignore[arg-type]
-            n_simulations,
-            seed,
-            callback=callback,  # type: ignore[arg-type]
-            record_info=record_info,
-            **options,
-        )
-    if isinstance(planner, MCTSConfig):
-        config = planner.replace(**options) if options else planner
-    else:
-        config = planner_config(planner, **options)
-    return MCTS(problem, config, seed=seed).search(
-        n_simulations, callback=callback, record_info=record_info
-    )

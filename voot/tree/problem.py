@@ -42,6 +42,7 @@ restore it instead of stepping again.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
@@ -117,3 +118,67 @@ class SimulatorCalls(Protocol):
     """Optional: how many times the problem ran its simulator (pre-checks included)."""
 
     n_simulator_calls: int
+
+
+# ----- reading the protocol safely (every planner's checks, one wording) -----------------
+def check_problem(problem: object) -> None:
+    """A TypeError unless ``problem`` has the protocol's four methods."""
+    for method in ("snapshot", "restore", "step", "action_bounds"):
+        if not callable(getattr(problem, method, None)):
+            raise TypeError(
+                f"{type(problem).__name__} is not a PlanningProblem: it has no {method}()"
+            )
+
+
+def problem_bounds(problem: PlanningProblem) -> Bounds:
+    """``problem.action_bounds()`` as a :class:`Bounds`, or a ValueError saying what is wrong."""
+    raw = problem.action_bounds()
+    if isinstance(raw, Bounds):
+        return raw
+    try:
+        return Bounds.coerce(raw)
+    except ValueError as exc:
+        raise ValueError(
+            f"{type(problem).__name__}.action_bounds() returned an invalid action box: {exc}"
+        ) from None
+
+
+def non_finite_step_error(
+    problem: PlanningProblem, action: NDArray[np.float64], reward: float, bonus: float
+) -> ValueError:
+    """The error for a step whose reward or goal bonus is not a finite number.
+
+    Rewards and bonuses must be finite. NaN has no order, so a NaN return would
+    silently poison every :math:`\\hat Q` above it and the best-return curve (PW-UCT and
+    HOOT reported ``best_return=nan``). An infinite reward is refused as well: one
+    ``+inf`` makes every path through it the best whatever else it earns, one ``-inf``
+    makes every backed-up mean ``-inf`` (and NaN once mixed with a ``+inf``), and
+    neither can be told to an action optimiser. A failed action is reported as
+    ``feasible=False`` with a finite penalty (the chains and the environments use -2).
+    """
+    name = "reward" if not math.isfinite(reward) else "goal bonus"
+    value = reward if name == "reward" else bonus
+    return ValueError(
+        f"{type(problem).__name__}.step(action={np.asarray(action).tolist()}) returned"
+        f" {name}={value!r} (reward={reward!r}, bonus={bonus!r}); rewards and goal bonuses"
+        " must be finite numbers (report a failed action as feasible=False with a finite"
+        " penalty)"
+    )
+
+
+def step_values(
+    problem: PlanningProblem, action: NDArray[np.float64], res: object
+) -> tuple[float, float]:
+    """The reward and goal bonus of ``res = problem.step(action)``, as floats.
+
+    A TypeError if ``res`` is not a :class:`StepResult`; the ValueError of
+    :func:`non_finite_step_error` if either number is not finite.
+    """
+    if not isinstance(res, StepResult):
+        raise TypeError(
+            f"{type(problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
+        )
+    reward, bonus = float(res.reward), float(res.bonus)
+    if not (math.isfinite(reward) and math.isfinite(bonus)):
+        raise non_finite_step_error(problem, action, reward, bonus)
+    return reward, bonus

@@ -22,7 +22,7 @@ rollout did not use (steps after its end, entries beyond a step's :math:`d`) are
 draws of the distribution, so a refit treats them as uninformative noise.
 
 **Rewards and goal bonuses must be finite**: a step returning NaN or an infinity raises
-the tree search's ValueError (:func:`voot.tree.mcts.non_finite_step_error`, naming the
+the tree search's ValueError (:func:`voot.tree.problem.non_finite_step_error`, naming the
 step's action and value); the rollout it cut short is discarded, and a later ``search``
 starts again from the root.
 
@@ -64,7 +64,7 @@ update assumes. ``n_feasibility_checks`` is therefore 0.
 
 A budget that is not a multiple of the population ends with a partial iteration (its
 rollouts count; no update follows). :class:`ShootingPlanner` returns the
-:class:`~voot.tree.mcts.PlanResult` of the tree search, so sweeps, the result store and
+:class:`~voot.tree.search.PlanResult` of the tree search, so sweeps, the result store and
 the plots treat both alike; ``n_nodes`` is 0 (no tree is kept), ``n_node_visits`` equals
 ``n_steps`` (every action taken in a rollout is a ``step`` call), ``mcts`` is None.
 
@@ -74,9 +74,8 @@ Deterministic given the seed: one :class:`numpy.random.Generator` per planner.
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Callable, Mapping
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import asdict, dataclass, replace
 from types import MappingProxyType
 from typing import Any, ClassVar
 
@@ -84,13 +83,8 @@ import numpy as np
 
 from voot import validation as V
 from voot.optim.base import FloatArray
-from voot.tree.mcts import (
-    PlanResult,
-    check_n_simulations,
-    non_finite_step_error,
-    problem_bounds,
-)
-from voot.tree.problem import PlanningProblem, StepResult
+from voot.tree.problem import PlanningProblem, check_problem, problem_bounds, step_values
+from voot.tree.search import PlanResult, Search, check_n_simulations
 
 #: ``callback(planner, simulation_index)`` after every simulation; True stops early.
 ShootingCallback = Callable[["ShootingPlanner", int], Any]
@@ -251,29 +245,9 @@ def available_shooting_planners() -> list[str]:
     return sorted(SHOOTING_PLANNERS)
 
 
-def _key(name: object) -> str:
-    return str(name).strip().lower().replace("-", "_")
-
-
 def is_shooting_planner(name: object) -> bool:
     """Whether ``name`` is a sampling-based planner (``"CEM"``, ``"predictive-sampling"``)."""
-    return isinstance(name, str) and _key(name) in SHOOTING_PLANNERS
-
-
-def normalize_any_planner(name: str) -> str:
-    """The canonical name of a tree planner or a sampling-based one; a ValueError listing
-    both kinds if it is neither."""
-    if is_shooting_planner(name):
-        return _key(name)
-    from voot.tree.config import available_planners, normalize_planner
-
-    try:
-        return normalize_planner(name)
-    except ValueError:
-        valid = sorted(available_planners() + available_shooting_planners())
-        raise ValueError(
-            f"unknown planner {name!r}; valid planners are: {', '.join(valid)}"
-        ) from None
+    return isinstance(name, str) and V.name_key(name) in SHOOTING_PLANNERS
 
 
 def shooting_config(name: str = "cem", **overrides: Any) -> ShootingConfig:
@@ -282,19 +256,9 @@ def shooting_config(name: str = "cem", **overrides: Any) -> ShootingConfig:
     >>> shooting_config("mppi", temperature=0.1).population
     10
     """
-    key = _key(name)
-    if key not in SHOOTING_PLANNERS:
-        raise ValueError(
-            f"unknown sampling-based planner {name!r}; valid planners are:"
-            f" {', '.join(available_shooting_planners())}"
-        )
+    key = V.registered_name(name, SHOOTING_PLANNERS, "sampling-based planner", "planners")
     cls = SHOOTING_PLANNERS[key]
-    valid = sorted(f.name for f in fields(cls))
-    unknown = sorted(set(overrides) - set(valid))
-    if unknown:
-        raise ValueError(
-            f"unknown option(s) {unknown} for planner {key!r}; valid options are: {valid}"
-        )
+    V.config_options(cls, overrides, f"planner {key!r}")
     return cls(**overrides)
 
 
@@ -311,7 +275,7 @@ class _Rollout:
     info: Mapping[str, Any]
 
 
-class ShootingPlanner:
+class ShootingPlanner(Search):
     """A sampling-based planner over a :class:`~voot.tree.problem.PlanningProblem`.
 
     Args:
@@ -320,7 +284,7 @@ class ShootingPlanner:
         seed: seed of the one generator every draw comes from.
 
     ``search(n)`` runs ``n`` more simulations and returns a
-    :class:`~voot.tree.mcts.PlanResult`; call it again to continue.
+    :class:`~voot.tree.search.PlanResult`; call it again to continue.
     """
 
     def __init__(
@@ -335,11 +299,7 @@ class ShootingPlanner:
                 "config must be a CEMConfig, MPPIConfig, PredictiveSamplingConfig,"
                 f" RandomShootingConfig or a planner name, got {type(cfg).__name__}"
             )
-        for method in ("snapshot", "restore", "step", "action_bounds"):
-            if not callable(getattr(problem, method, None)):
-                raise TypeError(
-                    f"{type(problem).__name__} is not a PlanningProblem: it has no {method}()"
-                )
+        check_problem(problem)
         seed = V.seed(seed)
         self.problem = problem
         self.config = cfg
@@ -355,11 +315,8 @@ class ShootingPlanner:
         self._objectives: list[float] = []
         self._nominal_objective: float | None = None
         self._best: _Rollout | None = None
-        self.best_return_curve: list[float] = []
-        self.info_curve: list[Any] = []
-        self.n_simulations = 0
         self.n_steps = 0
-        self.wall_time = 0.0
+        self._start_curve()
 
     # ----- the distribution ------------------------------------------------------------------
     def _initial_std(self) -> float:
@@ -439,17 +396,10 @@ class ShootingPlanner:
             action = bounds.lower + (z[t, :d] + 1.0) * (0.5 * bounds.width)
             res = problem.step(action)
             self.n_steps += 1
-            if not isinstance(res, StepResult):
-                raise TypeError(
-                    f"{type(problem).__name__}.step() must return a StepResult,"
-                    f" got {type(res).__name__}"
-                )
-            reward, bonus = float(res.reward), float(res.bonus)
-            if not (math.isfinite(reward) and math.isfinite(bonus)):
-                # the tree search's error: a NaN objective has no order (the elites, the
-                # weights and the best rollout would be arbitrary) and an infinite one
-                # makes every MPPI weight NaN; the rollout is discarded
-                raise non_finite_step_error(problem, action, reward, bonus)
+            # the tree search's errors: a NaN objective has no order (the elites, the
+            # weights and the best rollout would be arbitrary) and an infinite one makes
+            # every MPPI weight NaN; the rollout is discarded
+            reward, bonus = step_values(problem, action, res)
             out.ret += discount * reward
             out.objective += discount * (reward + bonus)
             out.actions.append(action)
@@ -477,36 +427,9 @@ class ShootingPlanner:
                 self._update()
 
     # ----- public -----------------------------------------------------------------------------
-    def search(
-        self,
-        n_simulations: int,
-        callback: ShootingCallback | None = None,
-        record_info: str | None = None,
-    ) -> PlanResult:
-        """Run ``n_simulations`` more rollouts and return the result so far.
-
-        Args:
-            n_simulations: number of simulations (>= 1).
-            callback: called as ``callback(planner, i)`` after simulation ``i`` (0-based,
-                over the planner's life); returning True stops the search.
-            record_info: a step-info key (e.g. ``"objects_left"``) to record at the end of
-                the best rollout after every simulation, into ``PlanResult.info_curve``.
-        """
-        n = check_n_simulations(n_simulations)
-        t0 = time.perf_counter()
-        try:
-            for _ in range(n):
-                self._simulate()
-                self.n_simulations += 1
-                assert self._best is not None
-                self.best_return_curve.append(self._best.ret)
-                if record_info is not None:
-                    self.info_curve.append(self._best.info.get(record_info))
-                if callback is not None and callback(self, self.n_simulations - 1):
-                    break
-        finally:
-            self.wall_time += time.perf_counter() - t0
-        return self.result(record_info is not None)
+    def _best_info(self) -> Mapping[str, Any]:
+        assert self._best is not None
+        return self._best.info
 
     @property
     def best_return(self) -> float:
@@ -514,7 +437,7 @@ class ShootingPlanner:
         return -math.inf if self._best is None else self._best.ret
 
     def result(self, with_info_curve: bool = False) -> PlanResult:
-        """The :class:`~voot.tree.mcts.PlanResult` of the rollouts so far."""
+        """The :class:`~voot.tree.search.PlanResult` of the rollouts so far."""
         best = self._best
         actions = tuple(a.copy() for a in best.actions) if best is not None else ()
         return PlanResult(

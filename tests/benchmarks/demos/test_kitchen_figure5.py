@@ -63,7 +63,7 @@ def test_v1_counts_add_up_and_come_from_the_env_step_info(tmp_path: Path) -> Non
     from collections import Counter
 
     from voot.bench.demos.kitchen_demo import options_for
-    from voot.tree.mcts import plan
+    from voot.tree.planners import plan
 
     env_id = "voot/KitchenClearing-v1"
     runs = figure5(

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from voot.tree.mcts import PlanResult
+from voot.tree.search import PlanResult
 
 
 def same(a: object, b: object) -> bool:

@@ -20,11 +20,11 @@ import numpy as np
 from voot import validation as V
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor
 from voot.tree.config import MCTSConfig, planner_config
-from voot.tree.mcts import check_n_simulations
 from voot.tree.problem import PlanningProblem
 from voot.tree.root_parallel.config import MergeRule, RootParallelConfig, tree_seeds
 from voot.tree.root_parallel.result import RootParallelResult, merge_trees
 from voot.tree.root_parallel.worker import ProblemFactory, TreeTask, run_tree
+from voot.tree.search import check_n_simulations
 
 T = TypeVar("T")
 R = TypeVar("R")

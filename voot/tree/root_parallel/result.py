@@ -20,11 +20,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from voot.optim.base import FloatArray
-from voot.tree.mcts import PlanResult
 from voot.tree.root_parallel._compare import same_fields, same_plan
 from voot.tree.root_parallel.config import RootParallelConfig
 from voot.tree.root_parallel.merge import MergeDecision, merge_roots
 from voot.tree.root_parallel.worker import TreeResult
+from voot.tree.search import PlanResult
 
 
 @dataclass(frozen=True)

@@ -26,10 +26,11 @@ import numpy as np
 from voot.optim.base import FloatArray
 from voot.parallel import CACHE_SIZE, clear_worker_cache, worker_cache
 from voot.tree.config import MCTSConfig
-from voot.tree.mcts import MCTS, PlanResult, problem_bounds
-from voot.tree.problem import PlanningProblem
+from voot.tree.mcts import MCTS
+from voot.tree.problem import PlanningProblem, problem_bounds
 from voot.tree.root_parallel._compare import same, same_fields, same_plan
 from voot.tree.root_parallel.merge import RootStats
+from voot.tree.search import PlanResult
 
 #: A zero-argument callable that builds the planning problem (in its initial state).
 ProblemFactory = Callable[[], PlanningProblem]
