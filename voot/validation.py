@@ -260,6 +260,16 @@ def check_fields(config: Any, checks: Mapping[str, Check]) -> None:
         object.__setattr__(config, name, check(getattr(config, name), name))
 
 
+def at_most(value: float, name: str, bound: float, bound_name: str, why: str = "") -> None:
+    """Raise a ValueError unless ``value <= bound`` (two fields of one config, already
+    checked alone), e.g. ``elites must be <= population (8), got 9``; ``why`` is said after
+    the bound."""
+    if value > bound:
+        shown = f"{bound:g}" if isinstance(bound, float) else f"{bound}"
+        because = f": {why}" if why else ""
+        raise ValueError(f"{name} must be <= {bound_name} ({shown}){because}, got {value!r}")
+
+
 def config_options(config_class: Any, options: Mapping[str, Any], what: str = "") -> None:
     """Raise a ValueError naming the valid fields if ``options`` has an unknown one.
 

@@ -119,12 +119,9 @@ class PPOConfig(RLConfig):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.batch_size > self.n_steps:
-            # SB3 would cut every minibatch down to the one rollout without a word
-            raise ValueError(
-                f"batch_size must be <= n_steps ({self.n_steps}): a minibatch is drawn from"
-                f" one rollout of n_steps env steps, got {self.batch_size!r}"
-            )
+        # SB3 would cut every minibatch down to the one rollout without a word
+        why = "a minibatch is drawn from one rollout of n_steps env steps"
+        V.at_most(self.batch_size, "batch_size", self.n_steps, "n_steps", why)
 
 
 @dataclass(frozen=True)
@@ -166,12 +163,9 @@ class DDPGConfig(RLConfig):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.batch_size > self.buffer_size:
-            # SB3 would draw every batch with repeats from a buffer smaller than it
-            raise ValueError(
-                f"batch_size must be <= buffer_size ({self.buffer_size}): a batch is drawn"
-                f" from the replay buffer, got {self.batch_size!r}"
-            )
+        # SB3 would draw every batch with repeats from a buffer smaller than it
+        why = "a batch is drawn from the replay buffer"
+        V.at_most(self.batch_size, "batch_size", self.buffer_size, "buffer_size", why)
 
 
 #: The RL algorithms by name.

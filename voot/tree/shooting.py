@@ -172,16 +172,10 @@ class CEMConfig(ShootingConfig):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.elites > self.population:
-            raise ValueError(
-                f"elites must be <= population ({self.population}), got {self.elites!r}"
-            )
-        if self.min_std > self.init_std:
-            # the floor above the start: the first update would jump the spread up to it
-            raise ValueError(
-                f"min_std must be <= init_std ({self.init_std:g}): it is the standard"
-                f" deviation's floor, got {self.min_std!r}"
-            )
+        V.at_most(self.elites, "elites", self.population, "population")
+        # the floor above the start: the first update would jump the spread up to it
+        why = "it is the standard deviation's floor"
+        V.at_most(self.min_std, "min_std", self.init_std, "init_std", why)
 
 
 @dataclass(frozen=True)
