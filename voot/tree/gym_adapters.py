@@ -164,9 +164,10 @@ class MujocoGymProblem(GymProblem):
     to skip it; the next step recomputes them anyway).
 
     Args:
-        env, seed: as for :class:`GymProblem`.
+        env: the environment (wrappers allowed).
+        seed: as for :class:`GymProblem`.
         forward: run ``mj_forward`` after each restore.
-        keys: ``bonus_key`` and ``feasible_key``, as for :class:`GymProblem`.
+        **keys: ``bonus_key`` and ``feasible_key``, as for :class:`GymProblem`.
     """
 
     def __init__(
