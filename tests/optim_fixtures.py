@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
 from voot.optim import make_optimizer
 from voot.optim.base import Optimizer
+
+Opt = TypeVar("Opt", bound=Optimizer)
 
 
 def bowl(x: np.ndarray) -> float:
@@ -18,15 +20,17 @@ def bowl(x: np.ndarray) -> float:
 
 
 def run_on(
-    method: str,
+    cls: type[Opt],
     seed: int,
     d: int,
     budget: int,
     f: Callable[[np.ndarray], float] = bowl,
     **options: Any,
-) -> Optimizer:
-    """``budget`` ask/tell rounds of ``method`` on ``f`` over ``[-1, 1]^d``."""
-    opt = make_optimizer(method, [[-1.0, 1.0]] * d, seed=seed, **options)
+) -> Opt:
+    """``budget`` ask/tell rounds of optimiser ``cls`` (made by its registry name) on ``f``
+    over ``[-1, 1]^d``."""
+    opt = make_optimizer(cls.name, [[-1.0, 1.0]] * d, seed=seed, **options)
+    assert isinstance(opt, cls)
     for _ in range(budget):
         x = opt.ask()
         opt.tell(x, f(x))

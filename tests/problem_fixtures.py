@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -45,20 +46,37 @@ class Quadratic(NullProblem):
         return StepResult(1.0 - float(np.sum((action - self.optimum) ** 2)) / self.scale)
 
 
-#: ``(reward, bonus, what)``: a step that no planner may accept, and how its error names it.
+@dataclass(frozen=True)
+class NonFiniteStep:
+    """A step that no planner may accept (``reward`` or ``bonus`` not finite), and how the
+    planners' error names it (``what``)."""
+
+    reward: float
+    bonus: float
+    what: str
+
+    def __str__(self) -> str:
+        return self.what
+
+    def problem(self, after: int = 0) -> BadReward:
+        """A :class:`BadReward` whose steps are this bad one once ``after`` are done."""
+        return BadReward(self.reward, self.bonus, after)
+
+    def raises(self) -> Any:
+        """``pytest.raises`` of the planners' error for this step: it names the step's
+        action and ``what`` and says that rewards and bonuses must be finite."""
+        return pytest.raises(
+            ValueError,
+            match=rf"BadReward\.step\(action=\[.*\]\) returned {self.what}.*must be finite",
+        )
+
+
+#: Every non-finite step (as a test parameter: ``ids=str``).
 NON_FINITE_STEPS = [
-    (math.nan, 0.0, "reward=nan"),
-    (math.inf, 0.0, "reward=inf"),
-    (-math.inf, 0.0, "reward=-inf"),
-    (0.5, math.nan, "goal bonus=nan"),
-    (0.5, math.inf, "goal bonus=inf"),
-    (0.5, -math.inf, "goal bonus=-inf"),
+    NonFiniteStep(math.nan, 0.0, "reward=nan"),
+    NonFiniteStep(math.inf, 0.0, "reward=inf"),
+    NonFiniteStep(-math.inf, 0.0, "reward=-inf"),
+    NonFiniteStep(0.5, math.nan, "goal bonus=nan"),
+    NonFiniteStep(0.5, math.inf, "goal bonus=inf"),
+    NonFiniteStep(0.5, -math.inf, "goal bonus=-inf"),
 ]
-
-
-def raises_non_finite(what: str) -> Any:
-    """``pytest.raises`` of the planners' error for a :class:`BadReward` step: it names the
-    step's action and ``what`` and says that rewards and bonuses must be finite."""
-    return pytest.raises(
-        ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}.*must be finite"
-    )

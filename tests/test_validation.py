@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from enum import StrEnum
+from functools import partial
 
 import numpy as np
 import pytest
@@ -116,3 +118,24 @@ def test_real_array_takes_real_numbers_only() -> None:
     for value in bad:
         with pytest.raises(ValueError, match=r"^action must be numeric, real numbers \(ints or"):
             V.real_array(value, "action")
+
+
+def test_check_fields_stores_canonical_values_in_table_order() -> None:
+    @dataclass(frozen=True)
+    class Cfg:
+        n: object = np.int64(3)
+        on: object = np.bool_(True)
+
+    cfg = Cfg()
+    V.check_fields(cfg, {"n": partial(V.integer, low=1), "on": V.flag})
+    assert type(cfg.n) is int and cfg.n == 3 and cfg.on is True
+    with pytest.raises(ValueError, match=r"^n must be an integer >= 1, got 0$"):
+        V.check_fields(Cfg(n=0, on="yes"), {"n": partial(V.integer, low=1), "on": V.flag})
+
+
+def test_at_most_names_both_fields() -> None:
+    V.at_most(3, "elites", 3, "population")
+    with pytest.raises(ValueError, match=r"^elites must be <= population \(8\), got 9$"):
+        V.at_most(9, "elites", 8, "population")
+    with pytest.raises(ValueError, match=r"^a must be <= b \(0\.1\): a floor, got 0\.2$"):
+        V.at_most(0.2, "a", 0.1, "b", "a floor")

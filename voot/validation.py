@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from enum import Enum
 from typing import Any, TypeVar
 
@@ -241,6 +241,33 @@ def positive_number(name: str, value: Any, allow_zero: bool = False) -> float:
     if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
         raise ValueError(f"{name} must be a finite number {'>=' if allow_zero else '>'} 0, got {v}")
     return v
+
+
+#: A field's check in a :func:`check_fields` table: ``check(value, name)`` returns the value
+#: in its canonical type or raises a ValueError naming the field (e.g. :func:`flag`, or
+#: ``functools.partial(integer, low=1)``).
+Check = Callable[[Any, str], Any]
+
+
+def check_fields(config: Any, checks: Mapping[str, Check]) -> None:
+    """Check the fields of the frozen dataclass ``config`` named in ``checks`` (field name ->
+    :data:`Check`), in the table's order, and store each one's canonical value back.
+
+    A config's ``__post_init__`` runs its table with this, then checks what ties fields
+    together (e.g. ``batch_size <= n_steps``) on the canonical values.
+    """
+    for name, check in checks.items():
+        object.__setattr__(config, name, check(getattr(config, name), name))
+
+
+def at_most(value: float, name: str, bound: float, bound_name: str, why: str = "") -> None:
+    """Raise a ValueError unless ``value <= bound`` (two fields of one config, already
+    checked alone), e.g. ``elites must be <= population (8), got 9``; ``why`` is said after
+    the bound."""
+    if value > bound:
+        shown = f"{bound:g}" if isinstance(bound, float) else f"{bound}"
+        because = f": {why}" if why else ""
+        raise ValueError(f"{name} must be <= {bound_name} ({shown}){because}, got {value!r}")
 
 
 def config_options(config_class: Any, options: Mapping[str, Any], what: str = "") -> None:

@@ -15,9 +15,7 @@ FAST = {"fit_restarts": 1}
 
 
 def run(seed: int, d: int = 2, budget: int = 15, f=bowl, **options) -> BaMSOO:
-    opt = run_on("bamsoo", seed, d, budget, f, **{**FAST, **options})
-    assert isinstance(opt, BaMSOO)
-    return opt
+    return run_on(BaMSOO, seed, d, budget, f, **{**FAST, **options})
 
 
 def test_split_trisects_the_longest_side() -> None:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
 
 import numpy as np
 import pytest
@@ -123,12 +122,9 @@ class _Cfg(OptimizerConfig):
     step: float = 0.1
 
 
-class _Counter(Optimizer):
+class _Counter(Optimizer, name="counter", config_class=_Cfg, supports_revalue=True):
     """Asks the lower corner shifted by step * n; records the hooks it receives."""
 
-    name: ClassVar[str] = "counter"
-    config_class: ClassVar[type[OptimizerConfig]] = _Cfg
-    supports_revalue: ClassVar[bool] = True
     config: _Cfg
 
     def __init__(self, *args, **kwargs) -> None:  # type: ignore[no-untyped-def]
@@ -145,8 +141,8 @@ class _Counter(Optimizer):
         self.hooks.append(("revalue", index, value))
 
 
-class _NoRevalue(_Counter):
-    supports_revalue: ClassVar[bool] = False
+class _NoRevalue(_Counter, supports_revalue=False):
+    """Like its base, without revalue()."""
 
 
 def test_history_grows_past_initial_capacity() -> None:

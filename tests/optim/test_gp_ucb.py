@@ -14,9 +14,7 @@ FAST = {"n_candidates": 2000, "fit_restarts": 1}
 
 
 def run(seed: int, d: int = 2, budget: int = 12, **options) -> GPUCB:
-    opt = run_on("gp_ucb", seed, d, budget, **{**FAST, **options})
-    assert isinstance(opt, GPUCB)
-    return opt
+    return run_on(GPUCB, seed, d, budget, **{**FAST, **options})
 
 
 def test_registered_with_paper_grid() -> None:

@@ -15,9 +15,7 @@ FAST = {"n_candidates": 2000, "fit_restarts": 1}
 
 
 def run(seed: int, d: int = 5, budget: int = 10, **options) -> REMBO:
-    opt = run_on("rembo", seed, d, budget, **{**FAST, **options})
-    assert isinstance(opt, REMBO)
-    return opt
+    return run_on(REMBO, seed, d, budget, **{**FAST, **options})
 
 
 def test_default_low_dim_follows_the_paper() -> None:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from problem_fixtures import NON_FINITE_STEPS, BadReward, Quadratic, raises_non_finite
+from problem_fixtures import NON_FINITE_STEPS, NonFiniteStep, Quadratic
 
 from voot.optim.base import Bounds
 from voot.tree import plan
@@ -165,14 +165,11 @@ def test_bonus_counts_in_the_objective_not_in_the_return() -> None:
 
 
 @pytest.mark.parametrize("planner", PLANNERS)
-@pytest.mark.parametrize(("reward", "bonus", "what"), NON_FINITE_STEPS)
-def test_non_finite_reward_or_bonus_stops_every_planner(
-    planner: str, reward: float, bonus: float, what: str
-) -> None:
+@pytest.mark.parametrize("bad", NON_FINITE_STEPS, ids=str)
+def test_non_finite_reward_or_bonus_stops_every_planner(planner: str, bad: NonFiniteStep) -> None:
     """The tree search's error, naming the step; the cut rollout leaves no trace."""
-    problem = BadReward(reward, bonus, after=7)
-    shooter = ShootingPlanner(problem, shooting_config(planner, horizon=3), seed=0)
-    with raises_non_finite(what):
+    shooter = ShootingPlanner(bad.problem(after=7), shooting_config(planner, horizon=3), seed=0)
+    with bad.raises():
         shooter.search(20)
     assert shooter.n_simulations == 2  # 2 rollouts of 3 steps; the 8th step was bad
     assert len(shooter.best_return_curve) == 2
@@ -181,7 +178,7 @@ def test_non_finite_reward_or_bonus_stops_every_planner(
     with pytest.raises(ValueError, match="must be finite"):
         shooter.search(1)
     with pytest.raises(ValueError, match="must be finite"):
-        plan(BadReward(reward, bonus), planner, n_simulations=5, seed=0, horizon=2)
+        plan(bad.problem(), planner, n_simulations=5, seed=0, horizon=2)
 
 
 def test_callback_stops_and_record_info() -> None:

@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 import pytest
-from problem_fixtures import NON_FINITE_STEPS, BadReward, Quadratic, raises_non_finite
+from problem_fixtures import NON_FINITE_STEPS, NonFiniteStep, Quadratic
 
 from voot.optim.base import Bounds
 from voot.tree import MCTS, MCTSConfig, Node, StepResult, plan, planner_config
@@ -754,13 +754,10 @@ def test_a_search_interrupted_by_a_step_error_continues_on_a_feasible_child() ->
 @pytest.mark.parametrize(
     "planner", ["voot", "pw_uct", "uniform_t", "hoot", "doot", "rand_doot", "voronoi_pw"]
 )
-@pytest.mark.parametrize(("reward", "bonus", "what"), NON_FINITE_STEPS)
-def test_non_finite_reward_or_bonus_stops_every_planner(
-    planner: str, reward: float, bonus: float, what: str
-) -> None:
-    problem = BadReward(reward, bonus, after=3)
-    mcts = MCTS(problem, planner_config(planner, depth_limit=3), seed=0)
-    with raises_non_finite(what):
+@pytest.mark.parametrize("bad", NON_FINITE_STEPS, ids=str)
+def test_non_finite_reward_or_bonus_stops_every_planner(planner: str, bad: NonFiniteStep) -> None:
+    mcts = MCTS(bad.problem(after=3), planner_config(planner, depth_limit=3), seed=0)
+    with bad.raises():
         mcts.search(20)
     n_nodes = len(mcts.nodes)
     # The tree is unchanged by the failed step, and the next search restores the state.

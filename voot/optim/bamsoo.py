@@ -46,14 +46,14 @@ import heapq
 import math
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
 from voot import validation as V
 from voot.optim._generator import GeneratorOptimizer, Search
 from voot.optim._surrogate import Surrogate, SurrogateConfig
-from voot.optim.base import FloatArray, OptimizerConfig
+from voot.optim.base import FloatArray
 from voot.optim.gp import GaussianProcess
 
 
@@ -170,11 +170,9 @@ class _Node:
         ]
 
 
-class BaMSOO(GeneratorOptimizer):
+class BaMSOO(GeneratorOptimizer, name="bamsoo", config_class=BaMSOOConfig):
     """Bayesian Multi-Scale Optimistic Optimization. See the module docstring."""
 
-    name: ClassVar[str] = "bamsoo"
-    config_class: ClassVar[type[OptimizerConfig]] = BaMSOOConfig
     config: BaMSOOConfig
 
     def _setup(self) -> None:

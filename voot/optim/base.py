@@ -288,7 +288,9 @@ class Optimizer(ABC):
 
     Subclasses implement :meth:`_ask`, may override :meth:`_tell` and build their own
     state in :meth:`_setup`; the base class owns the constructor, the history (``xs``,
-    ``values``), the best point and input validation.
+    ``values``), the best point and input validation. A subclass declares what it is in
+    its class line, ``class VOO(Optimizer, name="voo", config_class=VOOConfig,
+    supports_revalue=True)``; a keyword left out is inherited.
     """
 
     #: Registry name (set by subclasses), e.g. ``"voo"``.
@@ -297,6 +299,23 @@ class Optimizer(ABC):
     config_class: ClassVar[type[OptimizerConfig]] = OptimizerConfig
     #: Whether :meth:`revalue` is supported (needed by tree search samplers).
     supports_revalue: ClassVar[bool] = False
+
+    def __init_subclass__(
+        cls,
+        *,
+        name: str | None = None,
+        config_class: type[OptimizerConfig] | None = None,
+        supports_revalue: bool | None = None,
+        **kwargs: Any,
+    ) -> None:
+        """Set the class attributes above from the class line's keywords."""
+        super().__init_subclass__(**kwargs)
+        if name is not None:
+            cls.name = name
+        if config_class is not None:
+            cls.config_class = config_class
+        if supports_revalue is not None:
+            cls.supports_revalue = supports_revalue
 
     def __init__(
         self,

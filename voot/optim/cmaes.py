@@ -34,7 +34,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from enum import StrEnum
 from types import MappingProxyType
-from typing import Any, ClassVar
+from typing import Any
 
 import cma
 import numpy as np
@@ -209,7 +209,7 @@ class RunRecord:
     stop: dict[str, Any] = field(default_factory=dict)
 
 
-class CMAES(Optimizer):
+class CMAES(Optimizer, name="cmaes", config_class=CMAESConfig, supports_revalue=False):
     """CMA-ES with restarts (maximisation), one point per ask. See the module docstring.
 
     Points told that the adapter did not ask (e.g. the common ``initial_point``, which
@@ -218,9 +218,6 @@ class CMAES(Optimizer):
     further asks hand out the untold members again.
     """
 
-    name: ClassVar[str] = "cmaes"
-    config_class: ClassVar[type[OptimizerConfig]] = CMAESConfig
-    supports_revalue: ClassVar[bool] = False
     config: CMAESConfig
 
     def _setup(self) -> None:

@@ -126,7 +126,7 @@ class DOOConfig(OptimizerConfig):
         return {"epsilon": list(PAPER_EPSILONS)}
 
 
-class DOO(Optimizer):
+class DOO(Optimizer, name="doo", config_class=DOOConfig, supports_revalue=True):
     """Deterministic Optimistic Optimization (maximisation). See the module docstring.
 
     Each ``ask`` returns the representative point of the next cell to evaluate: the
@@ -137,9 +137,6 @@ class DOO(Optimizer):
     cell can be split any more (float resolution), asks are uniform in the box.
     """
 
-    name: ClassVar[str] = "doo"
-    config_class: ClassVar[type[OptimizerConfig]] = DOOConfig
-    supports_revalue: ClassVar[bool] = True
     config: DOOConfig
     #: Representative points uniform in the cell (RAND-DOO) instead of the centre.
     _random_points: ClassVar[bool] = False
@@ -305,7 +302,7 @@ class RandDOOConfig(DOOConfig):
         V.flag(self.reuse_parent_point, "reuse_parent_point")
 
 
-class RandDOO(DOO):
+class RandDOO(DOO, name="rand_doo", config_class=RandDOOConfig):
     """RAND-DOO: DOO whose cells are represented by a uniform point of the cell.
 
     For tree search, where an infeasible sample must not split its cell (RAND-DOOT):
@@ -317,8 +314,6 @@ class RandDOO(DOO):
       cell loses its point and is the next one sampled.
     """
 
-    name: ClassVar[str] = "rand_doo"
-    config_class: ClassVar[type[OptimizerConfig]] = RandDOOConfig
     config: RandDOOConfig
     _random_points: ClassVar[bool] = True
 

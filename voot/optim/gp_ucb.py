@@ -22,10 +22,10 @@ rank-1 Cholesky update.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any
 
 from voot.optim._surrogate import Surrogate, UCBConfig
-from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer
 
 
 @dataclass(frozen=True)
@@ -39,12 +39,9 @@ class GPUCBConfig(UCBConfig):
         return {"zeta": [0.01, 0.1, 1.0, 5.0, 10.0, 30.0]}
 
 
-class GPUCB(Optimizer):
+class GPUCB(Optimizer, name="gp_ucb", config_class=GPUCBConfig, supports_revalue=True):
     """GP-UCB maximiser on a box. See the module docstring."""
 
-    name: ClassVar[str] = "gp_ucb"
-    config_class: ClassVar[type[OptimizerConfig]] = GPUCBConfig
-    supports_revalue: ClassVar[bool] = True
     config: GPUCBConfig
 
     def _setup(self) -> None:

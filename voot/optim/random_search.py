@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar
 
 from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
 
@@ -13,12 +12,10 @@ class RandomSearchConfig(OptimizerConfig):
     """Uniform random search has no hyperparameters."""
 
 
-class RandomSearch(Optimizer):
+class RandomSearch(
+    Optimizer, name="random", config_class=RandomSearchConfig, supports_revalue=True
+):
     """Samples every point uniformly in the box, independently of past values."""
-
-    name: ClassVar[str] = "random"
-    config_class: ClassVar[type[OptimizerConfig]] = RandomSearchConfig
-    supports_revalue: ClassVar[bool] = True
 
     def _ask(self) -> FloatArray:
         return self.bounds.sample(self.rng)

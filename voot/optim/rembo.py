@@ -32,14 +32,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from voot import validation as V
 from voot.optim._surrogate import Surrogate, UCBConfig
-from voot.optim.base import FloatArray, Optimizer, OptimizerConfig
+from voot.optim.base import FloatArray, Optimizer
 
 
 def default_low_dim(dim: int) -> int:
@@ -74,12 +74,9 @@ class REMBOConfig(UCBConfig):
         return {"zeta": [0.01, 0.1, 0.5, 1.0]}
 
 
-class REMBO(Optimizer):
+class REMBO(Optimizer, name="rembo", config_class=REMBOConfig, supports_revalue=True):
     """GP-UCB in a random linear embedding. See the module docstring."""
 
-    name: ClassVar[str] = "rembo"
-    config_class: ClassVar[type[OptimizerConfig]] = REMBOConfig
-    supports_revalue: ClassVar[bool] = True
     config: REMBOConfig
 
     def _setup(self) -> None:

@@ -35,7 +35,6 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass
-from typing import ClassVar
 
 from voot import validation as V
 from voot.optim._generator import GeneratorOptimizer, Search
@@ -69,11 +68,9 @@ class SOOConfig(OptimizerConfig):
         object.__setattr__(self, "scale", parse_scale(self.scale))
 
 
-class SOO(GeneratorOptimizer):
+class SOO(GeneratorOptimizer, name="soo", config_class=SOOConfig):
     """Simultaneous Optimistic Optimization (maximisation). See the module docstring."""
 
-    name: ClassVar[str] = "soo"
-    config_class: ClassVar[type[OptimizerConfig]] = SOOConfig
     config: SOOConfig
 
     def _setup(self) -> None:

@@ -37,7 +37,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import StrEnum
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -482,12 +482,9 @@ class _BestCell:
         self.n = n
 
 
-class VOO(Optimizer):
+class VOO(Optimizer, name="voo", config_class=VOOConfig, supports_revalue=True):
     """Voronoi Optimistic Optimization (maximisation). See the module docstring."""
 
-    name: ClassVar[str] = "voo"
-    config_class: ClassVar[type[OptimizerConfig]] = VOOConfig
-    supports_revalue: ClassVar[bool] = True
     config: VOOConfig
 
     def _setup(self) -> None:

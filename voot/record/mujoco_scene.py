@@ -202,7 +202,6 @@ class MujocoScene:
                 self.skipped += 1
                 continue
             per_body.setdefault(int(m.geom_bodyid[geom]), {}).setdefault(kind, []).append(geom)
-        solid = rr.components.FillMode.Solid
         n = 0
         for b, groups in per_body.items():
             ent = self.body_entities[b]
@@ -224,16 +223,13 @@ class MujocoScene:
                     else:
                         half.append(s)
                         centers.append(p)
-                rec.log(
+                self._log_solids(
+                    rec,
                     f"{ent}/boxes",
-                    rr.Boxes3D(
-                        half_sizes=np.array(half),
-                        centers=np.array(centers),
-                        quaternions=self._quats(boxes),
-                        colors=self._colors(boxes),
-                        fill_mode=solid,
-                    ),
-                    static=True,
+                    rr.Boxes3D,
+                    boxes,
+                    half_sizes=np.array(half),
+                    centers=np.array(centers),
                 )
             ell = groups.get("sphere", []) + groups.get("ellipsoid", [])
             if ell:
@@ -243,30 +239,24 @@ class MujocoScene:
                     else np.array(m.geom_size[g])
                     for g in ell
                 ]
-                rec.log(
+                self._log_solids(
+                    rec,
                     f"{ent}/ellipsoids",
-                    rr.Ellipsoids3D(
-                        half_sizes=np.array(radii),
-                        centers=np.array(m.geom_pos[ell]),
-                        quaternions=self._quats(ell),
-                        colors=self._colors(ell),
-                        fill_mode=solid,
-                    ),
-                    static=True,
+                    rr.Ellipsoids3D,
+                    ell,
+                    half_sizes=np.array(radii),
+                    centers=np.array(m.geom_pos[ell]),
                 )
             cyl = groups.get("cylinder", [])
             if cyl:
-                rec.log(
+                self._log_solids(
+                    rec,
                     f"{ent}/cylinders",
-                    rr.Cylinders3D(
-                        lengths=2.0 * np.array(m.geom_size[cyl, 1]),
-                        radii=np.array(m.geom_size[cyl, 0]),
-                        centers=np.array(m.geom_pos[cyl]),
-                        quaternions=self._quats(cyl),
-                        colors=self._colors(cyl),
-                        fill_mode=solid,
-                    ),
-                    static=True,
+                    rr.Cylinders3D,
+                    cyl,
+                    lengths=2.0 * np.array(m.geom_size[cyl, 1]),
+                    radii=np.array(m.geom_size[cyl, 0]),
+                    centers=np.array(m.geom_pos[cyl]),
                 )
             cap = groups.get("capsule", [])
             if cap:
@@ -275,17 +265,14 @@ class MujocoScene:
                 axis[:, 2] = half_len
                 # rerun's capsule runs from its origin along +z; MuJoCo's is centred.
                 start = np.array(m.geom_pos[cap]) - _quat_rotate(np.array(m.geom_quat[cap]), axis)
-                rec.log(
+                self._log_solids(
+                    rec,
                     f"{ent}/capsules",
-                    rr.Capsules3D(
-                        lengths=2.0 * half_len,
-                        radii=np.array(m.geom_size[cap, 0]),
-                        translations=start,
-                        quaternions=self._quats(cap),
-                        colors=self._colors(cap),
-                        fill_mode=solid,
-                    ),
-                    static=True,
+                    rr.Capsules3D,
+                    cap,
+                    lengths=2.0 * half_len,
+                    radii=np.array(m.geom_size[cap, 0]),
+                    translations=start,
                 )
             meshes = groups.get("mesh", [])
             if meshes:
@@ -296,6 +283,24 @@ class MujocoScene:
                 rec.log(self.body_entities[b], self._transform(b), static=True)
         self.n_geoms = n
         return n
+
+    def _log_solids(
+        self, rec: Any, entity: str, archetype: Any, geoms: list[int], **shape: Any
+    ) -> None:
+        """Log ``geoms`` as one static, solid rerun ``archetype`` (``rr.Boxes3D`` ...): its
+        ``shape`` arguments (sizes, positions) and each geom's orientation and colour."""
+        import rerun as rr
+
+        rec.log(
+            entity,
+            archetype(
+                **shape,
+                quaternions=self._quats(geoms),
+                colors=self._colors(geoms),
+                fill_mode=rr.components.FillMode.Solid,
+            ),
+            static=True,
+        )
 
     def _quats(self, geoms: list[int]) -> Any:
         import rerun as rr

@@ -23,6 +23,7 @@ buffered and sent in columns (:class:`SampleLog`).
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -144,6 +145,7 @@ class _Series:
         self.arrays.clear()
 
 
+@dataclass(kw_only=True, eq=False)
 class SampleLog:
     r"""Drawings of the watched nodes' sampled actions, buffered and sent as columns.
 
@@ -153,37 +155,25 @@ class SampleLog:
     per drawing. Every drawn instance also carries its :math:`\hat Q` as the component
     ``q_hat`` (shown in the viewer's selection panel).
 
-    Args:
+    Attributes:
         scene_root, plot_root: entity roots of the 3-D drawings and of the 2-D fallback.
         timeline: the timeline of the rows (simulation index).
         height, arrow_length, point_radius: drawing sizes (m).
         labels: also attach ``Q=...`` text labels (hidden; costly for big nodes).
         infeasible_color: RGB of infeasible actions.
+        entities: entity paths drawn so far (flushed or not).
     """
 
-    def __init__(
-        self,
-        *,
-        scene_root: str = "scene",
-        plot_root: str = "samples",
-        timeline: str = "search",
-        height: float = 0.02,
-        arrow_length: float = 0.15,
-        point_radius: float = 0.03,
-        labels: bool = False,
-        infeasible_color: tuple[int, int, int] = (170, 170, 170),
-    ) -> None:
-        self.scene_root = scene_root
-        self.plot_root = plot_root
-        self.timeline = timeline
-        self.height = height
-        self.arrow_length = arrow_length
-        self.point_radius = point_radius
-        self.labels = labels
-        self.infeasible_color = infeasible_color
-        self._series: dict[str, _Series] = {}
-        #: Entity paths drawn so far (flushed or not).
-        self.entities: set[str] = set()
+    scene_root: str = "scene"
+    plot_root: str = "samples"
+    timeline: str = "search"
+    height: float = 0.02
+    arrow_length: float = 0.15
+    point_radius: float = 0.03
+    labels: bool = False
+    infeasible_color: tuple[int, int, int] = (170, 170, 170)
+    entities: set[str] = field(default_factory=set, init=False)
+    _series: dict[str, _Series] = field(default_factory=dict, init=False, repr=False)
 
     def _get(self, entity: str, kind: str) -> _Series:
         series = self._series.get(entity)

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, fields
+from functools import partial
 from types import MappingProxyType
 from typing import Any, ClassVar
 
@@ -53,17 +54,17 @@ class RLConfig:
     max_episode_steps: int | None = None
 
     name: ClassVar[str] = ""
+    #: Field -> check, run in this order by ``__post_init__`` (a subclass extends it).
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        "gamma": V.probability,
+        "learning_rate": V.positive,
+        "batch_size": partial(V.integer, low=1),
+        "device": partial(V.one_of, valid=DEVICES),
+        "max_episode_steps": partial(V.optional_integer, low=1),
+    }
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "gamma", V.number(self.gamma, "gamma", 0.0, 1.0))
-        object.__setattr__(self, "learning_rate", V.positive(self.learning_rate, "learning_rate"))
-        object.__setattr__(self, "batch_size", V.integer(self.batch_size, "batch_size", 1))
-        object.__setattr__(self, "device", V.one_of(self.device, "device", DEVICES))
-        object.__setattr__(
-            self,
-            "max_episode_steps",
-            V.optional_integer(self.max_episode_steps, "max_episode_steps", 1),
-        )
+        V.check_fields(self, self._checks)
 
     def to_dict(self) -> dict[str, Any]:
         """Every field by name, and the algorithm's ``name``."""
@@ -104,25 +105,23 @@ class PPOConfig(RLConfig):
     max_grad_norm: float = 0.5
 
     name: ClassVar[str] = "ppo"
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **RLConfig._checks,
+        "n_steps": partial(V.integer, low=2),
+        "n_epochs": partial(V.integer, low=1),
+        "gae_lambda": V.probability,
+        "clip_range": V.positive,
+        "normalize_advantage": V.flag,
+        "ent_coef": partial(V.positive, allow_zero=True),
+        "vf_coef": V.positive,
+        "max_grad_norm": V.positive,
+    }
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        object.__setattr__(self, "n_steps", V.integer(self.n_steps, "n_steps", 2))
-        if self.batch_size > self.n_steps:
-            # SB3 would cut every minibatch down to the one rollout without a word
-            raise ValueError(
-                f"batch_size must be <= n_steps ({self.n_steps}): a minibatch is drawn from"
-                f" one rollout of n_steps env steps, got {self.batch_size!r}"
-            )
-        object.__setattr__(self, "n_epochs", V.integer(self.n_epochs, "n_epochs", 1))
-        object.__setattr__(self, "gae_lambda", V.number(self.gae_lambda, "gae_lambda", 0.0, 1.0))
-        object.__setattr__(self, "clip_range", V.positive(self.clip_range, "clip_range"))
-        object.__setattr__(
-            self, "normalize_advantage", V.flag(self.normalize_advantage, "normalize_advantage")
-        )
-        object.__setattr__(self, "ent_coef", V.positive(self.ent_coef, "ent_coef", allow_zero=True))
-        object.__setattr__(self, "vf_coef", V.positive(self.vf_coef, "vf_coef"))
-        object.__setattr__(self, "max_grad_norm", V.positive(self.max_grad_norm, "max_grad_norm"))
+        # SB3 would cut every minibatch down to the one rollout without a word
+        why = "a minibatch is drawn from one rollout of n_steps env steps"
+        V.at_most(self.batch_size, "batch_size", self.n_steps, "n_steps", why)
 
 
 @dataclass(frozen=True)
@@ -152,29 +151,21 @@ class DDPGConfig(RLConfig):
     action_noise_sigma: float = 0.1
 
     name: ClassVar[str] = "ddpg"
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **RLConfig._checks,
+        "buffer_size": partial(V.integer, low=1),
+        "learning_starts": partial(V.integer, low=0),
+        "tau": partial(V.number, low=0.0, high=1.0, open_low=True),
+        "train_freq": partial(V.integer, low=1),
+        "gradient_steps": partial(V.integer, low=1),
+        "action_noise_sigma": partial(V.positive, allow_zero=True),
+    }
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        object.__setattr__(self, "buffer_size", V.integer(self.buffer_size, "buffer_size", 1))
-        if self.batch_size > self.buffer_size:
-            # SB3 would draw every batch with repeats from a buffer smaller than it
-            raise ValueError(
-                f"batch_size must be <= buffer_size ({self.buffer_size}): a batch is drawn"
-                f" from the replay buffer, got {self.batch_size!r}"
-            )
-        object.__setattr__(
-            self, "learning_starts", V.integer(self.learning_starts, "learning_starts", 0)
-        )
-        object.__setattr__(self, "tau", V.number(self.tau, "tau", 0.0, 1.0, open_low=True))
-        object.__setattr__(self, "train_freq", V.integer(self.train_freq, "train_freq", 1))
-        object.__setattr__(
-            self, "gradient_steps", V.integer(self.gradient_steps, "gradient_steps", 1)
-        )
-        object.__setattr__(
-            self,
-            "action_noise_sigma",
-            V.positive(self.action_noise_sigma, "action_noise_sigma", allow_zero=True),
-        )
+        # SB3 would draw every batch with repeats from a buffer smaller than it
+        why = "a batch is drawn from the replay buffer"
+        V.at_most(self.batch_size, "batch_size", self.buffer_size, "buffer_size", why)
 
 
 #: The RL algorithms by name.

@@ -162,22 +162,22 @@ class MujocoGymProblem(GymProblem):
     and the wrappers' step counters. ``restore`` also runs ``mj_forward`` so that derived
     quantities (body positions) match the state, as after a step (set ``forward=False``
     to skip it; the next step recomputes them anyway).
+
+    Args:
+        env: the environment (wrappers allowed).
+        seed: as for :class:`GymProblem`.
+        forward: run ``mj_forward`` after each restore.
+        **keys: ``bonus_key`` and ``feasible_key``, as for :class:`GymProblem`.
     """
 
     def __init__(
-        self,
-        env: Any,
-        seed: int | None = None,
-        *,
-        bonus_key: str = "bonus",
-        feasible_key: str = "feasible",
-        forward: bool = True,
+        self, env: Any, seed: int | None = None, *, forward: bool = True, **keys: str
     ) -> None:
         import mujoco
 
         self._mujoco = mujoco
         self.forward = forward
-        super().__init__(env, seed, bonus_key=bonus_key, feasible_key=feasible_key)
+        super().__init__(env, seed, **keys)
         self._model = self.unwrapped.model
         self._sig = int(mujoco.mjtState.mjSTATE_INTEGRATION)
         self._size = int(mujoco.mj_stateSize(self._model, self._sig))

@@ -76,6 +76,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import asdict, dataclass, replace
+from functools import partial
 from types import MappingProxyType
 from typing import Any, ClassVar
 
@@ -108,10 +109,14 @@ class ShootingConfig:
 
     #: The planner's registry name.
     name: ClassVar[str] = ""
+    #: Field -> check, run in this order by ``__post_init__`` (a subclass extends it).
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        "horizon": partial(V.integer, low=1),
+        "gamma": V.probability,
+    }
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "horizon", V.integer(self.horizon, "horizon", 1))
-        object.__setattr__(self, "gamma", V.number(self.gamma, "gamma", 0.0, 1.0))
+        V.check_fields(self, self._checks)
 
     def replace(self, **changes: Any) -> ShootingConfig:
         """A copy with some fields changed (validated again)."""
@@ -156,28 +161,21 @@ class CEMConfig(ShootingConfig):
     smoothing: float = 0.1
 
     name: ClassVar[str] = "cem"
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **ShootingConfig._checks,
+        "population": partial(V.integer, low=2),
+        "elites": partial(V.integer, low=1),
+        "init_std": V.positive,
+        "min_std": partial(V.positive, allow_zero=True),
+        "smoothing": partial(V.number, low=0.0, high=1.0, open_high=True),
+    }
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        object.__setattr__(self, "population", V.integer(self.population, "population", 2))
-        elites = V.integer(self.elites, "elites", 1)
-        if elites > self.population:
-            raise ValueError(
-                f"elites must be <= population ({self.population}), got {self.elites!r}"
-            )
-        object.__setattr__(self, "elites", elites)
-        object.__setattr__(self, "init_std", V.positive(self.init_std, "init_std"))
-        min_std = V.positive(self.min_std, "min_std", allow_zero=True)
-        if min_std > self.init_std:
-            # the floor above the start: the first update would jump the spread up to it
-            raise ValueError(
-                f"min_std must be <= init_std ({self.init_std:g}): it is the standard"
-                f" deviation's floor, got {self.min_std!r}"
-            )
-        object.__setattr__(self, "min_std", min_std)
-        object.__setattr__(
-            self, "smoothing", V.number(self.smoothing, "smoothing", 0.0, 1.0, open_high=True)
-        )
+        V.at_most(self.elites, "elites", self.population, "population")
+        # the floor above the start: the first update would jump the spread up to it
+        why = "it is the standard deviation's floor"
+        V.at_most(self.min_std, "min_std", self.init_std, "init_std", why)
 
 
 @dataclass(frozen=True)
@@ -202,12 +200,12 @@ class MPPIConfig(ShootingConfig):
     temperature: float = 0.01
 
     name: ClassVar[str] = "mppi"
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        object.__setattr__(self, "population", V.integer(self.population, "population", 1))
-        object.__setattr__(self, "noise", V.positive(self.noise, "noise"))
-        object.__setattr__(self, "temperature", V.positive(self.temperature, "temperature"))
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **ShootingConfig._checks,
+        "population": partial(V.integer, low=1),
+        "noise": V.positive,
+        "temperature": V.positive,
+    }
 
 
 @dataclass(frozen=True)
@@ -227,11 +225,11 @@ class PredictiveSamplingConfig(ShootingConfig):
     noise: float = 0.1
 
     name: ClassVar[str] = "predictive_sampling"
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        object.__setattr__(self, "population", V.integer(self.population, "population", 2))
-        object.__setattr__(self, "noise", V.positive(self.noise, "noise"))
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **ShootingConfig._checks,
+        "population": partial(V.integer, low=2),
+        "noise": V.positive,
+    }
 
 
 #: The sampling-based planners by name.

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Generic, TypeVar, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -25,6 +25,28 @@ from voot.tree.root_parallel.config import RootParallelConfig
 from voot.tree.root_parallel.merge import MergeDecision, merge_roots
 from voot.tree.root_parallel.worker import TreeResult
 from voot.tree.search import PlanResult
+
+T = TypeVar("T")
+
+
+class _PlanField(Generic[T]):
+    """A read-only attribute of :class:`RootParallelResult` that is its merged plan's field
+    ``source`` (by default the attribute's own name)."""
+
+    def __init__(self, source: str = "") -> None:
+        self.source = source
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.source = self.source or name
+
+    @overload
+    def __get__(self, result: None, owner: type) -> _PlanField[T]: ...
+    @overload
+    def __get__(self, result: RootParallelResult, owner: type) -> T: ...
+    def __get__(self, result: RootParallelResult | None, owner: type) -> _PlanField[T] | T:
+        if result is None:
+            return self
+        return getattr(result.plan, self.source)  # type: ignore[no-any-return]
 
 
 @dataclass(frozen=True)
@@ -44,13 +66,32 @@ class RootParallelResult:
             best at that index, lowest on ties, if asked), ``n_simulations`` per tree
             (:math:`N`; the longest tree's), the sums over trees of ``n_nodes``,
             ``n_steps``, ``n_feasibility_checks`` and ``n_node_visits``, and the trees'
-            search seconds summed as ``wall_time``. Each of these is also a read-only
-            attribute of the result under its old name (``res.best_return`` is
-            ``res.plan.best_return``; ``res.search_time`` is ``res.plan.wall_time``).
+            search seconds summed as ``wall_time``.
         total_simulations: simulations of all trees.
         started: ``time.time()`` at the start of the call.
         wall_time: seconds of the whole call (workers, transfer and merge included).
         cpu_time: the trees' CPU seconds summed.
+
+    The plan's fields are also read-only attributes of the result, under the names a
+    single tree's result uses (``res.best_return`` is ``res.plan.best_return``):
+
+    | attribute | what |
+    | --- | --- |
+    | ``best_action`` | the merged root action (None if no root has an action) |
+    | ``actions`` | the best plan's actions (the best tree's) |
+    | ``rewards`` | the best plan's rewards (goal bonus excluded) |
+    | ``bonuses`` | the best plan's goal bonuses |
+    | ``feasible`` | whether each action of the best plan was feasible |
+    | ``best_return`` | the best plan's return (the best tree's) |
+    | ``best_leaf_info`` | the step info of the best plan's last action |
+    | ``best_return_curve`` | :math:`B_K(i) = \\max_k B^{(k)}(i)`, ``i = 1 .. N`` |
+    | ``info_curve`` | ``info[record_info]`` of the tree best at each index (if asked) |
+    | ``n_simulations`` | simulations per tree (:math:`N`; the longest tree's) |
+    | ``n_nodes`` | nodes of all trees |
+    | ``n_steps`` | simulator steps of all trees |
+    | ``n_feasibility_checks`` | feasibility checks of all trees |
+    | ``n_node_visits`` | node visits of all trees |
+    | ``search_time`` | the plan's ``wall_time``: the trees' search seconds summed (compute, not wall time) |
     """
 
     parallel: RootParallelConfig
@@ -71,81 +112,22 @@ class RootParallelResult:
 
     __hash__ = None  # type: ignore[assignment]
 
-    # ----- the merged plan's fields, under their old names ------------------------------
-    @property
-    def best_action(self) -> FloatArray | None:
-        """The merged root action (None if no root has an action)."""
-        return self.plan.best_action
-
-    @property
-    def actions(self) -> tuple[FloatArray, ...]:
-        """The best plan's actions (the best tree's)."""
-        return self.plan.actions
-
-    @property
-    def rewards(self) -> FloatArray:
-        """The best plan's rewards (goal bonus excluded)."""
-        return self.plan.rewards
-
-    @property
-    def bonuses(self) -> FloatArray:
-        """The best plan's goal bonuses."""
-        return self.plan.bonuses
-
-    @property
-    def feasible(self) -> tuple[bool, ...]:
-        """Whether each action of the best plan was feasible."""
-        return self.plan.feasible
-
-    @property
-    def best_return(self) -> float:
-        """The best plan's return (the best tree's)."""
-        return self.plan.best_return
-
-    @property
-    def best_leaf_info(self) -> Mapping[str, Any]:
-        """The step info of the best plan's last action."""
-        return self.plan.best_leaf_info
-
-    @property
-    def best_return_curve(self) -> FloatArray:
-        """:math:`B_K(i) = \\max_k B^{(k)}(i)`, ``i = 1 .. N``."""
-        return self.plan.best_return_curve
-
-    @property
-    def info_curve(self) -> tuple[Any, ...] | None:
-        """``info[record_info]`` of the tree best at each index (if asked)."""
-        return self.plan.info_curve
-
-    @property
-    def n_simulations(self) -> int:
-        """Simulations per tree (:math:`N`; the longest tree's)."""
-        return self.plan.n_simulations
-
-    @property
-    def n_nodes(self) -> int:
-        """Nodes of all trees."""
-        return self.plan.n_nodes
-
-    @property
-    def n_steps(self) -> int:
-        """Simulator steps of all trees."""
-        return self.plan.n_steps
-
-    @property
-    def n_feasibility_checks(self) -> int:
-        """Feasibility checks of all trees."""
-        return self.plan.n_feasibility_checks
-
-    @property
-    def n_node_visits(self) -> int:
-        """Node visits of all trees."""
-        return self.plan.n_node_visits
-
-    @property
-    def search_time(self) -> float:
-        """The trees' search seconds summed (compute, not wall time)."""
-        return self.plan.wall_time
+    # ----- the merged plan's fields, read-only under their old names (table above) -----
+    best_action = _PlanField[FloatArray | None]()
+    actions = _PlanField[tuple[FloatArray, ...]]()
+    rewards = _PlanField[FloatArray]()
+    bonuses = _PlanField[FloatArray]()
+    feasible = _PlanField[tuple[bool, ...]]()
+    best_return = _PlanField[float]()
+    best_leaf_info = _PlanField[Mapping[str, Any]]()
+    best_return_curve = _PlanField[FloatArray]()
+    info_curve = _PlanField[tuple[Any, ...] | None]()
+    n_simulations = _PlanField[int]()
+    n_nodes = _PlanField[int]()
+    n_steps = _PlanField[int]()
+    n_feasibility_checks = _PlanField[int]()
+    n_node_visits = _PlanField[int]()
+    search_time = _PlanField[float]("wall_time")
 
     # ----- views over the trees ---------------------------------------------------------
     @property
