@@ -30,7 +30,7 @@ from voot.envs.motion.swept_volume import obstacles_on_path, swept_footprint
 
 # the house is the tests' (tests/floor_plans.py)
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
-from floor_plans import WORKSPACE, house_movable, house_static  # noqa: E402
+from floor_plans import WORKSPACE, house_movable, house_static
 
 #: The house of the base-planning tests, with a thinner west wall (room for the start
 #: pose of the path to the sink).
