@@ -5,11 +5,10 @@ from __future__ import annotations
 import math
 import time
 
-import gymnasium as gym
 import numpy as np
 import pytest
-from gymnasium.utils.env_checker import check_env, data_equivalence
-from gymnasium.utils.env_match import check_environments_match
+from env_fixtures import assert_horizon_ends, assert_restore_is_exact, check_gymnasium_api
+from gymnasium.utils.env_checker import data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv
@@ -215,15 +214,7 @@ def test_bad_actions_and_clipping(env: ConveyorPackingEnv) -> None:
 
 
 def test_snapshot_restore_is_bit_identical(env: ConveyorPackingEnv) -> None:
-    env.reset(seed=0)
-    acts = conveyor_actions(env)
-    env.step(acts[0])
-    s = env.get_state()
-    first = env.step(acts[1])
-    env.step(acts[2])
-    env.set_state(s)
-    second = env.step(acts[1])
-    assert data_equivalence(first, second, exact=True)
+    assert_restore_is_exact(env, seed=0, actions=conveyor_actions, before=1)
 
 
 def test_config_validation() -> None:
@@ -242,11 +233,7 @@ def test_config_validation() -> None:
 
 
 def test_gymnasium_checks() -> None:
-    env = gym.make("voot/ConveyorPacking-v0")
-    check_env(env.unwrapped, skip_render_check=True)
-    a = gym.make("voot:voot/ConveyorPacking-v0")
-    b = gym.make("voot:voot/ConveyorPacking-v0")
-    check_environments_match(a, b, num_steps=8, seed=2)
+    check_gymnasium_api("voot/ConveyorPacking-v0", num_steps=8, seed=2)
 
 
 def test_render_rgb_array() -> None:
@@ -289,12 +276,7 @@ def test_truncation_at_the_horizon_and_step_timings() -> None:
     _, _, term, trunc, info = step(conveyor_actions(env)[0])
     assert info["feasible"] and not term and trunc
     env.set_state(s)
-    _, _, term, trunc, info = step(bad)
-    assert not term and trunc
-    with pytest.raises(ValueError, match="ended"):
-        env.step(bad)
-    with pytest.raises(ValueError, match="ended"):
-        env.precheck(bad)
+    assert_horizon_ends(env, bad)
 
 
 def test_precheck_agrees_with_the_step(env: ConveyorPackingEnv) -> None:
