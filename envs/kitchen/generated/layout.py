@@ -61,7 +61,6 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
 
 import numpy as np
 
@@ -72,7 +71,7 @@ from voot.envs.assets.mjcf import (
     KITCHEN_WALL_HEIGHT,
     WALL_THICKNESS,
 )
-from voot.envs.core.generation import check_layout_seed, parse_difficulty
+from voot.envs.core.generation import check_layout_seed, level_table, parse_difficulty
 from voot.envs.core.names import Difficulty
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.robot.model import ROBOT_RADIUS
@@ -217,45 +216,24 @@ class KitchenLevel:
 #: The path's shapes a level can ask for.
 PATH_SHAPES = ("straight", "island", "passage")
 #: The difficulty levels, easiest first.
-DIFFICULTIES: Mapping[Difficulty, KitchenLevel] = MappingProxyType(
-    {
-        Difficulty.EASY: KitchenLevel(
-            name=Difficulty.EASY,
-            kitchen_width=(5.0, 5.8),
-            depth=(6.4, 7.2),
-            rooms_width=(2.2, 3.0),
-            shape="straight",
-            passage=(0.0, 0.0),
-            on_path=(2, 3),
-            clutter=(0, 1),
-            kinds=("box", "crate", "bucket"),
-            sizes=("small", "medium"),
+DIFFICULTIES: Mapping[Difficulty, KitchenLevel] = level_table(
+    KitchenLevel,
+    {  # field: (easy, medium, hard)
+        "name": tuple(Difficulty),
+        "kitchen_width": ((5.0, 5.8), (4.9, 5.6), (4.3, 5.0)),
+        "depth": ((6.4, 7.2), (6.0, 6.8), (6.2, 6.8)),
+        "rooms_width": ((2.2, 3.0), (2.2, 3.0), (2.2, 3.0)),
+        "shape": ("straight", "island", "passage"),
+        "passage": ((0.0, 0.0), (0.0, 0.0), (1.15, 1.4)),
+        "on_path": ((2, 3), (3, 5), (4, 5)),
+        "clutter": ((0, 1), (2, 3), (3, 4)),
+        "kinds": (
+            ("box", "crate", "bucket"),
+            ("box", "crate", "bucket", "bin", "jug"),
+            ("box", "crate", "bucket", "bin", "jug", "bottle"),
         ),
-        Difficulty.MEDIUM: KitchenLevel(
-            name=Difficulty.MEDIUM,
-            kitchen_width=(4.9, 5.6),
-            depth=(6.0, 6.8),
-            rooms_width=(2.2, 3.0),
-            shape="island",
-            passage=(0.0, 0.0),
-            on_path=(3, 5),
-            clutter=(2, 3),
-            kinds=("box", "crate", "bucket", "bin", "jug"),
-            sizes=SIZE_CLASSES,
-        ),
-        Difficulty.HARD: KitchenLevel(
-            name=Difficulty.HARD,
-            kitchen_width=(4.3, 5.0),
-            depth=(6.2, 6.8),
-            rooms_width=(2.2, 3.0),
-            shape="passage",
-            passage=(1.15, 1.4),
-            on_path=(4, 5),
-            clutter=(3, 4),
-            kinds=("box", "crate", "bucket", "bin", "jug", "bottle"),
-            sizes=("medium", "large"),
-        ),
-    }
+        "sizes": (("small", "medium"), SIZE_CLASSES, ("medium", "large")),
+    },
 )
 
 
