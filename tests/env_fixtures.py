@@ -1,14 +1,15 @@
 """Checks every robot env's tests make (a helper module, not a test module).
 
 The kitchen and the conveyor keep the same contract: a truncated episode has ended, a
-restored snapshot steps bit for bit as before, the gymnasium checks pass, and a probe
-sequence steps the same in any process. Each check is written once here, with the
+restored snapshot steps bit for bit as before, the gymnasium checks pass, a step's
+timings add up, and a probe sequence steps the same in any process. Each check is written once here, with the
 values (env, seed, actions) left to the test.
 """
 
 from __future__ import annotations
 
 import pickle
+import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -80,4 +81,17 @@ def step_probes(env: Any, probes: Sequence[np.ndarray]) -> list[tuple[Any, ...]]
         out.append(step)
         if not step[4]["feasible"]:
             env.set_state(state)
+    return out
+
+
+def timed_step(env: Any, action: np.ndarray) -> Any:
+    """``env.step(action)``, checking ``env.last_timing`` (read by
+    ``voot.bench.measure.env_speed``): parts >= 0 that sum to <= its total, which is at
+    most the step's wall time."""
+    began = time.perf_counter()
+    out = env.step(action)
+    elapsed = time.perf_counter() - began
+    tm = env.last_timing
+    assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
+    assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
     return out

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
-from env_fixtures import assert_horizon_ends, assert_restore_is_exact, check_gymnasium_api
+from env_fixtures import (
+    assert_horizon_ends,
+    assert_restore_is_exact,
+    check_gymnasium_api,
+    timed_step,
+)
 from gymnasium.utils.env_checker import data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
@@ -251,29 +255,20 @@ def test_truncation_at_the_horizon_and_step_timings() -> None:
     env = ConveyorPackingEnv(ConveyorConfig(horizon=3))
     env.reset(seed=0)
 
-    def step(action: np.ndarray) -> tuple:  # type: ignore[type-arg]
-        began = time.perf_counter()
-        out = env.step(action)
-        elapsed = time.perf_counter() - began
-        tm = env.last_timing
-        assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
-        assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
-        return out
-
     # the third box on top of the first: infeasible after two feasible checks
     bad = _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-3.5, 2.1, 180)])
-    _, _, term, trunc, info = step(bad)
+    _, _, term, trunc, info = timed_step(env, bad)
     assert not info["feasible"] and not term and not trunc
     # boxes 1 and 2 passed before box 3 failed: no path is reported for a void action
     assert info["base_path_length"] == 0.0
     assert info["base_path_lengths"] == [] and info["base_paths"] == []
-    _, _, term, trunc, info = step(
-        _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    _, _, term, trunc, info = timed_step(
+        env, _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
     )
     assert info["reason"].startswith("box 1/3 (obj_00): outside region")
     assert not term and not trunc
     s = env.get_state()
-    _, _, term, trunc, info = step(conveyor_actions(env)[0])
+    _, _, term, trunc, info = timed_step(env, conveyor_actions(env)[0])
     assert info["feasible"] and not term and trunc
     env.set_state(s)
     assert_horizon_ends(env, bad)
