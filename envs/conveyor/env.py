@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.assets.mjcf import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y
+from voot.envs.assets.mjcf import belt_pose
 from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
@@ -295,7 +295,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     def _queue_pose(self, i: int, placed: int) -> tuple[float, float, float, float]:
         """Where box ``i`` waits on the belt when ``placed`` boxes are gone."""
         k = i - placed if i < self.n else i
-        return (BELT_FIRST_X + BELT_SPACING * k, BELT_Y, BELT_TOP, 0.0)
+        return belt_pose(k)
 
     def _reset_physics(self) -> None:
         mujoco.mj_resetData(self.model, self.data)
