@@ -1,9 +1,10 @@
 """Shared floor plans of the base-planning tests (a helper module, not a test module).
 
 A kitchen-sized house (outer walls, a kitchen with a 1.0 m door, furniture and ten
-movable objects), a wall with a door, random free poses and an independent (shapely)
-check that a path keeps its distance from every obstacle. Used by
-``tests/envs/motion/test_base_planner.py`` and the tests of the modules it is built from.
+movable objects), a wall with a door, random free poses, an independent (shapely) check
+that a path keeps its distance from every obstacle and the array expression of a path's
+length. Used by ``tests/envs/motion/test_base_planner.py`` and the tests of the modules it
+is built from, and by ``docs/scripts/motion_planning_figure.py`` (the house it draws).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import math
 import numpy as np
 import shapely
 
-from voot.envs.motion.planar import BasePath, Box2D, Pose2D
+from voot.envs.motion.planar import BasePath, Box2D, Pose2D, wrap_angle
 from voot.envs.motion.planner import BasePlanner
 
 WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
@@ -23,10 +24,14 @@ def wall(x0: float, x1: float, y0: float, y1: float, name: str) -> Box2D:
     return Box2D.from_bounds(x0, x1, y0, y1, name)
 
 
-def house_static() -> list[Box2D]:
-    """A kitchen-sized floor plan: outer walls, a kitchen with a 1.0 m door, furniture."""
+def house_static(west_wall: float = -1.9) -> list[Box2D]:
+    """A kitchen-sized floor plan: outer walls, a kitchen with a 1.0 m door, furniture.
+
+    ``west_wall``: x of the west wall's inner face (the figure's thinner wall leaves room
+    for its start pose).
+    """
     return [
-        wall(-2.0, -1.9, -4.0, 4.0, "wall_w"),
+        wall(-2.0, west_wall, -4.0, 4.0, "wall_w"),
         wall(5.9, 6.0, -4.0, 4.0, "wall_e"),
         wall(-2.0, 6.0, 3.9, 4.0, "wall_n"),
         wall(-0.5, 6.0, -4.0, -3.9, "wall_s"),
@@ -49,6 +54,7 @@ def house_static() -> list[Box2D]:
 
 
 def house_movable() -> list[Box2D]:
+    """The house's ten movable objects (chairs and boxes)."""
     return [
         Box2D(-1.2, -0.5, 0.22, 0.22, 0.1, "chair_a"),
         Box2D(-0.7, 0.4, 0.15, 0.15, 0.0, "box_a"),
@@ -101,3 +107,12 @@ def door_scene(width: float) -> list[Box2D]:
         wall(-0.1, 0.1, -5.0, -width / 2, "wall_low"),
         wall(-0.1, 0.1, width / 2, 5.0, "wall_high"),
     ]
+
+
+def path_length_arrays(w: np.ndarray, rw: float) -> float:
+    """:func:`~voot.envs.motion.planar.path_length`'s array expression (the float version
+    must equal it bit for bit)."""
+    diff = np.diff(w, axis=0)
+    trans = np.hypot(diff[:, 0], diff[:, 1])
+    rot = np.abs(wrap_angle(diff[:, 2]))
+    return float(np.sum(trans) + rw * np.sum(rot))

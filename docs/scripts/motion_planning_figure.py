@@ -14,6 +14,7 @@ Run from the repository root (needs the ``envs`` and ``bench`` extras)::
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -27,46 +28,14 @@ from voot.envs.motion.planar import Box2D, Pose2D
 from voot.envs.motion.planner import BasePlanner
 from voot.envs.motion.swept_volume import obstacles_on_path, swept_footprint
 
-WORKSPACE = (-2.0, 6.0, -4.0, 4.0)
+# the house is the tests' (tests/floor_plans.py)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
+from floor_plans import WORKSPACE, house_movable, house_static
 
-
-def wall(x0: float, x1: float, y0: float, y1: float, name: str) -> Box2D:
-    return Box2D.from_bounds(x0, x1, y0, y1, name)
-
-
-STATIC = [
-    wall(-2.0, -1.98, -4.0, 4.0, "wall_w"),
-    wall(5.9, 6.0, -4.0, 4.0, "wall_e"),
-    wall(-2.0, 6.0, 3.9, 4.0, "wall_n"),
-    wall(-0.5, 6.0, -4.0, -3.9, "wall_s"),
-    wall(2.75, 2.85, -1.0, 1.5, "kitchen_e_low"),
-    wall(2.75, 2.85, 2.5, 3.65, "kitchen_e_high"),
-    wall(-2.0, 2.85, 3.55, 3.65, "kitchen_n"),
-    wall(0.6, 2.85, -1.05, -0.95, "kitchen_s"),
-    wall(2.85, 6.0, 0.45, 0.55, "rooms_divider"),
-    wall(-1.5, 1.5, 2.97, 3.55, "counter_sink"),
-    wall(2.2, 2.75, -0.5, 1.4, "counter_e"),
-    wall(-1.9, -1.35, 2.4, 3.55, "fridge"),
-    Box2D(1.3, 0.3, 0.5, 0.35, 0.0, "table"),
-    wall(3.5, 5.0, 2.3, 3.9, "bed"),
-    wall(4.8, 5.9, -2.2, -0.8, "sofa"),
-    wall(3.0, 3.6, -3.9, -3.3, "shelf"),
-    wall(1.0, 2.2, -3.9, -3.4, "cabinet"),
-    Box2D(4.6, 1.5, 0.4, 0.4, 0.6, "armchair"),
-    wall(-1.9, -1.4, -3.9, -3.5, "coat_rack"),
-]
-MOVABLE = [
-    Box2D(-1.2, -0.5, 0.22, 0.22, 0.1, "chair_a"),
-    Box2D(-0.7, 0.4, 0.15, 0.15, 0.0, "box_a"),
-    Box2D(-0.1, 1.3, 0.22, 0.22, 0.4, "chair_b"),
-    Box2D(0.6, 2.0, 0.15, 0.15, 0.0, "box_b"),
-    Box2D(-0.8, 2.0, 0.12, 0.12, 0.3, "box_c"),
-    Box2D(0.9, 1.1, 0.22, 0.22, 0.0, "chair_c"),
-    Box2D(1.8, -0.3, 0.22, 0.22, 0.2, "chair_d"),
-    Box2D(0.2, -2.0, 0.15, 0.15, 0.0, "box_d"),
-    Box2D(1.5, 1.9, 0.12, 0.12, 0.0, "box_e"),
-    Box2D(-0.9, -2.6, 0.15, 0.15, 0.5, "box_f"),
-]
+#: The house of the base-planning tests, with a thinner west wall (room for the start
+#: pose of the path to the sink).
+STATIC = house_static(west_wall=-1.98)
+MOVABLE = house_movable()
 
 
 def draw_boxes(ax: plt.Axes, boxes: list[Box2D], color: str) -> None:

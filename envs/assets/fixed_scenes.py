@@ -34,10 +34,6 @@ import math
 import numpy as np
 
 from voot.envs.assets.mjcf import (
-    BELT_FIRST_X,
-    BELT_SPACING,
-    BELT_TOP,
-    BELT_Y,
     CONVEYOR_START,
     CONVEYOR_WALL_HEIGHT,
     GOAL_RGBA,
@@ -47,6 +43,7 @@ from voot.envs.assets.mjcf import (
     START_RGBA,
     WALL_THICKNESS,
     Rect,
+    belt_pose,
     belt_xml,
     box_object,
     cameras,
@@ -242,8 +239,8 @@ def conveyor_xml() -> str:
     out.append(marker("start_marker", CONVEYOR_START[0], CONVEYOR_START[1], START_RGBA))
     for i, size in enumerate(conveyor_box_sizes()):
         material = "big_box" if i < 2 else "cardboard"
-        x = BELT_FIRST_X + BELT_SPACING * i
-        out.append(box_object(f"obj_{i:02d}", x, BELT_Y, 0.0, size, material, z=BELT_TOP))
+        x, y, z, yaw = belt_pose(i)
+        out.append(box_object(f"obj_{i:02d}", x, y, yaw, size, material, z=z))
     out.append("  </worldbody>\n</mujoco>\n")
     return "".join(out)
 

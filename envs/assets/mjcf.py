@@ -50,6 +50,7 @@ __all__ = [
     "START_RGBA",
     "WALL_THICKNESS",
     "Rect",
+    "belt_pose",
     "belt_xml",
     "box_object",
     "cameras",
@@ -342,6 +343,12 @@ def sink(x: float, y: float, top: float) -> str:
         f'    <geom name="sink_faucet" class="decor" type="cylinder" size="0.02 0.12"'
         f' pos="{vec(x, y + 0.26, top + 0.12)}" material="steel"/>\n'
     )
+
+
+def belt_pose(k: int) -> tuple[float, float, float, float]:
+    """The ``(x, y, z, yaw)`` of the ``k``-th box's body in the belt's queue (``k = 0``:
+    the first to be picked), in the scenes and while the env moves the queue on."""
+    return (BELT_FIRST_X + BELT_SPACING * k, BELT_Y, BELT_TOP, 0.0)
 
 
 def belt_xml() -> str:

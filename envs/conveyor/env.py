@@ -40,12 +40,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.assets.mjcf import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y
+from voot.envs.assets.mjcf import belt_pose
 from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
-from voot.envs.core.names import Failure, Operator, Precheck, Reason, choices, reason_code
-from voot.envs.core.presets import env_config, preset_config
+from voot.envs.core.names import Failure, Operator, Precheck, Reason, reason_code
+from voot.envs.core.presets import check_step_rules, env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
@@ -69,8 +69,6 @@ from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
-#: What a planner's pre-check of an action covers (:attr:`ConveyorConfig.precheck`).
-PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 
@@ -136,22 +134,7 @@ class ConveyorConfig:
         for name in ("height_fraction", "depth_fraction"):
             v = V.number(getattr(self, name), f"ConveyorConfig.{name}", 0.0, 1.0)
             object.__setattr__(self, name, v)
-        r = V.number(
-            self.infeasible_reward, "ConveyorConfig.infeasible_reward", high=0.0, open_high=True
-        )
-        object.__setattr__(self, "infeasible_reward", r)
-        V.integer(self.horizon, "ConveyorConfig.horizon", 1)
-        if self.precheck not in PRECHECKS:
-            raise ValueError(
-                f"ConveyorConfig.precheck must be one of {choices(Precheck)}, got {self.precheck!r}"
-            )
-        object.__setattr__(self, "precheck", Precheck(self.precheck))
-        if not isinstance(self.ik, IKConfig):
-            raise ValueError(f"ConveyorConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
-        if not isinstance(self.planner, BasePlannerConfig):
-            raise ValueError(
-                f"ConveyorConfig.planner must be a BasePlannerConfig, got {type(self.planner).__name__}"
-            )
+        check_step_rules(self)
 
     @property
     def place_ranges(self) -> tuple[tuple[float, float], ...]:
@@ -312,7 +295,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
     def _queue_pose(self, i: int, placed: int) -> tuple[float, float, float, float]:
         """Where box ``i`` waits on the belt when ``placed`` boxes are gone."""
         k = i - placed if i < self.n else i
-        return (BELT_FIRST_X + BELT_SPACING * k, BELT_Y, BELT_TOP, 0.0)
+        return belt_pose(k)
 
     def _reset_physics(self) -> None:
         mujoco.mj_resetData(self.model, self.data)

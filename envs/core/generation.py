@@ -11,6 +11,7 @@ common parts:
 
 * :func:`parse_difficulty` and :func:`check_layout_seed`: the two arguments, checked
   the same way in both families (an error names the valid levels);
+* :func:`level_table`: a family's levels from a table of each field's value per level;
 * :func:`first_accepted`: draw attempts 0, 1, ... of a seed until one is accepted, and
   keep why the others were rejected (:class:`Rejection`);
 * :class:`GeneratedInstance`: the accepted instance (layout, compiled model, witness,
@@ -28,6 +29,7 @@ import copy
 from collections import OrderedDict
 from collections.abc import Callable, Collection, Hashable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Generic, NamedTuple, TypeVar
 
 import numpy as np
@@ -45,6 +47,7 @@ __all__ = [
     "Rejection",
     "check_layout_seed",
     "first_accepted",
+    "level_table",
     "parse_difficulty",
     "reject_layout_fields",
     "witness_arrays",
@@ -73,6 +76,30 @@ def parse_difficulty(difficulty: object, levels: Collection[Difficulty]) -> Diff
             f"unknown difficulty {difficulty!r}; valid levels are: {', '.join(levels)}"
         )
     return level
+
+
+def level_table(
+    level: Callable[..., T], columns: Mapping[str, Sequence[Any]]
+) -> Mapping[Difficulty, T]:
+    """A family's difficulty levels from a table: ``level(**fields)`` per :class:`Difficulty`.
+
+    ``columns`` maps each field to its values at every level, easiest first (as the
+    families' docstrings tabulate them), so the levels read side by side, field by field;
+    a field left out keeps its default. The mapping is read-only, easiest level first.
+
+    Raises:
+        ValueError: A field without exactly one value per level.
+    """
+    levels = tuple(Difficulty)
+    for name, values in columns.items():
+        if len(values) != len(levels):
+            raise ValueError(f"{name}: {len(values)} values for the {len(levels)} levels")
+    return MappingProxyType(
+        {
+            d: level(**{name: values[k] for name, values in columns.items()})
+            for k, d in enumerate(levels)
+        }
+    )
 
 
 def check_layout_seed(layout_seed: object) -> int:

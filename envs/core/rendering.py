@@ -1,7 +1,8 @@
 """Rendering helpers of the envs: cameras, headless OpenGL, visual-only markers.
 
 The envs render with :class:`mujoco.Renderer` from the cameras every scene defines
-(:data:`CAMERAS`). :func:`ensure_headless_gl` makes that work on a machine without a
+(:data:`CAMERAS`); every env takes the same three render arguments
+(:class:`RenderOptions`). :func:`ensure_headless_gl` makes that work on a machine without a
 display; :func:`add_marker_box` and :func:`add_marker_segment` draw overlays (the
 kitchen's swept corridor and forbidden rooms, the conveyor's regions) into a render's
 scene without touching the model, so rendering never changes a state.
@@ -12,6 +13,7 @@ from __future__ import annotations
 import math
 import os
 import sys
+from typing import TypedDict
 
 import mujoco
 import numpy as np
@@ -21,6 +23,21 @@ from numpy.typing import ArrayLike
 CAMERAS = ("perspective", "top_down")
 #: Render modes.
 RENDER_MODES = ("rgb_array",)
+
+
+class RenderOptions(TypedDict, total=False):
+    """The render arguments every env takes, as the keywords of an env that passes them on
+    to its base unchanged (``**render: Unpack[RenderOptions]``).
+
+    Attributes:
+        render_mode: None or ``"rgb_array"`` (:data:`RENDER_MODES`).
+        render_camera: ``"perspective"`` or ``"top_down"`` (:data:`CAMERAS`).
+        render_size: ``(width, height)`` of rendered images.
+    """
+
+    render_mode: str | None
+    render_camera: str
+    render_size: tuple[int, int]
 
 
 def ensure_headless_gl() -> None:

@@ -21,14 +21,12 @@ from types import MappingProxyType
 from typing import Any
 
 from voot import validation as V
-from voot.envs.core.names import Precheck, choices
-from voot.envs.core.presets import preset_config
+from voot.envs.core.names import Precheck
+from voot.envs.core.presets import check_step_rules, preset_config
 from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.model import BASE_HALF, ROBOT_RADIUS
 
-#: What a planner's pre-check of an action covers (:attr:`KitchenConfig.precheck`).
-PRECHECKS: tuple[Precheck, ...] = tuple(Precheck)
 #: Named versions of the domain: :class:`KitchenConfig` overrides. ``v0`` is the first
 #: release (every check inside the planners' retries); ``v1`` is the authors' protocol
 #: (two-stage feasibility, see the reference page and docs/environments.md).
@@ -163,28 +161,13 @@ class KitchenConfig:
                 name,
                 V.positive_number(f"KitchenConfig.{name}", getattr(self, name), allow_zero=True),
             )
-        r = V.number(
-            self.infeasible_reward, "KitchenConfig.infeasible_reward", high=0.0, open_high=True
-        )
-        object.__setattr__(self, "infeasible_reward", r)
-        V.integer(self.horizon, "KitchenConfig.horizon", 1)
-        if self.precheck not in PRECHECKS:
-            raise ValueError(
-                f"KitchenConfig.precheck must be one of {choices(Precheck)}, got {self.precheck!r}"
-            )
-        object.__setattr__(self, "precheck", Precheck(self.precheck))
         for name in (
             "pick_requires_free_carry",
             "nonclearing_penalty_infeasible",
             "pick_base_path",
         ):
             V.flag(getattr(self, name), f"KitchenConfig.{name}")
-        if not isinstance(self.ik, IKConfig):
-            raise ValueError(f"KitchenConfig.ik must be an IKConfig, got {type(self.ik).__name__}")
-        if not isinstance(self.planner, BasePlannerConfig):
-            raise ValueError(
-                f"KitchenConfig.planner must be a BasePlannerConfig, got {type(self.planner).__name__}"
-            )
+        check_step_rules(self)
 
     @property
     def pick_ranges(self) -> tuple[tuple[float, float], ...]:

@@ -34,7 +34,7 @@ import tempfile
 import zlib
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Unpack
 
 import mujoco
 import numpy as np
@@ -60,6 +60,7 @@ from voot.envs.core.generation import (
     reject_layout_fields,
 )
 from voot.envs.core.names import Difficulty
+from voot.envs.core.rendering import RenderOptions
 
 #: Attempts of one seed before giving up (none has needed more than a few).
 MAX_ATTEMPTS = 50
@@ -100,26 +101,14 @@ class SceneConveyorEnv(ConveyorPackingEnv):
     Args:
         model: The compiled scene.
         config: Settings (:func:`layout_config`).
-        render_mode: None or ``"rgb_array"``.
-        render_camera: ``"perspective"`` or ``"top_down"``.
-        render_size: ``(width, height)`` of rendered images.
+        **render: The render arguments (:class:`~voot.envs.core.rendering.RenderOptions`).
     """
 
     def __init__(
-        self,
-        model: mujoco.MjModel,
-        config: ConveyorConfig,
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
+        self, model: mujoco.MjModel, config: ConveyorConfig, **render: Unpack[RenderOptions]
     ) -> None:
         self._pending_model: mujoco.MjModel | None = model
-        super().__init__(
-            config=config,
-            render_mode=render_mode,
-            render_camera=render_camera,
-            render_size=render_size,
-        )
+        super().__init__(config=config, **render)
 
     def _scene_model(self) -> mujoco.MjModel:
         """The given scene (handed over once: the env keeps no second reference)."""

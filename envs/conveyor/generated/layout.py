@@ -47,13 +47,12 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
 
 import numpy as np
 
 from voot import validation as V
 from voot.envs.assets.mjcf import WALL_THICKNESS
-from voot.envs.core.generation import check_layout_seed, parse_difficulty
+from voot.envs.core.generation import check_layout_seed, level_table, parse_difficulty
 from voot.envs.core.names import Difficulty
 
 #: Version of the generator: part of every cache key; bump it when a layout changes.
@@ -129,42 +128,19 @@ class StorageLevel:
 
 #: The named difficulty levels, easiest first. Harder: a smaller area cut into more and
 #: smaller rooms, narrower doors, more boxes, more of them big, bigger small boxes.
-DIFFICULTIES: Mapping[Difficulty, StorageLevel] = MappingProxyType(
-    {
-        Difficulty.EASY: StorageLevel(
-            rooms=(2, 3),
-            width=(6.0, 7.5),
-            depth=(8.0, 10.0),
-            door_width=(1.9, 2.3),
-            extra_door=0.5,
-            boxes=(8, 10),
-            big_boxes=(0, 1),
-            small_x=(0.35, 0.45),
-            small_y=(0.45, 0.55),
-        ),
-        Difficulty.MEDIUM: StorageLevel(
-            rooms=(3, 4),
-            width=(5.8, 7.0),
-            depth=(7.5, 9.5),
-            door_width=(1.65, 2.0),
-            extra_door=0.25,
-            boxes=(12, 15),
-            big_boxes=(1, 2),
-            small_x=(0.4, 0.5),
-            small_y=(0.5, 0.6),
-        ),
-        Difficulty.HARD: StorageLevel(
-            rooms=(4, 5),
-            width=(5.6, 6.8),
-            depth=(7.0, 9.0),
-            door_width=(1.55, 1.8),
-            extra_door=0.0,
-            boxes=(16, 20),
-            big_boxes=(2, 4),
-            small_x=(0.42, 0.52),
-            small_y=(0.52, 0.62),
-        ),
-    }
+DIFFICULTIES: Mapping[Difficulty, StorageLevel] = level_table(
+    StorageLevel,
+    {  # field: (easy, medium, hard); the big boxes' sizes and the heights are the defaults
+        "rooms": ((2, 3), (3, 4), (4, 5)),
+        "width": ((6.0, 7.5), (5.8, 7.0), (5.6, 6.8)),
+        "depth": ((8.0, 10.0), (7.5, 9.5), (7.0, 9.0)),
+        "door_width": ((1.9, 2.3), (1.65, 2.0), (1.55, 1.8)),
+        "extra_door": (0.5, 0.25, 0.0),
+        "boxes": ((8, 10), (12, 15), (16, 20)),
+        "big_boxes": ((0, 1), (1, 2), (2, 4)),
+        "small_x": ((0.35, 0.45), (0.4, 0.5), (0.42, 0.52)),
+        "small_y": ((0.45, 0.55), (0.5, 0.6), (0.52, 0.62)),
+    },
 )
 
 

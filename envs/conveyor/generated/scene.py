@@ -23,13 +23,10 @@ import mujoco
 
 from voot.envs.assets.meshes import ShapeSpec, compile_scene, object_body_xml, shape_assets_xml
 from voot.envs.assets.mjcf import (
-    BELT_FIRST_X,
-    BELT_SPACING,
-    BELT_TOP,
-    BELT_Y,
     CONVEYOR_START,
     CONVEYOR_WALL_HEIGHT,
     START_RGBA,
+    belt_pose,
     belt_xml,
     cameras,
     floor_plane,
@@ -111,8 +108,9 @@ def storage_xml(layout: StorageLayout) -> str:
     out.append(belt_xml())
     out.append(marker("start_marker", CONVEYOR_START[0], CONVEYOR_START[1], START_RGBA))
     for i, (box, shape) in enumerate(zip(layout.boxes, shapes, strict=True)):
-        pose = (BELT_FIRST_X + BELT_SPACING * i, BELT_Y, BELT_TOP, 0.0)
-        out.append(object_body_xml(f"obj_{i:02d}", shape, pose, box_material(box.big, box.kind)))
+        out.append(
+            object_body_xml(f"obj_{i:02d}", shape, belt_pose(i), box_material(box.big, box.kind))
+        )
     out.append("  </worldbody>\n</mujoco>\n")
     return "".join(out)
 

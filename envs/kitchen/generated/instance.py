@@ -21,7 +21,7 @@ from __future__ import annotations
 import copy
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Unpack
 
 import mujoco
 import numpy as np
@@ -38,6 +38,7 @@ from voot.envs.core.generation import (
 )
 from voot.envs.core.names import Difficulty
 from voot.envs.core.presets import env_config
+from voot.envs.core.rendering import RenderOptions
 from voot.envs.core.state import replace
 from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig
 from voot.envs.kitchen.env import KitchenClearingEnv
@@ -119,30 +120,18 @@ class SceneKitchenEnv(KitchenClearingEnv):
     Args:
         kitchen: The kitchen (its layout and model; its witness is not read).
         config: Settings (:func:`kitchen_config`).
-        render_mode: None or ``"rgb_array"``.
-        render_camera: ``"perspective"`` or ``"top_down"``.
-        render_size: ``(width, height)`` of rendered images.
+        **render: The render arguments (:class:`~voot.envs.core.rendering.RenderOptions`).
     """
 
     def __init__(
-        self,
-        kitchen: GeneratedKitchen,
-        config: KitchenConfig,
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
+        self, kitchen: GeneratedKitchen, config: KitchenConfig, **render: Unpack[RenderOptions]
     ) -> None:
         self.kitchen = kitchen
         #: The objects' grasp tables (from their meshes), in object order.
         self._grasp_sets: tuple[MeshGraspSet, ...] = tuple(
             grasp_set(shape_spec(o)) for o in kitchen.layout.objects
         )
-        super().__init__(
-            config=config,
-            render_mode=render_mode,
-            render_camera=render_camera,
-            render_size=render_size,
-        )
+        super().__init__(config=config, **render)
 
     @property
     def layout(self) -> KitchenLayout:

@@ -61,7 +61,6 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
 
 import numpy as np
 
@@ -72,7 +71,7 @@ from voot.envs.assets.mjcf import (
     KITCHEN_WALL_HEIGHT,
     WALL_THICKNESS,
 )
-from voot.envs.core.generation import check_layout_seed, parse_difficulty
+from voot.envs.core.generation import check_layout_seed, level_table, parse_difficulty
 from voot.envs.core.names import Difficulty
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.robot.model import ROBOT_RADIUS
@@ -217,45 +216,24 @@ class KitchenLevel:
 #: The path's shapes a level can ask for.
 PATH_SHAPES = ("straight", "island", "passage")
 #: The difficulty levels, easiest first.
-DIFFICULTIES: Mapping[Difficulty, KitchenLevel] = MappingProxyType(
-    {
-        Difficulty.EASY: KitchenLevel(
-            name=Difficulty.EASY,
-            kitchen_width=(5.0, 5.8),
-            depth=(6.4, 7.2),
-            rooms_width=(2.2, 3.0),
-            shape="straight",
-            passage=(0.0, 0.0),
-            on_path=(2, 3),
-            clutter=(0, 1),
-            kinds=("box", "crate", "bucket"),
-            sizes=("small", "medium"),
+DIFFICULTIES: Mapping[Difficulty, KitchenLevel] = level_table(
+    KitchenLevel,
+    {  # field: (easy, medium, hard)
+        "name": tuple(Difficulty),
+        "kitchen_width": ((5.0, 5.8), (4.9, 5.6), (4.3, 5.0)),
+        "depth": ((6.4, 7.2), (6.0, 6.8), (6.2, 6.8)),
+        "rooms_width": ((2.2, 3.0), (2.2, 3.0), (2.2, 3.0)),
+        "shape": ("straight", "island", "passage"),
+        "passage": ((0.0, 0.0), (0.0, 0.0), (1.15, 1.4)),
+        "on_path": ((2, 3), (3, 5), (4, 5)),
+        "clutter": ((0, 1), (2, 3), (3, 4)),
+        "kinds": (
+            ("box", "crate", "bucket"),
+            ("box", "crate", "bucket", "bin", "jug"),
+            ("box", "crate", "bucket", "bin", "jug", "bottle"),
         ),
-        Difficulty.MEDIUM: KitchenLevel(
-            name=Difficulty.MEDIUM,
-            kitchen_width=(4.9, 5.6),
-            depth=(6.0, 6.8),
-            rooms_width=(2.2, 3.0),
-            shape="island",
-            passage=(0.0, 0.0),
-            on_path=(3, 5),
-            clutter=(2, 3),
-            kinds=("box", "crate", "bucket", "bin", "jug"),
-            sizes=SIZE_CLASSES,
-        ),
-        Difficulty.HARD: KitchenLevel(
-            name=Difficulty.HARD,
-            kitchen_width=(4.3, 5.0),
-            depth=(6.2, 6.8),
-            rooms_width=(2.2, 3.0),
-            shape="passage",
-            passage=(1.15, 1.4),
-            on_path=(4, 5),
-            clutter=(3, 4),
-            kinds=("box", "crate", "bucket", "bin", "jug", "bottle"),
-            sizes=("medium", "large"),
-        ),
-    }
+        "sizes": (("small", "medium"), SIZE_CLASSES, ("medium", "large")),
+    },
 )
 
 
@@ -615,43 +593,38 @@ def _draw_objects(
     s_lo, s_hi = 1.0, length - 0.35
     if s_hi <= s_lo:
         raise LayoutError(f"the fixed path is too short ({length:.2f} m) for obstacles")
-    for i in range(n_on):
+    x0, x1, y0, y1 = kitchen
+    # the obstacles first, then the clutter; object k is named obj_<kind><k>
+    for k in range(n_on + n_clutter):
+        on_path = k < n_on
         item = _draw_item(rng, level)
         radius = 0.5 * math.hypot(item.size[0], item.size[1])
         for _ in range(200):
-            s = float(rng.uniform(s_lo, s_hi))
-            k = int(np.clip(np.searchsorted(cum, s) - 1, 0, len(seg) - 1))
-            u = (s - cum[k]) / max(seg[k], 1e-12)
-            p = path[k] + u * (path[k + 1] - path[k])
-            dxy = (path[k + 1] - path[k]) / max(seg[k], 1e-12)
-            off = float(rng.uniform(-0.3, 0.3))
-            x, y = float(p[0] - off * dxy[1]), float(p[1] + off * dxy[0])
+            if on_path:  # within 0.3 m of the path
+                s = float(rng.uniform(s_lo, s_hi))
+                i = int(np.clip(np.searchsorted(cum, s) - 1, 0, len(seg) - 1))
+                u = (s - cum[i]) / max(seg[i], 1e-12)
+                p = path[i] + u * (path[i + 1] - path[i])
+                dxy = (path[i + 1] - path[i]) / max(seg[i], 1e-12)
+                off = float(rng.uniform(-0.3, 0.3))
+                x, y = float(p[0] - off * dxy[1]), float(p[1] + off * dxy[0])
+            else:
+                x, y = float(rng.uniform(x0, x1)), float(rng.uniform(y0, y1))
             yaw = _r(rng.uniform(0.0, 2.0 * math.pi))
+            if not on_path and (
+                _segment_distances(np.array([[x, y]]), path)[0] < ROBOT_RADIUS + radius + 0.1
+            ):
+                continue  # clutter stays clear of the swept disc
             if math.hypot(x - start[0], y - start[1]) < free_start + radius:
                 continue
             if _fits(x, y, radius, placed, blocks, kitchen):
-                name = f"obj_{item.kind}{i}"
                 pose = (_r(x), _r(y), yaw)
-                placed.append(ObjectSpec(name, item.kind, item.size, item.variant, pose, True))
+                spec = ObjectSpec(
+                    f"obj_{item.kind}{k}", item.kind, item.size, item.variant, pose, on_path
+                )
+                placed.append(spec)
                 break
         else:
-            raise LayoutError(f"no room for obstacle {i} on the path")
-    for j in range(n_clutter):
-        item = _draw_item(rng, level)
-        radius = 0.5 * math.hypot(item.size[0], item.size[1])
-        x0, x1, y0, y1 = kitchen
-        for _ in range(200):
-            x, y = float(rng.uniform(x0, x1)), float(rng.uniform(y0, y1))
-            yaw = _r(rng.uniform(0.0, 2.0 * math.pi))
-            if _segment_distances(np.array([[x, y]]), path)[0] < ROBOT_RADIUS + radius + 0.1:
-                continue
-            if math.hypot(x - start[0], y - start[1]) < free_start + radius:
-                continue
-            if _fits(x, y, radius, placed, blocks, kitchen):
-                name = f"obj_{item.kind}{n_on + j}"
-                pose = (_r(x), _r(y), yaw)
-                placed.append(ObjectSpec(name, item.kind, item.size, item.variant, pose, False))
-                break
-        else:
-            raise LayoutError(f"no room for clutter object {j}")
+            what = f"obstacle {k} on the path" if on_path else f"clutter object {k - n_on}"
+            raise LayoutError(f"no room for {what}")
     return placed

@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import math
-import time
 
-import gymnasium as gym
 import numpy as np
 import pytest
-from gymnasium.utils.env_checker import check_env, data_equivalence
-from gymnasium.utils.env_match import check_environments_match
+from env_fixtures import (
+    assert_horizon_ends,
+    assert_restore_is_exact,
+    check_gymnasium_api,
+    timed_step,
+)
+from gymnasium.utils.env_checker import data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv
@@ -215,15 +218,7 @@ def test_bad_actions_and_clipping(env: ConveyorPackingEnv) -> None:
 
 
 def test_snapshot_restore_is_bit_identical(env: ConveyorPackingEnv) -> None:
-    env.reset(seed=0)
-    acts = conveyor_actions(env)
-    env.step(acts[0])
-    s = env.get_state()
-    first = env.step(acts[1])
-    env.step(acts[2])
-    env.set_state(s)
-    second = env.step(acts[1])
-    assert data_equivalence(first, second, exact=True)
+    assert_restore_is_exact(env, seed=0, actions=conveyor_actions, before=1)
 
 
 def test_config_validation() -> None:
@@ -242,11 +237,7 @@ def test_config_validation() -> None:
 
 
 def test_gymnasium_checks() -> None:
-    env = gym.make("voot/ConveyorPacking-v0")
-    check_env(env.unwrapped, skip_render_check=True)
-    a = gym.make("voot:voot/ConveyorPacking-v0")
-    b = gym.make("voot:voot/ConveyorPacking-v0")
-    check_environments_match(a, b, num_steps=8, seed=2)
+    check_gymnasium_api("voot/ConveyorPacking-v0", num_steps=8, seed=2)
 
 
 def test_render_rgb_array() -> None:
@@ -264,37 +255,23 @@ def test_truncation_at_the_horizon_and_step_timings() -> None:
     env = ConveyorPackingEnv(ConveyorConfig(horizon=3))
     env.reset(seed=0)
 
-    def step(action: np.ndarray) -> tuple:  # type: ignore[type-arg]
-        began = time.perf_counter()
-        out = env.step(action)
-        elapsed = time.perf_counter() - began
-        tm = env.last_timing
-        assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
-        assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
-        return out
-
     # the third box on top of the first: infeasible after two feasible checks
     bad = _action(env, [(-3.5, 2.1, 180), (-3.5, -0.05, 180), (-3.5, 2.1, 180)])
-    _, _, term, trunc, info = step(bad)
+    _, _, term, trunc, info = timed_step(env, bad)
     assert not info["feasible"] and not term and not trunc
     # boxes 1 and 2 passed before box 3 failed: no path is reported for a void action
     assert info["base_path_length"] == 0.0
     assert info["base_path_lengths"] == [] and info["base_paths"] == []
-    _, _, term, trunc, info = step(
-        _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
+    _, _, term, trunc, info = timed_step(
+        env, _action(env, [(1.0, 1.0, 0), (-3.5, -0.05, 180), (-6.55, 2.55, 90)])
     )
     assert info["reason"].startswith("box 1/3 (obj_00): outside region")
     assert not term and not trunc
     s = env.get_state()
-    _, _, term, trunc, info = step(conveyor_actions(env)[0])
+    _, _, term, trunc, info = timed_step(env, conveyor_actions(env)[0])
     assert info["feasible"] and not term and trunc
     env.set_state(s)
-    _, _, term, trunc, info = step(bad)
-    assert not term and trunc
-    with pytest.raises(ValueError, match="ended"):
-        env.step(bad)
-    with pytest.raises(ValueError, match="ended"):
-        env.precheck(bad)
+    assert_horizon_ends(env, bad)
 
 
 def test_precheck_agrees_with_the_step(env: ConveyorPackingEnv) -> None:

@@ -7,18 +7,19 @@ _path, _poses, _screen, _checks); test_kitchen_v1 covers the v1 preset's options
 from __future__ import annotations
 
 import math
-import pickle
-import subprocess
-import sys
 import textwrap
-import time
 
-import gymnasium as gym
 import numpy as np
 import pytest
-from gymnasium.utils.env_checker import check_env, data_equivalence
-from gymnasium.utils.env_match import check_environments_match
+from env_fixtures import (
+    assert_horizon_ends,
+    assert_restore_is_exact,
+    check_gymnasium_api,
+    timed_step,
+)
+from gymnasium.utils.env_checker import data_equivalence
 from kitchen_fixtures import place_action
+from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.kitchen.env import KitchenClearingEnv, KitchenConfig
@@ -169,28 +170,11 @@ def test_truncation_at_the_horizon() -> None:
     bad[:] = 1.0
     _, _, term, trunc, _ = env.step(bad)
     assert not term and not trunc
-    _, _, term, trunc, _ = env.step(bad)
-    assert not term and trunc
-    # a truncated episode has ended too: neither a step nor a pre-check is allowed
-    with pytest.raises(ValueError, match="ended"):
-        env.step(bad)
-    with pytest.raises(ValueError, match="ended"):
-        env.precheck(bad)
+    assert_horizon_ends(env, bad)
 
 
 def test_snapshot_restore_is_bit_identical(env: KitchenClearingEnv) -> None:
-    env.reset(seed=3)
-    acts = kitchen_actions(env)
-    for a in acts[:3]:
-        env.step(a)
-    s = env.get_state()
-    first = env.step(acts[3])
-    env.step(acts[4])  # move on, then come back
-    env.set_state(s)
-    assert env.get_state() == s
-    second = env.step(acts[3])
-    assert data_equivalence(first, second, exact=True)
-    assert pickle.loads(pickle.dumps(s)) == s
+    assert_restore_is_exact(env, seed=3, actions=kitchen_actions, before=3)
 
 
 def test_snapshot_determinism_across_processes(env: KitchenClearingEnv) -> None:
@@ -219,24 +203,13 @@ def test_snapshot_determinism_across_processes(env: KitchenClearingEnv) -> None:
         sys.stdout.buffer.write(pickle.dumps(out))
         """
     )
-    proc = subprocess.run(
-        [sys.executable, "-c", script],
-        input=pickle.dumps((state, probes)),
-        capture_output=True,
-        check=True,
-        timeout=120,
-    )
-    remote = pickle.loads(proc.stdout)
+    remote = run_pickled(script, (state, probes))
     assert data_equivalence(local, remote, exact=True)
     assert any(r[4]["feasible"] for r in local)
 
 
 def test_gymnasium_checks() -> None:
-    env = gym.make("voot/KitchenClearing-v0")
-    check_env(env.unwrapped, skip_render_check=True)
-    a = gym.make("voot:voot/KitchenClearing-v0")
-    b = gym.make("voot:voot/KitchenClearing-v0")
-    check_environments_match(a, b, num_steps=12, seed=1)
+    check_gymnasium_api("voot/KitchenClearing-v0", num_steps=12, seed=1)
 
 
 def test_render_rgb_array() -> None:
@@ -334,30 +307,21 @@ def test_step_timings_are_consistent(env: KitchenClearingEnv) -> None:
     acts = kitchen_actions(env)
     rng = np.random.default_rng(3)
 
-    def step(action: np.ndarray) -> tuple:  # type: ignore[type-arg]
-        began = time.perf_counter()
-        out = env.step(action)
-        elapsed = time.perf_counter() - began
-        tm = env.last_timing
-        assert min(tm.ik, tm.collision, tm.planning) >= 0.0, tm
-        assert tm.ik + tm.collision + tm.planning <= tm.total <= elapsed, tm
-        return out
-
     s = env.get_state()
     for _ in range(40):  # infeasible and feasible picks
-        step(rng.uniform(-1, 1, 6))
+        timed_step(env, rng.uniform(-1, 1, 6))
         env.set_state(s)
-    step(acts[0])
+    timed_step(env, acts[0])
     s = env.get_state()
     # places: outside the house, in a forbidden room, feasible
     for x, y in ((-1.95, 0.0), (4.0, 2.0)):
-        step(place_action(env, x, y, 0.5))
+        timed_step(env, place_action(env, x, y, 0.5))
         env.set_state(s)
-    step(acts[1])
+    timed_step(env, acts[1])
     # a pick with its base path planned (pick_base_path): the planning time is counted
     env = KitchenClearingEnv(KitchenConfig(pick_base_path=True))
     env.reset(seed=0)
-    _, _, _, _, info = step(kitchen_actions(env)[0])
+    _, _, _, _, info = timed_step(env, kitchen_actions(env)[0])
     assert info["feasible"] and env.last_timing.planning > 0.0
 
 

@@ -6,7 +6,8 @@ import math
 
 import pytest
 
-from voot.envs.kitchen.config import KITCHEN_PRESETS, PRECHECKS, KitchenConfig, kitchen_config
+from voot.envs.core.presets import PRECHECKS
+from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig, kitchen_config
 
 
 @pytest.mark.parametrize(

@@ -16,6 +16,7 @@ from floor_plans import (
     door_scene,
     house_movable,
     house_static,
+    path_length_arrays,
     random_free_poses,
     wall,
 )
@@ -458,14 +459,6 @@ def test_disc_probe_verdict_agrees_or_abstains_near_contact() -> None:
     assert stepped.disc_probe(movable).verdict(0.0, 0.0, 0.3, margin) is None
 
 
-def _path_length_arrays(w: np.ndarray, rw: float) -> float:
-    """path_length's array expression (tests/envs/motion/test_planar.py checks the float version)."""
-    diff = np.diff(w, axis=0)
-    trans = np.hypot(diff[:, 0], diff[:, 1])
-    rot = np.abs(wrap_angle(diff[:, 2]))
-    return float(np.sum(trans) + rw * np.sum(rot))
-
-
 def test_straight_paths_keep_their_ends() -> None:
     rng = np.random.default_rng(8)
     rng.uniform(-7, 7, (2000, 2, 3))  # the draws of the path-length half
@@ -475,4 +468,4 @@ def test_straight_paths_keep_their_ends() -> None:
         assert path is not None and path.waypoints.shape == (2, 3)
         # what _make_path computed for two points: the ends with their own headings
         assert path.waypoints.tobytes() == np.array([s, g]).tobytes()
-        assert path.length == _path_length_arrays(np.array([s, g]), 1.0)
+        assert path.length == path_length_arrays(np.array([s, g]), 1.0)

@@ -9,6 +9,7 @@ import pickle
 import numpy as np
 import pytest
 import shapely
+from floor_plans import path_length_arrays
 
 from voot.envs.motion.planar import BasePath, Box2D, Pose2D, path_length, se2_distance, wrap_angle
 
@@ -77,17 +78,10 @@ def test_base_path_value_type() -> None:
     assert path == BasePath.from_waypoints(path.waypoints, 1.0)
 
 
-def _path_length_arrays(w: np.ndarray, rw: float) -> float:
-    diff = np.diff(w, axis=0)
-    trans = np.hypot(diff[:, 0], diff[:, 1])
-    rot = np.abs(wrap_angle(diff[:, 2]))
-    return float(np.sum(trans) + rw * np.sum(rot))
-
-
 def test_straight_paths_are_the_array_version() -> None:
     rng = np.random.default_rng(8)
     for w in rng.uniform(-7, 7, (2000, 2, 3)):
         for rw in (1.0, 0.3):
-            assert path_length(w, rw) == _path_length_arrays(w, rw)
+            assert path_length(w, rw) == path_length_arrays(w, rw)
     w = np.array([[0.0, 0.0, math.pi], [1.0, 1.0, -math.pi]])  # a turn of exactly 2 pi
-    assert path_length(w, 1.0) == _path_length_arrays(w, 1.0)
+    assert path_length(w, 1.0) == path_length_arrays(w, 1.0)

@@ -11,6 +11,7 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 import pytest
+from env_fixtures import IMPORT_IN_CHILD, step_probes
 from gymnasium.utils.env_checker import check_env, data_equivalence
 from process_fixtures import run_pickled
 
@@ -91,28 +92,16 @@ def test_deterministic_across_processes_with_and_without_the_cache(cache: Path) 
     env.reset(seed=0)
     rng = np.random.default_rng(4)
     probes = [rng.uniform(-1, 1, 9) for _ in range(8)] + env.witness_actions()
-    local = []
-    for a in probes:
-        state = env.get_state()
-        out = env.step(a)
-        local.append(out)
-        if not out[4]["feasible"]:
-            env.set_state(state)
-    script = textwrap.dedent(
+    local = step_probes(env, probes)
+    script = IMPORT_IN_CHILD + textwrap.dedent(
         """
-        import pickle, sys
+        import pickle
         import gymnasium as gym
         import voot
         probes = pickle.load(sys.stdin.buffer)
         env = gym.make("voot/ConveyorPacking-v2", layout_seed=5, difficulty="medium").unwrapped
         env.reset(seed=0)
-        out = []
-        for a in probes:
-            state = env.get_state()
-            step = env.step(a)
-            out.append(step)
-            if not step[4]["feasible"]:
-                env.set_state(state)
+        out = step_probes(env, probes)
         sys.stdout.buffer.write(pickle.dumps((repr(env.layout), out)))
         """
     )

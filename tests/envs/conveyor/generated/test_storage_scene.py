@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from voot.envs.assets.meshes import mesh_name
-from voot.envs.assets.mjcf import BELT_FIRST_X, BELT_SPACING, BELT_TOP, BELT_Y, CONVEYOR_START
+from voot.envs.assets.mjcf import CONVEYOR_START, belt_pose
 from voot.envs.conveyor.generated.layout import DIFFICULTIES, generate_storage_layout
 from voot.envs.conveyor.generated.scene import (
     box_material,
@@ -34,9 +34,7 @@ def test_the_scene_holds_the_layout(difficulty: str) -> None:
         np.testing.assert_allclose(2 * obj.half, box.size[:2], atol=1e-4)
         assert obj.height == pytest.approx(box.size[2], abs=1e-4)
         np.testing.assert_allclose(obj.center, np.zeros(2), atol=1e-12)  # centred footprint
-        np.testing.assert_allclose(
-            object_pose(data, obj), (BELT_FIRST_X + BELT_SPACING * i, BELT_Y, BELT_TOP, 0.0)
-        )
+        np.testing.assert_allclose(object_pose(data, obj), belt_pose(i))
     # the walls: every wall of the layout is a static footprint of its size
     boxes = {b.name: b for b in static_footprints(model)}
     for w in layout.walls:
