@@ -33,13 +33,13 @@ every statistic above in ``O(reps x runs x tasks)`` without copying the scores p
 replicate. Percentile intervals of a bounded statistic stay inside its bounds (scores in
 [0, 1] give IQM and profile intervals in [0, 1], ``P(X > Y)`` intervals are in [0, 1]).
 
-See the "Statistics" docs page for the maths and for why these, not t-intervals.
+See the "Statistics across tasks" docs page for the maths and for why these, not t-intervals.
 """
 
 from __future__ import annotations
 
 import zlib
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -362,6 +362,21 @@ def _percentile_interval(values: F64, bootstrap: Bootstrap) -> tuple[F64, F64]:
     )
 
 
+def _bootstrap_interval(
+    x: F64, name: str, bootstrap: Bootstrap, statistics: Callable[[_Resamples, F64], F64]
+) -> tuple[F64, F64]:
+    """The percentile intervals of ``statistics(resamples, counts)`` (``(reps, k)``
+    values per chunk of run counts) over ``bootstrap.reps`` replicates of ``x``, drawn
+    from ``name``'s stream."""
+    res = _Resamples(x)
+    rng = _generator(bootstrap.seed, name)
+    chunks = [
+        statistics(res, run_counts(draw_indices(rng, size, *x.shape)))
+        for size in _chunk_sizes(bootstrap.reps, x.size)
+    ]
+    return _percentile_interval(np.concatenate(chunks), bootstrap)
+
+
 def _metrics(metrics: Iterable[Metric | str]) -> tuple[Metric, ...]:
     out = tuple(validation.choice(Metric, m, "metric", "metrics") for m in metrics)
     if not out:
@@ -395,16 +410,14 @@ def aggregate_intervals(
     wanted = _metrics(metrics)
     g = validation.number(gamma, "gamma")
     bs = bootstrap or Bootstrap()
+
+    def replicates(res: _Resamples, counts: F64) -> F64:
+        cum = res.cumulative(counts) if Metric.IQM in wanted else None
+        return np.stack([res.metric(m, counts, cum, g) for m in wanted], axis=1)
+
     out: dict[str, dict[Metric, Interval]] = {}
     for name, x in data.items():
-        res = _Resamples(x)
-        rng = _generator(bs.seed, name)
-        chunks = []
-        for size in _chunk_sizes(bs.reps, x.size):
-            counts = run_counts(draw_indices(rng, size, *x.shape))
-            cum = res.cumulative(counts) if Metric.IQM in wanted else None
-            chunks.append(np.stack([res.metric(m, counts, cum, g) for m in wanted], axis=1))
-        low, high = _percentile_interval(np.concatenate(chunks), bs)
+        low, high = _bootstrap_interval(x, name, bs, replicates)
         out[name] = {
             m: Interval(_point(m, x, g), float(low[k]), float(high[k]))
             for k, m in enumerate(wanted)
@@ -429,18 +442,15 @@ def performance_profiles(
     t = thresholds(taus)
     which = validation.choice(ProfileKind, kind, "profile kind", "profile kinds")
     bs = bootstrap or Bootstrap()
+
+    def replicates(res: _Resamples, counts: F64) -> F64:
+        if which is ProfileKind.RUNS:
+            return res.run_profile(res.cumulative(counts), t)
+        return res.task_profile(counts, t)
+
     out: dict[str, Profile] = {}
     for name, x in data.items():
-        res = _Resamples(x)
-        rng = _generator(bs.seed, name)
-        chunks = []
-        for size in _chunk_sizes(bs.reps, x.size):
-            counts = run_counts(draw_indices(rng, size, *x.shape))
-            if which is ProfileKind.RUNS:
-                chunks.append(res.run_profile(res.cumulative(counts), t))
-            else:
-                chunks.append(res.task_profile(counts, t))
-        low, high = _percentile_interval(np.concatenate(chunks), bs)
+        low, high = _bootstrap_interval(x, name, bs, replicates)
         point = (
             run_score_profile(x, t) if which is ProfileKind.RUNS else average_score_profile(x, t)
         )
