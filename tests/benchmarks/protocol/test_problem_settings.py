@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from voot.bench.protocol import problems as P
-from voot.bench.sweep.plan import PLAN_PLANNERS
+from voot.bench.sweep.planners import PLAN_PLANNERS
 
 PINNED: dict[str, dict[str, Any]] = json.loads(
     Path(__file__).with_name("problem_settings.json").read_text()
