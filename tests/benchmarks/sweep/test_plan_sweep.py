@@ -2,11 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import signal
-import subprocess
-import sys
-import time
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -14,7 +9,7 @@ from typing import Any
 import numpy as np
 import pytest
 from layout_fixtures import LAYOUT_ENV_ID
-from store_fixtures import Interrupting
+from store_fixtures import Interrupting, killed_and_resumed
 
 from voot.bench.protocol import problems as P
 from voot.bench.store.format import Row
@@ -195,31 +190,14 @@ def test_interrupted_plan_sweep_resumes(tmp_path: Path) -> None:
 def test_killed_plan_process_resumes(tmp_path: Path) -> None:
     """SIGKILL a real `voot-bench plan` midway, rerun it, and check the store."""
     out = tmp_path / "r"
-    args = [
-        sys.executable, "-m", "voot.bench.cli.main", "plan", "--out", str(out),
+    argv = [
+        "plan", "--out", str(out),
         "--problems", "shekel_chain", "--dims", "3", "--planners", "doot",
         "--seeds", "6", "--simulations", "400", "--grid", "default",
         "--workers", "1", "--no-progress",
     ]  # fmt: skip
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    runs = out / "runs"
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if runs.is_dir() and sum(1 for _ in runs.glob("[!.]*.json")) >= 2:
-            break
-        time.sleep(0.02)
-    if proc.poll() is None:
-        os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
-    store = ResultStore(out)
-    before = {p.name: p.read_bytes() for p in store.row_files()}
-    assert len(before) >= 2
-    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert f"{len(before)} already in the store" in done.stdout
+    store, _ = killed_and_resumed(argv, out, rows=2)
     assert len(store.load(kind="plan")) == 6
-    for name, data in before.items():
-        assert (store.runs_path / name).read_bytes() == data
 
 
 def test_record_paths_and_recording(tmp_path: Path) -> None:
