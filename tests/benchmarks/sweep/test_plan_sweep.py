@@ -91,19 +91,9 @@ def test_grids() -> None:
     ],
 )
 def test_bad_plan_arguments(kwargs: dict[str, Any], match: str) -> None:
-    args: dict[str, Any] = {
-        "problems": ["shekel_chain"],
-        "dims": [3],
-        "planners": ["voot"],
-        "seeds": [0],
-        "simulations": 5,
-        "grid": "default",
-        **kwargs,
-    }
+    good = dict(problems=["shekel_chain"], dims=[3], planners=["voot"], seeds=[0], grid="default")
     with pytest.raises(ValueError, match=match):
-        build_plan_specs(
-            args.pop("problems"), args.pop("dims"), args.pop("planners"), args.pop("seeds"), **args
-        )
+        build_plan_specs(**{**good, "simulations": 5, **kwargs})
 
 
 def test_chain_row_contents() -> None:
@@ -221,15 +211,19 @@ def test_record_paths_and_recording(tmp_path: Path) -> None:
 
 def _mujoco_envs_available() -> bool:
     try:
-        pass
+        import voot.envs.kitchen  # noqa: F401
     except Exception:
         return False
     return True
 
 
-@pytest.mark.skipif(
+#: The runs on the robot domains need the MuJoCo environments (the ``envs`` extra).
+needs_envs = pytest.mark.skipif(
     not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
 )
+
+
+@needs_envs
 def test_kitchen_run_records_objects() -> None:
     (spec,) = build_plan_specs(["kitchen"], None, ["voot"], [0], simulations=3, grid="default")
     r = run_plan_spec(spec)
@@ -275,9 +269,7 @@ def test_sampling_based_planners_in_the_sweep() -> None:
     assert strip_timings(again) == strip_timings(run_plan_spec(specs[0]))
 
 
-@pytest.mark.skipif(
-    not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
-)
+@needs_envs
 def test_kitchen_v1_run_with_a_sampling_based_planner() -> None:
     (spec,) = build_plan_specs(["kitchen_v1"], None, ["mppi"], [0], simulations=6, grid="default")
     r = run_plan_spec(spec)

@@ -96,17 +96,9 @@ def test_default_sweep_is_the_papers() -> None:
     ],
 )
 def test_bad_sweep_arguments(kwargs: dict[str, Any], match: str) -> None:
-    args: dict[str, Any] = {
-        "functions": ["rastrigin"],
-        "dims": [3],
-        "methods": ["voo"],
-        "seeds": [0],
-        **kwargs,
-    }
+    good = dict(functions=["rastrigin"], dims=[3], methods=["voo"], seeds=[0])
     with pytest.raises(ValueError, match=match):
-        build_specs(
-            args.pop("functions"), args.pop("dims"), args.pop("methods"), args.pop("seeds"), **args
-        )
+        build_specs(**{**good, **kwargs})
 
 
 def test_method_grid_default_and_paper() -> None:
