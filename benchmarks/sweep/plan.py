@@ -112,15 +112,6 @@ class PlanSpec(SpecBase):
 
     kind: ClassVar[str] = "plan"
     protocol: ClassVar[int] = PLAN_PROTOCOL
-    config_fields: ClassVar[tuple[str, ...]] = (
-        "problem",
-        "dim",
-        "env_kwargs",
-        "planner",
-        "params",
-        "simulations",
-        "seed",
-    )
     mapping_fields: ClassVar[tuple[str, ...]] = ("env_kwargs", "params")
     optional_fields: ClassVar[tuple[str, ...]] = ("variant",)
 
