@@ -18,7 +18,10 @@ def plan_row(
     initial: float | None = 7.0,
     ms: float = 10.0,
     layout: int | None = None,
+    variant: str = "",
 ) -> Row:
+    """A finished plan run with the best returns ``returns`` (one per simulation) and,
+    if given, ``left`` objects left of ``initial``; ``ms`` milliseconds a simulation."""
     config = {
         "problem": problem,
         "dim": dim,
@@ -29,6 +32,8 @@ def plan_row(
         "seed": seed,
         "protocol": 1,
     }
+    if variant:
+        config["variant"] = variant
     extra: dict = {
         "elapsed": [ms / 1000.0 * (i + 1) for i in range(len(returns))],
         "simulator_calls": 2 * len(returns),
@@ -36,6 +41,11 @@ def plan_row(
     if left is not None:
         extra.update(objects_left=left, objects_initial=initial)
     return make_row("plan", config, status="ok", wall_time=1.0, best_so_far=returns, **extra)
+
+
+def step_curve(before: float, after: float, at: int, n: int) -> list[float]:
+    """``n`` values: ``before`` up to simulation ``at`` (counted from 1), ``after`` from it on."""
+    return [before] * (at - 1) + [after] * (n - at + 1)
 
 
 def kitchen_rows() -> list[Row]:

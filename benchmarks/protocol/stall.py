@@ -141,7 +141,7 @@ def trace_search(spec: PlanSpec) -> tuple[Trace, MCTS]:
     """Re-run the tree search of ``spec`` with every new action traced."""
     from voot.bench.protocol import problems as P
 
-    config = spec.mcts_config()
+    config = spec.run_config()
     problem = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed).problem
     mcts = _TracedMCTS(problem, config, search_seed(spec))
     last_root = None

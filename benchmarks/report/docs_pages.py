@@ -8,7 +8,8 @@ from __future__ import annotations
 import contextlib
 import io
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from pathlib import Path
 
 
 def block(marker: str) -> re.Pattern[str]:
@@ -28,6 +29,15 @@ def replace_block(text: str, marker: str, body: str) -> str:
     """``text`` with the ``MARKER`` block's body replaced by ``body``."""
     marked(text, marker)
     return block(marker).sub(lambda m: m.group(1) + body + m.group(3), text)
+
+
+def rewrite_page(page: Path, blocks: Mapping[str, str]) -> None:
+    """Rewrite the file ``page`` with the body of each ``MARKER`` block replaced by
+    ``blocks[MARKER]`` (nothing is written if one of them has no markers)."""
+    text = page.read_text()
+    for marker, body in blocks.items():
+        text = replace_block(text, marker, body)
+    page.write_text(text)
 
 
 def run_quietly(command: Callable[[list[str]], int], argv: list[str]) -> None:

@@ -136,14 +136,6 @@ class RunSpec(SpecBase):
 
     kind: ClassVar[str] = "bbfo"
     protocol: ClassVar[int] = PROTOCOL
-    config_fields: ClassVar[tuple[str, ...]] = (
-        "function",
-        "dim",
-        "method",
-        "params",
-        "budget",
-        "seed",
-    )
     optional_fields: ClassVar[tuple[str, ...]] = ("instance",)
 
 

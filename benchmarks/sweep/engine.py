@@ -23,7 +23,7 @@ import hashlib
 import sys
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar, Protocol, TypeVar
 
 import numpy as np
@@ -97,16 +97,17 @@ class Spec(Protocol):
 class SpecBase:
     """A run's identity from its fields, for the frozen dataclasses of run specs.
 
-    :meth:`config` is the row's ``config``: the fields named in :attr:`config_fields`
-    in that order (those in :attr:`mapping_fields`, ``(name, value)`` pairs, as dicts),
-    then ``"protocol"``, then each field of :attr:`optional_fields` only when it is set
-    (a field added later that way leaves the run ids of the runs without it unchanged).
-    :attr:`run_id` hashes it with the spec's ``kind``.
+    :meth:`config` is the row's ``config``: the spec's fields in their order (those in
+    :attr:`mapping_fields`, ``(name, value)`` pairs, as dicts) but those declared with
+    ``compare=False`` (not part of the run, e.g. a recording's path) and those of
+    :attr:`optional_fields`, then ``"protocol"``, then each field of
+    :attr:`optional_fields` only when it is set (a field added later that way leaves the
+    run ids of the runs without it unchanged). :attr:`run_id` hashes it with the spec's
+    ``kind``.
     """
 
     kind: ClassVar[str]
     protocol: ClassVar[int]
-    config_fields: ClassVar[tuple[str, ...]]
     mapping_fields: ClassVar[tuple[str, ...]] = ("params",)
     optional_fields: ClassVar[tuple[str, ...]] = ()
     #: The hyperparameters set by the grid, sorted ``(name, value)`` pairs (a field of
@@ -120,7 +121,7 @@ class SpecBase:
     def config(self) -> dict[str, Any]:
         """The row's ``config`` (JSON-serialisable; hashed into the run id)."""
         out: dict[str, Any] = {}
-        for name in self.config_fields:
+        for name in _config_fields(type(self)):
             value = getattr(self, name)
             out[name] = dict(value) if name in self.mapping_fields else value
         out["protocol"] = self.protocol
@@ -132,6 +133,14 @@ class SpecBase:
     @property
     def run_id(self) -> str:
         return make_run_id(self.kind, self.config())
+
+
+def _config_fields(spec_type: type[Any]) -> tuple[str, ...]:
+    """The fields of the spec dataclass ``spec_type`` that every row's ``config`` holds,
+    in their order (:meth:`SpecBase.config`)."""
+    return tuple(
+        f.name for f in fields(spec_type) if f.compare and f.name not in spec_type.optional_fields
+    )
 
 
 S = TypeVar("S", bound=Spec)

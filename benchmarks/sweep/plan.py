@@ -21,7 +21,7 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   A parameter that is an :class:`~voot.tree.MCTSConfig` field (``reevaluations``,
   ``pw_k``, ``ucb_c`` ...) sets that field; any other one (``omega``, ``epsilon``,
   ``v1`` ...) is an option of the per-node sampler. A sampling-based planner takes the
-  problem's discount and its own options (:func:`~voot.bench.sweep.planners.shooting_run_config`); its row has the
+  problem's discount and its own options (:func:`~voot.bench.sweep.planners.run_config`); its row has the
   same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0).
 * **Search seed**: ``SeedSequence([seed, key(problem), dim, key(env keywords),
   key(planner)])``; the hyperparameters are deliberately not in it (common random
@@ -73,7 +73,6 @@ from voot.bench.sweep.engine import (
 from voot.bench.sweep.planners import (
     horizon_param,
     is_rl_planner,
-    mcts_config,
     normalize_plan_planner,
     planner_grid,
     run_config,
@@ -113,15 +112,6 @@ class PlanSpec(SpecBase):
 
     kind: ClassVar[str] = "plan"
     protocol: ClassVar[int] = PLAN_PROTOCOL
-    config_fields: ClassVar[tuple[str, ...]] = (
-        "problem",
-        "dim",
-        "env_kwargs",
-        "planner",
-        "params",
-        "simulations",
-        "seed",
-    )
     mapping_fields: ClassVar[tuple[str, ...]] = ("env_kwargs", "params")
     optional_fields: ClassVar[tuple[str, ...]] = ("variant",)
 
@@ -149,11 +139,6 @@ class PlanSpec(SpecBase):
         """:attr:`label` without the layout seed: the display name of the family."""
         base = P.problem_label(self.problem, family_kwargs(self.env_kwargs_dict))
         return f"{base}-{self.dim}D" if self.dim is not None else base
-
-    def mcts_config(self) -> Any:
-        return mcts_config(
-            self.problem, self.dim, self.planner, self.params_dict, self.env_kwargs_dict
-        )
 
     def run_config(self) -> Any:
         """The planner's config: an MCTSConfig, a ShootingConfig or an RLConfig

@@ -174,17 +174,13 @@ def _config_fields() -> set[str]:
 SAMPLER_PREFIX = "sampler."
 
 
-def mcts_config(
-    problem: str,
-    dim: int | None,
-    planner: str,
-    params: Mapping[str, Any],
-    env_kwargs: Mapping[str, Any] | None = None,
-) -> Any:
-    """The :class:`~voot.tree.MCTSConfig` of a run: planner, problem settings, ``params``."""
+def tree_config(planner: str, params: Mapping[str, Any], domain: Mapping[str, Any]) -> Any:
+    """The :class:`~voot.tree.MCTSConfig` of a tree planner's run: ``planner``'s defaults,
+    the problem's ``domain`` options (:func:`~voot.bench.protocol.problems.domain_options`),
+    ``params``; a parameter that is no MCTSConfig field goes to the per-node sampler."""
     from voot.tree.config import available_samplers, planner_config
 
-    options = P.domain_options(problem, dim, planner, env_kwargs)
+    options = dict(domain)
     sampler_options = dict(options.pop("sampler_options", {}))
     config_fields = _config_fields()
     tree_samplers = set(available_samplers())
@@ -220,41 +216,6 @@ def mcts_config(
         raise ValueError(f"{exc}; or a planner parameter (an MCTSConfig field): {names}") from None
 
 
-def shooting_run_config(
-    problem: str,
-    dim: int | None,
-    planner: str,
-    params: Mapping[str, Any],
-    env_kwargs: Mapping[str, Any] | None = None,
-) -> Any:
-    """The :class:`~voot.tree.shooting.ShootingConfig` of a sampling-based run: the
-    planner's defaults, the problem's discount (the one the tree planners get), ``params``."""
-    from voot.tree.shooting import shooting_config
-
-    options: dict[str, Any] = {}
-    domain = P.domain_options(problem, dim, planner, env_kwargs)
-    if "gamma" in domain:
-        options["gamma"] = domain["gamma"]
-    options.update(params)
-    return shooting_config(planner, **options)
-
-
-def rl_run_config(
-    problem: str,
-    dim: int | None,
-    planner: str,
-    params: Mapping[str, Any],
-    env_kwargs: Mapping[str, Any] | None = None,
-) -> Any:
-    """The :class:`~voot.rl.RLConfig` of an RL run: SB3's defaults, the problem's discount
-    (the reference planner's ``gamma`` on this problem), ``params``."""
-    from voot.rl import rl_config
-
-    match, options = split_params(planner, params)
-    gamma = float(run_config(problem, dim, match, {}, env_kwargs).gamma)
-    return rl_config(planner, gamma=gamma, **options)
-
-
 def run_config(
     problem: str,
     dim: int | None,
@@ -262,15 +223,27 @@ def run_config(
     params: Mapping[str, Any],
     env_kwargs: Mapping[str, Any] | None = None,
 ) -> Any:
-    """The config of a run: :func:`shooting_run_config` for a sampling-based planner,
-    :func:`rl_run_config` for an RL one, else :func:`mcts_config`."""
-    from voot.tree.shooting import is_shooting_planner
+    """The config of a run of ``planner`` with ``params`` on ``problem``.
+
+    An RL planner gets an :class:`~voot.rl.RLConfig`: SB3's defaults, the problem's
+    discount (the ``gamma`` of the reference planner it is matched with), ``params``. A
+    sampling-based one gets a :class:`~voot.tree.shooting.ShootingConfig`: its defaults,
+    the problem's discount (the one the tree planners get), ``params``. A tree planner
+    gets the :class:`~voot.tree.MCTSConfig` of :func:`tree_config`.
+    """
+    from voot.tree.shooting import is_shooting_planner, shooting_config
 
     if is_rl_planner(planner):
-        return rl_run_config(problem, dim, planner, params, env_kwargs)
+        from voot.rl import rl_config
+
+        match, rl_options = split_params(planner, params)
+        gamma = float(run_config(problem, dim, match, {}, env_kwargs).gamma)
+        return rl_config(planner, gamma=gamma, **rl_options)
+    options = P.domain_options(problem, dim, planner, env_kwargs)
     if is_shooting_planner(planner):
-        return shooting_run_config(problem, dim, planner, params, env_kwargs)
-    return mcts_config(problem, dim, planner, params, env_kwargs)
+        discount = {"gamma": options["gamma"]} if "gamma" in options else {}
+        return shooting_config(planner, **{**discount, **params})
+    return tree_config(planner, params, options)
 
 
 def horizon_param(planner: str, horizon: int | None) -> dict[str, int | None]:

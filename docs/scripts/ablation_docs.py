@@ -39,10 +39,7 @@ def render(store: str | Path = STORE) -> dict[str, str]:
 
 
 def main() -> None:
-    text = PAGE.read_text()
-    for name, body in render().items():
-        text = docs_pages.replace_block(text, f"ablation-v1:{name}", body)
-    PAGE.write_text(text)
+    docs_pages.rewrite_page(PAGE, {f"ablation-v1:{n}": body for n, body in render().items()})
     print(f"{PAGE}: ablation table redrawn from {STORE}")
 
 

@@ -18,7 +18,6 @@ Run from the repository root (about 15 s)::
 
 from __future__ import annotations
 
-import argparse
 import shutil
 import sys
 from pathlib import Path
@@ -27,25 +26,19 @@ from voot.bench.demos.figure5 import figure5
 from voot.record.screenshot import viewer_screenshots
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from kitchen_figures import shrink
+from figure_scripts import FIGURES, figure_options, shrink
 
-FIGURES = Path("docs/figures")
 PLANNERS = ("pw_uct", "rand_doot", "voot")
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--work", default="/tmp/figure5_v1", help="scratch folder")
-    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer screenshots")
-    args = parser.parse_args()
-    work = Path(args.work)
-    FIGURES.mkdir(parents=True, exist_ok=True)
+    work, viewer = figure_options(__doc__, "/tmp/figure5_v1")
     runs = figure5(
         work, 0, planners=PLANNERS, env_id="voot/KitchenClearing-v1", image="figure5_v1.png"
     )
     for name in ("figure5_v1.png", "figure5_v1.json"):
         shutil.copy(work / name, FIGURES / name)
-    if args.no_viewer:
+    if not viewer:
         return
     for r in runs.values():
         outputs: dict[str | None, Path] = {r.view: FIGURES / f"figure5_v1_viewer_{r.planner}.png"}

@@ -37,14 +37,13 @@ def render(store: str | Path, figures: str | Path) -> str:
 
 
 def main() -> None:
-    text = PAGE.read_text()
+    blocks = {}
     for name in STORES:
         figures = Path("docs/figures") / name
         figures.mkdir(parents=True, exist_ok=True)
-        body = render(Path("docs/data") / name, figures)
-        text = docs_pages.replace_block(text, f"{name}:tables", body)
+        blocks[f"{name}:tables"] = render(Path("docs/data") / name, figures)
         print(f"{name}: tables redrawn into {PAGE}; figures in {figures}")
-    PAGE.write_text(text)
+    docs_pages.rewrite_page(PAGE, blocks)
 
 
 if __name__ == "__main__":

@@ -22,41 +22,26 @@ Run from the repository root (about 3 minutes of CPU)::
 
 from __future__ import annotations
 
-import argparse
 import shutil
+import sys
 from pathlib import Path
-
-from PIL import Image
 
 from voot.bench.demos.figure5 import figure5
 from voot.bench.demos.kitchen_demo import run
 from voot.record.screenshot import viewer_screenshots
 
-FIGURES = Path("docs/figures")
-
-
-def shrink(path: Path, width: int) -> None:
-    """Scale a PNG down to ``width`` pixels wide (in place) and quantise it to save space."""
-    img = Image.open(path).convert("RGB")
-    if img.width > width:
-        img = img.resize((width, round(img.height * width / img.width)), Image.LANCZOS)
-    img.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(path, optimize=True)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from figure_scripts import FIGURES, figure_options, shrink
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--work", default="/tmp/voot_kitchen_figures", help="scratch folder")
-    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer screenshots")
-    args = parser.parse_args()
-    work = Path(args.work)
-    FIGURES.mkdir(parents=True, exist_ok=True)
-
+    work, viewer = figure_options(__doc__, "/tmp/voot_kitchen_figures")
     summary = run(work)
     assert summary.video is not None
     shutil.copy(summary.video, FIGURES / "voot_kitchen.gif")
     runs = figure5(work, summary.seed, image="kitchen_figure5.png")
     shutil.copy(work / "kitchen_figure5.png", FIGURES / "recordings_kitchen_figure5_drawn.png")
-    if args.no_viewer:
+    if not viewer:
         return
     shots = viewer_screenshots(
         summary.recording,

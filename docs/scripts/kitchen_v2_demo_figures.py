@@ -17,16 +17,16 @@ Run from the repository root (about 15 s)::
 
 from __future__ import annotations
 
-import argparse
 import shutil
+import sys
 from pathlib import Path
-
-from PIL import Image
 
 from voot.bench.demos.kitchen_demo import GENERATED_ID, run
 from voot.record.screenshot import viewer_screenshots
 
-FIGURES = Path("docs/figures")
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from figure_scripts import FIGURES, figure_options, shrink
+
 #: The kitchen shown: a medium one whose search clears every obstacle.
 LAYOUT_SEED, DIFFICULTY = 3, "medium"
 #: The 3-D view of the recording's default layout.
@@ -34,24 +34,17 @@ SCENE_VIEW = "Scene and sampled actions"
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--work", default="/tmp/voot_kitchen_v2_figures", help="scratch folder")
-    parser.add_argument("--no-viewer", action="store_true", help="skip the viewer screenshot")
-    args = parser.parse_args()
-    work = Path(args.work)
-    FIGURES.mkdir(parents=True, exist_ok=True)
-
+    work, viewer = figure_options(__doc__, "/tmp/voot_kitchen_v2_figures", "screenshot")
     summary = run(work, env_id=GENERATED_ID, layout_seed=LAYOUT_SEED, difficulty=DIFFICULTY)
     assert summary.video is not None
     shutil.copy(summary.video, FIGURES / "voot_kitchen_v2.gif")
-    if args.no_viewer:
+    if not viewer:
         return
     path = FIGURES / "recordings_kitchen_v2_viewer.png"
     viewer_screenshots(
         summary.recording, {SCENE_VIEW: path}, timeline="plan", sequence=summary.plan_length
     )
-    img = Image.open(path).convert("RGB")
-    img.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(path, optimize=True)
+    shrink(path)
     print(f"screenshot -> {path} ({path.stat().st_size // 1024} kB)")
 
 

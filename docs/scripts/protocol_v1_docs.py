@@ -43,10 +43,7 @@ def marked(text: str, name: str) -> str:
 
 
 def main() -> None:
-    text = PAGE.read_text()
-    for name, body in render().items():
-        text = docs_pages.replace_block(text, f"protocol-v1:{name}", body)
-    PAGE.write_text(text)
+    docs_pages.rewrite_page(PAGE, {f"protocol-v1:{n}": body for n, body in render().items()})
     print(f"figures in {FIGURES}, tables in {PAGE}")
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import os
 import signal
 import subprocess
@@ -13,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from process_fixtures import child_pids, reaped, survivors
 
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor, in_order, terminate_workers
 
@@ -152,42 +152,6 @@ def test_bad_options(kwargs: dict[str, Any], message: str) -> None:
 
 
 # ----- workers exit when their driver dies ---------------------------------------------
-def _children(pid: int) -> list[int]:
-    """The pids of ``pid``'s child processes (psutil if installed, else /proc)."""
-    try:
-        import psutil
-    except ImportError:
-        out = []
-        for entry in Path("/proc").iterdir():
-            if entry.name.isdigit():
-                try:
-                    stat = (entry / "stat").read_text()
-                except OSError:
-                    continue
-                if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
-                    out.append(int(entry.name))
-        return out
-    try:
-        return [c.pid for c in psutil.Process(pid).children()]
-    except psutil.NoSuchProcess:
-        return []
-
-
-def _alive(pid: int) -> bool:
-    try:
-        import psutil
-    except ImportError:
-        stat = Path(f"/proc/{pid}/stat")
-        try:
-            return stat.read_text().rsplit(")", 1)[1].split()[0] != "Z"
-        except OSError:
-            return False
-    try:
-        return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
-    except psutil.NoSuchProcess:
-        return False
-
-
 @pytest.mark.skipif(not Path("/proc").is_dir() and sys.platform != "darwin", reason="POSIX")
 def test_workers_exit_when_the_driver_is_killed(tmp_path: Path) -> None:
     """kill -KILL of a ``voot-bench plan --workers 2`` leaves no worker (nor tracker) behind."""
@@ -198,11 +162,11 @@ def test_workers_exit_when_the_driver_is_killed(tmp_path: Path) -> None:
         *("--simulations", "200000", "--workers", "2", "--no-progress"),
     ]
     driver = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    children: list[int] = []
-    try:
+    children: set[int] = set()
+    with reaped(driver, children):
         deadline = time.monotonic() + 120.0
         while time.monotonic() < deadline:  # the two workers (and the tracker) are up
-            children = _children(driver.pid)
+            children |= child_pids(driver.pid)
             if len(children) >= 3 or driver.poll() is not None:
                 break
             time.sleep(0.2)
@@ -211,19 +175,8 @@ def test_workers_exit_when_the_driver_is_killed(tmp_path: Path) -> None:
         time.sleep(1.0)  # the workers are running their first items
         os.kill(driver.pid, signal.SIGKILL)
         driver.wait(timeout=10)
-        deadline = time.monotonic() + 8.0
-        while time.monotonic() < deadline and any(_alive(p) for p in children):
-            time.sleep(0.2)
-        survivors = [p for p in children if _alive(p)]
-        assert not survivors, f"processes {survivors} outlived their killed driver"
-    finally:
-        if driver.poll() is None:
-            driver.kill()
-            driver.wait()
-        for pid in children:  # only the driver's own children, by pid
-            if _alive(pid):
-                with contextlib.suppress(ProcessLookupError):
-                    os.kill(pid, signal.SIGKILL)
+        left = survivors(children)
+        assert not left, f"processes {left} outlived their killed driver"
 
 
 def test_watch_parent_exits_an_orphan_and_only_an_orphan() -> None:

@@ -132,29 +132,53 @@ def test_an_interrupt_is_exit_status_130(
         (["bbfo", "--instance", "-1"], "instance must be an integer >= 0"),
         (["demo-voo", "--function", "nope"], "unknown function 'nope'"),
         (["measure", "speed", "--cases", "voo"], "--cases: 'voo' is not METHOD:N"),
+        # once a traceback, and silence
+        (["bbfo", "--budget-scale", "inf"], "budget_scale must be > 0 and finite"),
+        (
+            ["plan", "--problems", "shekel_chain", "--env-kwargs", "dim=5"],
+            "--env-kwargs ['dim'] apply to gymnasium environments",
+        ),
+        (["plan", "--problems", "nope"], "unknown problem 'nope'"),
+        (["plan", "--planners", "vooot"], "unknown planner 'vooot'; valid planners are:"),
+        (["plan", "--set", "omega"], "--set: 'omega' is not NAME=VALUE"),
+        (["plan", "--set", "depth_limit=0"], "depth_limit must be an integer >= 1"),
+        (["plan", "--address", "auto"], "--address and --max-tries go with --backend ray"),
+        (["plan", "--record", "r.rrd", "--backend", "ray"], "--record writes .rrd files"),
+        (["plan", "--simulations", "0"], "simulations must be integers >= 1"),
+        (["plan", "--seeds", "3:1"], "inverted or empty range"),
     ],
 )
 def test_clear_errors(argv: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
-    assert main([*argv, "--dry-run"] if argv[0] == "bbfo" else argv) == 2
+    """A user error is one line and exit status 2 (a sweep's with --dry-run: it runs nothing)."""
+    assert main([*argv, "--dry-run"] if argv[0] in ("bbfo", "plan") else argv) == 2
     err = capsys.readouterr().err
     assert err.startswith("voot-bench: error: ") and message in err
 
 
 @pytest.mark.parametrize(
-    ("argv", "message"),
+    ("argv", "out", "err"),
     [
-        (["bbfo", "--budget-scale", "inf", "--dry-run"], "budget_scale must be > 0 and finite"),
         (
-            ["plan", "--problems", "shekel_chain", "--env-kwargs", "dim=5", "--dry-run"],
-            "--env-kwargs \\['dim'\\] apply to gymnasium environments",
+            ["bbfo", "--functions", "shekel", "--methods", "voo", "--seeds", "3"],
+            ["shekel-20D budget 5000: voo 18", "shekel-3D budget 500"],
+            "54 runs",
+        ),
+        (
+            ["plan", "--problems", "kitchen", "conveyor", "--grid", "default"],
+            [
+                "kitchen 2000 simulations, 20 seeds: voot 20, rand_doot 20",
+                "conveyor 3000 simulations, 50 seeds",
+            ],
+            "350 runs",
         ),
     ],
 )
-def test_cli_errors_that_were_tracebacks_or_silence(
-    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
+def test_a_dry_run_lists_the_runs(
+    argv: list[str], out: list[str], err: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    assert main(argv) == 2
-    assert re.search(message, capsys.readouterr().err)
+    assert main([*argv, "--dry-run"]) == 0
+    cap = capsys.readouterr()
+    assert all(line in cap.out for line in out) and err in cap.err
 
 
 SEEDED = ["demo-voo", "demo", "record-demo", "figure5", "difficulty", "ladder"]

@@ -45,17 +45,6 @@ def test_bbfo_select_plot_end_to_end(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert "lower is better" in capsys.readouterr().out
 
 
-def test_dry_run_lists_cells(capsys: pytest.CaptureFixture[str]) -> None:
-    assert (
-        main(["bbfo", "--dry-run", "--functions", "shekel", "--methods", "voo", "--seeds", "3"])
-        == 0
-    )
-    cap = capsys.readouterr()
-    assert "shekel-20D budget 5000: voo 18" in cap.out
-    assert "shekel-3D budget 500" in cap.out
-    assert "54 runs" in cap.err
-
-
 def test_corrupt_and_foreign_stores_are_reported_and_kept(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -105,37 +105,6 @@ def test_plan_records_a_generated_kitchen(tmp_path: Path) -> None:
         assert len(rec.latest(f"scene/bodies/{name}/mesh", "Mesh3D:vertex_positions")) == n_visual
 
 
-def test_plan_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
-    assert (
-        main(["plan", "--dry-run", "--problems", "kitchen", "conveyor", "--grid", "default"]) == 0
-    )
-    cap = capsys.readouterr()
-    assert "kitchen 2000 simulations, 20 seeds: voot 20, rand_doot 20" in cap.out
-    assert "conveyor 3000 simulations, 50 seeds" in cap.out
-    assert "350 runs" in cap.err
-
-
-@pytest.mark.parametrize(
-    ("argv", "message"),
-    [
-        (["plan", "--problems", "nope"], "unknown problem 'nope'"),
-        (["plan", "--planners", "vooot"], "unknown planner 'vooot'; valid planners are:"),
-        (["plan", "--set", "omega"], "--set: 'omega' is not NAME=VALUE"),
-        (["plan", "--set", "depth_limit=0"], "depth_limit must be an integer >= 1"),
-        (["plan", "--address", "auto"], "--address and --max-tries go with --backend ray"),
-        (["plan", "--record", "r.rrd", "--backend", "ray"], "--record writes .rrd files"),
-        (["plan", "--simulations", "0"], "simulations must be integers >= 1"),
-        (["plan", "--seeds", "3:1"], "inverted or empty range"),
-    ],
-)
-def test_plan_clear_errors(
-    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
-) -> None:
-    assert main([*argv, "--dry-run"]) == 2
-    err = capsys.readouterr().err
-    assert err.startswith("voot-bench: error: ") and message in err
-
-
 def test_plan_set_sampler_reaches_voo_and_plot_at_beyond_budget(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -23,7 +23,7 @@ def test_every_switch_is_a_valid_planner_config_on_its_domains() -> None:
         assert {s.problem for s in specs} == set(switch.problems)
         assert {s.planner for s in specs} == set(switch.planners())
         for spec in specs:
-            cfg = spec.mcts_config()  # validates every option
+            cfg = spec.run_config()  # validates every option
             for name, value in spec.params:
                 if name in cfg.to_dict():
                     got = getattr(cfg, name)
@@ -36,19 +36,19 @@ def test_switch_options_reach_the_config() -> None:
         for s in ablation_specs([SWITCHES["pw_authors"]], [0], include_baseline=False)
         if s.planner == "pw_uct"
     )
-    cfg = spec.mcts_config()
+    cfg = spec.run_config()
     assert str(cfg.widening) == "authors" and cfg.pw_k in AUTHORS_PW_KS
     voo = next(
         s
         for s in ablation_specs([SWITCHES["voo_gaussian"]], [0], include_baseline=False)
         if s.planner == "voot"
     )
-    assert str(voo.mcts_config().sampler_config().sampler) == "gaussian"
+    assert str(voo.run_config().sampler_config().sampler) == "gaussian"
     off = ablation_specs([SWITCHES["commit_off"]], [0], include_baseline=False)
-    assert all(s.mcts_config().root_commitment is None for s in off)
+    assert all(s.run_config().root_commitment is None for s in off)
     ten = ablation_specs([SWITCHES["commit_10"]], [0], include_baseline=False)
     assert {s.problem for s in ten} == {"voot/ConveyorPacking-v1"}
-    assert all(s.mcts_config().root_commitment == 10 for s in ten)
+    assert all(s.run_config().root_commitment == 10 for s in ten)
 
 
 def test_variant_grid_replaces_axes_and_adds_overrides() -> None:

@@ -6,6 +6,7 @@ import math
 from dataclasses import replace
 
 import pytest
+from plan_fixtures import plan_row, step_curve
 
 from voot.bench.protocol.claims import (
     NO_DATA,
@@ -19,7 +20,7 @@ from voot.bench.protocol.claims import (
     verdict,
 )
 from voot.bench.report.plan_runs import plan_data
-from voot.bench.store.format import Row, make_row
+from voot.bench.store.format import Row
 
 SIMS = 3000
 CONVEYOR = "voot/ConveyorPacking-v1"
@@ -36,26 +37,14 @@ def row(
 ) -> Row:
     """A run whose best return is ``final`` from simulation 500 on (-2 before), with
     ``left`` of 20 objects left from then on."""
-    config = {
-        "problem": problem,
-        "dim": None,
-        "env_kwargs": {},
-        "planner": planner,
-        "params": params or {},
-        "simulations": SIMS,
-        "seed": seed,
-        "protocol": 1,
-    }
-    best = [-2.0] * 499 + [final] * (SIMS - 499)
-    objects = [20.0] * 499 + [left] * (SIMS - 499)
-    return make_row(
-        "plan",
-        config,
-        status="ok",
-        wall_time=1.0,
-        best_so_far=best,
-        objects_left=objects,
-        objects_initial=20.0,
+    return plan_row(
+        step_curve(-2.0, final, 500, SIMS),
+        planner=planner,
+        seed=seed,
+        problem=problem,
+        params=params,
+        left=step_curve(20.0, left, 500, SIMS),
+        initial=20.0,
     )
 
 

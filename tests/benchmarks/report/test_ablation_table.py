@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import pytest
+from plan_fixtures import plan_row, step_curve
 
 from voot.bench.report.ablation_table import ablation_table
-from voot.bench.store.format import Row, make_row
+from voot.bench.store.format import Row
 
 SIMS = 2000
 KITCHEN = "voot/KitchenClearing-v1"
@@ -13,28 +14,14 @@ KITCHEN = "voot/KitchenClearing-v1"
 
 def row(planner: str, seed: int, left: float, variant: str = "", params: dict | None = None) -> Row:
     """A kitchen run with ``left`` of 7 obstacles left from simulation 100 on."""
-    config = {
-        "problem": KITCHEN,
-        "dim": None,
-        "env_kwargs": {},
-        "planner": planner,
-        "params": params or {"a": 1},
-        "simulations": SIMS,
-        "seed": seed,
-        "protocol": 1,
-    }
-    if variant:
-        config["variant"] = variant
-    best = [0.0] * 99 + [7.0 - left] * (SIMS - 99)
-    objects = [7.0] * 99 + [left] * (SIMS - 99)
-    return make_row(
-        "plan",
-        config,
-        status="ok",
-        wall_time=1.0,
-        best_so_far=best,
-        objects_left=objects,
-        objects_initial=7.0,
+    return plan_row(
+        step_curve(0.0, 7.0 - left, 100, SIMS),
+        planner=planner,
+        seed=seed,
+        problem=KITCHEN,
+        params=params or {"a": 1},
+        left=step_curve(7.0, left, 100, SIMS),
+        variant=variant,
     )
 
 

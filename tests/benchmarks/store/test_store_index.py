@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -79,18 +80,7 @@ def test_an_index_cut_at_any_byte_is_rebuilt(tmp_path: Path, keep: float) -> Non
 
 def test_extra_curves_are_indexed_as_arrays(tmp_path: Path) -> None:
     s = ResultStore(tmp_path)
-    r = make_row(
-        "plan",
-        {"problem": "kitchen", "seed": 0},
-        status="ok",
-        wall_time=1.0,
-        best_so_far=[0.0, 1.0, 1.5],
-        elapsed=[0.1, 0.25, 0.5],
-        objects_left=[None, 6, 4],
-        objects_initial=7,
-        calls_curve=[3, 40, 41],
-        cpu_elapsed=[0.1, 0.2, 0.4],
-    )
+    r = _plan_row(objects_initial=7, calls_curve=[3, 40, 41], cpu_elapsed=[0.1, 0.2, 0.4])
     s.write(r)
     s.write(row(1))  # a row without the optional curves
     for _ in range(2):  # parsed, then from the index
@@ -155,7 +145,8 @@ def test_a_row_changed_in_place_with_its_mtime_restored_is_refused(
     assert b"[9.0," in path.read_bytes()  # reported, never rewritten
 
 
-def _plan_row() -> dict:
+def _plan_row(**extra: Any) -> dict:
+    """A three-simulation plan row with elapsed times, objects left and ``extra``."""
     return make_row(
         "plan",
         {"problem": "kitchen", "seed": 0},
@@ -164,6 +155,7 @@ def _plan_row() -> dict:
         best_so_far=[0.0, 1.0, 1.5],
         elapsed=[0.1, 0.25, 0.5],
         objects_left=[None, 6, 4],
+        **extra,
     )
 
 

@@ -3,7 +3,6 @@ process outlives its driver (killed, terminated or raising)."""
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 import signal
@@ -13,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+from process_fixtures import child_pids, reaped, survivors
 
 from voot.bench.sweep import backends
 from voot.parallel import Executor, ProcessExecutor, SerialExecutor
@@ -45,24 +45,6 @@ def test_ray_options_need_the_ray_backend() -> None:
 
 
 # ----- no worker outlives its driver ---------------------------------------------------
-def _children(pid: int) -> set[int]:
-    import psutil
-
-    try:
-        return {c.pid for c in psutil.Process(pid).children(recursive=True)}
-    except psutil.NoSuchProcess:
-        return set()
-
-
-def _alive(pid: int) -> bool:
-    import psutil
-
-    try:
-        return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
-    except psutil.NoSuchProcess:
-        return False
-
-
 # A ``voot-bench plan`` on 2 worker processes whose driver raises an exception it does
 # not handle 3 s in, while both workers are in the middle of long runs.
 _RAISING_PLAN = r"""
@@ -102,10 +84,10 @@ def test_no_worker_outlives_its_driver(tmp_path: Path, end: str) -> None:
     with log.open("wb") as fh:
         driver = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=fh)
     seen: set[int] = set()
-    try:
+    with reaped(driver, seen):
         deadline = time.monotonic() + 120.0
         while time.monotonic() < deadline and driver.poll() is None:
-            seen |= _children(driver.pid)  # the workers (and tracker) while the driver lives
+            seen |= child_pids(driver.pid, recursive=True)  # the workers (and tracker)
             if end != "raises" and len(seen) >= 3:
                 break
             time.sleep(0.05)
@@ -120,16 +102,5 @@ def test_no_worker_outlives_its_driver(tmp_path: Path, end: str) -> None:
             assert driver.returncode == 1 and "RuntimeError: the driver broke" in err
         elif end == "SIGTERM":
             assert driver.returncode == 130, err  # handled as an interrupt
-        deadline = time.monotonic() + 8.0
-        while time.monotonic() < deadline and any(_alive(p) for p in seen):
-            time.sleep(0.1)
-        survivors = [p for p in seen if _alive(p)]
-        assert not survivors, f"processes {survivors} outlived their driver ({end})"
-    finally:
-        if driver.poll() is None:
-            driver.kill()
-            driver.wait()
-        for pid in seen:  # only the driver's own children, by pid
-            if _alive(pid):
-                with contextlib.suppress(ProcessLookupError):
-                    os.kill(pid, signal.SIGKILL)
+        left = survivors(seen)
+        assert not left, f"processes {left} outlived their driver ({end})"

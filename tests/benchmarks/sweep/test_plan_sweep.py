@@ -2,11 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import signal
-import subprocess
-import sys
-import time
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -14,7 +9,7 @@ from typing import Any
 import numpy as np
 import pytest
 from layout_fixtures import LAYOUT_ENV_ID
-from store_fixtures import Interrupting
+from store_fixtures import Interrupting, killed_and_resumed
 
 from voot.bench.protocol import problems as P
 from voot.bench.store.format import Row
@@ -96,19 +91,9 @@ def test_grids() -> None:
     ],
 )
 def test_bad_plan_arguments(kwargs: dict[str, Any], match: str) -> None:
-    args: dict[str, Any] = {
-        "problems": ["shekel_chain"],
-        "dims": [3],
-        "planners": ["voot"],
-        "seeds": [0],
-        "simulations": 5,
-        "grid": "default",
-        **kwargs,
-    }
+    good = dict(problems=["shekel_chain"], dims=[3], planners=["voot"], seeds=[0], grid="default")
     with pytest.raises(ValueError, match=match):
-        build_plan_specs(
-            args.pop("problems"), args.pop("dims"), args.pop("planners"), args.pop("seeds"), **args
-        )
+        build_plan_specs(**{**good, "simulations": 5, **kwargs})
 
 
 def test_chain_row_contents() -> None:
@@ -195,31 +180,14 @@ def test_interrupted_plan_sweep_resumes(tmp_path: Path) -> None:
 def test_killed_plan_process_resumes(tmp_path: Path) -> None:
     """SIGKILL a real `voot-bench plan` midway, rerun it, and check the store."""
     out = tmp_path / "r"
-    args = [
-        sys.executable, "-m", "voot.bench.cli.main", "plan", "--out", str(out),
+    argv = [
+        "plan", "--out", str(out),
         "--problems", "shekel_chain", "--dims", "3", "--planners", "doot",
         "--seeds", "6", "--simulations", "400", "--grid", "default",
         "--workers", "1", "--no-progress",
     ]  # fmt: skip
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    runs = out / "runs"
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if runs.is_dir() and sum(1 for _ in runs.glob("[!.]*.json")) >= 2:
-            break
-        time.sleep(0.02)
-    if proc.poll() is None:
-        os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
-    store = ResultStore(out)
-    before = {p.name: p.read_bytes() for p in store.row_files()}
-    assert len(before) >= 2
-    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert f"{len(before)} already in the store" in done.stdout
+    store, _ = killed_and_resumed(argv, out, rows=2)
     assert len(store.load(kind="plan")) == 6
-    for name, data in before.items():
-        assert (store.runs_path / name).read_bytes() == data
 
 
 def test_record_paths_and_recording(tmp_path: Path) -> None:
@@ -243,15 +211,19 @@ def test_record_paths_and_recording(tmp_path: Path) -> None:
 
 def _mujoco_envs_available() -> bool:
     try:
-        pass
+        import voot.envs.kitchen  # noqa: F401
     except Exception:
         return False
     return True
 
 
-@pytest.mark.skipif(
+#: The runs on the robot domains need the MuJoCo environments (the ``envs`` extra).
+needs_envs = pytest.mark.skipif(
     not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
 )
+
+
+@needs_envs
 def test_kitchen_run_records_objects() -> None:
     (spec,) = build_plan_specs(["kitchen"], None, ["voot"], [0], simulations=3, grid="default")
     r = run_plan_spec(spec)
@@ -297,9 +269,7 @@ def test_sampling_based_planners_in_the_sweep() -> None:
     assert strip_timings(again) == strip_timings(run_plan_spec(specs[0]))
 
 
-@pytest.mark.skipif(
-    not _mujoco_envs_available(), reason="the MuJoCo environments are not importable"
-)
+@needs_envs
 def test_kitchen_v1_run_with_a_sampling_based_planner() -> None:
     (spec,) = build_plan_specs(["kitchen_v1"], None, ["mppi"], [0], simulations=6, grid="default")
     r = run_plan_spec(spec)

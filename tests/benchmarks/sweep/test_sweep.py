@@ -5,17 +5,15 @@ from __future__ import annotations
 import errno
 import json
 import os
-import signal
 import subprocess
 import sys
-import time
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
-from store_fixtures import Interrupting
+from store_fixtures import Interrupting, killed_and_resumed
 
 from voot.bench.store.format import Row, StoreError
 from voot.bench.store.lock import LOCK_NAME, StoreBusyError, WriterLock
@@ -98,17 +96,9 @@ def test_default_sweep_is_the_papers() -> None:
     ],
 )
 def test_bad_sweep_arguments(kwargs: dict[str, Any], match: str) -> None:
-    args: dict[str, Any] = {
-        "functions": ["rastrigin"],
-        "dims": [3],
-        "methods": ["voo"],
-        "seeds": [0],
-        **kwargs,
-    }
+    good = dict(functions=["rastrigin"], dims=[3], methods=["voo"], seeds=[0])
     with pytest.raises(ValueError, match=match):
-        build_specs(
-            args.pop("functions"), args.pop("dims"), args.pop("methods"), args.pop("seeds"), **args
-        )
+        build_specs(**{**good, **kwargs})
 
 
 def test_method_grid_default_and_paper() -> None:
@@ -318,48 +308,15 @@ def test_a_sweep_holds_the_writer_lock_and_takes_over_a_stale_one(
 def test_killed_sweep_process_resumes(tmp_path: Path) -> None:
     """SIGKILL a real `voot-bench bbfo` midway, rerun it, and check the store."""
     out = tmp_path / "r"
-    args = [
-        sys.executable,
-        "-m",
-        "voot.bench.cli.main",
-        "bbfo",
-        "--out",
-        str(out),
-        "--functions",
-        "shekel",
-        "--dims",
-        "10",
-        "--methods",
-        "voo",
-        "--seeds",
-        "4",
-        "--budget",
-        "250",
-        "--workers",
-        "1",
-        "--no-progress",
-    ]
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    runs = out / "runs"
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if runs.is_dir() and sum(1 for p in runs.glob("[!.]*.json")) >= 3:
-            break
-        time.sleep(0.02)
-    if proc.poll() is None:
-        os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
-    store = ResultStore(out)
-    before = {p.name: p.read_bytes() for p in store.row_files()}
-    assert len(before) >= 3
+    argv = [
+        "bbfo", "--out", str(out), "--functions", "shekel", "--dims", "10",
+        "--methods", "voo", "--seeds", "4", "--budget", "250",
+        "--workers", "1", "--no-progress",
+    ]  # fmt: skip
+    store, before = killed_and_resumed(argv, out, rows=3)
     specs = build_specs(["shekel"], [10], ["voo"], range(4), budget=250)
-    assert set(before) <= {f"{s.run_id}.json" for s in specs}
-    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr
-    assert f"{len(before)} already in the store" in done.stdout
+    assert before <= {f"{s.run_id}.json" for s in specs}
     assert {r["run_id"] for r in store.load()} == {s.run_id for s in specs}
-    for name, data in before.items():
-        assert (store.runs_path / name).read_bytes() == data
 
 
 def test_make_backend() -> None:
