@@ -1,6 +1,6 @@
 """Object shapes built with trimesh from a spec: the mesh, its convex parts, its mass.
 
-The v1 scenes are MuJoCo primitives; generated scenes (issue 24) hold objects of real
+The v1 scenes are MuJoCo primitives; generated scenes hold objects of real
 shapes: boxes, open crates and trays, bins, bowls, plates, mugs with a handle, buckets,
 bottles and jugs. Each is built procedurally from a :class:`ShapeSpec` (kind, bounding-box
 size, variant) by :func:`build_shape`, deterministically (same spec, same bytes, in any
