@@ -20,6 +20,7 @@ Whether a search clears every obstacle depends on the seed (see ``docs/recording
 from __future__ import annotations
 
 import json
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -272,10 +273,15 @@ def run(
         label = f"{key.upper().replace('_', '-')}, {n_simulations} simulations, seed {seed}"
         if env_kwargs:
             label += f", {env_kwargs['difficulty']} kitchen {env_kwargs['layout_seed']}"
-        frames = plan_animation(problem, result.actions, size=video_size, label=label)
+        talk = _RenderProgress(verbose)
+        frames = plan_animation(
+            problem, result.actions, size=video_size, label=label, progress=talk
+        )
         from voot.record.video import write_video
 
+        talk.writing(len(frames))
         gif = write_video(out / f"{stem}.gif", frames, fps=fps, hold_last=int(2 * fps))
+        talk.done()
         from PIL import Image
 
         with Image.open(gif) as image:  # the writer merges repeated frames: count the file's
@@ -324,6 +330,36 @@ def _objects_left(result: PlanResult, obstacles: int) -> int:
         return obstacles
     # An infeasible last action reports the count of the state it was tried from.
     return int(left)
+
+
+class _RenderProgress:
+    """Progress of the GIF on stderr: one line that counts the plan's actions rendered
+    (rewritten in place on a terminal, one line per action otherwise), then the writing."""
+
+    def __init__(self, verbose: bool) -> None:
+        self.verbose = verbose
+        self._t0 = time.perf_counter()
+        self._tty = sys.stderr.isatty()
+
+    def _say(self, text: str, *, final: bool = False) -> None:
+        if not self.verbose:
+            return
+        seconds = time.perf_counter() - self._t0
+        line = f"  GIF: {text}, {seconds:4.1f} s"
+        if self._tty:
+            sys.stderr.write(f"\r{line:<60}" + ("\n" if final else ""))
+        else:
+            sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+    def __call__(self, k: int, n: int) -> None:
+        self._say(f"rendering the plan's frames, {k} of {n} actions")
+
+    def writing(self, frames: int) -> None:
+        self._say(f"writing {frames} frames")
+
+    def done(self) -> None:
+        self._say("written", final=True)
 
 
 class _Progress:
