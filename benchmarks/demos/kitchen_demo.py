@@ -6,7 +6,9 @@ authors' tree-side rules too), writes the rerun recording (``kitchen_<planner>.r
 MuJoCo scene, the best plan on the ``plan`` timeline, the sampled picks and placements of
 the root and the first place node coloured by :math:`\hat Q`, the search tree), checks
 that it reads back, renders the best plan as a GIF (``kitchen_<planner>.gif``,
-:func:`voot.record.kitchen_animation.plan_animation`) and prints the obstacles cleared.
+:func:`voot.record.kitchen_animation.plan_animation`; most of the demo's time, so a
+progress line on stderr counts the plan's actions rendered) and prints the obstacles
+cleared.
 It runs on ``voot/KitchenClearing-v1`` by default (``env_id`` picks v0, or the generated
 kitchens of ``voot/KitchenClearing-v2`` with ``layout_seed`` and ``difficulty``: the
 recording then shows that kitchen's walls, counters and mesh objects, and its files are
@@ -50,7 +52,8 @@ DEFAULT_DIFFICULTY = "easy"
 #: (other seeds may commit to a dead end; see docs/recordings.md).
 DEMO_ENV = "voot/KitchenClearing-v1"
 #: Simulations of :func:`run`: the searches that clear the kitchen do so within about
-#: 600 (measured: seeds 3 and 6 at 600); 1,000 take 30 s of CPU on one core.
+#: 600 (measured: seeds 3 and 6 at 600); 1,000 take about 2 s on v1 (the shared 2-core
+#: machine; rendering the GIF then takes 10-25 s).
 DEFAULT_SIMULATIONS = 1000
 #: Seed of :func:`run`.
 DEFAULT_SEED = 0
