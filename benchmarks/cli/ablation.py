@@ -56,6 +56,8 @@ def cmd_ablation(args: argparse.Namespace) -> int:
 
 def register(sub: Subparsers) -> None:
     """Add ``ablation``."""
+    from voot.bench.protocol import problems as P
+
     p = sub.add_parser(
         "ablation",
         help="one switch at a time from the v1 defaults to the authors' code, for VOOT and"
@@ -70,7 +72,10 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument("--switches", nargs="+", metavar="NAME", help="switches (default: all)")
     p.add_argument(
-        "--problems", nargs="+", metavar="NAME", help="kitchen_v1 and/or conveyor_v1 (both)"
+        "--problems",
+        nargs="+",
+        metavar="NAME",
+        help=f"{' and/or '.join(P.recorded_names())} (the paper's protocol; default: all)",
     )
     p.add_argument("--seeds", default="0:20", help="evaluation seeds (default: %(default)s)")
     p.add_argument(

@@ -25,6 +25,8 @@ DIFFICULTY_CHOICES = ("easy", "medium", "hard")
 #: (:data:`voot.bench.demos.kitchen_demo.DEFAULT_LAYOUT_SEED`, ``DEFAULT_DIFFICULTY``).
 DEFAULT_LAYOUT_SEED = 0
 DEFAULT_DIFFICULTY = "easy"
+#: The kitchen of the paper's protocol: the default ``--env`` of ``demo`` and ``figure5``.
+PAPER_KITCHEN = "kitchen_v1"
 
 
 def cmd_demo(args: argparse.Namespace) -> int:
@@ -151,6 +153,8 @@ def cmd_demo_voo(args: argparse.Namespace) -> int:
 
 def register(sub: Subparsers) -> None:
     """Add ``demo``, ``record-demo``, ``figure5``, ``demo-voo`` and ``env-figures``."""
+    from voot.bench.protocol import problems as P
+
     p = sub.add_parser(
         "demo",
         help="the README's main job: VOOT clearing the kitchen, with a rerun recording and a GIF",
@@ -164,10 +168,9 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--no-video", action="store_true", help="skip the GIF")
     p.add_argument(
         "--env",
-        default="kitchen_v1",
-        help="kitchen_v1 (voot/KitchenClearing-v1, the authors' protocol; default), kitchen"
-        " (voot/KitchenClearing-v0) or kitchen_v2 (voot/KitchenClearing-v2, kitchens generated"
-        " from --layout-seed and --difficulty)",
+        default=PAPER_KITCHEN,
+        help=f"{P.names_text('kitchen')} (default: %(default)s); a generated kitchen takes"
+        " --layout-seed and --difficulty",
     )
     p.add_argument(
         "--layout-seed",
@@ -214,7 +217,11 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--planners", nargs="+", default=["voot", "pw_uct"], metavar="NAME")
     p.add_argument("--visits", type=int, default=50, help="visits of the node (the paper's 50)")
     p.add_argument("--max-simulations", type=int, default=2000)
-    p.add_argument("--env", default="kitchen", help="kitchen (v0, default) or kitchen_v1")
+    p.add_argument(
+        "--env",
+        default=PAPER_KITCHEN,
+        help=f"{P.names_text('kitchen', ('protocol', 'v0'))} (default: %(default)s)",
+    )
     p.add_argument(
         "--image",
         default="kitchen_figure5.png",

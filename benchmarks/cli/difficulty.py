@@ -63,6 +63,8 @@ def cmd_ladder(args: argparse.Namespace) -> int:
 
 def register(sub: Subparsers) -> None:
     """Add ``difficulty`` and ``ladder``."""
+    from voot.bench.protocol import problems as P
+
     p = sub.add_parser(
         "difficulty",
         help="planner-agnostic difficulty of the robot domains (v0, v1): feasibility rates,"
@@ -82,7 +84,12 @@ def register(sub: Subparsers) -> None:
         help="difficulty ladder of a generated family (v2): feasibility by cause and random"
         " rollouts per level, planner success from a plan store",
     )
-    p.add_argument("--env", default="voot/KitchenClearing-v2", help="default: %(default)s")
+    generated = P.recorded_names(kinds=("generated",))
+    p.add_argument(
+        "--env",
+        default=P.normalize_problem(generated[0]),
+        help=f"a generated family: {' '.join(generated)} or its id (default: %(default)s)",
+    )
     p.add_argument("--levels", nargs="+", default=list(LADDER_LEVELS), help="default: %(default)s")
     p.add_argument("--layouts", nargs="+", default=["0:5"], help="layout seeds (default: 0:5)")
     p.add_argument("--samples", type=int, default=500, help="uniform actions per node and layout")

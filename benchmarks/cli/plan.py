@@ -305,6 +305,7 @@ def _one_setting_each(specs: Sequence[PlanSpec]) -> list[PlanSpec]:
 
 def register(sub: Subparsers) -> None:
     """Add ``plan``."""
+    from voot.bench.protocol import problems as P
     from voot.bench.sweep.engine import GRIDS
 
     p = sub.add_parser(
@@ -323,8 +324,8 @@ def register(sub: Subparsers) -> None:
         "--problems",
         nargs="+",
         metavar="NAME",
-        help="shekel_chain griewank_chain rastrigin_chain, kitchen conveyor, or any"
-        " gymnasium id with get_state/set_state (default: shekel_chain)",
+        help=f"the chains {' '.join(P.CHAINS)}; {P.names_text()}; or any gymnasium id"
+        f" with get_state/set_state (default: {' '.join(P.DEFAULT_PROBLEMS)})",
     )
     p.add_argument("--dims", nargs="+", metavar="D", help="chain dimensions (default: 10 20)")
     p.add_argument(

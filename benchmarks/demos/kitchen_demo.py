@@ -6,7 +6,9 @@ authors' tree-side rules too), writes the rerun recording (``kitchen_<planner>.r
 MuJoCo scene, the best plan on the ``plan`` timeline, the sampled picks and placements of
 the root and the first place node coloured by :math:`\hat Q`, the search tree), checks
 that it reads back, renders the best plan as a GIF (``kitchen_<planner>.gif``,
-:func:`voot.record.kitchen_animation.plan_animation`) and prints the obstacles cleared.
+:func:`voot.record.kitchen_animation.plan_animation`; most of the demo's time, so a
+progress line on stderr counts the plan's actions rendered) and prints the obstacles
+cleared.
 It runs on ``voot/KitchenClearing-v1`` by default (``env_id`` picks v0, or the generated
 kitchens of ``voot/KitchenClearing-v2`` with ``layout_seed`` and ``difficulty``: the
 recording then shows that kitchen's walls, counters and mesh objects, and its files are
@@ -20,6 +22,7 @@ Whether a search clears every obstacle depends on the seed (see ``docs/recording
 from __future__ import annotations
 
 import json
+import sys
 import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -49,7 +52,8 @@ DEFAULT_DIFFICULTY = "easy"
 #: (other seeds may commit to a dead end; see docs/recordings.md).
 DEMO_ENV = "voot/KitchenClearing-v1"
 #: Simulations of :func:`run`: the searches that clear the kitchen do so within about
-#: 600 (measured: seeds 3 and 6 at 600); 1,000 take 30 s of CPU on one core.
+#: 600 (measured: seeds 3 and 6 at 600); 1,000 take about 2 s on v1 (the shared 2-core
+#: machine; rendering the GIF then takes 10-25 s).
 DEFAULT_SIMULATIONS = 1000
 #: Seed of :func:`run`.
 DEFAULT_SEED = 0
@@ -272,10 +276,15 @@ def run(
         label = f"{key.upper().replace('_', '-')}, {n_simulations} simulations, seed {seed}"
         if env_kwargs:
             label += f", {env_kwargs['difficulty']} kitchen {env_kwargs['layout_seed']}"
-        frames = plan_animation(problem, result.actions, size=video_size, label=label)
+        talk = _RenderProgress(verbose)
+        frames = plan_animation(
+            problem, result.actions, size=video_size, label=label, progress=talk
+        )
         from voot.record.video import write_video
 
+        talk.writing(len(frames))
         gif = write_video(out / f"{stem}.gif", frames, fps=fps, hold_last=int(2 * fps))
+        talk.done()
         from PIL import Image
 
         with Image.open(gif) as image:  # the writer merges repeated frames: count the file's
@@ -324,6 +333,36 @@ def _objects_left(result: PlanResult, obstacles: int) -> int:
         return obstacles
     # An infeasible last action reports the count of the state it was tried from.
     return int(left)
+
+
+class _RenderProgress:
+    """Progress of the GIF on stderr: one line that counts the plan's actions rendered
+    (rewritten in place on a terminal, one line per action otherwise), then the writing."""
+
+    def __init__(self, verbose: bool) -> None:
+        self.verbose = verbose
+        self._t0 = time.perf_counter()
+        self._tty = sys.stderr.isatty()
+
+    def _say(self, text: str, *, final: bool = False) -> None:
+        if not self.verbose:
+            return
+        seconds = time.perf_counter() - self._t0
+        line = f"  GIF: {text}, {seconds:4.1f} s"
+        if self._tty:
+            sys.stderr.write(f"\r{line:<60}" + ("\n" if final else ""))
+        else:
+            sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+    def __call__(self, k: int, n: int) -> None:
+        self._say(f"rendering the plan's frames, {k} of {n} actions")
+
+    def writing(self, frames: int) -> None:
+        self._say(f"writing {frames} frames")
+
+    def done(self) -> None:
+        self._say("written", final=True)
 
 
 class _Progress:

@@ -40,7 +40,7 @@ from __future__ import annotations
 import functools
 import json
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -102,6 +102,45 @@ def aliases() -> dict[str, str]:
     paper's tables order the problems."""
     records = sorted(problem_records(), key=lambda r: int(r.id.rsplit("-v", 1)[1]))
     return {a: r.id for r in records for a in r.aliases}
+
+
+#: What a recorded name means, by kind, in the order the help texts list them.
+NAME_MEANINGS: Mapping[str, str] = {
+    "protocol": "the paper's protocol (v1 rules)",
+    "generated": "generated from layout_seed and difficulty, on the v1 rules",
+    "v0": "the first release's rules (v0)",
+    "chain": "synthetic chains as gymnasium envs",
+}
+
+
+def name_kind(record: ProblemRecord) -> str:
+    """Which of :data:`NAME_MEANINGS` a record is: ``protocol`` (the v1 rules on the
+    paper's scene), ``generated`` (a family generated from layouts), ``v0`` or ``chain``."""
+    if record.chain is not None:
+        return "chain"
+    if record.layouts:
+        return "generated"
+    return "protocol" if record.v1_rules else "v0"
+
+
+def recorded_names(family: str | None = None, kinds: Sequence[str] = ("protocol",)) -> list[str]:
+    """The aliases of the robot records (of ``family``, or every one) of ``kinds``
+    (:func:`name_kind`), in the records' order."""
+    return [
+        alias
+        for record in problem_records()
+        if record.chain is None and family in (None, record.family) and name_kind(record) in kinds
+        for alias in record.aliases
+    ]
+
+
+def names_text(family: str | None = None, kinds: Sequence[str] = tuple(NAME_MEANINGS)) -> str:
+    """The recorded aliases (of ``family``, or every robot family; of ``kinds``) grouped by
+    what they mean, for help texts: ``"kitchen_v1 conveyor_v1: the paper's protocol (v1
+    rules); ..."``, read from the records (:mod:`voot.problems`), so a help text never
+    lists a name that means something else."""
+    groups = [(kind, recorded_names(family, (kind,))) for kind in NAME_MEANINGS if kind in kinds]
+    return "; ".join(f"{' '.join(names)}: {NAME_MEANINGS[kind]}" for kind, names in groups if names)
 
 
 def normalize_problem(name: str) -> str:

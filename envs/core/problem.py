@@ -84,8 +84,9 @@ class EnvProblem:
             the conveyor, their generated families), possibly wrapped
             (``gym.make("voot/KitchenClearing-v0")``). The problem asks it for the current
             operator, its parameter ranges and distance; it knows no concrete task.
-        seed: If not None, ``env.reset(seed=seed)`` first; otherwise the problem starts
-            from the env's current state.
+        seed: If not None, ``env.reset(seed=seed)`` first (through its wrappers, so that
+            the plan can be executed with ``env.step`` afterwards); otherwise the problem
+            starts from the env's current state.
         units: ``"normalized"`` (``[-1, 1]`` boxes) or ``"paper"`` (the parameters'
             own ranges).
         prescreen: With the ``"full_step"`` pre-check (v0), ask the env's exact
@@ -135,7 +136,7 @@ class EnvProblem:
         self.n_simulator_calls = 0
         self._metrics: dict[Operator, ActionDistance] = {}
         if seed is not None:
-            u.reset(seed=seed)
+            env.reset(seed=seed)  # through the wrappers, which then allow env.step
 
     # ----- units ---------------------------------------------------------------------------
     def _ranges(self) -> Sequence[tuple[float, float]]:

@@ -170,3 +170,34 @@ def test_adapter_errors() -> None:
         box_bounds(gym.spaces.Box(-np.inf, 1.0, shape=(2,)))
     with pytest.raises(ValueError, match="Box"):
         box_bounds(gym.spaces.Discrete(3))
+
+
+def _voot_ids() -> list[str]:
+    return [i for i in gym.registry if i.startswith("voot/")]
+
+
+@pytest.mark.parametrize("env_id", _voot_ids())
+def test_gym_problem_works_on_every_voot_id_or_names_env_problem(env_id: str) -> None:
+    """The chains plan through GymProblem (the env left at the root, the plan replays);
+    the robot envs are refused by both gym adapters, naming EnvProblem."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        env = gym.make(env_id)
+    if callable(getattr(env.unwrapped, "planning_problem", None)):
+        for adapter in (GymProblem, MujocoGymProblem):
+            with pytest.raises(ValueError, match="EnvProblem"):
+                adapter(env, seed=0)
+        env.close()
+        return
+    problem = GymProblem(env, seed=0)
+    before = problem.snapshot()
+    res = plan(problem, "voot", n_simulations=30, seed=0)
+    assert problem.snapshot() == before
+    assert len(res.actions) >= 1
+    rewards = []
+    for action in res.actions:
+        _, reward, _, _, info = env.step(action)
+        rewards.append(reward - info["bonus"])
+    assert rewards == res.rewards.tolist()

@@ -108,6 +108,7 @@ def plan_animation(
     spacing: float = 0.35,
     max_motion_frames: int = 10,
     arm_frames: int = 3,
+    progress: Callable[[int, int], None] | None = None,
 ) -> list[Frame]:
     """Frames of a kitchen plan, stepped from the problem's current state.
 
@@ -131,6 +132,8 @@ def plan_animation(
         spacing: metres of base motion between frames.
         max_motion_frames: at most this many frames per base motion.
         arm_frames: frames of each arm motion.
+        progress: called as ``progress(k, n)`` when ``k`` of the plan's ``n`` actions
+            have their frames (from 0 to ``n``; rendering takes seconds).
     """
     from voot.envs.core.names import Operator
     from voot.envs.core.scene import set_object_pose
@@ -151,6 +154,8 @@ def plan_animation(
         left = len(env.task.on_path)
         frames = [caption(f"start: {left} obstacles on the path to the sink")()]
         for t, a in enumerate(actions, start=1):
+            if progress is not None:
+                progress(t - 1, n)
             before = env.get_state()
             task = env.task
             base0 = robot.base_pose(data)
@@ -187,6 +192,8 @@ def plan_animation(
                     frames.append(text())
             env.set_state(after)
             frames.append(text())
+        if progress is not None:
+            progress(n, n)
         left = len(env.task.on_path)
         if left == 0:  # the path is clear: drive to the sink (shown only, not stepped)
             end = env.get_state()

@@ -16,6 +16,14 @@ bonus (it is moved out of :attr:`StepResult.reward` into :attr:`StepResult.bonus
 step is terminal when the env terminates or truncates. If the unwrapped env has
 ``action_bounds()`` (a per-state box) or ``is_feasible(action)``, they are used.
 
+An env that offers its own adapter (a ``planning_problem()`` method: voot's robot envs,
+``voot/KitchenClearing-v1`` and the rest) is refused by both, with a message naming
+:class:`~voot.envs.core.problem.EnvProblem`: its action length changes between operators
+(6 values at a kitchen pick, 3 at a place, padded to the action space by the adapter),
+its goal bonus is ``info["goal_bonus"]``, its pre-check and task record are its own, and
+a gymnasium-level adapter would get each of them silently wrong. The chains' ids
+(``voot/ShekelChain-v0`` ...) work with :class:`GymProblem`.
+
 Neither this module nor :mod:`voot.tree` imports MuJoCo: :class:`MujocoGymProblem`
 imports it when constructed.
 """
@@ -62,11 +70,29 @@ def _counter_wrappers(env: Any) -> list[Any]:
     return out
 
 
+def _refuse_own_adapter(env: Any) -> None:
+    """Raise ValueError if ``env`` offers its own planning adapter (``planning_problem()``),
+    naming it (see the module docstring)."""
+    u = env.unwrapped
+    if callable(getattr(u, "planning_problem", None)):
+        spec = getattr(env, "spec", None)
+        name = spec.id if spec is not None else type(u).__name__
+        raise ValueError(
+            f"{name} has its own planning adapter, which a gymnasium-level one cannot stand"
+            " in for (its action length changes between operators, its goal bonus is"
+            " info['goal_bonus'], its pre-check and task record are its own): use"
+            " EnvProblem(env) (from voot.envs.core.problem import EnvProblem), or"
+            " env.unwrapped.planning_problem(env)"
+        )
+
+
 class GymProblem:
     """A gymnasium env with ``get_state``/``set_state`` as a planning problem.
 
     Args:
-        env: the environment (wrappers allowed).
+        env: the environment (wrappers allowed); not one with its own adapter (a
+            ``planning_problem()`` method, as voot's robot envs have: a ValueError names
+            :class:`~voot.envs.core.problem.EnvProblem`).
         seed: if not None, ``env.reset(seed=seed)`` first; otherwise the env must have
             been reset already (the adapter starts from its current state).
         bonus_key: info key of the goal-bonus part of the reward.
@@ -85,6 +111,7 @@ class GymProblem:
         self.unwrapped = env.unwrapped
         #: Calls of the env's ``step`` (the simulator) through this problem.
         self.n_simulator_calls = 0
+        _refuse_own_adapter(env)
         self._check_state_api()
         self.bonus_key = bonus_key
         self.feasible_key = feasible_key

@@ -159,6 +159,9 @@ class MCTS(Search):
     def _best_info(self) -> Mapping[str, Any]:
         return self.best_node().info
 
+    def _root_snapshot(self) -> Any:
+        return self.root.snapshot
+
     def best_node(self) -> Node:
         """The end of the best path from the root (see ``best_return_over``).
 

@@ -9,6 +9,10 @@ here once and each planner says what one simulation does (:meth:`Search._simulat
 
 Both return the same :class:`PlanResult`, so sweeps, the result store and the plots
 treat every planner alike.
+
+A search leaves the problem where it found it: when :meth:`Search.search` returns (or
+raises), the problem is restored to the root's snapshot, so the best plan's actions,
+executed on the problem (or on the env it adapts), give the plan's rewards.
 """
 
 from __future__ import annotations
@@ -90,11 +94,15 @@ class PlanResult:
 class Search(ABC):
     """A planner that runs simulations one at a time and keeps the best return's curve.
 
-    A subclass sets up its state, calls :meth:`_start_curve`, and says what one
-    simulation does (:meth:`_simulate`), what the best return is so far
-    (:attr:`best_return`), the step info at the end of the best path
-    (:meth:`_best_info`) and what a result holds (:meth:`result`).
+    A subclass sets up its state (:attr:`problem` among it), calls :meth:`_start_curve`,
+    and says what one simulation does (:meth:`_simulate`), which snapshot is the root
+    (:meth:`_root_snapshot`), what the best return is so far (:attr:`best_return`), the
+    step info at the end of the best path (:meth:`_best_info`) and what a result holds
+    (:meth:`result`).
     """
+
+    #: The planning problem searched (its state at the root is :meth:`_root_snapshot`).
+    problem: Any
 
     #: Best return after every simulation (the paper's curve).
     best_return_curve: list[float]
@@ -115,6 +123,10 @@ class Search(ABC):
     @abstractmethod
     def _simulate(self) -> None:
         """Run one simulation from the root."""
+
+    @abstractmethod
+    def _root_snapshot(self) -> Any:
+        """The problem's snapshot at the root (where :meth:`search` leaves the problem)."""
 
     @property
     @abstractmethod
@@ -143,6 +155,9 @@ class Search(ABC):
                 counted over the planner's life); returning True stops the search.
             record_info: a step-info key (e.g. ``"objects_left"``) to record at the end of
                 the best path after every simulation, into :attr:`PlanResult.info_curve`.
+
+        The problem is left at the root's state (restored even if a simulation raises),
+        wherever the last simulation ended.
         """
         n = check_n_simulations(n_simulations)
         t0 = time.perf_counter()
@@ -156,5 +171,6 @@ class Search(ABC):
                 if callback is not None and callback(self, self.n_simulations - 1):
                     break
         finally:
+            self.problem.restore(self._root_snapshot())
             self.wall_time += time.perf_counter() - t0
         return self.result(record_info is not None)

@@ -424,6 +424,9 @@ class ShootingPlanner(Search):
             if len(self._batch) == size:
                 self._update()
 
+    def _root_snapshot(self) -> Any:
+        return self._root
+
     # ----- public -----------------------------------------------------------------------------
     def _best_info(self) -> Mapping[str, Any]:
         assert self._best is not None

@@ -52,3 +52,22 @@ def test_demo_on_a_generated_kitchen(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert main([*argv, "--simulations", "3", "--no-video", "--out", str(out)]) == 0
     assert (out / "kitchen_v2_easy_2_voot.rrd").stat().st_size > 0
     assert "voot/KitchenClearing-v2, layout_seed 2, difficulty easy" in capsys.readouterr().out
+
+
+def test_demo_and_figure5_default_to_the_papers_protocol() -> None:
+    """Both kitchen commands default to the kitchen of the paper's protocol (v1), and
+    their help lists the kitchen names the records give, by meaning."""
+    from voot.bench.cli.main import build_parser
+    from voot.bench.protocol.problems import names_text, normalize_problem
+    from voot.problems import problem_record
+
+    parser = build_parser()
+    for command in ("demo", "figure5"):
+        args = parser.parse_args([command])
+        record = problem_record(normalize_problem(args.env))
+        assert record.v1_rules and not record.layouts, command
+    helps = {
+        a.dest: a.help
+        for a in parser._subparsers._group_actions[0].choices["demo"]._actions  # type: ignore[union-attr]
+    }
+    assert names_text("kitchen") in helps["env"]

@@ -350,3 +350,13 @@ def test_plan_held_out_protocol_resumes(
     assert "on seeds 0-1 x layouts 0-1; evaluation: 8 runs (the selected setting) on seeds 5-6" in (
         capsys.readouterr().err
     )
+
+
+def test_problems_help_lists_the_recorded_names_by_meaning() -> None:
+    from voot.bench.cli.main import build_parser
+    from voot.bench.protocol.problems import names_text
+
+    sub = build_parser()._subparsers._group_actions[0].choices["plan"]  # type: ignore[union-attr]
+    text = next(a.help for a in sub._actions if a.dest == "problems")
+    assert names_text() in text and "shekel_chain" in text
+    assert "kitchen conveyor: the first release's rules (v0)" in text

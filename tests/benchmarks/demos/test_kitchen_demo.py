@@ -44,8 +44,14 @@ def test_tiny_run_writes_a_recording_that_reads_back(tmp_path: Path, capsys) -> 
     saved = json.loads((tmp_path / "out" / "kitchen_voot.json").read_text())
     assert saved["cleared"] == summary.cleared and saved["recording"] == str(summary.recording)
     assert "layout_seed" not in saved and "difficulty" not in saved  # the paper's kitchen
-    out = capsys.readouterr().out
-    assert f"cleared {summary.cleared} of 7 obstacles" in out and "rerun " in out
+    captured = capsys.readouterr()
+    assert f"cleared {summary.cleared} of 7 obstacles" in captured.out and "rerun " in captured.out
+    # the GIF's progress, on stderr: every action of the plan counted, then the writing
+    n = summary.plan_length
+    for k in (0, n):
+        assert f"GIF: rendering the plan's frames, {k} of {n} actions" in captured.err
+    assert "GIF: writing" in captured.err and "GIF: written" in captured.err
+    assert "GIF:" not in captured.out
 
 
 def test_bad_input(tmp_path: Path) -> None:

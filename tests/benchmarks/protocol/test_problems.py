@@ -110,3 +110,32 @@ def test_adapt_env_refuses_envs_without_state() -> None:
     env = gymnasium.make("CartPole-v1", disable_env_checker=True)
     with pytest.raises(ValueError, match="neither get_state"):
         P.adapt_env(env)
+
+
+def test_help_names_come_from_the_records_by_meaning() -> None:
+    from voot.bench.protocol.problems import NAME_MEANINGS, name_kind, names_text, recorded_names
+    from voot.problems import problem_records
+
+    robots = [r for r in problem_records() if r.chain is None]
+    text = names_text()
+    for record in robots:
+        # each alias once, in the group of its meaning
+        assert text.count(f"{record.aliases[0]} ") + text.count(f"{record.aliases[0]}:") == 1
+        group = next(g for g in text.split("; ") if record.aliases[0] in g.split(":")[0].split())
+        assert group.endswith(NAME_MEANINGS[name_kind(record)])
+    assert recorded_names() == [r.aliases[0] for r in robots if r.v1_rules and not r.layouts]
+    assert "conveyor" not in names_text("kitchen")
+    assert "kitchen_v2" not in names_text("kitchen", ("protocol", "v0"))
+
+
+def test_the_docs_name_every_id_and_alias_as_the_records_do() -> None:
+    """docs/getting-started.md, "Problem names": one row per robot alias with its id."""
+    from pathlib import Path
+
+    from voot.problems import problem_records
+
+    page = (Path(__file__).resolve().parents[3] / "docs" / "getting-started.md").read_text()
+    section = page.split("## Problem names", 1)[1].split("\n## ", 1)[0]
+    for record in problem_records():
+        for alias in record.aliases:
+            assert f"| `{alias}` | `{record.id}` |" in section

@@ -376,3 +376,35 @@ def test_bad_actions_are_refused_before_any_count_cache_or_state_changes(env_id:
             assert p.n_simulator_calls == calls and p.last_check is last
     p.step(good)  # the cached check is still used: no new simulator call
     assert p.n_simulator_calls == calls + (0 if env_id.endswith("v0") else 1)
+
+
+def _robot_ids() -> list[str]:
+    from voot.problems import problem_records
+
+    return [r.id for r in problem_records() if r.chain is None]
+
+
+@pytest.mark.parametrize("env_id", _robot_ids())
+def test_plan_leaves_the_env_where_it_found_it(env_id: str) -> None:
+    """After plan(), the env is at the root again, so its plan replays on it exactly."""
+    import warnings
+
+    from voot.bench.protocol.problems import domain_options
+    from voot.tree import plan
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        env = gym.make(env_id)
+    problem = EnvProblem(env, seed=0)
+    before = env.unwrapped.get_state()
+    res = plan(problem, "voot", n_simulations=15, seed=0, **domain_options(env_id, None, "voot"))
+    after = env.unwrapped.get_state()
+    assert after.physics.tobytes() == before.physics.tobytes()
+    assert after.task == before.task and after.rng_state == before.rng_state
+    assert len(res.actions) >= 1
+    rewards = []
+    for action in res.actions:
+        reward = env.step(problem.to_env_action(action))[1]
+        rewards.append(reward)
+    assert rewards == res.rewards.tolist()
+    env.close()
