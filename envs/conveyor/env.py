@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
 from voot.envs.assets.mjcf import belt_pose
-from voot.envs.conveyor.problems import FAMILY
+from voot.envs.conveyor.problems import FAMILY, HORIZON
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
 from voot.envs.core.names import Failure, Operator, Precheck, Reason, reason_code
@@ -113,7 +113,7 @@ class ConveyorConfig:
     present_gap: float = 0.2
     length_scale: float = 0.1
     infeasible_reward: float = -2.0
-    horizon: int = 20
+    horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
     ik: IKConfig = field(default_factory=IKConfig)
