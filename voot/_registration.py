@@ -8,11 +8,16 @@ costs little and imports no MuJoCo and no env code.
 Each id is registered with its record's ``max_episode_steps`` and ``reward_threshold``.
 An old id kept as an alias (:attr:`voot.problems.ProblemRecord.renamed_to`, such as
 ``voot/KitchenClearing-v2``, now ``voot/GeneratedKitchen-v0``) is made by
-:func:`make_renamed`, which warns once and makes the new id's env. Gymnasium tells a user
-of ``Name-vN`` to upgrade whenever a higher ``Name-vM`` is registered; an old alias is no
-upgrade of the paper's versions (v2 was a different thing, a generated family), so its
-spec is filed under a name of its own (the whole id), which keeps
-``voot/KitchenClearing-v0`` and ``-v1`` free of that warning.
+:func:`make_renamed`, which warns once and makes the new id's env.
+
+Gymnasium tells a user of ``Name-vN`` that it "is out of date" whenever a higher
+``Name-vM`` is registered. voot's versions are problems side by side, not revisions:
+``-v0`` is the paper's scene as first released, ``-v1`` the authors' protocol on it, and
+both are run and reported. Each voot spec is therefore filed in the registry under its
+whole id as its name, without a version (``gym.spec("voot/KitchenClearing-v1").name ==
+"KitchenClearing-v1"``, its ``version`` None; the registry's key stays the id, so
+``gym.make`` and ``gym.spec`` find it as before, and a made env's ``spec`` is gymnasium's
+usual one), and no voot id warns that another is newer.
 """
 
 from __future__ import annotations
@@ -60,11 +65,10 @@ def register_envs() -> None:
             max_episode_steps=record.max_episode_steps,
             reward_threshold=record.reward_threshold,
         )
-        if record.renamed_to is not None:
-            # not a version of its old name: gymnasium's "out of date" check compares
-            # the specs' names and versions (the registry's key stays the id)
-            spec = gymnasium.registry[record.id]
-            spec.name, spec.version = record.id.split("/", 1)[1], None
+        # a problem of its own, not a revision (module docstring): gymnasium's "out of
+        # date" check compares the specs' names and versions
+        spec = gymnasium.registry[record.id]
+        spec.name, spec.version = record.id.split("/", 1)[1], None
 
 
 def make_renamed(renamed_to: str, **kwargs: Any) -> Any:
