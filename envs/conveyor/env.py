@@ -340,6 +340,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         """A step's info keys with no action behind them (the module docstring)."""
         info = _placements_info("", -1, (), ())
         info["operator"] = None
+        info["action_clipped"] = False
         info.update(_paths_info([], [], [], False))
         info.update(padded_parameters(np.empty((0, 3)), _PARAMETERS_SHAPE))
         info.update(self._progress_info())

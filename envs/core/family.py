@@ -97,7 +97,9 @@ class LayoutFamily:
     def _init_family(self, layout_seed: int | None, difficulty: object, split: object) -> None:
         """Check the arguments and build the env on its first layout: ``layout_seed``
         (default: 0, or the split's first layout in split mode)."""
-        self.split: Split | None = None if split is None else V.choice(Split, split, "split", "splits")
+        self.split: Split | None = (
+            None if split is None else V.choice(Split, split, "split", "splits")
+        )
         self._split_seeds: tuple[int, ...] = (
             () if self.split is None else self.LAYOUT_SPLIT.seeds(self.split)
         )
