@@ -68,7 +68,9 @@ def main() -> None:
     print("|---|---|---|---|---|")
     for env_id in FAMILIES:
         m = measure(env_id, args.layouts, args.difficulty)
-        cells = " | ".join(f"{1e3 * m[k]:.1f} ms" for k in ("cold", "cached", "same layout", "step"))
+        cells = " | ".join(
+            f"{1e3 * m[k]:.1f} ms" for k in ("cold", "cached", "same layout", "step")
+        )
         print(f"| {env_id} | {cells} |")
 
 
