@@ -48,6 +48,7 @@ from voot.envs.core.generation import (
     parse_difficulty,
 )
 from voot.envs.core.names import Difficulty, Split
+from voot.envs.core.rendering import RenderOptions
 
 __all__ = ["RESET_OPTIONS", "LayoutFamily"]
 
@@ -64,8 +65,8 @@ class LayoutFamily:
 
     The env class lists it first (``class GeneratedKitchenEnv(LayoutFamily,
     SceneKitchenEnv)``), sets the class attributes below, and implements
-    :meth:`_load_layout`, which (re)builds the env on a layout; its ``__init__`` calls
-    :meth:`_init_family`.
+    :meth:`_load_layout`, which (re)builds the env on a layout, and, if it checks its
+    keywords, :meth:`_take_options`; the mixin's ``__init__`` is the env's.
     """
 
     #: The most objects a layout of the family holds: the observation's object slots.
@@ -87,16 +88,26 @@ class LayoutFamily:
     layout: Any
     np_random: np.random.Generator
 
-    # ----- to implement --------------------------------------------------------------------
-    def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
-        """(Re)build the env on the accepted instance of ``(layout_seed, difficulty)``, as
-        the family's ``__init__`` builds it."""
-        raise NotImplementedError
-
-    # ----- construction --------------------------------------------------------------------
-    def _init_family(self, layout_seed: int | None, difficulty: object, split: object) -> None:
+    def __init__(
+        self,
+        layout_seed: int | None = None,
+        difficulty: str = "easy",
+        render_mode: str | None = None,
+        render_camera: str = "perspective",
+        render_size: tuple[int, int] = (640, 480),
+        split: str | None = None,
+        **options: Any,
+    ) -> None:
         """Check the arguments and build the env on its first layout: ``layout_seed``
-        (default: 0, or the split's first layout in split mode)."""
+        (default: 0, or the split's first layout in split mode). ``options`` (the env's
+        config keywords, checked first by :meth:`_take_options`) and the render
+        arguments are kept for every layout the env is built on."""
+        options = dict(options)
+        self._take_options(options)  # before the (costly) generation
+        self._options: dict[str, Any] = options
+        self._render = RenderOptions(
+            render_mode=render_mode, render_camera=render_camera, render_size=render_size
+        )
         self.split: Split | None = (
             None if split is None else V.choice(Split, split, "split", "splits")
         )
@@ -110,6 +121,16 @@ class LayoutFamily:
         else:
             seed = self._split_layout(layout_seed)
         self._build(seed, level)
+
+    # ----- to implement --------------------------------------------------------------------
+    def _take_options(self, options: dict[str, Any]) -> None:
+        """Check the env's keywords (a ValueError names a refused one) and take out those
+        the family reads itself; the rest are config fields."""
+
+    def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
+        """(Re)build the env on the accepted instance of ``(layout_seed, difficulty)``, as
+        the family's ``__init__`` builds it (with ``self._options`` and ``self._render``)."""
+        raise NotImplementedError
 
     def _split_layout(self, layout_seed: object) -> int:
         """``layout_seed`` checked (and, in split mode, one of the split's)."""

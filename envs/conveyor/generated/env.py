@@ -78,29 +78,13 @@ class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
     TAIL = 2
     LEVELS = tuple(DIFFICULTIES)
 
-    def __init__(
-        self,
-        layout_seed: int | None = None,
-        difficulty: str = "easy",
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
-        split: str | None = None,
-        **options: Any,
-    ) -> None:
+    def _take_options(self, options: dict[str, Any]) -> None:
         for name in ("config", "preset"):
             if name in options:
                 raise ValueError(
                     f"voot/GeneratedStorage-v0 takes no {name!r}: its config is v1's on the"
                     " generated layout (pass ConveyorConfig fields as keywords)"
                 )
-        self._options = options
-        self._render = {
-            "render_mode": render_mode,
-            "render_camera": render_camera,
-            "render_size": render_size,
-        }
-        self._init_family(layout_seed, difficulty, split)
 
     def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         instance = storage_instance(layout_seed, difficulty)
@@ -112,7 +96,7 @@ class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
             self,
             instance.model_copy(),
             config,
-            **self._render,  # type: ignore[arg-type]
+            **self._render,
         )
 
     def solution_actions(self) -> list[FloatArray]:

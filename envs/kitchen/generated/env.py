@@ -74,26 +74,9 @@ class GeneratedKitchenEnv(LayoutFamily, SceneKitchenEnv):
     TAIL = 3
     LEVELS = tuple(DIFFICULTIES)
 
-    def __init__(
-        self,
-        layout_seed: int | None = None,
-        difficulty: str = "easy",
-        config: KitchenConfig | None = None,
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
-        split: str | None = None,
-        **options: Any,
-    ) -> None:
-        reject_layout_fields(options, LAYOUT_FIELDS)  # before the (costly) generation
-        self._config = config
-        self._options = options
-        self._render = {
-            "render_mode": render_mode,
-            "render_camera": render_camera,
-            "render_size": render_size,
-        }
-        self._init_family(layout_seed, difficulty, split)
+    def _take_options(self, options: dict[str, Any]) -> None:
+        reject_layout_fields(options, LAYOUT_FIELDS)
+        self._config: KitchenConfig | None = options.pop("config", None)
 
     def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         kitchen = generated_kitchen(layout_seed, difficulty)
@@ -101,7 +84,7 @@ class GeneratedKitchenEnv(LayoutFamily, SceneKitchenEnv):
             self,
             kitchen,
             kitchen_config(kitchen.layout, self._config, **self._options),
-            **self._render,  # type: ignore[arg-type]
+            **self._render,
         )
 
     def solution_actions(self) -> list[FloatArray]:
