@@ -56,17 +56,17 @@ class GeneratedKitchenEnv(LayoutFamily, SceneKitchenEnv):
     Args:
         layout_seed: The layout's seed (an int >= 0; default 0, or the split's first).
         difficulty: The level (:data:`~voot.envs.kitchen.generated.layout.DIFFICULTIES`).
-        config: Settings; default: the v1 preset's. Its start, goal, house and forbidden
-            rooms are replaced by the layout's.
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"``.
         render_size: ``(width, height)`` of rendered images.
         split: None (one layout, or the one a reset's options name), ``"training"`` or
             ``"heldout"``: each reset draws a layout of that part of the protocol's split
             (:class:`~voot.envs.core.family.LayoutFamily`).
-        **options: :class:`KitchenConfig` fields overriding the config's, except the
-            layout's (``start``, ``goal``, ``house``, ``forbidden``). The witness and the
-            solvability check hold for the v1 rules.
+        **options: ``config``, the settings (a :class:`KitchenConfig`; default: the v1
+            preset's; its start, goal, house and forbidden rooms are replaced by the
+            layout's), and :class:`KitchenConfig` fields overriding the config's, except
+            the layout's (``start``, ``goal``, ``house``, ``forbidden``). The witness and
+            the solvability check hold for the v1 rules.
     """
 
     MAX_OBJECTS = MAX_OBJECTS
