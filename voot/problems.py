@@ -5,7 +5,9 @@ it registers (``voot.envs.kitchen.problems``, ``voot.envs.conveyor.problems``,
 ``voot.envs.chains.problems``): the entry point and keywords gymnasium makes it with, its
 short names, the paper's budget, the discount and root commitment the authors planned it
 with, whether it plays the authors' two-stage tree rules, VOO's options there, whether it
-takes generated layouts and at which difficulty levels. :mod:`voot._registration` adds
+takes generated layouts, at which difficulty levels and with which training / held-out
+split, gymnasium's spec metadata (``max_episode_steps``, ``reward_threshold``), and, for
+an old name kept as an alias, the id it was renamed to. :mod:`voot._registration` adds
 the families' records at ``import voot`` (:func:`add_records`) and registers their ids
 with gymnasium; the benchmark reads its planner settings from them
 (:func:`voot.bench.protocol.problems.domain_options`), never from tables keyed by id.
@@ -23,6 +25,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
+from voot.envs.core.generation import PROTOCOL_SPLIT, LayoutSplit
 from voot.envs.core.names import Difficulty
 
 #: The shape of a gymnasium id voot registers: ``namespace/Name-vN``.
@@ -78,6 +81,15 @@ class ProblemRecord:
             it is one: the authors' options on it depend on the dimension
             (:func:`voot.tree.chains.chain_planner_options`), and the benchmark also plans
             in it without the env (``"shekel_chain"``).
+        layout_split: the training and held-out layout seeds of a generated family
+            (with :attr:`layouts`).
+        max_episode_steps: the domain's own episode limit (its config's ``horizon``),
+            registered with gymnasium (``gym.make`` adds a ``TimeLimit`` at it); None:
+            the domain has none.
+        reward_threshold: the return at which gymnasium deems an episode solved; None
+            where no return separates success from failure (docs/environments.md).
+        renamed_to: for an old id kept as an alias, the id it was renamed to: making the
+            old id warns once, naming the new one, and gives the new id's env.
     """
 
     id: str
@@ -95,6 +107,10 @@ class ProblemRecord:
     layouts: bool = False
     difficulties: tuple[Difficulty, ...] = ()
     chain: str | None = None
+    layout_split: LayoutSplit | None = None
+    max_episode_steps: int | None = None
+    reward_threshold: float | None = None
+    renamed_to: str | None = None
 
     def __post_init__(self) -> None:
         if not _ID.match(self.id):
@@ -115,7 +131,7 @@ class ProblemRecord:
                 raise ValueError(f"{self.id}: alias {alias!r} must be lower case with '_'")
         if self.discount is not None and not 0.0 < self.discount <= 1.0:
             raise ValueError(f"{self.id}: discount must be in (0, 1], got {self.discount}")
-        for name in ("root_commitment", "pw_retries"):
+        for name in ("root_commitment", "pw_retries", "max_episode_steps"):
             value = getattr(self, name)
             if value is not None and (type(value) is not int or value < 1):
                 raise ValueError(f"{self.id}: {name} must be None or an int >= 1, got {value!r}")
@@ -125,8 +141,10 @@ class ProblemRecord:
             raise ValueError(f"{self.id}: voo_metric needs voo_options")
         if self.voo_options is not None:
             object.__setattr__(self, "voo_options", MappingProxyType(dict(self.voo_options)))
-        if self.difficulties and not self.layouts:
-            raise ValueError(f"{self.id}: difficulty levels need generated layouts")
+        if (self.difficulties or self.layout_split) and not self.layouts:
+            raise ValueError(f"{self.id}: difficulty levels and splits need generated layouts")
+        if self.renamed_to is not None and not _ID.match(self.renamed_to):
+            raise ValueError(f"{self.id}: renamed_to must be an id, got {self.renamed_to!r}")
         levels = tuple(Difficulty(d) for d in self.difficulties)  # a ValueError names it
         object.__setattr__(self, "difficulties", levels)
 
@@ -191,18 +209,33 @@ def problem_record(id_or_alias: str) -> ProblemRecord:
     return record
 
 
+#: The entry point of an old id kept as an alias (:attr:`ProblemRecord.renamed_to`).
+RENAMED_ENTRY_POINT = "voot._registration:make_renamed"
+
+
 def robot_versions(
-    v0: ProblemRecord, root_commitment: int, generated_entry_point: str
-) -> tuple[ProblemRecord, ProblemRecord, ProblemRecord]:
-    """A robot family's three versions from its ``v0`` record (the paper's scene).
+    v0: ProblemRecord,
+    root_commitment: int,
+    generated_entry_point: str,
+    generated: tuple[str, str],
+    max_episode_steps: int,
+) -> tuple[ProblemRecord, ...]:
+    """A robot family's records from its ``v0`` record (the paper's scene).
 
     ``-v1`` is the same entry point at its ``"v1"`` preset (the authors' two-stage
     protocol) with the authors' tree rules at ``root_commitment`` and VOO's per-operator
-    distance; ``-v2`` is ``generated_entry_point`` (instances generated from
-    ``layout_seed`` at every :class:`Difficulty`) with the v1 settings. Each alias gets
-    the version's suffix (``kitchen`` -> ``kitchen_v1``, ``kitchen_v2``).
+    distance. ``generated`` is the generated family's name and alias
+    (``("GeneratedKitchen", "generated_kitchen")``): its id ``voot/<name>-v0`` is
+    ``generated_entry_point`` (instances generated from ``layout_seed`` at every
+    :class:`Difficulty`, the protocol's training / held-out split) with the v1 settings.
+    Its first name, ``<family>-v2`` (alias ``<alias>_v2``), stays as an alias of it
+    (:attr:`ProblemRecord.renamed_to`): the committed results name it. Every version
+    truncates at ``max_episode_steps`` (the config's horizon); none has a
+    ``reward_threshold`` (an episode succeeds when it terminates, whatever its return).
     """
     stem = v0.id.rsplit("-v", 1)[0]
+    namespace = stem.split("/", 1)[0]
+    v0 = replace(v0, max_episode_steps=max_episode_steps)
     v1 = replace(
         v0,
         id=f"{stem}-v1",
@@ -213,13 +246,23 @@ def robot_versions(
         voo_metric=True,
         pw_retries=None,
     )
-    v2 = replace(
+    name, alias = generated
+    family = replace(
         v1,
-        id=f"{stem}-v2",
+        id=f"{namespace}/{name}-v0",
         entry_point=generated_entry_point,
         kwargs={},
-        aliases=tuple(f"{a}_v2" for a in v0.aliases),
+        aliases=(alias,),
         layouts=True,
         difficulties=tuple(Difficulty),
+        layout_split=PROTOCOL_SPLIT,
     )
-    return v0, v1, v2
+    old = replace(
+        family,
+        id=f"{stem}-v2",
+        entry_point=RENAMED_ENTRY_POINT,
+        kwargs={"renamed_to": family.id},
+        aliases=tuple(f"{a}_v2" for a in v0.aliases),
+        renamed_to=family.id,
+    )
+    return v0, v1, family, old

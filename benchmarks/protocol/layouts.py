@@ -1,6 +1,6 @@
 r"""Layout seeds: generated scenes as a sweep axis, and the held-out test set.
 
-A generated task family (``voot/KitchenClearing-v2``, ``voot/ConveyorPacking-v2``) builds
+A generated task family (``voot/GeneratedKitchen-v0``, ``voot/GeneratedStorage-v0``) builds
 its scene from the gymnasium keyword ``layout_seed``: one id, many layouts. A planner
 tuned and evaluated on one scene measures that scene; the protocol of a generated family
 keeps the layouts it tunes on apart from the layouts it reports, as Procgen keeps its
@@ -16,8 +16,10 @@ figures and tables draw one curve per (family, planner), the mean over its (layo
 seed) runs.
 
 **The held-out set.** :data:`TRAINING_LAYOUTS` (1000-1019) and :data:`HELDOUT_LAYOUTS`
-(0-19), the same for every generated family (:data:`LAYOUT_SETS`), disjoint by
-construction. ``voot-bench plan --heldout`` runs the protocol (:mod:`voot.bench.protocol.tuning`):
+(0-19), the same for every generated family, disjoint by construction: each family's
+problem record carries its split (:attr:`voot.problems.ProblemRecord.layout_split`, from
+:data:`voot.envs.core.generation.PROTOCOL_SPLIT`, which the envs' split mode reads too),
+and :data:`LAYOUT_SETS` collects them. ``voot-bench plan --heldout`` runs the protocol (:mod:`voot.bench.protocol.tuning`):
 
 1. every setting of every planner's grid on the tuning seeds x the training layouts;
 2. per (family, planner) the setting with the best mean final return, pooled over every
@@ -44,18 +46,19 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Collection, Iterable, Mapping, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.envs.core.generation import HELDOUT_LAYOUTS, TRAINING_LAYOUTS
+from voot.envs.core.generation import LayoutSplit as LayoutSet
+from voot.problems import problem_records
+
+__all__ = ["HELDOUT_LAYOUTS", "LAYOUT_KEY", "LAYOUT_SETS", "TRAINING_LAYOUTS", "LayoutSet"]
+
 #: The gymnasium keyword of a generated env that picks its layout.
 LAYOUT_KEY = "layout_seed"
-#: Layouts the protocol tunes on (never reported).
-TRAINING_LAYOUTS: tuple[int, ...] = tuple(range(1000, 1020))
-#: Layouts the protocol reports (never tuned on): the held-out test set.
-HELDOUT_LAYOUTS: tuple[int, ...] = tuple(range(0, 20))
 #: Tuning layouts as the selection takes them: one collection for every problem, or one
 #: per problem (gymnasium id).
 TuningLayoutsArg = Collection[int] | Mapping[str, Collection[int]]
@@ -103,29 +106,11 @@ def check_disjoint(tuning_seeds: Iterable[int], evaluation_seeds: Iterable[int])
         )
 
 
-@dataclass(frozen=True)
-class LayoutSet:
-    """A family's fixed split of layout seeds: ``training`` (tuning) and ``heldout``
-    (evaluation), disjoint and each non-empty."""
-
-    training: tuple[int, ...]
-    heldout: tuple[int, ...]
-
-    def __post_init__(self) -> None:
-        from voot import validation as V
-
-        for name in ("training", "heldout"):
-            values = V.integers(getattr(self, name), f"{name} layouts", 0)
-            if not values:
-                raise ValueError(f"a layout set needs {name} layouts")
-            object.__setattr__(self, name, tuple(dict.fromkeys(values)))
-        check_layouts_disjoint(self.training, self.heldout)
-
-
-#: The held-out split of every generated family (by gymnasium id).
-LAYOUT_SETS: Mapping[str, LayoutSet] = {
-    "voot/KitchenClearing-v2": LayoutSet(TRAINING_LAYOUTS, HELDOUT_LAYOUTS),
-    "voot/ConveyorPacking-v2": LayoutSet(TRAINING_LAYOUTS, HELDOUT_LAYOUTS),
+#: The held-out split of every generated family (by gymnasium id, old names too), from
+#: the problem records (:class:`LayoutSet` is
+#: :class:`voot.envs.core.generation.LayoutSplit`).
+LAYOUT_SETS: dict[str, LayoutSet] = {
+    r.id: r.layout_split for r in problem_records() if r.layout_split is not None
 }
 
 

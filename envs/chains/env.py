@@ -4,12 +4,15 @@
 over :func:`voot.tree.chains.make_chain`: the action is a point of the function's box,
 the reward :math:`f(a)` plus the bonus if feasible (``info["bonus"]`` says how much of it
 is bonus), else :math:`f(a) - 2`, and an infeasible action terminates the episode. The
-observation is the number of feasible actions so far. The env offers
+observation is the number of feasible actions so far. The reset's info has the step's keys
+(``feasible``, ``bonus``, ``value``; the value NaN: no action yet), as gymnasium's vector
+envs want. The env offers
 ``get_state``/``set_state``, so :class:`voot.tree.GymProblem` plans in it.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import gymnasium as gym
@@ -57,12 +60,16 @@ class SyntheticChainEnv(gym.Env[np.ndarray, np.ndarray]):
     ) -> tuple[np.ndarray, dict[str, Any]]:
         super().reset(seed=seed)
         self.chain.t = 0
-        return self._obs(), {}
+        return self._obs(), {"feasible": True, "bonus": 0.0, "value": math.nan}
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         res = self.chain.step(np.asarray(action, dtype=np.float64))
         truncated = self.horizon is not None and self.chain.t >= self.horizon
-        info = {"feasible": res.feasible, "bonus": res.bonus, "value": res.info["value"]}
+        info = {
+            "feasible": bool(res.feasible),
+            "bonus": float(res.bonus),
+            "value": float(res.info["value"]),
+        }
         return (
             self._obs(),
             float(res.reward + res.bonus),

@@ -3,7 +3,9 @@
 The authors' settings on a chain depend on its dimension (the ``dim`` keyword): the
 thresholds, ``w = 100`` re-evaluations, no decay, root commitment 5 / 5 / 3,
 :math:`\\gamma = 0.9` (:func:`voot.tree.chains.chain_planner_options`, from the record's
-``chain``); VOO samples its best cell in ``centered_uniform`` mode. Read at
+``chain``); VOO samples its best cell in ``centered_uniform`` mode. A chain has no episode limit
+(its episode ends at the first infeasible action; the env's ``horizon`` keyword adds
+one) and no ``reward_threshold`` (the return grows with every feasible action). Read at
 ``import voot``: imports no env code.
 """
 

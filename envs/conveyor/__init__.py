@@ -2,5 +2,5 @@
 
 * :mod:`.env`: :class:`ConveyorPackingEnv` (``voot/ConveyorPacking-v0`` and ``-v1``).
 
-Storage rooms generated from a seed (``voot/ConveyorPacking-v2``) are in :mod:`.generated`.
+Storage rooms generated from a seed (``voot/GeneratedStorage-v0``) are in :mod:`.generated`.
 """

@@ -23,6 +23,13 @@ action alone).
 The episode terminates when every box is placed (no goal bonus in this domain:
 ``info["goal_bonus"]`` is 0) and is truncated after ``horizon`` steps. When fewer than
 three boxes remain, the action's trailing entries are ignored.
+
+Every info, the reset's included, has the same keys, shapes and dtypes whatever the
+step (gymnasium's vector envs stack them): ``info["parameters"]`` is ``(3, 3)``, the
+placements of the action's boxes in the paper's units with rows of zeros for boxes it does
+not place (``info["parameters_mask"]`` says which entries are real), ``info["failed_box"]``
+is -1 when no box failed, and the reset's info has the step's keys with neutral values
+(no operator, feasible, nothing placed).
 """
 
 from __future__ import annotations
@@ -41,7 +48,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
 from voot.envs.assets.mjcf import belt_pose
-from voot.envs.conveyor.problems import FAMILY
+from voot.envs.conveyor.problems import FAMILY, HORIZON
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
 from voot.envs.core.names import Failure, Operator, Precheck, Reason, reason_code
@@ -49,7 +56,7 @@ from voot.envs.core.presets import check_step_rules, env_config, preset_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
-from voot.envs.core.units import denormalize
+from voot.envs.core.units import denormalize, padded_parameters
 from voot.envs.motion.planner import BasePath, BasePlannerConfig
 from voot.envs.motion.rects import rect_inside
 from voot.envs.robot.arm_ik import IKConfig
@@ -71,6 +78,8 @@ FloatArray = NDArray[np.float64]
 
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
+#: The shape of a step info's ``parameters``: a pose per box of a full action.
+_PARAMETERS_SHAPE = (OBJECTS_PER_ACTION, 3)
 
 
 @dataclass(frozen=True)
@@ -113,7 +122,7 @@ class ConveyorConfig:
     present_gap: float = 0.2
     length_scale: float = 0.1
     infeasible_reward: float = -2.0
-    horizon: int = 20
+    horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
     ik: IKConfig = field(default_factory=IKConfig)
@@ -328,10 +337,24 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         return np.array(parts, dtype=np.float64)
 
     def _info_reset(self) -> dict[str, Any]:
+        """A step's info keys with no action behind them (the module docstring)."""
+        info = _placements_info("", -1, (), ())
+        info["operator"] = None
+        info["action_clipped"] = False
+        info.update(_paths_info([], [], [], False))
+        info.update(padded_parameters(np.empty((0, 3)), _PARAMETERS_SHAPE))
+        info.update(self._progress_info())
+        return info
+
+    def _progress_info(self) -> dict[str, Any]:
+        """The info keys on where the episode stands: the next boxes and the counts."""
+        t = self.task
         return {
             "next_operator": Operator.PLACE,
-            "objects_left": self.n,
             "next_objects": self._next_names(),
+            "objects_left": self.n - t.placed,
+            "objects_placed": t.placed,
+            "goal_bonus": 0.0,
         }
 
     @property
@@ -393,7 +416,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         paths: list[FloatArray] = []
         col_time = plan_time = 0.0
         reason: str = ""
-        failed = None
+        failed = -1
         for k in range(m):
             i = t.placed + k
             reason, dt_col, dt_plan = self._check_place(i, params[k], moved, lengths, paths)
@@ -422,21 +445,10 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         terminated = t.done
         truncated = (not terminated) and t.steps >= cfg.horizon
         info = _placements_info(reason, failed, bases, placements)
-        info.update(
-            {
-                "objects": names,
-                "base_path_length": float(sum(lengths)) if feasible else 0.0,
-                "base_path_lengths": lengths if feasible else [],
-                "base_paths": paths if feasible else [],
-                "parameters": params,
-                "action_clipped": clipped,
-                "next_operator": Operator.PLACE,
-                "next_objects": self._next_names(),
-                "objects_left": self.n - t.placed,
-                "objects_placed": t.placed,
-                "goal_bonus": 0.0,
-            }
-        )
+        info.update(_paths_info(names, lengths, paths, feasible))
+        info.update(padded_parameters(params, _PARAMETERS_SHAPE))
+        info["action_clipped"] = clipped
+        info.update(self._progress_info())
         return float(reward), terminated, truncated, info
 
     def _check_place(
@@ -528,7 +540,7 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         bases = tuple(pose_tuple(self.place_base_pose(t.placed + k, params[k])) for k in range(m))
         moved: dict[int, tuple[float, float, float, float]] = {}
         reason: str = ""
-        failed = None
+        failed = -1
         for k in range(m):
             i = t.placed + k
             reason, _, _ = self._place_kinematics(i, params[k], moved)
@@ -559,24 +571,37 @@ def _of_box(reason: str, k: int, m: int, name: str) -> Failure:
     return reason.prefixed(f"box {k + 1}/{m} ({name}): ")
 
 
+def _paths_info(
+    names: list[str], lengths: list[float], paths: list[FloatArray], feasible: bool
+) -> dict[str, Any]:
+    """The info keys of an action's boxes and base paths (none unless it is feasible)."""
+    return {
+        "objects": names,
+        "base_path_length": float(sum(lengths)) if feasible else 0.0,
+        "base_path_lengths": lengths if feasible else [],
+        "base_paths": paths if feasible else [],
+    }
+
+
 def _placements_info(
     reason: str,
-    failed: int | None,
+    failed: int,
     bases: tuple[tuple[float, float, float], ...],
     placements: tuple[tuple[float, float, float], ...],
 ) -> dict[str, Any]:
     """The info of an action's placements, the keys a step's info and a pre-check's share
     (the step adds its paths, counts and the next boxes): whether it passes, why not
     (``reason``, ``reason_code``, and ``failed_box``, the index in the action of the first
-    box that failed, None if none), every box's placement and base pose."""
+    box that failed, -1 if none), every box's placement and base pose (None for the
+    first when there is none)."""
     return {
         "operator": Operator.PLACE,
         "feasible": not reason,
         "reason": str(reason),
         "reason_code": reason_code(reason),
         "failed_box": failed,
-        "placement": placements[0],
-        "base_pose": bases[0],
+        "placement": placements[0] if placements else None,
+        "base_pose": bases[0] if bases else None,
         "placements": placements,
         "base_poses": bases,
     }

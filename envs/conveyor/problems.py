@@ -7,11 +7,15 @@
 * ``voot/ConveyorPacking-v1`` (``conveyor_v1``): the same entry point at its ``v1`` preset,
   the authors' two-stage protocol with their tree rules, root commitment 1 and VOO's
   per-operator distance;
-* ``voot/ConveyorPacking-v2`` (``conveyor_v2``): storage rooms generated from
-  ``layout_seed`` at a ``difficulty`` on the v1 rules, with the v1 conveyor's settings.
+* ``voot/GeneratedStorage-v0`` (``generated_storage``): the conveyor on storage rooms
+  generated from ``layout_seed`` at a ``difficulty`` on the v1 rules, with the v1
+  conveyor's settings and the protocol's training / held-out layouts;
+* ``voot/ConveyorPacking-v2`` (``conveyor_v2``): the generated storage rooms' first name,
+  kept as an alias that warns once (the committed results name it).
 
-The paper's budget (Figure 4): 3,000 simulations, 50 seeds. Read at ``import voot``:
-imports no env code.
+Every version truncates at :data:`HORIZON` steps (``ConveyorConfig.horizon``'s default,
+registered as ``max_episode_steps``). The paper's budget (Figure 4): 3,000 simulations,
+50 seeds. Read at ``import voot``: imports no env code.
 """
 
 from __future__ import annotations
@@ -24,9 +28,12 @@ FAMILY = "conveyor"
 CONVEYOR_SETUP = PaperSetup(3_000, 50, ROBOT_PLANNERS)
 #: The discount the authors plan the conveyor with.
 CONVEYOR_DISCOUNT = 0.99
+#: The conveyor's episode limit (steps): ``ConveyorConfig.horizon``'s default.
+HORIZON = 20
 
 #: The conveyor's gymnasium ids: v0 (with the progressive-widening planners' 200
-#: retries), then v1 and v2 on the authors' rules (commitment 1).
+#: retries), then v1 and the generated storage rooms on the authors' rules (commitment
+#: 1), and the storage rooms' first name.
 RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ProblemRecord(
         id="voot/ConveyorPacking-v0",
@@ -40,4 +47,6 @@ RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ),
     root_commitment=1,
     generated_entry_point="voot.envs.conveyor.generated.env:ConveyorFamilyEnv",
+    generated=("GeneratedStorage", "generated_storage"),
+    max_episode_steps=HORIZON,
 )

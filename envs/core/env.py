@@ -455,9 +455,11 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     ) -> tuple[FloatArray, dict[str, Any]]:
         """Back to the scene's initial configuration (deterministic; ``seed`` seeds np_random).
 
-        ``seed`` is None or an integer >= 0 (numpy's integers too; not a bool); the envs
-        take no ``options`` (None or an empty mapping). Both are checked before anything
-        changes: a refused call leaves the generator, physics and task as they were.
+        ``seed`` is None or an integer >= 0 (numpy's integers too; not a bool); the fixed
+        envs take no ``options`` (None or an empty mapping; the generated families take a
+        layout, :class:`voot.envs.core.family.LayoutFamily`). Both are checked before
+        anything changes: a refused call leaves the generator, physics and task as they
+        were.
         """
         if options is not None and (not isinstance(options, Mapping) or options):
             shown = list(options) if isinstance(options, Mapping) else repr(options)

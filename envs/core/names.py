@@ -1,5 +1,5 @@
 """Typed names at the env seam: the values that were plain strings between an env and its
-callers (difficulty levels, operators, pre-check kinds, action units, why an action is
+callers (difficulty levels, layout splits, operators, pre-check kinds, action units, why an action is
 infeasible).
 
 Each is a :class:`enum.StrEnum`, so a member equals, hashes and serialises (JSON) as its
@@ -25,6 +25,14 @@ class Difficulty(StrEnum):
     EASY = "easy"
     MEDIUM = "medium"
     HARD = "hard"
+
+
+class Split(StrEnum):
+    """A part of a generated family's layouts: those a learner or a tuner trains on, or
+    the held-out ones it is evaluated on (never trained on)."""
+
+    TRAINING = "training"
+    HELDOUT = "heldout"
 
 
 class Operator(StrEnum):

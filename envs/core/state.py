@@ -90,6 +90,18 @@ def is_finite_tuple(value: object, length: int) -> bool:
     return True
 
 
+def path_tuple(waypoints: ArrayLike | None) -> tuple[tuple[float, ...], ...] | None:
+    """A base path's waypoints ``(k, 3)`` as a tuple of pose tuples (for a step's ``info``;
+    None stays None).
+
+    A path's length varies from step to step: as an array it would give the info a shape
+    of its own at every step, which gymnasium's vector envs cannot stack.
+    """
+    if waypoints is None:
+        return None
+    return tuple(tuple(p) for p in np.asarray(waypoints, dtype=np.float64).tolist())
+
+
 def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
     """An ``(x, y, theta)`` pose as a tuple of Python floats (for a step's ``info``).
 

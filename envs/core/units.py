@@ -85,3 +85,22 @@ def normalize(x: ArrayLike, ranges: Sequence[tuple[float, float]]) -> FloatArray
     hi = np.array([r[1] for r in ranges], dtype=np.float64)
     out: FloatArray = 2.0 * (np.asarray(x, dtype=np.float64) - lo) / (hi - lo) - 1.0
     return out
+
+
+def padded_parameters(values: FloatArray, shape: tuple[int, ...]) -> dict[str, Any]:
+    """A step info's ``parameters`` and ``parameters_mask``: ``values`` (an operator's
+    parameters in the paper's units) padded with zeros to ``shape``, the env's widest
+    operator's, and True where an entry is one of them.
+
+    Every step's info then has the same keys, shapes and dtypes whatever the node (a
+    kitchen place has 3 parameters, a pick 6), as gymnasium's vector envs need to stack
+    them; ``info["parameters"][info["parameters_mask"]]`` gives the operator's own. Zeros,
+    not NaN: gymnasium's checks compare infos for equality (a NaN equals nothing, so
+    ``check_env`` would find two identical resets different).
+    """
+    out = np.zeros(shape)
+    mask = np.zeros(shape, dtype=bool)
+    where = tuple(slice(0, n) for n in values.shape)
+    out[where] = values
+    mask[where] = True
+    return {"parameters": out, "parameters_mask": mask}

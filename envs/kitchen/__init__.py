@@ -10,5 +10,5 @@ The paper's kitchen (``voot/KitchenClearing-v0`` and ``-v1``):
 * :mod:`.checks`: the checks of a pick or a place (the step's and the v1 pre-check);
 * :mod:`.screen`: the exact pre-screen and the carry-disc test.
 
-Kitchens generated from a seed (``voot/KitchenClearing-v2``) are in :mod:`.generated`.
+Kitchens generated from a seed (``voot/GeneratedKitchen-v0``) are in :mod:`.generated`.
 """

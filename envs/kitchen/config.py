@@ -23,6 +23,7 @@ from typing import Any
 from voot import validation as V
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
+from voot.envs.kitchen.problems import HORIZON
 from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.model import BASE_HALF, ROBOT_RADIUS
@@ -124,7 +125,7 @@ class KitchenConfig:
     max_place_reward: float = 2.0
     max_place_penalty: float = 2.0
     goal_bonus: float = 2.0
-    horizon: int = 50
+    horizon: int = HORIZON
     render_overlays: bool = True
     pick_requires_free_carry: bool = True
     precheck: Precheck = Precheck.FULL_STEP

@@ -43,6 +43,13 @@ fixed space keeps gymnasium's checkers and vectorised wrappers happy); at a plac
 only the first three entries are read and the rest is ignored. ``info["next_operator"]``
 and :meth:`KitchenClearingEnv.action_bounds` (6-D at a pick, 3-D at a place) tell which.
 
+Every info, the reset's included, has the same keys, shapes and dtypes whatever the node
+(gymnasium's vector envs stack them): ``info["parameters"]`` is the action's parameters
+in the paper's units padded with zeros to the pick's 6 (a place fills the first 3;
+``info["parameters_mask"]`` says which), ``info["base_path"]`` a tuple of ``(x, y,
+theta)`` waypoints or None, and the reset's info has the step's keys with neutral values
+(no operator, no object, feasible, no parameters).
+
 The env is built in layers, one concept a module: the task's rules and versions
 (:mod:`voot.envs.kitchen.config`), its record, reachable records and rewards
 (:mod:`voot.envs.kitchen.task`), the fixed path and the obstacles on it
@@ -71,8 +78,8 @@ from voot.envs.core.names import Failure, Operator, Reason, reason_code
 from voot.envs.core.presets import env_config
 from voot.envs.core.rendering import add_marker_box, add_marker_segment
 from voot.envs.core.scene import set_object_pose
-from voot.envs.core.state import StepTiming, pose_tuple, replace
-from voot.envs.core.units import denormalize
+from voot.envs.core.state import StepTiming, path_tuple, pose_tuple, replace
+from voot.envs.core.units import denormalize, padded_parameters
 from voot.envs.kitchen.checks import KitchenChecks
 from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig, kitchen_config
 from voot.envs.kitchen.path import ClearingPath
@@ -84,6 +91,8 @@ from voot.optim.base import Bounds
 __all__ = ["KITCHEN_PRESETS", "KitchenClearingEnv", "KitchenConfig", "kitchen_config"]
 
 FloatArray = NDArray[np.float64]
+#: The shape of a step info's ``parameters``: the pick's 6 (a place's 3 padded).
+_PARAMETERS_SHAPE = (6,)
 
 
 class KitchenClearingEnv(KitchenChecks):
@@ -199,10 +208,32 @@ class KitchenClearingEnv(KitchenChecks):
         return np.array(parts, dtype=np.float64)
 
     def _info_reset(self) -> dict[str, Any]:
+        """A step's info keys with no action behind them (the module docstring)."""
+        info: dict[str, Any] = {
+            "operator": None,
+            "object": "",
+            "feasible": True,
+            "reason": "",
+            "reason_code": reason_code(""),
+            "base_path_length": 0.0,
+            "base_path": None,
+            "base_pose": None,
+            "placement": None,
+            "action_clipped": False,
+        }
+        info.update(padded_parameters(np.empty(0), _PARAMETERS_SHAPE))
+        info.update(self._progress_info(terminated=False))
+        return info
+
+    def _progress_info(self, terminated: bool) -> dict[str, Any]:
+        """The info keys on where the episode stands: the next operator and object, the
+        obstacles left, the goal bonus (earned when it terminates)."""
+        t = self.task
         return {
-            "next_operator": self.task.operator,
-            "objects_left": len(self.task.on_path),
+            "next_operator": t.operator,
             "next_object": self.next_object_name,
+            "objects_left": len(t.on_path),
+            "goal_bonus": self.config.goal_bonus if terminated else 0.0,
         }
 
     def _task_error(self, task: KitchenTask) -> str | None:
@@ -275,14 +306,9 @@ class KitchenClearingEnv(KitchenChecks):
         t = self.task
         terminated = t.done
         truncated = (not terminated) and t.steps >= self.config.horizon
-        info.update(
-            parameters=params,
-            action_clipped=clipped,
-            next_operator=t.operator,
-            next_object=self.next_object_name,
-            objects_left=len(t.on_path),
-            goal_bonus=self.config.goal_bonus if terminated else 0.0,
-        )
+        info.update(padded_parameters(params, _PARAMETERS_SHAPE))
+        info["action_clipped"] = clipped
+        info.update(self._progress_info(terminated))
         return float(reward), terminated, truncated, info
 
     def _infeasible(
@@ -319,7 +345,7 @@ class KitchenClearingEnv(KitchenChecks):
             "reason": str(reason),
             "reason_code": reason_code(reason),
             "base_path_length": path_length,
-            "base_path": path,
+            "base_path": path_tuple(path),
             "base_pose": pose_tuple(base),
             "placement": placement,
         }

@@ -6,11 +6,15 @@
 * ``voot/KitchenClearing-v1`` (``kitchen_v1``): the same entry point at its ``v1`` preset,
   the authors' two-stage protocol (docs/environments.md) with their tree rules, root
   commitment 10 and VOO's per-operator distance;
-* ``voot/KitchenClearing-v2`` (``kitchen_v2``): kitchens generated from ``layout_seed`` at a
-  ``difficulty`` on the v1 rules, with the v1 kitchen's settings.
+* ``voot/GeneratedKitchen-v0`` (``generated_kitchen``): kitchens generated from
+  ``layout_seed`` at a ``difficulty`` on the v1 rules, with the v1 kitchen's settings and
+  the protocol's training / held-out layouts;
+* ``voot/KitchenClearing-v2`` (``kitchen_v2``): the generated kitchens' first name, kept as
+  an alias that warns once (the committed results name it).
 
-The paper's budget (Figure 4): 2,000 simulations, 20 seeds. Read at ``import voot``:
-imports no env code.
+Every version truncates at :data:`HORIZON` steps (``KitchenConfig.horizon``'s default,
+registered as ``max_episode_steps``). The paper's budget (Figure 4): 2,000 simulations,
+20 seeds. Read at ``import voot``: imports no env code.
 """
 
 from __future__ import annotations
@@ -23,8 +27,11 @@ FAMILY = "kitchen"
 KITCHEN_SETUP = PaperSetup(2_000, 20, ROBOT_PLANNERS)
 #: The discount the authors plan the kitchen with.
 KITCHEN_DISCOUNT = 0.9
+#: The kitchen's episode limit (steps): ``KitchenConfig.horizon``'s default.
+HORIZON = 50
 
-#: The kitchen's gymnasium ids: v0, then v1 and v2 on the authors' rules (commitment 10).
+#: The kitchen's gymnasium ids: v0, then v1 and the generated kitchens on the authors'
+#: rules (commitment 10), and the generated kitchens' first name.
 RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ProblemRecord(
         id="voot/KitchenClearing-v0",
@@ -37,4 +44,6 @@ RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     ),
     root_commitment=10,
     generated_entry_point="voot.envs.kitchen.generated.env:GeneratedKitchenEnv",
+    generated=("GeneratedKitchen", "generated_kitchen"),
+    max_episode_steps=HORIZON,
 )

@@ -1,6 +1,6 @@
-"""``voot/ConveyorPacking-v2``: the conveyor on generated storage rooms (v1 rules).
+"""``voot/GeneratedStorage-v0``: the conveyor on generated storage rooms (v1 rules).
 
-``gym.make("voot/ConveyorPacking-v2", layout_seed=s, difficulty=d)`` gives the conveyor
+``gym.make("voot/GeneratedStorage-v0", layout_seed=s, difficulty=d)`` gives the conveyor
 packing task of ``voot/ConveyorPacking-v1`` (the same action, checks, reward, fixed picks
 and two-stage feasibility) on the storage rooms generated from ``layout_seed`` at the
 level ``difficulty`` (``"easy"``, ``"medium"`` or ``"hard"``;
@@ -10,6 +10,12 @@ workspace and ``n_objects`` follow from the layout, and the instance is proven s
 before it is used (:mod:`voot.envs.conveyor.generated.witness`; its packing is
 :meth:`ConveyorFamilyEnv.witness_actions`). Instances are cached per
 ``(layout_seed, difficulty)`` and generator version (:mod:`voot.envs.conveyor.generated.instance`).
+Its first name, ``voot/ConveyorPacking-v2``, is an alias.
+
+For learners (:class:`~voot.envs.core.family.LayoutFamily`): one observation space for
+every layout and level (:data:`MAX_OBJECTS` box slots and their mask), the layout chosen
+at ``reset(options={"layout_seed": k})``, and a split mode (``split="training"`` or
+``"heldout"``) that draws each reset's layout from the protocol's split.
 
 Other keywords are :class:`~voot.envs.conveyor.env.ConveyorConfig` fields, as for v1
 (``horizon``, ``precheck``...); the solvability proof holds for the default grasp and
@@ -29,26 +35,33 @@ from voot.envs.conveyor.generated.instance import (
     layout_config,
     storage_instance,
 )
-from voot.envs.conveyor.generated.layout import StorageLayout
+from voot.envs.conveyor.generated.layout import DIFFICULTIES, StorageLayout
 from voot.envs.conveyor.generated.witness import Witness
+from voot.envs.core.family import LayoutFamily
 from voot.envs.core.generation import Rejection, witness_arrays
 from voot.envs.core.names import Difficulty
 
-__all__ = ["ConveyorFamilyEnv", "witness_return"]
+__all__ = ["MAX_OBJECTS", "ConveyorFamilyEnv", "witness_return"]
 
 FloatArray = NDArray[np.float64]
 
+#: The most boxes a generated storage layout's belt carries (its levels' most).
+MAX_OBJECTS = max(level.boxes[1] for level in DIFFICULTIES.values())
 
-class ConveyorFamilyEnv(SceneConveyorEnv):
+
+class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
     """The conveyor packing task on a generated, solvable storage layout (module docstring).
 
     Args:
-        layout_seed: The layout's seed (an integer >= 0).
+        layout_seed: The layout's seed (an integer >= 0; default 0, or the split's first).
         difficulty: ``"easy"``, ``"medium"`` or ``"hard"``
             (:class:`~voot.envs.core.names.Difficulty`).
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"`` (framed on the layout).
         render_size: ``(width, height)`` of rendered images.
+        split: None (one layout, or the one a reset's options name), ``"training"`` or
+            ``"heldout"``: each reset draws a layout of that part of the protocol's split
+            (:class:`~voot.envs.core.family.LayoutFamily`).
         **options: :class:`~voot.envs.conveyor.env.ConveyorConfig` fields overriding v1's,
             except those the layout sets (``loading_region``, ``workspace``,
             ``n_objects``).
@@ -60,41 +73,31 @@ class ConveyorFamilyEnv(SceneConveyorEnv):
             number of rejections).
     """
 
-    def __init__(
-        self,
-        layout_seed: int = 0,
-        difficulty: str = "easy",
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
-        **options: Any,
-    ) -> None:
+    MAX_OBJECTS = MAX_OBJECTS
+    OBJECT_FIELDS = 5
+    TAIL = 2
+    LEVELS = tuple(DIFFICULTIES)
+
+    def _take_options(self, options: dict[str, Any]) -> None:
         for name in ("config", "preset"):
             if name in options:
                 raise ValueError(
-                    f"voot/ConveyorPacking-v2 takes no {name!r}: its config is v1's on the"
+                    f"voot/GeneratedStorage-v0 takes no {name!r}: its config is v1's on the"
                     " generated layout (pass ConveyorConfig fields as keywords)"
                 )
+
+    def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         instance = storage_instance(layout_seed, difficulty)
-        config = layout_config(instance.layout, **options)
+        config = layout_config(instance.layout, **self._options)
         self.layout: StorageLayout = instance.layout
         self.witness: Witness = instance.witness
         self.rejections: tuple[Rejection, ...] = instance.rejections
-        super().__init__(
+        SceneConveyorEnv.__init__(
+            self,
             instance.model_copy(),
             config,
-            render_mode=render_mode,
-            render_camera=render_camera,
-            render_size=render_size,
+            **self._render,
         )
-
-    @property
-    def layout_seed(self) -> int:
-        return self.layout.layout_seed
-
-    @property
-    def difficulty(self) -> Difficulty:
-        return self.layout.difficulty
 
     def solution_actions(self) -> list[FloatArray]:
         """The witness (:meth:`witness_actions`): the known solution of a generated instance."""
@@ -104,12 +107,6 @@ class ConveyorFamilyEnv(SceneConveyorEnv):
         """The witness packing as normalised actions: from a reset, they pack every box
         (with the default grasp and planner settings)."""
         return witness_arrays(self.witness.actions)
-
-    def _info_reset(self) -> dict[str, Any]:
-        info = super()._info_reset()
-        info["layout_seed"] = self.layout.layout_seed
-        info["difficulty"] = str(self.layout.difficulty)
-        return info
 
 
 def witness_return(env: ConveyorFamilyEnv, gamma: float = 1.0) -> float:

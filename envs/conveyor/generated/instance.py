@@ -1,6 +1,6 @@
 """A solvable storage instance from ``(layout_seed, difficulty)``, generated once and cached.
 
-:func:`storage_instance` is what ``voot/ConveyorPacking-v2`` loads. Cold, it draws the
+:func:`storage_instance` is what ``voot/GeneratedStorage-v0`` loads. Cold, it draws the
 layout (:func:`~voot.envs.conveyor.generated.layout.generate_storage_layout`, attempt 0), compiles
 its scene (:mod:`voot.envs.conveyor.generated.scene`), builds the env on it and proves it solvable
 (:func:`~voot.envs.conveyor.generated.witness.find_witness`); a layout that fails (no witness
@@ -94,7 +94,7 @@ def layout_config(layout: StorageLayout, **options: Any) -> ConveyorConfig:
 
 class SceneConveyorEnv(ConveyorPackingEnv):
     """The conveyor on a given compiled scene with a given config: what the solvability
-    search steps (:func:`generate_instance`), the base of ``voot/ConveyorPacking-v2``'s
+    search steps (:func:`generate_instance`), the base of ``voot/GeneratedStorage-v0``'s
     env, and a way to run a layout's scene without the cache. ``model`` is taken over
     (pass a copy to keep yours unchanged).
 

@@ -1,6 +1,6 @@
 """Generated storage rooms: a floor plan and a box list drawn from a seed (pure numpy).
 
-``voot/ConveyorPacking-v2`` (:mod:`voot.envs.conveyor.generated.env`) packs the boxes of a belt
+``voot/GeneratedStorage-v0`` (:mod:`voot.envs.conveyor.generated.env`) packs the boxes of a belt
 into storage rooms that are generated, not fixed. This module draws one layout,
 :func:`generate_storage_layout` ``(layout_seed, difficulty, attempt)``, as a frozen
 :class:`StorageLayout`: no MuJoCo, deterministic (the same arguments give the same layout

@@ -1,6 +1,6 @@
 """Proof that a generated storage layout can be packed: a constructive witness plan.
 
-Every generated instance of ``voot/ConveyorPacking-v2`` must be solvable. The proof
+Every generated instance of ``voot/GeneratedStorage-v0`` must be solvable. The proof
 does not use a planner: :func:`find_witness` packs the boxes with a fixed, deterministic
 greedy rule and executes the result through the env's own :meth:`step`; the layout is
 accepted iff every box is placed (the episode terminates), and the plan it executed, the

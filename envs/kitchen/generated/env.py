@@ -1,6 +1,6 @@
-"""``voot/KitchenClearing-v2``: the object-clearing task in kitchens generated from a seed.
+"""``voot/GeneratedKitchen-v0``: the object-clearing task in kitchens generated from a seed.
 
-``gym.make("voot/KitchenClearing-v2", layout_seed=s, difficulty=d)`` builds the kitchen
+``gym.make("voot/GeneratedKitchen-v0", layout_seed=s, difficulty=d)`` builds the kitchen
 :func:`~voot.envs.kitchen.generated.layout.generate_kitchen_layout` draws for ``(s, d)``
 (a :class:`~voot.envs.core.names.Difficulty`: ``"easy"``, ``"medium"``, ``"hard"``;
 :data:`~voot.envs.kitchen.generated.layout.DIFFICULTIES`), writes it as MJCF
@@ -8,6 +8,13 @@
 (:data:`~voot.envs.kitchen.config.KITCHEN_PRESETS` ``"v1"``: two-stage feasibility, the
 non-clearing penalty, the pick's base path) with the layout's start, sink pose, house and
 forbidden rooms. Everything else is :class:`~voot.envs.kitchen.env.KitchenClearingEnv`.
+Its first name, ``voot/KitchenClearing-v2``, is an alias.
+
+For learners (:class:`~voot.envs.core.family.LayoutFamily`): one observation space for
+every layout and level (:data:`MAX_OBJECTS` object slots and their mask), the layout
+chosen at ``reset(options={"layout_seed": k})``, and a split mode
+(``split="training"`` or ``"heldout"``) that draws each reset's layout from the
+protocol's split.
 
 **Every instance is solvable**: a scripted constructive solver
 (:mod:`voot.envs.kitchen.generated.witness`) clears it through the env's own ``step``
@@ -23,7 +30,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.envs.core.family import LayoutFamily
 from voot.envs.core.generation import reject_layout_fields, witness_arrays
+from voot.envs.core.names import Difficulty
 from voot.envs.kitchen.config import KitchenConfig
 from voot.envs.kitchen.generated.instance import (
     LAYOUT_FIELDS,
@@ -31,46 +40,51 @@ from voot.envs.kitchen.generated.instance import (
     generated_kitchen,
     kitchen_config,
 )
+from voot.envs.kitchen.generated.layout import DIFFICULTIES
 
-__all__ = ["GeneratedKitchenEnv"]
+__all__ = ["MAX_OBJECTS", "GeneratedKitchenEnv"]
 
 FloatArray = NDArray[np.float64]
 
+#: The most objects a generated kitchen holds (obstacles and clutter at their levels' most).
+MAX_OBJECTS = max(level.on_path[1] + level.clutter[1] for level in DIFFICULTIES.values())
 
-class GeneratedKitchenEnv(SceneKitchenEnv):
+
+class GeneratedKitchenEnv(LayoutFamily, SceneKitchenEnv):
     """The kitchen of ``(layout_seed, difficulty)`` under the v1 rules (module docstring).
 
     Args:
-        layout_seed: The layout's seed (an int >= 0).
+        layout_seed: The layout's seed (an int >= 0; default 0, or the split's first).
         difficulty: The level (:data:`~voot.envs.kitchen.generated.layout.DIFFICULTIES`).
-        config: Settings; default: the v1 preset's. Its start, goal, house and forbidden
-            rooms are replaced by the layout's.
         render_mode: None or ``"rgb_array"``.
         render_camera: ``"perspective"`` or ``"top_down"``.
         render_size: ``(width, height)`` of rendered images.
-        **options: :class:`KitchenConfig` fields overriding the config's, except the
-            layout's (``start``, ``goal``, ``house``, ``forbidden``). The witness and the
-            solvability check hold for the v1 rules.
+        split: None (one layout, or the one a reset's options name), ``"training"`` or
+            ``"heldout"``: each reset draws a layout of that part of the protocol's split
+            (:class:`~voot.envs.core.family.LayoutFamily`).
+        **options: ``config``, the settings (a :class:`KitchenConfig`; default: the v1
+            preset's; its start, goal, house and forbidden rooms are replaced by the
+            layout's), and :class:`KitchenConfig` fields overriding the config's, except
+            the layout's (``start``, ``goal``, ``house``, ``forbidden``). The witness and
+            the solvability check hold for the v1 rules.
     """
 
-    def __init__(
-        self,
-        layout_seed: int = 0,
-        difficulty: str = "easy",
-        config: KitchenConfig | None = None,
-        render_mode: str | None = None,
-        render_camera: str = "perspective",
-        render_size: tuple[int, int] = (640, 480),
-        **options: Any,
-    ) -> None:
-        reject_layout_fields(options, LAYOUT_FIELDS)  # before the (costly) generation
+    MAX_OBJECTS = MAX_OBJECTS
+    OBJECT_FIELDS = 6
+    TAIL = 3
+    LEVELS = tuple(DIFFICULTIES)
+
+    def _take_options(self, options: dict[str, Any]) -> None:
+        reject_layout_fields(options, LAYOUT_FIELDS)
+        self._config: KitchenConfig | None = options.pop("config", None)
+
+    def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         kitchen = generated_kitchen(layout_seed, difficulty)
-        super().__init__(
+        SceneKitchenEnv.__init__(
+            self,
             kitchen,
-            kitchen_config(kitchen.layout, config, **options),
-            render_mode=render_mode,
-            render_camera=render_camera,
-            render_size=render_size,
+            kitchen_config(kitchen.layout, self._config, **self._options),
+            **self._render,
         )
 
     def solution_actions(self) -> list[FloatArray]:

@@ -1,6 +1,6 @@
 """A solvable generated kitchen from ``(layout_seed, difficulty)``, generated once per process.
 
-:func:`generated_kitchen` is what ``voot/KitchenClearing-v2`` loads. It draws attempts
+:func:`generated_kitchen` is what ``voot/GeneratedKitchen-v0`` loads. It draws attempts
 0, 1, ... of the seed (:func:`~voot.envs.kitchen.generated.layout.generate_kitchen_layout`),
 writes and compiles each one's scene (:mod:`voot.envs.kitchen.generated.scene`), builds the
 env on it (:class:`SceneKitchenEnv`) and proves it solvable
@@ -112,7 +112,7 @@ def kitchen_config(
 
 class SceneKitchenEnv(KitchenClearingEnv):
     """The kitchen rules on a generated kitchen's layout and compiled model: what the
-    solvability check steps, and the base of ``voot/KitchenClearing-v2``'s env.
+    solvability check steps, and the base of ``voot/GeneratedKitchen-v0``'s env.
 
     Picks grasp the objects' meshes (:meth:`_grasp_pose`); the scene is a copy of
     ``kitchen.model``.

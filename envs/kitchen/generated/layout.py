@@ -1,6 +1,6 @@
 """Generated kitchen floor plans: :class:`KitchenLayout` from a seed and a difficulty level.
 
-``voot/KitchenClearing-v2`` (:mod:`voot.envs.kitchen.generated.env`) plays the v1 task rules in
+``voot/GeneratedKitchen-v0`` (:mod:`voot.envs.kitchen.generated.env`) plays the v1 task rules in
 a kitchen drawn from ``(layout_seed, difficulty)``. This module draws the floor plan as
 plain numbers (no MuJoCo): the house, the static furniture, the start, the sink pose at
 the end of the fixed path, the forbidden rooms and the movable objects with their shapes

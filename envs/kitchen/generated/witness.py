@@ -1,6 +1,6 @@
 """Proof that a generated kitchen can be cleared: a scripted constructive solution.
 
-Every generated instance of ``voot/KitchenClearing-v2`` must be solvable. The proof does
+Every generated instance of ``voot/GeneratedKitchen-v0`` must be solvable. The proof does
 not use a planner: :func:`constructive_solution` clears the obstacles one by one, in the
 env's handling order, through the env's own ``step``. For each obstacle it tries a fixed
 grid of pick parameters (:data:`PICK_GRID`), and for each feasible pick a fixed grid of

@@ -35,7 +35,12 @@ def test_the_held_out_sets_are_fixed_and_disjoint() -> None:
     assert TRAINING_LAYOUTS == tuple(range(1000, 1020))
     assert HELDOUT_LAYOUTS == tuple(range(20))
     assert not set(TRAINING_LAYOUTS) & set(HELDOUT_LAYOUTS)
-    assert set(LAYOUT_SETS) == {"voot/KitchenClearing-v2", "voot/ConveyorPacking-v2"}
+    assert set(LAYOUT_SETS) == {  # the generated families, by their names old and new
+        "voot/GeneratedKitchen-v0",
+        "voot/GeneratedStorage-v0",
+        "voot/KitchenClearing-v2",
+        "voot/ConveyorPacking-v2",
+    }
     for split in LAYOUT_SETS.values():
         assert not set(split.training) & set(split.heldout)
     assert layout_set("voot/KitchenClearing-v2").heldout == HELDOUT_LAYOUTS

@@ -35,7 +35,13 @@ def env() -> KitchenClearingEnv:
 def test_initial_task(env: KitchenClearingEnv) -> None:
     obs, info = env.reset(seed=0)
     assert env.observation_space.contains(obs)
-    assert info == {"next_operator": "pick", "objects_left": 7, "next_object": "obj_box1"}
+    assert {k: info[k] for k in ("next_operator", "objects_left", "next_object")} == {
+        "next_operator": "pick",
+        "objects_left": 7,
+        "next_object": "obj_box1",
+    }
+    # the step's keys with neutral values (a vector env stacks both)
+    assert info["operator"] is None and info["feasible"] and not info["parameters_mask"].any()
     names = [env.objects[i].name for i in env.task.on_path]
     assert names == [
         "obj_box1",
@@ -66,7 +72,7 @@ def test_scripted_solution_clears_every_obstacle(env: KitchenClearingEnv) -> Non
     assert rewards[0::2] == [0.0] + [1.0] * 6
     for r, i in zip(rewards[1::2], infos[1::2], strict=True):
         assert r == pytest.approx(min(1.0 / i["base_path_length"], 2.0))
-        assert i["base_path"][0].shape == (3,)
+        assert len(i["base_path"][0]) == 3  # (x, y, theta) waypoints
     assert [i["objects_left"] for i in infos[1::2]] == [6, 5, 4, 3, 2, 1, 0]
     with pytest.raises(ValueError, match="ended"):
         env.step(np.zeros(6))
@@ -92,7 +98,8 @@ def test_infos_carry_base_poses_and_placements(env: KitchenClearingEnv) -> None:
             px, py, pth = info["placement"]
             np.testing.assert_allclose((px, py), (x, y), atol=1e-12)
             assert math.cos(pth - yaw) == pytest.approx(1.0)
-            np.testing.assert_allclose(info["parameters"], info["placement"])
+            np.testing.assert_allclose(info["parameters"][:3], info["placement"])
+            assert info["parameters_mask"].tolist() == [True] * 3 + [False] * 3
 
 
 def test_infeasible_infos_carry_the_poses(env: KitchenClearingEnv) -> None:

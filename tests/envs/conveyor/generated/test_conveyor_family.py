@@ -1,4 +1,4 @@
-"""voot/ConveyorPacking-v2: the v1 conveyor on generated, solvable storage rooms."""
+"""voot/GeneratedStorage-v0: the v1 conveyor on generated, solvable storage rooms."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ def cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Path]:
 
 
 def _make(seed: int = 0, difficulty: str = "easy", **kw: object) -> ConveyorFamilyEnv:
-    env = gym.make("voot/ConveyorPacking-v2", layout_seed=seed, difficulty=difficulty, **kw)
+    env = gym.make("voot/GeneratedStorage-v0", layout_seed=seed, difficulty=difficulty, **kw)
     u = env.unwrapped
     assert isinstance(u, ConveyorFamilyEnv)
     return u
@@ -44,7 +44,8 @@ def test_check_env_and_the_v1_rules_on_the_layout() -> None:
     assert env.config.loading_region == env.layout.loading_region
     assert env.config.workspace == env.layout.workspace
     assert env.n == env.layout.n_boxes == len(env.objects)
-    assert env.observation_space.shape == (4 + 5 * env.n + 2,)
+    # the family's one space: 20 box slots and their mask, whatever the layout
+    assert env.observation_space.shape == (4 + 5 * 20 + 2 + 20,)
     _, info = env.reset(seed=0)
     assert info["layout_seed"] == 1 and info["difficulty"] == "medium"
     assert info["objects_left"] == env.n
@@ -99,7 +100,7 @@ def test_deterministic_across_processes_with_and_without_the_cache(cache: Path) 
         import gymnasium as gym
         import voot
         probes = pickle.load(sys.stdin.buffer)
-        env = gym.make("voot/ConveyorPacking-v2", layout_seed=5, difficulty="medium").unwrapped
+        env = gym.make("voot/GeneratedStorage-v0", layout_seed=5, difficulty="medium").unwrapped
         env.reset(seed=0)
         out = step_probes(env, probes)
         sys.stdout.buffer.write(pickle.dumps((repr(env.layout), out)))

@@ -1,4 +1,4 @@
-"""Tests of voot/KitchenClearing-v2 (voot.envs.kitchen.generated): generated, solvable kitchens."""
+"""Tests of voot/GeneratedKitchen-v0 (voot.envs.kitchen.generated): generated, solvable kitchens."""
 
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def play(env: GeneratedKitchenEnv, actions: list[np.ndarray]) -> list[tuple]:  #
 
 @pytest.mark.parametrize("difficulty", list(DIFFICULTIES))
 def test_the_witness_clears_the_path_under_the_v1_rules(difficulty: str) -> None:
-    env = gym.make("voot/KitchenClearing-v2", layout_seed=1, difficulty=difficulty)
+    env = gym.make("voot/GeneratedKitchen-v0", layout_seed=1, difficulty=difficulty)
     u = env.unwrapped
     assert isinstance(u, GeneratedKitchenEnv)
     layout = u.layout
@@ -115,7 +115,7 @@ def test_layout_fields_and_bad_levels_are_errors() -> None:
 
 
 def test_gymnasium_checks_and_snapshots_are_bit_exact() -> None:
-    env = gym.make("voot/KitchenClearing-v2", layout_seed=2, difficulty="medium")
+    env = gym.make("voot/GeneratedKitchen-v0", layout_seed=2, difficulty="medium")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         check_env(env.unwrapped, skip_render_check=True)

@@ -1,0 +1,110 @@
+"""Tests of voot.envs.core.family: the generated families as one env a learner trains
+across (one observation space, the layout chosen at reset, the split mode)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import data_equivalence
+
+import voot  # noqa: F401  (registers the ids)
+from voot.envs.core.family import LayoutFamily
+from voot.envs.core.generation import HELDOUT_LAYOUTS, PROTOCOL_SPLIT, TRAINING_LAYOUTS
+from voot.envs.core.names import Difficulty
+from voot.problems import problem_record
+
+FAMILIES = ["voot/GeneratedKitchen-v0", "voot/GeneratedStorage-v0"]
+
+
+def _make(env_id: str, **kwargs: Any) -> Any:
+    return gym.make(env_id, **kwargs).unwrapped
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_one_observation_space_for_20_layouts_and_every_level(env_id: str) -> None:
+    env = _make(env_id)
+    space = env.observation_space
+    parts = env.observation_layout()
+    levels = {(k, Difficulty.EASY) for k in range(20)} | {(1, d) for d in Difficulty}
+    for layout, level in sorted(levels):
+        obs, info = env.reset(seed=0, options={"layout_seed": layout, "difficulty": level})
+        assert (info["layout_seed"], info["difficulty"]) == (layout, level)
+        assert env.observation_space == space and space.contains(obs)
+        mask = obs[parts["mask"]]
+        n = len(env.objects)
+        assert mask.tolist() == [1.0] * n + [0.0] * (env.MAX_OBJECTS - n)
+        # empty slots are zeros; the base and the task's numbers are the fixed env's
+        objects = obs[parts["objects"]].reshape(env.MAX_OBJECTS, env.OBJECT_FIELDS)
+        assert not objects[n:].any()
+        raw = super(LayoutFamily, env)._observation()  # the scene env's own observation
+        assert np.array_equal(obs[parts["base"]], raw[: env.HEAD])
+        assert np.array_equal(obs[parts["task"]], raw[-env.TAIL :])
+        assert np.array_equal(objects[:n].reshape(-1), raw[env.HEAD : -env.TAIL])
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_a_reset_onto_a_layout_is_the_env_made_on_it(env_id: str) -> None:
+    """Bit-identical: the reset's observation and info, then every step of the witness
+    and the snapshots on the way."""
+    made = _make(env_id, layout_seed=3, difficulty="medium")
+    switched = _make(env_id, layout_seed=0)
+    a = made.reset(seed=7)
+    b = switched.reset(seed=7, options={"layout_seed": 3, "difficulty": "medium"})
+    assert data_equivalence(a, b, exact=True)
+    assert switched.get_state() == made.get_state()
+    rng = np.random.default_rng(0)
+    for action in made.witness_actions():
+        probe = rng.uniform(-1, 1, made.action_space.shape)
+        for act in (probe, action):
+            before = made.get_state()
+            assert data_equivalence(made.step(act), switched.step(act), exact=True)
+            if act is probe:  # back, as a search would
+                made.set_state(before)
+                switched.set_state(before)
+    assert switched.get_state() == made.get_state() and made.task.done
+    # a reset without options stays on the layout; a bad option is refused, unchanged
+    assert switched.reset(seed=1)[1]["layout_seed"] == 3
+    with pytest.raises(ValueError, match="reset takes the options layout_seed, difficulty"):
+        switched.reset(options={"layout": 4})
+    with pytest.raises(ValueError, match="valid levels are"):
+        switched.reset(options={"difficulty": "hardest"})
+    assert switched.layout_seed == 3
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_the_split_mode_draws_its_layouts_by_the_seed(env_id: str) -> None:
+    assert problem_record(env_id).layout_split == PROTOCOL_SPLIT
+    train = _make(env_id, split="training")
+    assert train.layout_seed == TRAINING_LAYOUTS[0]
+    drawn = [train.reset(seed=s)[1]["layout_seed"] for s in range(12)]
+    drawn += [train.reset()[1]["layout_seed"] for _ in range(12)]  # the seed's stream
+    assert set(drawn) <= set(TRAINING_LAYOUTS) and len(set(drawn)) > 5
+    again = _make(env_id, split="training")
+    assert [again.reset(seed=s)[1]["layout_seed"] for s in range(12)] == drawn[:12]
+    # the episode is the one of an env made on the drawn layout (np_random untouched)
+    obs, info = train.reset(seed=4)
+    made = _make(env_id, layout_seed=info["layout_seed"])
+    assert data_equivalence((obs, info), made.reset(seed=4), exact=True)
+    heldout = _make(env_id, split="heldout")
+    assert {heldout.reset(seed=s)[1]["layout_seed"] for s in range(8)} <= set(HELDOUT_LAYOUTS)
+    with pytest.raises(ValueError, match="layout_seed 3 is not a training layout"):
+        train.reset(options={"layout_seed": 3})
+    with pytest.raises(ValueError, match="valid splits are: training, heldout"):
+        _make(env_id, split="test")
+
+
+def test_a_vector_env_trains_across_the_training_layouts() -> None:
+    envs = gym.make_vec(
+        "voot/GeneratedStorage-v0", num_envs=2, vectorization_mode="sync", split="training"
+    )
+    envs.action_space.seed(0)
+    _, info = envs.reset(seed=0)
+    layouts = set(info["layout_seed"].tolist())
+    for _ in range(60):  # the horizon is 20: every env autoresets onto a new draw
+        _, _, _, _, info = envs.step(envs.action_space.sample())
+        layouts |= set(info["layout_seed"].tolist())
+    assert layouts <= set(TRAINING_LAYOUTS) and len(layouts) > 2
+    envs.close()
