@@ -125,11 +125,15 @@ def name_kind(record: ProblemRecord) -> str:
 
 def recorded_names(family: str | None = None, kinds: Sequence[str] = ("protocol",)) -> list[str]:
     """The aliases of the robot records (of ``family``, or every one) of ``kinds``
-    (:func:`name_kind`), in the records' order."""
+    (:func:`name_kind`), in the records' order; former names (records renamed to another
+    id, still accepted) are not listed."""
     return [
         alias
         for record in problem_records()
-        if record.chain is None and family in (None, record.family) and name_kind(record) in kinds
+        if record.chain is None
+        and record.renamed_to is None
+        and family in (None, record.family)
+        and name_kind(record) in kinds
         for alias in record.aliases
     ]
 

@@ -212,9 +212,13 @@ def protocol_selections() -> tuple[ProtocolSelection, ...]:
 
 
 def _record_id(name: str) -> str:
-    """The record id of a problem name (an alias or id), or the name itself."""
+    """The record id of a problem name (an alias or id), or the name itself; a former id
+    (renamed, kept as an alias: the committed stores ran under it) gives its new id, so
+    both names find the same selections."""
     record = find_record(name)
-    return record.id if record is not None else name
+    if record is None:
+        return name
+    return record.renamed_to or record.id
 
 
 def protocol_selection(
