@@ -6,8 +6,9 @@ simulations. :func:`build_plan_specs` turns the grid into :class:`PlanSpec` valu
 :func:`run_plan_spec` runs one with :class:`voot.tree.MCTS` (or, for the sampling-based
 planners ``cem``, ``mppi``, ``predictive_sampling`` and ``random_shooting``, with
 :class:`voot.tree.shooting.ShootingPlanner`: the same row, :mod:`voot.bench.sweep.search`;
-for the RL planners ``ppo`` and ``ddpg``, by :mod:`voot.bench.sweep.rl`, with a budget
-matched to a tree search), returning a result row of kind ``"plan"`` for the same store,
+for an outside planner, a plug-in of :mod:`voot.planners`, through the same run; for the
+RL planners ``ppo`` and ``ddpg``, by :mod:`voot.bench.sweep.rl`, with a budget matched to
+a tree search), returning a result row of kind ``"plan"`` for the same store,
 backends and resume logic as the black-box sweep (:func:`voot.bench.sweep.engine.run_sweep`).
 The planners themselves, their grids and configs, are in :mod:`voot.bench.sweep.planners`.
 
@@ -73,6 +74,7 @@ from voot.bench.sweep.engine import (
 from voot.bench.sweep.planners import (
     horizon_param,
     is_rl_planner,
+    keeps_tree,
     normalize_plan_planner,
     planner_grid,
     run_config,
@@ -190,8 +192,6 @@ def build_plan_specs(
             takes none, or beside a ``layout_seed`` env keyword. Messages list the valid
             choices.
     """
-    from voot.tree.shooting import is_shooting_planner
-
     names = [P.normalize_problem(p) for p in problems]
     if not names:
         raise ValueError("no problems given")
@@ -262,13 +262,11 @@ def build_plan_specs(
                                 PlanSpec(problem, dim, env, planner, items, int(n_sims), seed)
                             )
     if record is not None:
-        shooting = sorted(
-            {s.planner for s in specs if is_shooting_planner(s.planner) or is_rl_planner(s.planner)}
-        )
-        if shooting:
+        treeless = sorted({s.planner for s in specs if not keeps_tree(s.planner)})
+        if treeless:
             raise ValueError(
-                f"recording draws a search tree; the sampling-based and RL planners {shooting}"
-                " keep none (record tree planners only)"
+                f"recording draws a search tree; the planners {treeless} (sampling-based, RL"
+                " or outside planners) keep none (record voot's tree planners only)"
             )
         if len(specs) > MAX_RECORDINGS:
             raise ValueError(

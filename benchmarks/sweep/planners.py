@@ -163,9 +163,15 @@ def planner_entry(name: str) -> Planner:
         raise ValueError(exc.args[0]) from None
 
 
-def is_plugin(name: str) -> bool:
-    """Whether the canonical planner ``name`` is an outside planner (not voot's own)."""
-    return not is_rl_planner(name) and not planner_entry(name).builtin
+def keeps_tree(name: str) -> bool:
+    """Whether the canonical planner ``name`` builds a search tree (voot's tree planners:
+    the ones a recording can draw)."""
+    return not is_rl_planner(name) and not is_shooting_planner(name) and is_builtin(name)
+
+
+def is_builtin(name: str) -> bool:
+    """Whether the canonical planner ``name`` is voot's own (not an outside planner)."""
+    return is_rl_planner(name) or planner_entry(name).builtin
 
 
 def normalize_plan_planner(name: str) -> str:
