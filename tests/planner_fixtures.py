@@ -5,7 +5,7 @@ that keeps the contract, and one of each way to break it. Named ``planner_fixtur
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -41,7 +41,7 @@ rollouts.grid = {"horizon": (2, 3)}  # type: ignore[attr-defined]
 class Rollouts:
     """:func:`rollouts` as a class (its ``__iter__`` the generator)."""
 
-    grid = {"horizon": (1, 2)}
+    grid: ClassVar[dict[str, tuple[int, ...]]] = {"horizon": (1, 2)}
     version = "2.0"
 
     def __init__(self, problem: Any, budget: int, seed: Any, horizon: int = 3) -> None:

@@ -185,7 +185,7 @@ def test_the_registry_finds_entry_points_and_module_attributes(
     assert "nothing" not in registry
     assert registry.get("fake").function is F.rollouts
     assert registry.get("planner_fixtures:Rollouts").version == "2.0"
-    with pytest.raises(PL.PlannerError, match="planner 'broken' .entry point no_such_module"):
+    with pytest.raises(PL.PlannerError, match=r"planner 'broken' \(entry point no_such_module"):
         registry.get("broken")
     with pytest.raises(KeyError, match="unknown planner 'nothing'; valid planners are: broken"):
         registry.get("nothing")

@@ -7,25 +7,31 @@ reward; the rollout continues from there until an infeasible action, the end of 
 episode or ``horizon`` actions. Rollouts differ by their random draws (restarts), and the
 best plan is the best-returning prefix of any rollout.
 
-It needs only numpy: voot hands it the problem (``snapshot``, ``restore``, ``step``,
-``action_bounds``, optionally ``is_feasible``, and ``discount``), a budget of simulations
-and a seed, and measures its simulator calls and CPU time itself.
+voot hands it the problem (``snapshot``, ``restore``, ``step``, ``action_bounds``,
+optionally ``is_feasible``, and ``discount``), a budget of simulations and a seed, and
+measures its simulator calls and CPU time itself. After each rollout it yields a
+:class:`voot.planners.Progress`: the best return and the step info at the end of the best
+plan (its ``objects_left`` gives the benchmark's objects-left curve); a plain number would
+do as well.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from voot.planners import Progress
+
 __all__ = ["greedy"]
 
 
 def greedy(problem, budget, seed, width=4, horizon=20):
-    """Greedy one-step lookahead: yield the best return after each of ``budget``
-    rollouts, then return the best plan (a list of actions)."""
+    """Greedy one-step lookahead: yield the best return (with the step info at the end of
+    the best plan) after each of ``budget`` rollouts, then return the best plan (a list of
+    actions)."""
     rng = np.random.default_rng(seed)
     precheck = getattr(problem, "is_feasible", None)
     root = problem.snapshot()
-    best, best_plan = -np.inf, []
+    best, best_plan, best_info = -np.inf, [], {}
     for _ in range(budget):
         problem.restore(root)
         plan, ret, weight = [], 0.0, 1.0
@@ -46,10 +52,10 @@ def greedy(problem, budget, seed, width=4, horizon=20):
             ret += weight * result.reward
             weight *= problem.discount
             if ret > best:
-                best, best_plan = ret, list(plan)
+                best, best_plan, best_info = ret, list(plan), result.info
             if not result.feasible or result.terminal:
                 break
-        yield best
+        yield Progress(best, best_info)
     return best_plan
 
 
