@@ -62,7 +62,7 @@ import inspect
 import itertools
 import math
 import time
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Generator, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from importlib import metadata
 from typing import Any, Protocol
@@ -613,13 +613,13 @@ def builtin_planner(name: str, grid: Grid | None = None) -> Planner:
     return Planner(name, function, grid if grid is not None else {}, builtin=True)
 
 
-def _tree_function(name: str) -> Callable[..., Iterator[Progress]]:
+def _tree_function(name: str) -> Callable[..., Generator[Progress, None, Any]]:
     from voot.tree.config import planner_config
     from voot.tree.mcts import MCTS
 
     def tree_planner(
         problem: MeteredProblem, budget: int, seed: np.random.SeedSequence, **settings: Any
-    ) -> Iterator[Progress]:
+    ) -> Generator[Progress, None, Any]:
         mcts = MCTS(problem, planner_config(name, **settings), seed=seed)
         for _ in mcts.iterate(budget):
             yield Progress(mcts.best_return, mcts.best_info(), mcts)
@@ -629,12 +629,12 @@ def _tree_function(name: str) -> Callable[..., Iterator[Progress]]:
     return tree_planner
 
 
-def _shooting_function(name: str) -> Callable[..., Iterator[Progress]]:
+def _shooting_function(name: str) -> Callable[..., Generator[Progress, None, Any]]:
     from voot.tree.shooting import ShootingPlanner, shooting_config
 
     def shooting_planner(
         problem: MeteredProblem, budget: int, seed: np.random.SeedSequence, **settings: Any
-    ) -> Iterator[Progress]:
+    ) -> Generator[Progress, None, Any]:
         planner = ShootingPlanner(problem, shooting_config(name, **settings), seed)
         for _ in planner.iterate(budget):
             yield Progress(planner.best_return, planner.best_info(), planner)

@@ -23,7 +23,10 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   ``pw_k``, ``ucb_c`` ...) sets that field; any other one (``omega``, ``epsilon``,
   ``v1`` ...) is an option of the per-node sampler. A sampling-based planner takes the
   problem's discount and its own options (:func:`~voot.bench.sweep.planners.run_config`); its row has the
-  same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0).
+  same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0). An outside planner takes its own
+  settings (``params``; the problem's discount is ``problem.discount``), and its row has
+  the same fields too (``n_nodes`` 0, its ``planner_config`` its name, version, discount
+  and settings).
 * **Search seed**: ``SeedSequence([seed, key(problem), dim, key(env keywords),
   key(planner)])``; the hyperparameters are deliberately not in it (common random
   numbers across a planner's grid, as in :mod:`voot.bench.sweep.bbfo`).
@@ -35,6 +38,10 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   n_steps + n_feasibility_checks``) and, when the problem reports it in its step info,
   the objects still to handle at the best leaf (``objects_left``); at the end the
   simulator calls, tree size, best plan and the resolved planner configuration.
+
+Every search (voot's planners and outside ones alike) runs through
+:func:`voot.planners.run_planner`: the counts and times below are measured by voot around
+the problem, not reported by the planner, and the returned plan is replayed and checked.
 
 Two call counts, on purpose: ``simulator_calls`` is the problem's own count when it
 keeps one (the v1 robot domains count executed steps only, their pre-checks are cheap

@@ -104,7 +104,11 @@ def planner_grid(planner: str, family: str, grid: str = "paper") -> list[dict[st
     predictive_sampling  noise
     random_shooting      (none)
     ppo, ddpg   (none: the paper gives no RL grid; SB3's defaults)
+    an outside  its own ``grid`` (:class:`voot.planners.Planner`)
     ==========  ==================================================
+
+    Each planner's grid is its registry entry's (:data:`REGISTRY`): voot's own are
+    registered with these axes (:func:`builtin_axes`).
     """
     key = normalize_plan_planner(planner)
     check_grid(grid)
@@ -337,30 +341,27 @@ def run_config(
         gamma = float(options.get("gamma", DEFAULT_DISCOUNT))
         return PluginConfig(planner, entry.version, dict(params), gamma)
     if is_shooting_planner(planner):
-        return shooting_config(planner, **run_settings(problem, dim, planner, params, env_kwargs))
+        return shooting_config(planner, **run_settings(planner, params, options))
     return tree_config(planner, params, options)
 
 
 def run_settings(
-    problem: str,
-    dim: int | None,
-    planner: str,
-    params: Mapping[str, Any],
-    env_kwargs: Mapping[str, Any] | None = None,
+    planner: str, params: Mapping[str, Any], domain: Mapping[str, Any]
 ) -> dict[str, Any]:
-    """The keyword settings the planner function of a (not RL) run receives: a tree
-    planner's :func:`tree_options`, a sampling-based one's ``params`` after the problem's
-    discount, an outside planner's ``params`` (a ValueError naming it and its settings
-    if its function does not take them)."""
+    """The keyword settings the planner function of a (not RL) run receives, from its
+    ``params`` and the problem's ``domain`` options
+    (:func:`~voot.bench.protocol.problems.domain_options`): a tree planner's
+    :func:`tree_options`, a sampling-based one's ``params`` after the problem's discount,
+    an outside planner's ``params`` (a ValueError naming it and its settings if its
+    function does not take them)."""
     entry = planner_entry(planner)
     if not entry.builtin:
         entry.check_settings(params)
         return dict(params)
-    options = P.domain_options(problem, dim, planner, env_kwargs)
     if is_shooting_planner(planner):
-        discount = {"gamma": options["gamma"]} if "gamma" in options else {}
+        discount = {"gamma": domain["gamma"]} if "gamma" in domain else {}
         return {**discount, **params}
-    return tree_options(planner, params, options)
+    return tree_options(planner, params, domain)
 
 
 def horizon_param(planner: str, horizon: int | None) -> dict[str, int | None]:

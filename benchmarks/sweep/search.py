@@ -57,9 +57,8 @@ def search_fields(spec: PlanSpec) -> dict[str, Any]:
 
     config = spec.run_config()
     entry = planner_entry(spec.planner)
-    settings = run_settings(
-        spec.problem, spec.dim, spec.planner, spec.params_dict, spec.env_kwargs_dict
-    )
+    domain = P.domain_options(spec.problem, spec.dim, spec.planner, spec.env_kwargs_dict)
+    settings = run_settings(spec.planner, spec.params_dict, domain)
     inst = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed)
     recorder: Any = None
     if spec.record is not None:
