@@ -179,3 +179,27 @@ def test_the_registry_finds_entry_points_and_module_attributes(
     with pytest.raises(KeyError, match="unknown planner 'nothing'; valid planners are: broken"):
         registry.get("nothing")
     assert PL.PlannerRegistry(group=None).names() == []
+
+
+def test_the_interface_needs_no_mujoco_and_no_bench() -> None:
+    """voot.planners and voot's planners through it load no MuJoCo, no environment beyond
+    what ``import voot`` registers, and no voot.bench."""
+    import ast
+    import subprocess
+    import sys
+
+    def loaded(imports: str) -> set[str]:
+        code = f"import sys; {imports}; print(sorted(sys.modules))"
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        return set(ast.literal_eval(out.stdout))
+
+    base = loaded("import voot")
+    modules = loaded(
+        "import voot.planners as p; p.builtin_planner('voot'); p.builtin_planner('cem')"
+    )
+    new = sorted(
+        m
+        for m in modules - base
+        if m.split(".")[0] == "mujoco" or m.startswith(("voot.envs", "voot.bench"))
+    )
+    assert "voot.tree.mcts" in modules and new == []
