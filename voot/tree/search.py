@@ -51,7 +51,7 @@ class PlanResult:
         n_steps: calls of ``problem.step`` (simulator steps).
         n_feasibility_checks: calls of ``problem.is_feasible``.
         n_node_visits: node visits (actions taken inside simulations, new or not).
-        wall_time: seconds spent in ``search``.
+        wall_time: seconds spent in the simulations (``search`` or ``iterate``).
         mcts: the tree search object, for inspecting the tree (None without a tree).
     """
 
