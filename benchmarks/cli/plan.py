@@ -334,7 +334,9 @@ def register(sub: Subparsers) -> None:
         metavar="NAME",
         help="voot doot rand_doot pw_uct voronoi_pw hoot uniform_t, or the sampling-based"
         " cem mppi predictive_sampling random_shooting, or the RL baselines ppo ddpg"
-        " (budget matched to a voot search, docs/rl.md) (default: the paper's)",
+        " (budget matched to a voot search, docs/rl.md), or an outside planner: an installed"
+        " plug-in's name (entry point group voot.planners) or module:attribute"
+        " (docs/planners.md) (default: the paper's)",
     )
     p.add_argument(
         "--seeds", default=None, help="N (seeds 0..N-1) or START:STOP (default: the paper's)"

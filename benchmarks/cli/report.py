@@ -101,9 +101,11 @@ def cmd_plot_plan(args: argparse.Namespace, rows: list[Row]) -> int:
             "--regret, --log, --functions, --dims and --methods apply to bbfo runs;"
             " for plan runs filter with --problems and --planners"
         )
-    # a planner name, or an ablation variant's label (``voot[kappa_off]``)
+    # a planner name, or an ablation variant's label (``voot[kappa_off]``); a name the
+    # store holds is taken as it is (an outside planner need not be installed to be drawn)
+    stored = {str(r.get("config", {}).get("planner")) for r in rows}
     planners = [
-        normalize_planner(base) + sep + rest
+        (base if base in stored else normalize_planner(base)) + sep + rest
         for base, sep, rest in (p.partition("[") for p in split_list(args.planners))
     ] or None
     layouts = tuning_layouts_of(args, rows)

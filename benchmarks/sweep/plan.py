@@ -6,8 +6,9 @@ simulations. :func:`build_plan_specs` turns the grid into :class:`PlanSpec` valu
 :func:`run_plan_spec` runs one with :class:`voot.tree.MCTS` (or, for the sampling-based
 planners ``cem``, ``mppi``, ``predictive_sampling`` and ``random_shooting``, with
 :class:`voot.tree.shooting.ShootingPlanner`: the same row, :mod:`voot.bench.sweep.search`;
-for the RL planners ``ppo`` and ``ddpg``, by :mod:`voot.bench.sweep.rl`, with a budget
-matched to a tree search), returning a result row of kind ``"plan"`` for the same store,
+for an outside planner, a plug-in of :mod:`voot.planners`, through the same run; for the
+RL planners ``ppo`` and ``ddpg``, by :mod:`voot.bench.sweep.rl`, with a budget matched to
+a tree search), returning a result row of kind ``"plan"`` for the same store,
 backends and resume logic as the black-box sweep (:func:`voot.bench.sweep.engine.run_sweep`).
 The planners themselves, their grids and configs, are in :mod:`voot.bench.sweep.planners`.
 
@@ -22,7 +23,10 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   ``pw_k``, ``ucb_c`` ...) sets that field; any other one (``omega``, ``epsilon``,
   ``v1`` ...) is an option of the per-node sampler. A sampling-based planner takes the
   problem's discount and its own options (:func:`~voot.bench.sweep.planners.run_config`); its row has the
-  same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0).
+  same fields (``n_nodes`` 0, ``n_feasibility_checks`` 0). An outside planner takes its own
+  settings (``params``; the problem's discount is ``problem.discount``), and its row has
+  the same fields too (``n_nodes`` 0, its ``planner_config`` its name, version, discount
+  and settings).
 * **Search seed**: ``SeedSequence([seed, key(problem), dim, key(env keywords),
   key(planner)])``; the hyperparameters are deliberately not in it (common random
   numbers across a planner's grid, as in :mod:`voot.bench.sweep.bbfo`).
@@ -34,6 +38,10 @@ The protocol of one run (``PLAN_PROTOCOL = 1``):
   n_steps + n_feasibility_checks``) and, when the problem reports it in its step info,
   the objects still to handle at the best leaf (``objects_left``); at the end the
   simulator calls, tree size, best plan and the resolved planner configuration.
+
+Every search (voot's planners and outside ones alike) runs through
+:func:`voot.planners.run_planner`: the counts and times below are measured by voot around
+the problem, not reported by the planner, and the returned plan is replayed and checked.
 
 Two call counts, on purpose: ``simulator_calls`` is the problem's own count when it
 keeps one (the v1 robot domains count executed steps only, their pre-checks are cheap
@@ -73,6 +81,7 @@ from voot.bench.sweep.engine import (
 from voot.bench.sweep.planners import (
     horizon_param,
     is_rl_planner,
+    keeps_tree,
     normalize_plan_planner,
     planner_grid,
     run_config,
@@ -190,8 +199,6 @@ def build_plan_specs(
             takes none, or beside a ``layout_seed`` env keyword. Messages list the valid
             choices.
     """
-    from voot.tree.shooting import is_shooting_planner
-
     names = [P.normalize_problem(p) for p in problems]
     if not names:
         raise ValueError("no problems given")
@@ -262,13 +269,11 @@ def build_plan_specs(
                                 PlanSpec(problem, dim, env, planner, items, int(n_sims), seed)
                             )
     if record is not None:
-        shooting = sorted(
-            {s.planner for s in specs if is_shooting_planner(s.planner) or is_rl_planner(s.planner)}
-        )
-        if shooting:
+        treeless = sorted({s.planner for s in specs if not keeps_tree(s.planner)})
+        if treeless:
             raise ValueError(
-                f"recording draws a search tree; the sampling-based and RL planners {shooting}"
-                " keep none (record tree planners only)"
+                f"recording draws a search tree; the planners {treeless} (sampling-based, RL"
+                " or outside planners) keep none (record voot's tree planners only)"
             )
         if len(specs) > MAX_RECORDINGS:
             raise ValueError(

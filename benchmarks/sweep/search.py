@@ -1,8 +1,9 @@
-"""The run of a tree or sampling-based planner in the planning sweep: one search, one row.
+"""The run of a planner over the planning protocol in the planning sweep: one search, one row.
 
 :func:`run_search_spec` runs a plan spec (:class:`voot.bench.sweep.plan.PlanSpec`) whose
-planner is a tree planner (:class:`voot.tree.MCTS`) or a sampling-based one
-(:class:`voot.tree.shooting.ShootingPlanner`) and returns its row; the row's fields and
+planner is a tree planner (:class:`voot.tree.MCTS`), a sampling-based one
+(:class:`voot.tree.shooting.ShootingPlanner`) or an outside one (a plug-in,
+:mod:`voot.planners`), all through :func:`voot.planners.run_planner`, and returns its row; the row's fields and
 the run protocol are described in :mod:`voot.bench.sweep.plan`. The RL runs
 (:mod:`voot.bench.sweep.rl`) run such a search first, as the reference their budget is
 matched to, and draw their algorithm's seed from the same :func:`search_seed`.
@@ -11,7 +12,6 @@ matched to, and draw their algorithm's seed from the same :func:`search_seed`.
 from __future__ import annotations
 
 import json
-import time
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -19,6 +19,7 @@ import numpy as np
 from voot.bench.protocol import problems as P
 from voot.bench.store.format import Row
 from voot.bench.sweep.engine import jsonable, name_key, one_blas_thread, timed_row
+from voot.bench.sweep.planners import planner_entry, run_settings
 
 if TYPE_CHECKING:
     from voot.bench.sweep.plan import PlanSpec
@@ -46,65 +47,54 @@ def run_search_spec(spec: PlanSpec) -> Row:
 
 
 def search_fields(spec: PlanSpec) -> dict[str, Any]:
-    """Run the search of ``spec``: its row's fields (``best_so_far`` first)."""
-    from voot.tree.mcts import MCTS
-    from voot.tree.shooting import ShootingConfig, ShootingPlanner
+    """Run the search of ``spec``: its row's fields (``best_so_far`` first).
+
+    Every planner, voot's own or an outside one, runs through
+    :func:`voot.planners.run_planner`, which measures its simulator calls and CPU time
+    around the problem and checks that its plan replays.
+    """
+    from voot.planners import run_planner
 
     config = spec.run_config()
+    entry = planner_entry(spec.planner)
+    domain = P.domain_options(spec.problem, spec.dim, spec.planner, spec.env_kwargs_dict)
+    settings = run_settings(spec.planner, spec.params_dict, domain)
     inst = P.make_instance(spec.problem, spec.dim, spec.env_kwargs_dict, spec.seed)
-    mcts: Any = (
-        ShootingPlanner(inst.problem, config, seed=search_seed(spec))
-        if isinstance(config, ShootingConfig)
-        else MCTS(inst.problem, config, seed=search_seed(spec))
-    )
     recorder: Any = None
     if spec.record is not None:
         from voot.record import SearchRecorder
 
         recorder = SearchRecorder(spec.record, inst.problem)
-    elapsed: list[float] = []
-    cpu_elapsed: list[float] = []
-    calls: list[int] = []
-    clock, cpu_clock = time.perf_counter, time.process_time
-    t0, c0 = clock(), cpu_clock()
-
-    def callback(m: Any, i: int) -> bool:
-        elapsed.append(clock() - t0)
-        cpu_elapsed.append(cpu_clock() - c0)
-        # a sampling-based planner makes no pre-checks (no such counter)
-        calls.append(int(m.n_steps) + int(getattr(m, "n_feasibility_checks", 0)))
-        if recorder is not None:
-            recorder(m, i)
-        return False
-
-    calls_before = getattr(inst.problem, "n_simulator_calls", None)
     try:
-        res = mcts.search(spec.simulations, callback=callback, record_info=P.OBJECTS_KEY)
+        out = run_planner(
+            entry,
+            inst.problem,
+            spec.simulations,
+            search_seed(spec),
+            settings,
+            discount=float(config.gamma),
+            record_info=P.OBJECTS_KEY,
+            on_simulation=None if recorder is None else lambda i, p: recorder(p.search, i),
+        )
     finally:
         if recorder is not None:
             recorder.finish()
-    left = list(res.info_curve or ())
-    # the problem's own count (SimulatorCalls), else every step and pre-check
-    sim_calls = (
-        inst.problem.n_simulator_calls - calls_before
-        if calls_before is not None
-        else res.n_steps + res.n_feasibility_checks
-    )
+    left = out.info_curve
     fields: dict[str, Any] = {
-        "best_so_far": res.best_return_curve.tolist(),
-        "elapsed": [round(t, 6) for t in elapsed],
-        "cpu_elapsed": [round(t, 6) for t in cpu_elapsed],
-        "calls_curve": calls,
-        "search_time": res.wall_time,
-        "best_return": res.best_return,
-        "simulator_calls": int(sim_calls),
-        "n_steps": res.n_steps,
-        "n_feasibility_checks": res.n_feasibility_checks,
-        "n_nodes": res.n_nodes,
-        "n_node_visits": res.n_node_visits,
-        "plan_length": len(res.actions),
-        "best_actions": [a.tolist() for a in res.actions],
-        "best_rewards": res.rewards.tolist(),
+        "best_so_far": out.best_so_far,
+        "elapsed": [round(t, 6) for t in out.elapsed],
+        "cpu_elapsed": [round(t, 6) for t in out.cpu_elapsed],
+        "calls_curve": out.calls_curve,
+        "search_time": out.wall_time,
+        "best_return": out.best_so_far[-1],
+        "simulator_calls": out.simulator_calls,
+        "n_steps": out.n_steps,
+        "n_feasibility_checks": out.n_feasibility_checks,
+        "n_nodes": int(getattr(out.returned, "n_nodes", 0)),
+        "n_node_visits": int(getattr(out.returned, "n_node_visits", out.n_steps)),
+        "plan_length": len(out.actions),
+        "best_actions": [a.tolist() for a in out.actions],
+        "best_rewards": out.rewards,
         "problem_label": spec.label,
         "planner_config": jsonable(config.to_dict()),
     }

@@ -4,8 +4,8 @@ The tree search (:class:`voot.tree.mcts.MCTS`) and the sampling-based planners
 (:class:`voot.tree.shooting.ShootingPlanner`) both run *simulations* from a root state,
 one at a time, and report the best return after every one (the paper's curve). They
 differ only in what a simulation is and what "the best so far" means, so the loop
-(:meth:`Search.search`: budget check, curve, step-info curve, callback, wall time) lives
-here once and each planner says what one simulation does (:meth:`Search._simulate`).
+(:meth:`Search.iterate`: budget check, curve, step-info curve, wall time; :meth:`Search.search`
+adds the callback) lives here once and each planner says what one simulation does (:meth:`Search._simulate`).
 
 Both return the same :class:`PlanResult`, so sweeps, the result store and the plots
 treat every planner alike.
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import time
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -55,7 +55,7 @@ class PlanResult:
         n_steps: calls of ``problem.step`` (simulator steps).
         n_feasibility_checks: calls of ``problem.is_feasible``.
         n_node_visits: node visits (actions taken inside simulations, new or not).
-        wall_time: seconds spent in ``search``.
+        wall_time: seconds spent in the simulations (``search`` or ``iterate``).
         mcts: the tree search object, for inspecting the tree (None without a tree).
     """
 
@@ -141,6 +141,32 @@ class Search(ABC):
     def result(self, with_info_curve: bool = False) -> PlanResult:
         """The :class:`PlanResult` of the simulations so far."""
 
+    def best_info(self) -> Mapping[str, Any]:
+        """The step info at the end of the best path so far (``{}`` before any)."""
+        return self._best_info()
+
+    def iterate(self, n_simulations: int, record_info: str | None = None) -> Iterator[int]:
+        """Run ``n_simulations`` more simulations, yielding after each one its index
+        (0-based, counted over the planner's life): :meth:`search` one step at a time,
+        for a caller that measures or stops between simulations
+        (:func:`voot.planners.run_planner`).
+
+        ``record_info`` as in :meth:`search`; :attr:`wall_time` counts the simulations
+        only, not the caller's time between them.
+        """
+        n = check_n_simulations(n_simulations)
+        for _ in range(n):
+            t0 = time.perf_counter()
+            try:
+                self._simulate()
+                self.n_simulations += 1
+                self.best_return_curve.append(self.best_return)
+                if record_info is not None:
+                    self.info_curve.append(self._best_info().get(record_info))
+            finally:
+                self.wall_time += time.perf_counter() - t0
+            yield self.n_simulations - 1
+
     def search(
         self,
         n_simulations: int,
@@ -159,18 +185,10 @@ class Search(ABC):
         The problem is left at the root's state (restored even if a simulation raises),
         wherever the last simulation ended.
         """
-        n = check_n_simulations(n_simulations)
-        t0 = time.perf_counter()
         try:
-            for _ in range(n):
-                self._simulate()
-                self.n_simulations += 1
-                self.best_return_curve.append(self.best_return)
-                if record_info is not None:
-                    self.info_curve.append(self._best_info().get(record_info))
-                if callback is not None and callback(self, self.n_simulations - 1):
+            for i in self.iterate(n_simulations, record_info):
+                if callback is not None and callback(self, i):
                     break
         finally:
             self.problem.restore(self._root_snapshot())
-            self.wall_time += time.perf_counter() - t0
         return self.result(record_info is not None)

@@ -360,3 +360,53 @@ def test_problems_help_lists_the_recorded_names_by_meaning() -> None:
     text = next(a.help for a in sub._actions if a.dest == "problems")
     assert names_text() in text and "shekel_chain" in text
     assert "kitchen conveyor: the first release's rules (v0)" in text
+
+
+def test_an_outside_planner_through_plan_plot_claims_and_the_held_out_protocol(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """An outside planner named module:attribute (planner_fixtures, on the tests' path):
+    tuned on its own grid, evaluated, drawn, judged, and on held-out layouts, with its
+    cost in every table."""
+    import layout_fixtures
+
+    from voot.bench.protocol import layouts
+
+    outside = "planner_fixtures:rollouts"
+    out = tmp_path / "plugin"
+    tuned = [
+        *("plan --out", str(out), "--problems shekel_chain --dims 3 --simulations 8"),
+        *("--planners", outside, "voot --workers 1 --no-progress"),
+        *("--tuning-seeds 100:102 --seeds 0:2",),
+    ]
+    argv = " ".join(tuned).split()
+    assert main(argv) == 0
+    printed = capsys.readouterr()
+    assert f"| shekel_chain | 3 | 8 | {outside} | horizon=" in printed.err  # its selection
+    rows = ResultStore(out).load(kind="plan")
+    mine = [r for r in rows if r["config"]["planner"] == outside]
+    assert len(mine) == 2 * 2 + 2  # its grid (horizon 2, 3) on the tuning seeds, then 2
+    png = str(tmp_path / "p.png")
+    assert main(["plot", str(out), "--tuning-seeds", "100:102", "--png", png]) == 0
+    assert main(["plot", str(out), "--planners", outside, "--png", png]) == 0
+    table = capsys.readouterr().out
+    cost = [
+        line for line in table.splitlines() if line.startswith(f"| shekel_chain 3-D | {outside}")
+    ]
+    assert cost and not any("nan" in line for line in cost)
+    assert main(["claims", str(out)]) == 0
+    capsys.readouterr()
+
+    monkeypatch.setitem(
+        layouts.LAYOUT_SETS, layout_fixtures.LAYOUT_ENV_ID, layouts.LayoutSet((100, 101), (0, 1))
+    )
+    held = tmp_path / "heldout"
+    heldout = [
+        *("plan --out", str(held), "--problems", layout_fixtures.LAYOUT_ENV_ID),
+        *("--planners", outside, "--simulations 6 --workers 1 --no-progress --heldout"),
+    ]
+    assert main(" ".join(heldout).split()) == 0
+    assert "settings selected on training layouts 100-101" in capsys.readouterr().err
+    rows = ResultStore(held).load(kind="plan")
+    assert {r["config"]["env_kwargs"]["layout_seed"] for r in rows} == {0, 1, 100, 101}
+    assert main(["plot", str(held), "--heldout", "--png", str(tmp_path / "h.png")]) == 0

@@ -84,17 +84,16 @@ def index_write(path, data):
 
 store_mod.write_atomic = row_write
 index_mod.write_atomic = index_write
-search = MCTS.search
+iterate = MCTS.iterate
 
-def crashing_search(self, n, callback=None, **kw):
+def crashing_iterate(self, n, *args, **kw):
     counts["run"] += 1
-    def cb(m, i):
+    for i in iterate(self, n, *args, **kw):
         if kind == "mid-search" and counts["run"] == k and i == int(point[2]):
             die()
-        return callback(m, i) if callback is not None else False
-    return search(self, n, callback=cb, **kw)
+        yield i
 
-MCTS.search = crashing_search
+MCTS.iterate = crashing_iterate
 sys.exit(main(json.loads(os.environ["VOOT_ARGV"])))
 """
 
