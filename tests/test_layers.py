@@ -6,7 +6,7 @@ One exception, by design: ``import voot`` (which every ``voot.*`` import runs fi
 registers the gymnasium ids from the families' problem records, which live beside each
 family's env (``voot.envs.kitchen.problems`` ...). So the lower layers load exactly those
 records modules, the package inits above them (docstrings only) and the typed names they
-use (``voot.envs.core.names``): data, no MuJoCo, no env code. :data:`RECORD_MODULES` is
+use (``voot.envs.core.names``, and the protocol's layout split, ``voot.envs.core.splits``): data, no MuJoCo, no env code. :data:`RECORD_MODULES` is
 that allowance; anything else of ``voot.envs`` is still an offence.
 """
 
@@ -38,7 +38,9 @@ def _record_modules() -> frozenset[str]:
     from voot._registration import FAMILIES
 
     inits = {m.rsplit(".", k)[0] for m in FAMILIES for k in range(1, m.count("."))}
-    return frozenset({*FAMILIES, *inits, "voot.envs.core", "voot.envs.core.names"})
+    return frozenset(
+        {*FAMILIES, *inits, "voot.envs.core", "voot.envs.core.names", "voot.envs.core.splits"}
+    )
 
 
 #: What ``import voot`` loads of ``voot.envs``: the families' records modules, their

@@ -25,8 +25,8 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import Any
 
-from voot.envs.core.generation import PROTOCOL_SPLIT, LayoutSplit
 from voot.envs.core.names import Difficulty
+from voot.envs.core.splits import PROTOCOL_SPLIT, LayoutSplit
 
 #: The shape of a gymnasium id voot registers: ``namespace/Name-vN``.
 _ID = re.compile(r"^[A-Za-z0-9_]+/[A-Za-z0-9_]+-v\d+$")

@@ -8,6 +8,7 @@
 * :mod:`.scene`: loading MJCF scenes, reading their floor plan back as footprints;
 * :mod:`.generation`: what the generated families share (levels, seeds, the rejection
   loop, the instance record and its cache);
+* :mod:`.splits`: the protocol's split of layout seeds (training, held out);
 * :mod:`.family`: a generated family as one env a learner trains across (one
   observation space, the layout chosen at reset, the training / held-out split);
 * :mod:`.rendering`: cameras, headless OpenGL, visual-only markers;

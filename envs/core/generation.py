@@ -19,9 +19,9 @@ common parts:
 * :class:`InstanceCache`: the instances kept in this process (least recently used
   forgotten past a size);
 * :func:`reject_layout_fields` and :func:`witness_arrays`: the envs' shared checks;
-* :class:`LayoutSplit` and :data:`PROTOCOL_SPLIT`: a family's training and held-out
-  layout seeds (the protocol's, read by the problem records, the envs' split mode and
-  :mod:`voot.bench.protocol.layouts`).
+* :class:`LayoutSplit` and :data:`PROTOCOL_SPLIT` (defined in :mod:`voot.envs.core.splits`,
+  light enough for the problem records, and re-exported here): a family's training and
+  held-out layout seeds.
 
 No MuJoCo import: layouts use this module and stay pure numpy.
 """
@@ -39,7 +39,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from voot import validation as V
-from voot.envs.core.names import Difficulty, Split
+from voot.envs.core.names import Difficulty
+from voot.envs.core.splits import HELDOUT_LAYOUTS, PROTOCOL_SPLIT, TRAINING_LAYOUTS, LayoutSplit
 
 if TYPE_CHECKING:
     import mujoco
@@ -66,48 +67,6 @@ WitnessT = TypeVar("WitnessT")
 KeyT = TypeVar("KeyT", bound=Hashable)
 ValueT = TypeVar("ValueT")
 T = TypeVar("T")
-
-
-#: Layouts the protocol trains (tunes) on: never reported.
-TRAINING_LAYOUTS: tuple[int, ...] = tuple(range(1000, 1020))
-#: Layouts the protocol reports: the held-out test set, never trained on.
-HELDOUT_LAYOUTS: tuple[int, ...] = tuple(range(0, 20))
-
-
-@dataclass(frozen=True)
-class LayoutSplit:
-    """A family's fixed split of layout seeds: ``training`` and ``heldout``, disjoint and
-    each non-empty (checked when built; duplicates dropped, order kept)."""
-
-    training: tuple[int, ...]
-    heldout: tuple[int, ...]
-
-    def __post_init__(self) -> None:
-        for name in ("training", "heldout"):
-            values = V.integers(getattr(self, name), f"{name} layouts", 0)
-            if not values:
-                raise ValueError(f"a layout split needs {name} layouts")
-            object.__setattr__(self, name, tuple(dict.fromkeys(values)))
-        both = sorted(set(self.training) & set(self.heldout))
-        if both:
-            raise ValueError(
-                f"layout seeds {', '.join(map(str, both))} are both training and held-out"
-                " layouts: a split never trains on what it holds out"
-            )
-
-    def seeds(self, split: object) -> tuple[int, ...]:
-        """The seeds of ``split`` (a :class:`~voot.envs.core.names.Split` or its string).
-
-        Raises:
-            ValueError: not a split (the message names the valid ones).
-        """
-        part = V.choice(Split, split, "split", "splits")
-        return self.training if part == Split.TRAINING else self.heldout
-
-
-#: The protocol's split, the same for every generated family: layouts 1000-1019 to train
-#: (tune) on, 0-19 held out.
-PROTOCOL_SPLIT = LayoutSplit(TRAINING_LAYOUTS, HELDOUT_LAYOUTS)
 
 
 def parse_difficulty(difficulty: object, levels: Collection[Difficulty]) -> Difficulty:
