@@ -38,7 +38,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
     try:
         env_id = normalize_problem(args.env)
-        if env_id != kitchen_demo.GENERATED_ID and (
+        if not kitchen_demo.is_generated(env_id) and (
             args.layout_seed is not None or args.difficulty is not None
         ):
             given = [
@@ -52,7 +52,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
             verb = "choose" if len(given) > 1 else "chooses"
             raise CLIError(
                 f"{' and '.join(given)} {verb} a generated kitchen; --env {args.env} ({env_id})"
-                " is the paper's fixed instance: use --env kitchen_v2"
+                " is the paper's fixed instance: use --env generated_kitchen"
             )
         kitchen_demo.run(
             args.out,

@@ -30,6 +30,7 @@ from typing import Any
 
 from voot import validation as V
 from voot.bench.protocol.problems import domain_options
+from voot.problems import problem_record, problem_records
 from voot.record.kitchen_animation import plan_animation
 from voot.tree.config import normalize_planner
 from voot.tree.mcts import MCTS
@@ -38,11 +39,18 @@ from voot.tree.step_info import StepInfo
 
 #: The first release's kitchen (Figure 5 of :func:`figure5` and the v0 results).
 KITCHEN_ID = "voot/KitchenClearing-v0"
-#: The generated kitchens (:mod:`voot.envs.kitchen.generated.env`): the only version that takes
-#: ``layout_seed`` and ``difficulty``.
-GENERATED_ID = "voot/KitchenClearing-v2"
-#: The kitchen versions the demo runs on.
-KITCHEN_IDS = ("voot/KitchenClearing-v0", "voot/KitchenClearing-v1", GENERATED_ID)
+#: The generated kitchens (:mod:`voot.envs.kitchen.generated.env`): the family that takes
+#: ``layout_seed`` and ``difficulty`` (its former id ``voot/KitchenClearing-v2`` too).
+GENERATED_ID = "voot/GeneratedKitchen-v0"
+#: The kitchen ids the demo runs on: every record of the kitchen family.
+KITCHEN_IDS = tuple(r.id for r in problem_records() if r.family == "kitchen")
+
+
+def is_generated(env_id: str) -> bool:
+    """Whether ``env_id`` is a generated kitchen (its record takes layouts)."""
+    return problem_record(env_id).layouts
+
+
 #: The layout of a generated kitchen when :func:`run` is not given one (the env's defaults).
 DEFAULT_LAYOUT_SEED = 0
 #: See :data:`DEFAULT_LAYOUT_SEED`.
@@ -89,7 +97,7 @@ def layout_kwargs(
     """
     if env_id not in KITCHEN_IDS:
         raise ValueError(f"unknown kitchen {env_id!r}; valid ids are: {', '.join(KITCHEN_IDS)}")
-    if env_id != GENERATED_ID:
+    if not is_generated(env_id):
         given = [
             name
             for name, value in (("layout_seed", layout_seed), ("difficulty", difficulty))
@@ -99,7 +107,7 @@ def layout_kwargs(
             verb = "choose" if len(given) > 1 else "chooses"
             raise ValueError(
                 f"{' and '.join(given)} {verb} a generated kitchen; {env_id} is the paper's"
-                f" fixed instance. Use {GENERATED_ID} (kitchen_v2) for generated layouts"
+                f" fixed instance. Use {GENERATED_ID} (generated_kitchen) for generated layouts"
             )
         return {}
     from voot.envs.kitchen.generated.layout import difficulty_level

@@ -38,7 +38,7 @@ def test_demo_layout_options(tmp_path: Path, capsys: pytest.CaptureFixture[str])
     out = str(tmp_path / "demo")
     assert main(["demo", "--out", out, "--layout-seed", "3"]) == 2  # v1 is one fixed kitchen
     err = capsys.readouterr().err
-    assert "--layout-seed chooses a generated kitchen" in err and "--env kitchen_v2" in err
+    assert "--layout-seed chooses a generated kitchen" in err and "--env generated_kitchen" in err
     assert main(["demo", "--out", out, "--env", "kitchen", "--difficulty", "hard"]) == 2
     assert "--difficulty chooses" in capsys.readouterr().err
     with pytest.raises(SystemExit):

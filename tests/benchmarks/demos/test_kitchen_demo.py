@@ -112,14 +112,15 @@ def test_generated_kitchen_recording_shows_its_mesh_objects(tmp_path: Path) -> N
     assert len(walls) >= len(env.layout.blocks)
 
 
-def test_layout_options() -> None:
-    v2 = "voot/KitchenClearing-v2"
+@pytest.mark.parametrize("v2", ["voot/GeneratedKitchen-v0", "voot/KitchenClearing-v2"])
+def test_layout_options(v2: str) -> None:
+    # the generated family, by its name and by its former one
     assert layout_kwargs(v2) == {"layout_seed": 0, "difficulty": "easy"}
     assert layout_kwargs(v2, 7, "hard") == {"layout_seed": 7, "difficulty": "hard"}
     assert layout_kwargs("voot/KitchenClearing-v1") == {}
     with pytest.raises(ValueError, match="layout_seed and difficulty choose a generated"):
         layout_kwargs("voot/KitchenClearing-v1", 3, "easy")
-    with pytest.raises(ValueError, match="KitchenClearing-v2"):
+    with pytest.raises(ValueError, match="GeneratedKitchen-v0"):
         layout_kwargs("voot/KitchenClearing-v0", difficulty="easy")
     with pytest.raises(ValueError, match="valid levels are: easy, medium, hard"):
         layout_kwargs(v2, 0, "extreme")
