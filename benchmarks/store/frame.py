@@ -260,7 +260,7 @@ def write_parquet(
     back with ``pandas.read_parquet(path)`` (a curve cell is then a NumPy array).
 
     Raises:
-        the errors of :func:`store_frame`; StoreError if ``path`` is a directory.
+        StoreError: ``path`` is a directory; and the errors of :func:`store_frame`.
     """
     require_table_libs()
     import pyarrow.parquet as pq
