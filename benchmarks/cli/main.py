@@ -14,6 +14,7 @@ The researcher's commands::
     voot-bench claims results/plan        the paper's claims: ours, 95% interval, verdict
     voot-bench plot results/bbfo --png fig.png --markdown table.md
     voot-bench difficulty                 how hard the robot domains are, planner-agnostic
+    voot-bench export results/plan --parquet p.parquet   one row per run, for pandas
 
 The measurements (``voot-bench measure --help`` lists them)::
 
@@ -33,8 +34,8 @@ Where the subcommands live: :mod:`~voot.bench.cli.demo` (``demo``, ``record-demo
 :mod:`~voot.bench.cli.plan`, :mod:`~voot.bench.cli.ablation`,
 :mod:`~voot.bench.cli.report` (``select``, ``plot``, ``claims``),
 :mod:`~voot.bench.cli.difficulty` (``difficulty``, ``ladder``),
-:mod:`~voot.bench.cli.store` (``compact``, ``shipped``); the measurements in
-:mod:`~voot.bench.cli.measure` (the optimisers', the search's and the stores' costs),
+:mod:`~voot.bench.cli.store` (``compact``, ``shipped``, ``export``); the measurements
+in :mod:`~voot.bench.cli.measure` (the optimisers', the search's and the stores' costs),
 :mod:`~voot.bench.cli.env_cost` (the environments') and :mod:`~voot.bench.cli.speedup`.
 What they share is in :mod:`~voot.bench.cli.common`.
 
@@ -86,7 +87,7 @@ COMMANDS: tuple[Callable[[Subparsers], None], ...] = (
     ablation.register,  # ablation
     report.register,  # select, plot, claims
     difficulty.register,  # difficulty, ladder
-    store.register,  # compact, shipped
+    store.register,  # compact, shipped, export
 )
 
 #: The project's own measurements (``voot-bench measure NAME``), in the order of

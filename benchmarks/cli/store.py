@@ -1,5 +1,6 @@
-"""Subcommands on whole result stores: ``compact`` (copy a store into a compact one) and
-``shipped`` (check the committed stores against their manifest and redraw them). The size
+"""Subcommands on whole result stores: ``compact`` (copy a store into a compact one),
+``shipped`` (check the committed stores against their manifest and redraw them) and
+``export`` (a store as a Parquet table, :mod:`voot.bench.store.frame`). The size
 and load time of stores is a measurement (``voot-bench measure store-speed``,
 :mod:`voot.bench.cli.measure`)."""
 
@@ -11,6 +12,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from voot.bench.cli.common import CLIError, add_compact_options, compact_config
+from voot.bench.cli.report import KINDS
+from voot.bench.store.format import STATUSES
 
 if TYPE_CHECKING:
     from voot.bench.cli.common import Subparsers
@@ -73,8 +76,21 @@ def cmd_shipped(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_export(args: argparse.Namespace) -> int:
+    """Write a store's table, one row per run, to a Parquet file
+    (:func:`voot.bench.store.frame.write_parquet`)."""
+    from voot.bench.store.frame import write_parquet
+
+    try:
+        n = write_parquet(args.store, args.parquet, kind=args.kind, status=args.status)
+    except ImportError as exc:
+        raise CLIError(str(exc)) from None
+    print(f"{n} runs of {args.store} written to {args.parquet}")
+    return 0
+
+
 def register(sub: Subparsers) -> None:
-    """Add ``compact`` and ``shipped``."""
+    """Add ``compact``, ``shipped`` and ``export``."""
     p = sub.add_parser(
         "compact",
         help="copy a result store into a compact one (resumable; the source is only read)",
@@ -104,3 +120,20 @@ def register(sub: Subparsers) -> None:
         help="give the rows of stores written before row checksums theirs (then --write)",
     )
     p.set_defaults(func=cmd_shipped)
+
+    p = sub.add_parser(
+        "export",
+        help="a result store as a table for analysis elsewhere: one row per run, to Parquet",
+        description="Every run of STORE as one row of a Parquet file: run id, kind, status and"
+        " timings, the config flattened into columns (objects such as params as JSON text),"
+        " the curves (best_so_far, objects_left, elapsed, cpu_elapsed, calls_curve) as list"
+        " columns, and the row's other values. Read it with pandas.read_parquet, polars,"
+        " DuckDB or R's arrow. Needs pandas and pyarrow (the bench extra).",
+    )
+    p.add_argument("store", help="the result store to read")
+    p.add_argument("--parquet", required=True, metavar="OUT", help="the Parquet file to write")
+    p.add_argument("--kind", choices=KINDS, default=None, help="only runs of this kind")
+    p.add_argument(
+        "--status", choices=STATUSES, default=None, help="only runs of this status (default: all)"
+    )
+    p.set_defaults(func=cmd_export)

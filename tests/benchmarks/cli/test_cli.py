@@ -19,7 +19,7 @@ from voot.bench.cli.main import COMMANDS, MEASUREMENTS, build_parser, main, meas
 #: The researcher's commands in the order ``voot-bench --help`` lists them.
 RESEARCH = (
     "demo record-demo figure5 demo-voo env-figures bbfo plan ablation select plot claims"
-    " difficulty ladder compact shipped measure"
+    " difficulty ladder compact shipped export measure"
 ).split()
 #: The measurements in the order ``voot-bench measure --help`` lists them.
 MEASURE = (
