@@ -38,7 +38,7 @@ from typing import Any
 
 import gymnasium as gym
 import numpy as np
-from gymnasium.vector import AutoresetMode
+from gymnasium.vector import AsyncVectorEnv, AutoresetMode, SyncVectorEnv
 
 import voot  # noqa: F401  (registers the ids)
 from voot.envs.core.generation import HELDOUT_LAYOUTS, TRAINING_LAYOUTS
@@ -62,7 +62,7 @@ class Evaluation:
     success_rate: float
 
 
-def _sb3_vec_env(env: gym.vector.VectorEnv, seed: int) -> Any:
+def _sb3_vec_env(env: SyncVectorEnv | AsyncVectorEnv, seed: int) -> Any:
     """A gymnasium vector env (same-step autoreset) seen as an SB3 ``VecEnv``.
 
     SB3 takes its own vector envs only; this adapter keeps gymnasium's ``make_vec`` (the
@@ -111,8 +111,10 @@ def _sb3_vec_env(env: gym.vector.VectorEnv, seed: int) -> Any:
         def set_attr(self, name: str, value: Any, indices: Any = None) -> None:
             env.set_attr(name, value)
 
-        def env_method(self, name: str, *args: Any, indices: Any = None, **kw: Any) -> list[Any]:
-            return list(env.call(name, *args, **kw))
+        def env_method(
+            self, method_name: str, *method_args: Any, indices: Any = None, **method_kwargs: Any
+        ) -> list[Any]:
+            return list(env.call(method_name, *method_args, **method_kwargs))
 
         def env_is_wrapped(self, wrapper_class: Any, indices: Any = None) -> list[bool]:
             return [False] * self.num_envs
@@ -184,6 +186,7 @@ def run(
         split="training",
         difficulty=difficulty,
     )
+    assert isinstance(vec, SyncVectorEnv)
     venv = _sb3_vec_env(vec, seed)
     model = sb3.PPO("MlpPolicy", venv, seed=seed, verbose=0, device="cpu", **kwargs)
     model.learn(total_timesteps=steps)
