@@ -144,7 +144,13 @@ class LayoutFamily:
         return seed
 
     def _build(self, layout_seed: int, difficulty: Difficulty) -> None:
+        kept_action = getattr(self, "action_space", None)
+        kept_observation = getattr(self, "observation_space", None)
         self._load_layout(layout_seed, difficulty)
+        if kept_action is not None and kept_action == self.action_space:
+            # the same space on every layout: keep the object, and with it a generator
+            # the user seeded (env.action_space.seed(...)) across layout changes
+            self.action_space = kept_action
         n = len(self.objects)
         if n > self.MAX_OBJECTS:  # pragma: no cover - the levels' tables bound it
             raise RuntimeError(f"{n} objects, more than the family's {self.MAX_OBJECTS}")
@@ -160,7 +166,9 @@ class LayoutFamily:
         template = np.zeros(size)
         template[size - most : size - most + n] = 1.0
         self._obs_template = template
-        self.observation_space = gym.spaces.Box(-50.0, 50.0, shape=(size,), dtype=np.float64)
+        space = gym.spaces.Box(-50.0, 50.0, shape=(size,), dtype=np.float64)
+        same = kept_observation is not None and kept_observation == space
+        self.observation_space = kept_observation if same else space
         self._layout_info = {
             "layout_seed": int(self.layout.layout_seed),
             "difficulty": str(self.layout.difficulty),

@@ -108,3 +108,24 @@ def test_a_vector_env_trains_across_the_training_layouts() -> None:
         layouts |= set(info["layout_seed"].tolist())
     assert layouts <= set(TRAINING_LAYOUTS) and len(layouts) > 2
     envs.close()
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_a_seeded_action_space_keeps_its_stream_across_layouts(env_id: str) -> None:
+    # one space object for the env's life: seeding it once makes random actions
+    # reproducible whatever layouts the resets go to
+    def draws() -> list[np.ndarray]:
+        env = _make(env_id)
+        env.action_space.seed(5)
+        spaces = {id(env.action_space), id(env.observation_space)}
+        out = []
+        for layout in (1, 2, 1):
+            env.reset(seed=0, options={"layout_seed": layout})
+            spaces |= {id(env.action_space), id(env.observation_space)}
+            out.append(env.action_space.sample())
+        assert len(spaces) == 2
+        return out
+
+    first, second = draws(), draws()
+    assert all(np.array_equal(a, b) for a, b in zip(first, second, strict=True))
+    assert not np.array_equal(first[0], first[2])  # one stream, not re-seeded per layout
