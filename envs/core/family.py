@@ -85,6 +85,7 @@ class LayoutFamily:
     # set by the scene env this is mixed into
     objects: Any
     observation_space: Any
+    action_space: Any
     layout: Any
     np_random: np.random.Generator
 
