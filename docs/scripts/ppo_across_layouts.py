@@ -139,7 +139,7 @@ def evaluate(
     seen, returns, left = [], [], []
     for i in range(episodes):
         obs, info = env.reset(seed=i, options={"layout_seed": layouts[i % len(layouts)]})
-        env.action_space.seed(i)  # after the reset: a change of layout makes a new space
+        env.action_space.seed(i)  # one stream per episode, as the committed result was drawn
         torch.manual_seed(i)  # a sampling policy's draws
         total, done = 0.0, False
         while not done:
