@@ -22,7 +22,7 @@ import numpy as np
 
 from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.conveyor.scripted import conveyor_actions
-from voot.envs.core.rendering import ensure_headless_gl
+from voot.envs.core.rendering import new_renderer
 from voot.envs.kitchen.env import KitchenClearingEnv
 from voot.envs.kitchen.scripted import kitchen_actions
 
@@ -43,8 +43,7 @@ def render_all(out_dir: Path) -> None:
         _save(out_dir / f"kitchen_{cam}.png", kitchen.render_image(cam))
     actions = kitchen_actions(kitchen)
     kitchen.step(actions[0])  # the first pick: a close-up of the grasp
-    ensure_headless_gl()
-    renderer = mujoco.Renderer(kitchen.model, height=720, width=960)
+    renderer = new_renderer(kitchen.model, height=720, width=960)
     cam = mujoco.MjvCamera()
     base = kitchen.robot.base_pose(kitchen.data)
     obj = kitchen.object_pose(kitchen.task.held)

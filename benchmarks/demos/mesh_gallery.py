@@ -65,14 +65,13 @@ def render(path: str) -> None:
     """Render the gallery to the PNG ``path`` (cropped to the objects)."""
     import imageio.v2 as imageio
 
-    from voot.envs.core.rendering import ensure_headless_gl
+    from voot.envs.core.rendering import new_renderer
 
-    ensure_headless_gl()
     xml, specs = gallery()
     model = mujoco.MjModel.from_xml_string(xml, assets=M.mesh_assets(specs))
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
-    with mujoco.Renderer(model, 700, 1600) as renderer:
+    with new_renderer(model, 700, 1600) as renderer:
         renderer.update_scene(data, camera="gallery")
         image: np.ndarray = renderer.render()
     imageio.imwrite(path, image[175:545, 220:1460])

@@ -19,6 +19,7 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw
 
+from voot.envs.core.rendering import new_renderer
 from voot.envs.kitchen.generated.env import GeneratedKitchenEnv
 from voot.envs.kitchen.generated.layout import DIFFICULTIES
 
@@ -57,7 +58,7 @@ def objects_view(seed: int = 1, difficulty: str = "hard") -> Image.Image:
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
     cam.lookat[:] = (*path.mean(axis=0), 0.3)
     cam.distance, cam.azimuth, cam.elevation = 4.2, 60.0, -38.0
-    with mujoco.Renderer(env.model, height=480, width=720) as renderer:
+    with new_renderer(env.model, height=480, width=720) as renderer:
         renderer.update_scene(env.data, camera=cam)
         img = Image.fromarray(renderer.render())
     env.close()

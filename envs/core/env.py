@@ -53,7 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from voot import validation as V
 from voot.envs.core.metrics import Distance
 from voot.envs.core.names import Operator
-from voot.envs.core.rendering import CAMERAS, RENDER_MODES, ensure_headless_gl
+from voot.envs.core.rendering import CAMERAS, RENDER_MODES, new_renderer
 from voot.envs.core.scene import (
     load_model,
     movable_objects,
@@ -489,8 +489,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if self._renderer is None or (self._renderer.width, self._renderer.height) != (w, h):
             if self._renderer is not None:
                 self._renderer.close()
-            ensure_headless_gl()
-            self._renderer = mujoco.Renderer(self.model, height=h, width=w)
+            self._renderer = new_renderer(self.model, height=h, width=w)
         mujoco.mj_kinematics(self.model, self.data)
         mujoco.mj_camlight(self.model, self.data)  # cameras follow the kinematics
         self._renderer.update_scene(self.data, camera=camera)

@@ -2,14 +2,16 @@
 
 The envs render with :class:`mujoco.Renderer` from the cameras every scene defines
 (:data:`CAMERAS`); every env takes the same three render arguments
-(:class:`RenderOptions`). :func:`ensure_headless_gl` makes that work on a machine without a
-display; :func:`add_marker_box` and :func:`add_marker_segment` draw overlays (the
+(:class:`RenderOptions`). :func:`new_renderer` makes every renderer voot opens, so that
+it works on a machine without a display (:func:`ensure_headless_gl`) and in a process
+that also trains with PyTorch (:func:`load_triton_first`); :func:`add_marker_box` and :func:`add_marker_segment` draw overlays (the
 kitchen's swept corridor and forbidden rooms, the conveyor's regions) into a render's
 scene without touching the model, so rendering never changes a state.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import sys
@@ -57,6 +59,37 @@ def ensure_headless_gl() -> None:
     from mujoco.egl import GLContext
 
     gl_context.GLContext = GLContext  # type: ignore[attr-defined]
+
+
+def load_triton_first() -> None:
+    """Import triton, where it is installed, before the first OpenGL context is made.
+
+    PyTorch's CUDA wheels (what ``pip install torch`` takes from PyPI on Linux) bring
+    triton, whose bundled LLVM crashes the process with a segmentation fault when it is
+    loaded after Mesa's EGL driver has loaded its own LLVM; in the other order both work.
+    torch imports triton lazily (its first optimiser does), so a process that renders and
+    then trains (a demo, then PPO; the test suite with ``-m "rl or not rl"``) would crash.
+    Importing triton first costs about 0.2 s, and nothing where triton is not installed.
+    """
+    if "triton" in sys.modules or not sys.platform.startswith("linux"):
+        return
+    try:
+        if importlib.util.find_spec("triton") is None:
+            return
+        import triton  # noqa: F401  # the side effect: its LLVM is loaded first
+    except Exception:  # a broken triton fails later, in torch, with its own message
+        return
+
+
+def new_renderer(model: mujoco.MjModel, height: int, width: int) -> mujoco.Renderer:
+    """A :class:`mujoco.Renderer` of ``model``, made safely headless and beside PyTorch.
+
+    Every renderer voot opens is made here, after :func:`ensure_headless_gl` and
+    :func:`load_triton_first`.
+    """
+    ensure_headless_gl()
+    load_triton_first()
+    return mujoco.Renderer(model, height=height, width=width)
 
 
 def add_marker_box(

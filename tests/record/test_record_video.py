@@ -23,8 +23,10 @@ PLAN = [np.array([-1.1, -1.0, np.pi]), np.array([-0.5, -0.6, 0.0])]
 
 
 def _can_render() -> bool:
-    try:
-        r = mujoco.Renderer(mujoco.MjModel.from_xml_string("<mujoco/>"), 8, 8)
+    from voot.envs.core.rendering import new_renderer
+
+    try:  # new_renderer: an EGL context made at collection must not crash a later PPO test
+        r = new_renderer(mujoco.MjModel.from_xml_string("<mujoco/>"), 8, 8)
     except Exception:
         return False
     r.close()

@@ -95,3 +95,25 @@ def test_bad_arguments() -> None:
 
 # Bit-identical results in two processes: tests/benchmarks/sweep/test_rl_runs.py compares whole rows of
 # PPO and DDPG (chain and kitchen) from two separate sweeps.
+
+
+RENDER_THEN_TRAIN = """
+import mujoco, torch
+from voot.envs.core.rendering import new_renderer
+try:
+    new_renderer(mujoco.MjModel.from_xml_string("<mujoco/>"), 8, 8).close()
+except Exception:
+    pass
+torch.optim.Adam([torch.zeros(2, requires_grad=True)])  # imports torch._dynamo, triton
+print("trained after rendering")
+"""
+
+
+def test_a_process_that_renders_then_trains_does_not_crash() -> None:
+    # With PyPI's CUDA torch, triton loaded after Mesa's EGL driver segfaults (exit -11).
+    env = {**__import__("os").environ, "MUJOCO_GL": "egl"}
+    out = subprocess.run(
+        [sys.executable, "-c", RENDER_THEN_TRAIN], env=env, capture_output=True, text=True
+    )
+    assert out.returncode == 0, (out.returncode, out.stderr[-2000:])
+    assert "trained after rendering" in out.stdout

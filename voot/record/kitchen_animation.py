@@ -216,7 +216,7 @@ class _KitchenRenderer:
     def __init__(self, env: Any, size: tuple[int, int], view: dict[str, Any]) -> None:
         import mujoco
 
-        from voot.envs.core.rendering import ensure_headless_gl
+        from voot.envs.core.rendering import new_renderer
         from voot.record.video import FREE_CAMERA_KEYS
 
         w, h = (int(v) for v in size)
@@ -225,10 +225,9 @@ class _KitchenRenderer:
         unknown = sorted(set(view) - set(FREE_CAMERA_KEYS))
         if unknown:
             raise ValueError(f"unknown view keys {unknown}; valid: {', '.join(FREE_CAMERA_KEYS)}")
-        ensure_headless_gl()
         self.mj = mujoco
         self.env = env
-        self.renderer = mujoco.Renderer(env.model, height=h, width=w)
+        self.renderer = new_renderer(env.model, height=h, width=w)
         cam = mujoco.MjvCamera()
         mujoco.mjv_defaultFreeCamera(env.model, cam)
         for k, v in view.items():

@@ -116,6 +116,8 @@ class _Frames:
         os.environ.setdefault("MUJOCO_GL", "egl")  # effective only if mujoco is not imported yet
         import mujoco
 
+        from voot.envs.core.rendering import new_renderer
+
         self.mj = mujoco
         self.model = model
         off_w, off_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
@@ -125,7 +127,7 @@ class _Frames:
                 " raise <visual><global offwidth=... offheight=...> in the MJCF or render smaller"
             )
         try:
-            self.renderer = mujoco.Renderer(model, height, width)
+            self.renderer = new_renderer(model, height, width)
         except Exception as exc:
             raise RuntimeError(
                 f"MuJoCo could not create an off-screen renderer ({exc}); on a machine without"

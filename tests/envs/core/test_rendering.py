@@ -3,12 +3,22 @@
 from __future__ import annotations
 
 import math
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import mujoco
 import numpy as np
 import pytest
 
-from voot.envs.core.rendering import CAMERAS, add_marker_box, add_marker_segment, ensure_headless_gl
+from voot.envs.core.rendering import (
+    CAMERAS,
+    add_marker_box,
+    add_marker_segment,
+    ensure_headless_gl,
+    new_renderer,
+)
 
 
 def test_every_scene_camera_is_named() -> None:
@@ -35,3 +45,36 @@ def test_markers_are_appended_while_the_scene_has_room() -> None:
     assert seg.size[0] == pytest.approx(2.5) and seg.size[1] == pytest.approx(0.1)
     add_marker_box(scene, (0.0, 0.0, 0.0), (1.0, 1.0, 1.0), 0.0, (1, 1, 1, 1))
     assert scene.ngeom == 2  # full: nothing more is added
+
+
+NEW_RENDERER = """
+import sys, mujoco
+from voot.envs.core.rendering import new_renderer
+try:
+    new_renderer(mujoco.MjModel.from_xml_string("<mujoco/>"), 8, 8).close()
+except Exception:
+    pass  # no OpenGL here: triton is loaded before the attempt all the same
+print("triton" in sys.modules, getattr(sys.modules.get("triton"), "MARK", None))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the guard is for Linux's Mesa")
+def test_new_renderer_loads_an_installed_triton_before_any_gl_context(tmp_path: Path) -> None:
+    (tmp_path / "triton").mkdir()
+    (tmp_path / "triton" / "__init__.py").write_text("MARK = 'fake'\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tmp_path), *sys.path])}
+    out = subprocess.run(
+        [sys.executable, "-c", NEW_RENDERER], env=env, capture_output=True, text=True
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["True", "fake"]
+
+
+def test_new_renderer_makes_a_renderer_of_the_model() -> None:
+    model = mujoco.MjModel.from_xml_string("<mujoco/>")
+    try:
+        renderer = new_renderer(model, 8, 16)
+    except Exception as exc:  # a machine with no off-screen OpenGL at all
+        pytest.skip(f"no off-screen OpenGL: {exc}")
+    with renderer:
+        assert (renderer.width, renderer.height) == (16, 8)
