@@ -48,10 +48,16 @@ def test_demo_layout_options(tmp_path: Path, capsys: pytest.CaptureFixture[str])
 
 def test_demo_on_a_generated_kitchen(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "demo"
-    argv = ["demo", "--env", "kitchen_v2", "--layout-seed", "2", "--difficulty", "easy"]
+    argv = ["demo", "--env", "generated_kitchen", "--layout-seed", "2", "--difficulty", "easy"]
     assert main([*argv, "--simulations", "3", "--no-video", "--out", str(out)]) == 0
     assert (out / "kitchen_v2_easy_2_voot.rrd").stat().st_size > 0
-    assert "voot/KitchenClearing-v2, layout_seed 2, difficulty easy" in capsys.readouterr().out
+    assert "voot/GeneratedKitchen-v0, layout_seed 2, difficulty easy" in capsys.readouterr().out
+
+
+def test_demo_takes_the_old_generated_kitchen_name_with_a_warning(tmp_path: Path) -> None:
+    argv = ["demo", "--env", "kitchen_v2", "--layout-seed", "2", "--difficulty", "easy"]
+    with pytest.warns(FutureWarning, match="now voot/GeneratedKitchen-v0"):
+        assert main([*argv, "--simulations", "2", "--no-video", "--out", str(tmp_path)]) == 0
 
 
 def test_demo_and_figure5_default_to_the_papers_protocol() -> None:
