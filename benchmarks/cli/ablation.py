@@ -46,7 +46,12 @@ def cmd_ablation(args: argparse.Namespace) -> int:
             f"--simulations must be >= 1, got {args.simulations} (leave it out for the"
             " paper's budget per problem)"
         )
-    problems = C.split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+    problems = C.split_list(args.problems) or [
+        # by default the problems the chosen switches apply to (all without switches)
+        p
+        for p in A.ABLATION_PROBLEMS
+        if not switches or any(p in s.problems for s in switches)
+    ]
     try:
         A.check_applicable(switches, problems, named=args.switches is not None)
     except ValueError as exc:
