@@ -107,9 +107,9 @@ def test_check_output_refuses_paths_that_cannot_be_written(
         check_output(str(tmp_path / "file" / "t.md"), "--markdown")
     with pytest.raises(CLIError, match=r"--out .*file is a file, not a folder"):
         check_output(str(tmp_path / "file" / "a" / "b"), "--out", folder=True)
-    with pytest.raises(CLIError, match="--png .*is a folder; give a file name"):
+    with pytest.raises(CLIError, match=r"--png .*is a folder; give a file name"):
         check_output(str(tmp_path / "dir"), "--png")
-    with pytest.raises(CLIError, match="--out .*is a file, not a folder; give a folder"):
+    with pytest.raises(CLIError, match=r"--out .*is a file, not a folder; give a folder"):
         check_output(str(tmp_path / "file"), "--out", folder=True)
     with pytest.raises(CLIError, match="an empty path"):
         check_output("", "--markdown")
@@ -126,7 +126,7 @@ def test_write_markdown_under_a_file_is_a_cli_error(tmp_path: Path) -> None:
     from voot.bench.cli.common import CLIError, write_markdown
 
     (tmp_path / "file").write_text("x")
-    with pytest.raises(CLIError, match="--markdown .*cannot write the file"):
+    with pytest.raises(CLIError, match=r"--markdown .*cannot write the file"):
         write_markdown(str(tmp_path / "file" / "t.md"), "text")
 
 
@@ -134,7 +134,7 @@ def test_ranges_too_long_to_list_are_refused() -> None:
     from voot.bench.cli.common import MAX_RANGE_LENGTH, CLIError, parse_range
 
     assert len(parse_range(str(MAX_RANGE_LENGTH), "--seeds")) == MAX_RANGE_LENGTH
-    with pytest.raises(CLIError, match="--seeds: .* more than a sweep can run"):
+    with pytest.raises(CLIError, match=r"--seeds: .* more than a sweep can run"):
         parse_range(str(MAX_RANGE_LENGTH + 1), "--seeds")
     with pytest.raises(CLIError, match="more than a sweep can run"):
         parse_range("0:9223372036854775808", "--layout-seeds")
@@ -170,9 +170,9 @@ def test_check_envs_makes_one_env_per_problem_at_the_ends_of_its_layouts() -> No
     conveyor = specs("generated_storage", layout_seeds=[5, 3, 9])
     assert check_envs(conveyor) == 2  # layouts 3 and 9, not 5
     assert check_envs(specs("generated_storage", layout_seeds=[4])) == 1
-    with pytest.raises(CLIError, match="--env-kwargs: .*difficulty='extreme'.* valid levels"):
+    with pytest.raises(CLIError, match=r"--env-kwargs: .*difficulty='extreme'.* valid levels"):
         check_envs(specs("generated_storage", env_kwargs={"difficulty": "extreme"}))
-    with pytest.raises(CLIError, match="--layout-seeds: voot/ConveyorPacking-v1 takes no"):
+    with pytest.raises(CLIError, match=r"--layout-seeds: voot/ConveyorPacking-v1 takes no"):
         check_envs(specs("conveyor_v1", layout_seeds=[1]), layout_option="--layout-seeds")
-    with pytest.raises(CLIError, match="--env-kwargs: .*cannot be made: .*no_such_option"):
+    with pytest.raises(CLIError, match=r"--env-kwargs: .*cannot be made: .*no_such_option"):
         check_envs(specs("conveyor_v1", env_kwargs={"no_such_option": 1}))

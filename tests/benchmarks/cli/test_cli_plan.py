@@ -462,7 +462,11 @@ def test_unwritable_outputs_are_refused_before_any_run(
     (tmp_path / "file").write_text("x")
     tiny = ["plan", *PLAN_TINY]
     assert_refused(
-        [*tiny, "--out", str(tmp_path / "file" / "store")], tmp_path, capsys, "--out", "not a folder"
+        [*tiny, "--out", str(tmp_path / "file" / "store")],
+        tmp_path,
+        capsys,
+        "--out",
+        "not a folder",
     )
     assert_refused([*tiny, "--out", str(tmp_path / "file")], tmp_path, capsys, "not a folder")
     rec = ["--planners", "voot", "--seeds", "1", "--out", str(tmp_path / "s")]

@@ -144,7 +144,9 @@ def test_report_outputs_under_a_file_are_refused_before_the_report(
     out = str(_layout_store(tmp_path))
     (tmp_path / "file").write_text("x")
     bad = str(tmp_path / "file" / "t")
-    assert_refused([command, out, "--markdown", bad], tmp_path, capsys, "--markdown", "not a folder")
+    assert_refused(
+        [command, out, "--markdown", bad], tmp_path, capsys, "--markdown", "not a folder"
+    )
     if command == "plot":
         for option in ("--png", "--png-seconds", "--axes-dir"):
             assert_refused([command, out, option, bad], tmp_path, capsys, option, "not a folder")
