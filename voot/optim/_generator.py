@@ -19,7 +19,7 @@ for bit like the original. Replaying costs what the calls cost (for BaMSOO, its 
 from __future__ import annotations
 
 from abc import abstractmethod
-from collections.abc import Generator
+from collections.abc import Generator, Mapping
 from typing import Any
 
 import numpy as np
@@ -53,7 +53,7 @@ class GeneratorOptimizer(Optimizer):
             self.rng.bit_generator.state,
         )
         #: The calls since, each ``(name, arguments, random state before it)``.
-        self._calls: list[tuple[str, tuple[Any, ...], dict[str, Any]]] = []
+        self._calls: list[tuple[str, tuple[Any, ...], Mapping[str, Any]]] = []
 
     def ask(self) -> FloatArray:
         before = self.rng.bit_generator.state

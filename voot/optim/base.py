@@ -333,7 +333,7 @@ class Optimizer(ABC):
         self,
         bounds: Bounds | ArrayLike,
         config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
+        seed: int | np.random.SeedSequence | np.random.Generator | None = None,
         initial_point: ArrayLike | None = None,
     ) -> None:
         self.bounds = Bounds.coerce(bounds)
