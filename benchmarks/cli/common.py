@@ -225,8 +225,18 @@ def check_sweep_options(args: argparse.Namespace) -> None:
     """The checks of a planning sweep's options (Ray-only options, the probe's length)."""
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
         raise CLIError("--address and --max-tries go with --backend ray")
+    check_workers(args)
+    if args.max_tries is not None and args.max_tries < 1:
+        raise CLIError(f"--max-tries must be >= 1, got {args.max_tries}")
     if args.probe_simulations < 1:
         raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+
+
+def check_workers(args: argparse.Namespace) -> None:
+    """``--workers`` must be >= 1 when given: checked before the store is created (the
+    backend would refuse it only after)."""
+    if args.workers is not None and args.workers < 1:
+        raise CLIError(f"--workers must be >= 1 (default: every CPU), got {args.workers}")
 
 
 def add_run_options(p: argparse.ArgumentParser, dry_run: str) -> None:

@@ -477,3 +477,32 @@ def test_unwritable_outputs_are_refused_before_any_run(
     assert_refused(
         [*tiny, "--out", str(tmp_path / "file" / "s"), "--dry-run"], tmp_path, capsys, "--out"
     )
+
+
+@pytest.mark.parametrize(
+    ("extra", "needle"),
+    [
+        (["--workers", "0"], "--workers must be >= 1"),
+        (["--workers", "-2"], "--workers must be >= 1"),
+        (["--backend", "ray", "--max-tries", "0"], "--max-tries must be >= 1"),
+    ],
+)
+@pytest.mark.parametrize("command", ["plan", "bbfo"])
+def test_backend_options_are_refused_before_the_store_is_made(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], needle: str, command: str
+) -> None:
+    """The backend refused them only after the store's folder was made."""
+    from cli_fixtures import assert_refused
+
+    if command == "bbfo" and "--max-tries" in extra:
+        return  # bbfo has no Ray retry option
+    tiny = (
+        ["plan", *PLAN_TINY]
+        if command == "plan"
+        else ["bbfo", "--functions", "shekel", "--dims", "3", "--methods", "voo", "--seeds", "1"]
+    )
+    if "--workers" in tiny:  # PLAN_TINY's own --workers 1 out
+        i = tiny.index("--workers")
+        tiny = tiny[:i] + tiny[i + 2 :]
+    assert_refused([*tiny, *extra, "--out", str(tmp_path / "s")], tmp_path, capsys, needle)
+    assert not (tmp_path / "s").exists()
