@@ -170,6 +170,8 @@ def test_check_envs_makes_one_env_per_problem_at_the_ends_of_its_layouts() -> No
     conveyor = specs("generated_storage", layout_seeds=[5, 3, 9])
     assert check_envs(conveyor) == 2  # layouts 3 and 9, not 5
     assert check_envs(specs("generated_storage", layout_seeds=[4])) == 1
+    # a chain among envs is passed over, the envs after it are still made
+    assert check_envs([*specs("shekel_chain"), *specs("generated_storage", layout_seeds=[4])]) == 1
     with pytest.raises(CLIError, match=r"--env-kwargs: .*difficulty='extreme'.* valid levels"):
         check_envs(specs("generated_storage", env_kwargs={"difficulty": "extreme"}))
     with pytest.raises(CLIError, match=r"--layout-seeds: voot/ConveyorPacking-v1 takes no"):
