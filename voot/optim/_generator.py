@@ -52,24 +52,36 @@ class GeneratorOptimizer(Optimizer):
             type(self.rng.bit_generator),
             self.rng.bit_generator.state,
         )
-        #: The calls since, each ``(name, arguments, random state before it)``.
-        self._calls: list[tuple[str, tuple[Any, ...], Mapping[str, Any]]] = []
+        #: The calls since, each ``(name, arguments, random state before it)``; the state
+        #: is None where it was the state the previous call left.
+        self._calls: list[tuple[str, tuple[Any, ...], Mapping[str, Any] | None]] = []
+        self._rng_after: Mapping[str, Any] = self._birth[4]
 
     def ask(self) -> FloatArray:
-        before = self.rng.bit_generator.state
+        before = self._state_before()
         x = super().ask()
-        self._calls.append(("ask", (), before))
+        self._record("ask", (), before)
         return x
 
     def tell(self, x: ArrayLike, value: float) -> None:
-        before = self.rng.bit_generator.state
+        before = self._state_before()
         super().tell(x, value)  # checks first: a refused call is not recorded
-        self._calls.append(("tell", (np.array(x, dtype=np.float64, copy=True), value), before))
+        self._record("tell", (np.array(x, dtype=np.float64, copy=True), value), before)
 
     def revalue(self, index: int, value: float) -> None:
-        before = self.rng.bit_generator.state
+        before = self._state_before()
         super().revalue(index, value)
-        self._calls.append(("revalue", (index, value), before))
+        self._record("revalue", (index, value), before)
+
+    def _state_before(self) -> Mapping[str, Any] | None:
+        """The random state now, or None if it is where the last call left it (most calls
+        draw nothing, and nothing else drew since): the log keeps only what a replay needs."""
+        state = self.rng.bit_generator.state
+        return None if state == self._rng_after else state
+
+    def _record(self, name: str, args: tuple[Any, ...], before: Mapping[str, Any] | None) -> None:
+        self._calls.append((name, args, before))
+        self._rng_after = self.rng.bit_generator.state
 
     def __getstate__(self) -> dict[str, Any]:
         """The recipe (module docstring): the birth, the calls and the random state now."""
@@ -87,7 +99,8 @@ class GeneratorOptimizer(Optimizer):
         # made anew in place: the replayed generator's frame holds this very object
         Optimizer.__init__(self, bounds, config, seed=rng, initial_point=initial_point)
         for name, args, before in state["calls"]:
-            self.rng.bit_generator.state = before
+            if before is not None:
+                self.rng.bit_generator.state = before
             getattr(self, name)(*args)
         self.rng.bit_generator.state = state["rng_state"]
 
