@@ -176,3 +176,22 @@ def test_a_shared_generator_pickles_with_the_state_each_call_saw(method: str) ->
         assert np.array_equal(twin.ask(), x)
         opt.tell(x, quadratic(x))
         twin.tell(x, quadratic(x))
+
+
+@pytest.mark.parametrize("method", ["soo", "bamsoo"])
+def test_a_pickle_keeps_the_told_points_as_they_were_told(method: str) -> None:
+    """A caller may reuse its array after a tell; the replay needs the point it told."""
+    import pickle
+
+    opt = make_optimizer(method, BOX, seed=3, **fast(method))
+    for _ in range(4):
+        x = opt.ask()
+        opt.tell(x, quadratic(x))
+        x[:] = BOX.lower  # the caller's buffer, reused
+    twin = pickle.loads(pickle.dumps(opt))
+    assert np.array_equal(twin.xs, opt.xs)
+    for _ in range(4):
+        x = opt.ask()
+        assert np.array_equal(twin.ask(), x)
+        opt.tell(x, quadratic(x))
+        twin.tell(x, quadratic(x))
