@@ -139,3 +139,37 @@ def test_at_most_names_both_fields() -> None:
         V.at_most(9, "elites", 8, "population")
     with pytest.raises(ValueError, match=r"^a must be <= b \(0\.1\): a floor, got 0\.2$"):
         V.at_most(0.2, "a", 0.1, "b", "a floor")
+
+
+def test_real_number_takes_real_numbers_and_names_everything_else() -> None:
+    from fractions import Fraction
+
+    from voot.validation import real_number
+
+    for value, expected in (
+        (1.5, 1.5),
+        (2, 2.0),
+        (np.float32(0.5), 0.5),
+        (np.int8(-3), -3.0),
+        (Fraction(3, 4), 0.75),
+        (np.array(7), 7.0),
+        (math.inf, math.inf),
+    ):
+        got = real_number(value, "r")
+        assert type(got) is float and got == expected
+    for bad in (
+        True,
+        np.bool_(True),
+        1j,
+        np.complex64(1),
+        "1",
+        None,
+        [1.0],
+        np.array([1.0]),
+        np.array("1"),
+        object(),
+    ):
+        with pytest.raises(
+            ValueError, match=f"r must be a real number .*of type {type(bad).__name__}"
+        ):
+            real_number(bad, "r")

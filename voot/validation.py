@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from collections.abc import Callable, Iterable, Mapping
 from enum import Enum
 from typing import Any, TypeVar
@@ -151,6 +152,28 @@ def one_of(value: Any, name: str, valid: Iterable[Any]) -> Any:
             f"{name} must be one of {', '.join(str(v) for v in options)}, got {value!r}"
         )
     return value
+
+
+def real_number(value: object, name: str) -> float:
+    """``value`` as a ``float`` if it is one real number: a Python or numpy int or float
+    (any width), another :class:`numbers.Real` (e.g. a ``Fraction``), or a 0-d numpy
+    array of one. NaN and infinities pass (the caller decides).
+
+    A bool (not 1.0 in disguise), a complex number (its imaginary part would be lost), a
+    string (not parsed), None or any other object is a ValueError naming ``name`` and the
+    type given.
+    """
+    if type(value) is float:
+        return value
+    if isinstance(value, bool | np.bool_) or not (
+        isinstance(value, numbers.Real)
+        or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf")
+    ):
+        raise ValueError(
+            f"{name} must be a real number (an int or a float; not a bool, a complex number,"
+            f" a string or None), got {value!r} of type {type(value).__name__}"
+        )
+    return float(value)  # type: ignore[arg-type]
 
 
 # ----- arrays (actions) ----------------------------------------------------------------

@@ -33,11 +33,29 @@ def cmd_ablation(args: argparse.Namespace) -> int:
         switches = A.check_switches(C.split_list(args.switches) or None)
     except ValueError as exc:
         raise C.CLIError(str(exc)) from None
+    C.check_output(args.markdown, "--markdown")
     if args.table:
         problems = C.split_list(args.problems) or None
         return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
+    if args.markdown is not None:
+        raise C.CLIError("--markdown writes the table of --table; give --table with it")
     C.check_sweep_options(args)
-    problems = C.split_list(args.problems) or list(A.ABLATION_PROBLEMS)
+    C.check_output(args.out, "--out", folder=True)
+    if args.simulations is not None and args.simulations < 1:
+        raise C.CLIError(
+            f"--simulations must be >= 1, got {args.simulations} (leave it out for the"
+            " paper's budget per problem)"
+        )
+    problems = C.split_list(args.problems) or [
+        # by default the problems the chosen switches apply to (all without switches)
+        p
+        for p in A.ABLATION_PROBLEMS
+        if not switches or any(p in s.problems for s in switches)
+    ]
+    try:
+        A.check_applicable(switches, problems, named=args.switches is not None)
+    except ValueError as exc:
+        raise C.CLIError(str(exc)) from None
 
     def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
         return A.ablation_specs(
@@ -50,6 +68,7 @@ def cmd_ablation(args: argparse.Namespace) -> int:
 
     tuning = specs_of(C.parse_range(args.tuning_seeds, "--tuning-seeds"))
     evaluation = specs_of(C.parse_range(args.seeds, "--seeds"))
+    C.check_envs([*tuning, *evaluation], "--problems")
     args.record = None
     return plan_tuned(args, tuning, evaluation)
 

@@ -19,6 +19,8 @@ def cmd_bbfo(args: argparse.Namespace) -> int:
     from voot.bench.sweep import bbfo as B
     from voot.bench.sweep.backends import make_backend
 
+    C.check_output(args.out, "--out", folder=True)
+    C.check_workers(args)
     seeds = C.parse_range(args.seeds, "--seeds")
     specs = B.build_specs(
         C.split_list(args.functions) or B.PAPER_FUNCTIONS,

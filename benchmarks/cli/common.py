@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import os
 import signal
 import sys
 from collections.abc import Iterator, Sequence
@@ -58,6 +59,11 @@ def parse_int_list(values: Sequence[str] | None, what: str) -> list[int]:
     return out
 
 
+#: The most values one ``N`` or ``START:STOP`` option may hold: far above any sweep
+#: (the paper's largest has 50 seeds), far below what a list of them would not fit in.
+MAX_RANGE_LENGTH = 1_000_000
+
+
 def parse_range(text: str, what: str) -> list[int]:
     """``"N"`` -> ``0 .. N-1``; ``"A:B"`` -> ``A .. B-1`` (error if ``B <= A``)."""
     parts = text.split(":")
@@ -77,6 +83,11 @@ def parse_range(text: str, what: str) -> list[int]:
             f"{what}: inverted or empty range {text!r} (need START < STOP, e.g. 0:20)"
             if len(parts) == 2
             else f"{what}: need at least 1, got {text!r}"
+        )
+    if stop - start > MAX_RANGE_LENGTH:
+        raise CLIError(
+            f"{what}: {text!r} holds {stop - start} values, more than a sweep can run (at"
+            f" most {MAX_RANGE_LENGTH})"
         )
     return list(range(start, stop))
 
@@ -135,9 +146,8 @@ def open_store(path: str, compact: Any = None) -> ResultStore:
     try:
         return ResultStore(path, compact=compact)
     except OSError as exc:
-        reason = exc.strerror or type(exc).__name__
         raise CLIError(
-            f"--out {path}: cannot create the result store there ({reason}: {exc.filename});"
+            f"--out {path}: cannot create the result store there ({_reason(exc)});"
             " give a folder that exists or can be created"
         ) from None
 
@@ -215,8 +225,18 @@ def check_sweep_options(args: argparse.Namespace) -> None:
     """The checks of a planning sweep's options (Ray-only options, the probe's length)."""
     if args.backend != "ray" and (args.address is not None or args.max_tries is not None):
         raise CLIError("--address and --max-tries go with --backend ray")
+    check_workers(args)
+    if args.max_tries is not None and args.max_tries < 1:
+        raise CLIError(f"--max-tries must be >= 1, got {args.max_tries}")
     if args.probe_simulations < 1:
         raise CLIError(f"--probe-simulations must be >= 1, got {args.probe_simulations}")
+
+
+def check_workers(args: argparse.Namespace) -> None:
+    """``--workers`` must be >= 1 when given: checked before the store is created (the
+    backend would refuse it only after)."""
+    if args.workers is not None and args.workers < 1:
+        raise CLIError(f"--workers must be >= 1 (default: every CPU), got {args.workers}")
 
 
 def add_run_options(p: argparse.ArgumentParser, dry_run: str) -> None:
@@ -266,6 +286,146 @@ def run_specs(
 def write_markdown(path: str, text: str) -> None:
     """Write ``text`` to the markdown file ``path`` (its folder created) and say so on stderr."""
     md = Path(path)
-    md.parent.mkdir(parents=True, exist_ok=True)
-    md.write_text(text)
+    try:
+        md.parent.mkdir(parents=True, exist_ok=True)
+        md.write_text(text)
+    except OSError as exc:
+        raise CLIError(f"--markdown {path}: cannot write the file ({_reason(exc)})") from None
     print(f"markdown: {md}", file=sys.stderr)
+
+
+def _reason(exc: OSError) -> str:
+    """``"Not a directory: 'a/b'"``: an OSError in one line, without its traceback."""
+    reason = exc.strerror or type(exc).__name__
+    return f"{reason}: {exc.filename}" if exc.filename is not None else reason
+
+
+def check_output(path: str | os.PathLike[str] | None, option: str, folder: bool = False) -> None:
+    """Refuse an output path that cannot be written, before any work is done.
+
+    ``path`` (None: the option is not given) is a file to write, or with ``folder`` a
+    folder to write into (made if missing). Nothing is created: the path's nearest
+    existing ancestor must be a folder this process may write in, and the path itself, if
+    it exists, must be a file (a folder with ``folder``) that may be written. The
+    CLIError names ``option``, the path and what is wrong with it, so a sweep or a
+    measurement never runs to the end and then fails to save what it made.
+    """
+    if path is None:
+        return
+    target = Path(path)
+    if str(path) == "":
+        raise CLIError(f"{option}: an empty path; give a {'folder' if folder else 'file'}")
+    if target.exists():
+        if folder and not target.is_dir():
+            raise CLIError(f"{option} {path}: is a file, not a folder; give a folder")
+        if not folder and target.is_dir():
+            raise CLIError(f"{option} {path}: is a folder; give a file name")
+        if not os.access(target, os.W_OK | (os.X_OK if folder else 0)):
+            raise CLIError(f"{option} {path}: not writable by this user")
+        return
+    ancestor = target.absolute().parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise CLIError(
+            f"{option} {path}: {ancestor} is a file, not a folder, so nothing can be written"
+            " under it; give a path in a folder"
+        )
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        raise CLIError(
+            f"{option} {path}: the folder {ancestor} is not writable by this user; give a"
+            " path in a folder you can write"
+        )
+
+
+#: The largest layout seed a generated family takes (a 64-bit seed; the envs' own check
+#: agrees: ``layout_seed must be an integer in [0, 2**63 - 1]``).
+MAX_LAYOUT_SEED = 2**63 - 1
+
+
+def check_layout_value(value: object, option: str) -> None:
+    """Refuse a ``layout_seed`` given as an env keyword unless it is an integer in
+    ``[0, MAX_LAYOUT_SEED]`` (a bool, a float such as ``1.5`` or ``1.0``, or a string
+    names the type: JSON keeps ``1.0`` a float, and an env must not round it to a layout)."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise CLIError(
+            f"{option}: layout_seed must be an integer in [0, {MAX_LAYOUT_SEED}], got"
+            f" {value!r} ({type(value).__name__})"
+        )
+    if not 0 <= value <= MAX_LAYOUT_SEED:
+        raise CLIError(
+            f"{option}: layout_seed must be an integer in [0, {MAX_LAYOUT_SEED}], got {value}"
+        )
+
+
+def check_envs(
+    specs: Sequence[Any], option: str = "--env-kwargs", layout_option: str | None = None
+) -> int:
+    """Make one environment of every problem the planning runs ``specs`` ask for, with
+    their env keywords, before the first run is written; return how many were made.
+
+    A keyword the env does not take, a level it does not have or a layout seed out of its
+    range would otherwise fail every run of the sweep (a store full of failed rows) or
+    only after minutes of other runs. Per problem and env keywords (the layout seed
+    aside) the env is made with the smallest and the largest layout seed of the runs,
+    the ends of the range an env checks (every seed is an integer >= 0 already); chains
+    make no env. The env's own ValueError/TypeError (or gymnasium's error for an id it
+    does not know) becomes a one-line CLIError naming ``option`` and the problem; the
+    env's message names the parameter and its valid choices. ``layout_option`` names
+    the option the layout seeds came from (``--layout-seeds``; default ``option``): an env
+    that can be made without its layout seed but not with one takes no layouts, and the
+    error says so under that option, naming the families that have them.
+    """
+    from voot.bench.protocol import problems as P
+    from voot.bench.protocol.layouts import LAYOUT_KEY
+
+    groups: dict[tuple[str, str], tuple[dict[str, Any], set[int]]] = {}
+    for spec in specs:
+        if P.is_chain(spec.problem):
+            continue
+        kwargs = dict(spec.env_kwargs)
+        layout = kwargs.pop(LAYOUT_KEY, None)
+        if layout is not None:
+            check_layout_value(layout, option)
+        key = (spec.problem, json.dumps(kwargs, sort_keys=True, default=repr))
+        entry = groups.setdefault(key, (kwargs, set()))
+        if layout is not None:
+            entry[1].add(int(layout))
+    made = 0
+    for (problem, _), (kwargs, layouts) in groups.items():
+        ends = sorted({min(layouts), max(layouts)}) if layouts else [None]
+        for layout in ends:
+            if layout is None:
+                _make_checked(problem, kwargs, option)
+            else:
+                try:
+                    _make_checked(problem, {**kwargs, LAYOUT_KEY: layout}, option)
+                except CLIError:
+                    _make_checked(problem, kwargs, option)  # fine without: takes no layouts
+                    from voot.bench.protocol.layouts import LAYOUT_SETS
+
+                    raise CLIError(
+                        f"{layout_option or option}: {problem} takes no {LAYOUT_KEY}; layout"
+                        f" seeds apply to the generated families ({', '.join(LAYOUT_SETS)})"
+                    ) from None
+            made += 1
+    return made
+
+
+def _make_checked(problem: str, kwargs: dict[str, Any], option: str) -> None:
+    """``gymnasium.make(problem, **kwargs)`` and close it, or a one-line CLIError."""
+    import warnings
+
+    import gymnasium
+
+    import voot  # noqa: F401 - registers the voot/... ids
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", FutureWarning)  # an old id's alias note
+            env = gymnasium.make(problem, disable_env_checker=True, **kwargs)
+    except (ValueError, TypeError, gymnasium.error.Error) as exc:
+        shown = ", ".join(f"{k}={v!r}" for k, v in sorted(kwargs.items())) or "no keywords"
+        message = " ".join(str(exc).split())
+        raise CLIError(f"{option}: {problem} ({shown}) cannot be made: {message}") from None
+    env.close()

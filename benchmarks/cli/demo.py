@@ -12,7 +12,7 @@ import sys
 import time
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError
+from voot.bench.cli.common import CLIError, check_output
 from voot.bench.cli.types import seed_argument
 
 if TYPE_CHECKING:
@@ -34,6 +34,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
     from voot.bench.demos import kitchen_demo
     from voot.bench.protocol.problems import normalize_problem
 
+    check_output(args.out, "--out", folder=True)
     sims = kitchen_demo.DEFAULT_SIMULATIONS if args.simulations is None else args.simulations
     seed = kitchen_demo.DEFAULT_SEED if args.seed is None else args.seed
     try:
@@ -73,6 +74,7 @@ def cmd_record_demo(args: argparse.Namespace) -> int:
     """Record planners on the tiny demo (:func:`voot.bench.demos.record_demo.record_demo`)."""
     from voot.bench.demos.record_demo import record_demo
 
+    check_output(args.out, "--out", folder=True)
     record_demo(
         args.out,
         args.simulations,
@@ -90,6 +92,7 @@ def cmd_env_figures(args: argparse.Namespace) -> int:
 
     from voot.bench.demos import env_figures
 
+    check_output(args.out_dir, "OUT_DIR", folder=True)
     env_figures.render_all(Path(args.out_dir))
     return 0
 
@@ -101,6 +104,7 @@ def cmd_figure5(args: argparse.Namespace) -> int:
 
     if args.seed < 0:
         raise CLIError(f"--seed must be >= 0, got {args.seed}")
+    check_output(args.out, "--out", folder=True)
     figure5(
         args.out,
         args.seed,

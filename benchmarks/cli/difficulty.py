@@ -7,10 +7,9 @@ family's levels: feasibility by cause, random rollouts, planner success from a p
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError
+from voot.bench.cli.common import CLIError, check_output, write_markdown
 from voot.bench.cli.types import seed_argument
 from voot.bench.protocol.ladder import LEVELS as LADDER_LEVELS
 
@@ -25,13 +24,14 @@ def cmd_difficulty(args: argparse.Namespace) -> int:
 
     if args.seed < 0:
         raise CLIError(f"--seed must be >= 0, got {args.seed}")
+    check_output(args.markdown, "--markdown")
     envs = (
         difficulty.DEFAULT_ENVS if args.envs is None else [normalize_problem(e) for e in args.envs]
     )
     text = difficulty.report(envs, args.samples, args.rollouts, args.seed)
     print(text)
     if args.markdown:
-        Path(args.markdown).write_text(text + "\n")
+        write_markdown(args.markdown, text + "\n")
     return 0
 
 
@@ -40,12 +40,18 @@ def cmd_ladder(args: argparse.Namespace) -> int:
     (:mod:`voot.bench.protocol.ladder`)."""
     from voot.bench.cli.plan import parse_layout_seeds
     from voot.bench.protocol import ladder
-    from voot.bench.protocol.problems import normalize_problem
 
     for name in ("samples", "rollouts"):
         if getattr(args, name) < 1:
             raise CLIError(f"--{name} must be >= 1, got {getattr(args, name)}")
-    env_id = normalize_problem(args.env)
+    check_output(args.markdown, "--markdown")
+    env_id = check_generated(args.env)
+    unknown = [level for level in args.levels if level not in LADDER_LEVELS]
+    if unknown or not args.levels:
+        raise CLIError(
+            f"--levels: unknown level(s) {', '.join(map(repr, unknown)) or '(none given)'};"
+            f" valid levels are: {', '.join(LADDER_LEVELS)}"
+        )
     layouts = parse_layout_seeds(args.layouts, "--layouts")
     rows: list = []
     if args.store is not None:
@@ -57,8 +63,24 @@ def cmd_ladder(args: argparse.Namespace) -> int:
     )
     print(text)
     if args.markdown:
-        Path(args.markdown).write_text(text + "\n")
+        write_markdown(args.markdown, text + "\n")
     return 0
+
+
+def check_generated(name: str) -> str:
+    """The id of the generated family ``name`` (an alias or an id), or a CLIError naming
+    the generated families: the ladder's levels and layouts exist only for them."""
+    from voot.bench.protocol import problems as P
+    from voot.bench.protocol.layouts import LAYOUT_SETS
+
+    env_id = P.normalize_problem(name)
+    generated = P.recorded_names(kinds=("generated",))
+    if env_id not in LAYOUT_SETS:
+        raise CLIError(
+            f"--env {name}: {env_id} is not a generated family; the ladder's levels and"
+            f" layouts exist for {', '.join(f'{g} ({P.normalize_problem(g)})' for g in generated)}"
+        )
+    return env_id
 
 
 def register(sub: Subparsers) -> None:

@@ -17,7 +17,13 @@ import argparse
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError, add_compact_options, compact_config, split_list
+from voot.bench.cli.common import (
+    CLIError,
+    add_compact_options,
+    check_output,
+    compact_config,
+    split_list,
+)
 from voot.bench.cli.types import seed_argument
 
 if TYPE_CHECKING:
@@ -160,6 +166,8 @@ def cmd_root_parallel(args: argparse.Namespace) -> int:
     seeds = args.seeds if len(args.seeds) > 1 else args.seeds * len(args.problems)
     if len(seeds) != len(args.problems) or min(seeds) < 1:
         raise CLIError("--seeds takes one count >= 1, or one per problem")
+    check_output(args.figure or None, "--figure")
+    check_output(args.json or None, "--json")
     run_and_report(
         args.problems,
         budgets,

@@ -28,6 +28,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     from voot.bench.sweep.plan import build_plan_specs, summarize_plan_specs
 
     C.check_sweep_options(args)
+    check_plan_outputs(args)
     if args.record is not None:
         if args.backend == "ray":
             raise C.CLIError(
@@ -76,8 +77,11 @@ def cmd_plan(args: argparse.Namespace) -> int:
             if args.tuning_seeds is not None
             else seeds  # held-out layouts: the same seeds on other layouts
         )
-        return plan_tuned(args, specs_of(tuning_seeds, tuning=True), specs_of(seeds))
+        tuning_specs, evaluation_specs = specs_of(tuning_seeds, tuning=True), specs_of(seeds)
+        C.check_envs([*tuning_specs, *evaluation_specs], layout_option=_layout_option(args))
+        return plan_tuned(args, tuning_specs, evaluation_specs)
     specs = specs_of(seeds)
+    C.check_envs(specs, layout_option=_layout_option(args))
     if args.estimate:
         return _print_estimate(args, specs)
     simulations = sum(s.simulations for s in specs)
@@ -98,6 +102,20 @@ def cmd_plan(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     return 1 if summary.failed else 0
+
+
+def _layout_option(args: argparse.Namespace) -> str:
+    """The option the runs' layout seeds came from, for an error about them."""
+    if getattr(args, "heldout", False):
+        return "--heldout"
+    return "--layout-seeds" if getattr(args, "layout_seeds", None) is not None else "--env-kwargs"
+
+
+def check_plan_outputs(args: argparse.Namespace) -> None:
+    """Refuse an unwritable ``--out`` (the store's folder) or ``--record`` before any
+    work (:func:`voot.bench.cli.common.check_output`)."""
+    C.check_output(args.out, "--out", folder=True)
+    C.check_output(getattr(args, "record", None), "--record")
 
 
 def _print_estimate(args: argparse.Namespace, specs: Sequence[PlanSpec]) -> int:
@@ -275,11 +293,13 @@ def parse_layout_seeds(values: Sequence[str], what: str) -> list[int]:
     items = C.split_list(values)
     if not items:
         raise C.CLIError(f"{what}: no layout seeds given")
-    if len(items) == 1:
-        return C.parse_range(items[0], what)
-    out = C.parse_int_list(items, what)
+    out = C.parse_range(items[0], what) if len(items) == 1 else C.parse_int_list(items, what)
     if min(out) < 0:
         raise C.CLIError(f"{what}: layout seeds must be >= 0, got {min(out)}")
+    if max(out) > C.MAX_LAYOUT_SEED:
+        raise C.CLIError(
+            f"{what}: layout seeds must be integers in [0, {C.MAX_LAYOUT_SEED}], got {max(out)}"
+        )
     return list(dict.fromkeys(out))
 
 

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 from voot.bench.cli.common import (
     CLIError,
     add_filters,
+    check_output,
     parse_int_list,
     parse_range,
     split_list,
@@ -203,8 +204,15 @@ def tuning_layouts_of(args: argparse.Namespace, rows: Sequence[Row]) -> TuningLa
 
     if args.heldout and args.tuning_layouts is not None:
         raise CLIError("give --heldout or --tuning-layouts, not both")
+    from voot.bench.protocol.tuning import check_layout_split
+
     if args.tuning_layouts is not None:
-        return parse_layout_seeds(args.tuning_layouts, "--tuning-layouts")
+        layouts = parse_layout_seeds(args.tuning_layouts, "--tuning-layouts")
+        try:
+            check_layout_split(rows, layouts)
+        except ValueError as exc:
+            raise CLIError(f"--tuning-layouts: {exc}") from None
+        return layouts
     if not args.heldout:
         return None
     families = {str(r["config"]["problem"]) for r in rows if layout_of(r["config"]) is not None}
@@ -214,6 +222,10 @@ def tuning_layouts_of(args: argparse.Namespace, rows: Sequence[Row]) -> TuningLa
             "--heldout: no runs on the layouts of a family with a held-out set"
             f" ({', '.join(LAYOUT_SETS)}); for another env give --tuning-layouts"
         )
+    try:
+        check_layout_split(rows, known)
+    except ValueError as exc:
+        raise CLIError(f"--heldout: {exc}") from None
     return known
 
 
@@ -223,6 +235,10 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
     if args.log and not args.regret:
         raise CLIError("--log needs --regret (best values can be negative)")
+    for option, path in (("--png", args.png), ("--png-seconds", args.png_seconds)):
+        check_output(path, option)
+    check_output(args.markdown, "--markdown")
+    check_output(args.axes_dir, "--axes-dir", folder=True)
     kind, rows = load_rows(args.results, args.kind)
     rows = _one_instance(rows, kind, args.instance)
     if kind == "plan":
@@ -295,6 +311,7 @@ def cmd_claims(args: argparse.Namespace) -> int:
     from voot.bench.protocol.tuning import tuning_sentence
     from voot.bench.report.plan_runs import plan_data
 
+    check_output(args.markdown, "--markdown")
     if args.ablation:
         if args.tuning_seeds is None:
             raise CLIError(

@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError, split_list
+from voot.bench.cli.common import CLIError, check_output, split_list
 
 if TYPE_CHECKING:
     from voot.bench.cli.common import Subparsers
@@ -20,6 +20,7 @@ def cmd_speedup(args: argparse.Namespace) -> int:
     """The baseline commit's code and the current code on the same workloads (see speedup)."""
     from voot.bench.measure import speedup
 
+    check_output(args.json, "--json")
     if args.v1:
         try:
             sims = int(args.simulations[0]) if args.simulations else None

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError, add_compact_options, compact_config
+from voot.bench.cli.common import CLIError, add_compact_options, check_output, compact_config
 from voot.bench.cli.report import KINDS
 from voot.bench.store.format import STATUSES
 
@@ -23,6 +23,7 @@ def cmd_compact(args: argparse.Namespace) -> int:
     """Convert a result store into a compact one (:func:`voot.bench.store.result_store.compact_store`)."""
     from voot.bench.store.result_store import compact_store
 
+    check_output(args.dst, "DST", folder=True)
     out = compact_store(args.src, args.dst, compact_config(args))
     mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
     ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if out["dst_bytes"] else ""
@@ -65,6 +66,7 @@ def cmd_shipped(args: argparse.Namespace) -> int:
             print(f"{name}: {entry['rows']} rows, sha256 {entry['sha256'][:12]}...")
         print(f"manifest: {path}", file=sys.stderr)
         return 0
+    check_output(args.out, "--out", folder=True)
     out = Path(args.out) if args.out else None
     for path in shipped.store_dirs(root):
         got = shipped.check_store(root, path.name)
@@ -81,6 +83,7 @@ def cmd_export(args: argparse.Namespace) -> int:
     (:func:`voot.bench.store.frame.write_parquet`)."""
     from voot.bench.store.frame import write_parquet
 
+    check_output(args.parquet, "--parquet")
     try:
         n = write_parquet(args.store, args.parquet, kind=args.kind, status=args.status)
     except ImportError as exc:

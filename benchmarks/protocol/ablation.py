@@ -206,6 +206,41 @@ def check_switches(names: Iterable[str] | None) -> list[Switch]:
     return out
 
 
+def check_applicable(
+    switches: Sequence[Switch], problems: Sequence[str], *, named: bool = True
+) -> None:
+    """Raise ValueError unless every switch runs on some of ``problems`` and every problem
+    runs some switch.
+
+    A switch is a variant on the problems of its :attr:`Switch.problems` only; a run asked
+    for elsewhere would silently not happen. So a switch that applies to none of
+    ``problems`` (``named``: the user chose it; the default list keeps its conveyor-only
+    switches beside the kitchen) and, when switches are asked for, a problem on which none
+    of them applies (it would run the v1 defaults only) are refused, naming the problems
+    each switch applies to.
+    """
+    names = [P.normalize_problem(p) for p in problems]
+    if named:
+        for switch in switches:
+            if not set(switch.problems) & set(names):
+                raise ValueError(
+                    f"ablation switch {switch.name} applies to {', '.join(switch.problems)}"
+                    f" only, not to {', '.join(names)}; add one of those to --problems or"
+                    " leave the switch out"
+                )
+    if not switches:
+        return
+    for problem in names:
+        if not any(problem in s.problems for s in switches):
+            where = sorted({p for s in switches for p in s.problems})
+            raise ValueError(
+                f"no ablation switch applies to {problem} (the switches"
+                f" {', '.join(s.name for s in switches)} apply to {', '.join(where)});"
+                f" give --problems among those, or --switches {BASELINE} for the v1 defaults"
+                " alone"
+            )
+
+
 def variant_grid(switch: Switch | None, planner: str) -> list[dict[str, Any]]:
     """The settings a variant's tuning runs: the planner's grid (axes replaced by the
     switch's), each with the switch's overrides."""
@@ -230,13 +265,19 @@ def ablation_specs(
 ) -> list[PlanSpec]:
     """Every run of the ablation on ``seeds``: the v1 defaults (no variant) and each
     switch's variant, for VOOT and PW-UCT, every setting of their grids."""
+    if simulations is not None and (
+        isinstance(simulations, bool) or not isinstance(simulations, int) or simulations < 1
+    ):
+        raise ValueError(
+            f"simulations must be an integer >= 1 (None: the paper's), got {simulations!r}"
+        )
     seed_list = list(dict.fromkeys(int(s) for s in seeds))
     names = [P.normalize_problem(p) for p in problems]
     variants: list[Switch | None] = [None] if include_baseline else []
     variants += list(switches)
     out = []
     for problem in names:
-        n_sims = simulations or P.paper_setup(problem).simulations
+        n_sims = simulations if simulations is not None else P.paper_setup(problem).simulations
         for switch in variants:
             if switch is not None and problem not in switch.problems:
                 continue
@@ -279,6 +320,7 @@ __all__ = [
     "SWITCHES",
     "Switch",
     "ablation_specs",
+    "check_applicable",
     "check_switches",
     "switch_list",
     "variant_grid",

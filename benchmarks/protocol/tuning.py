@@ -97,6 +97,42 @@ def check_tuning_split(rows: Iterable[Row], tuning_seeds: Iterable[int]) -> None
         )
 
 
+def check_layout_split(rows: Iterable[Row], tuning_layouts: TuningLayouts) -> None:
+    """Raise ValueError unless ``rows`` hold runs of both a tuning layout and another
+    layout: :func:`check_tuning_split` for the held-out protocol's layouts.
+
+    ``tuning_layouts`` is one collection for every problem, or per problem (``--heldout``:
+    each family's training layouts), checked on the rows of that problem. Without a run on
+    a tuning layout there is nothing to select on; without a run on another layout every
+    number reported would come from the layouts the settings were selected on. The error
+    names the layouts the store has.
+    """
+    rows = list(rows)
+    if isinstance(tuning_layouts, Mapping):
+        for problem, layouts in tuning_layouts.items():
+            mine = [r for r in rows if str(r["config"].get("problem")) == problem]
+            _check_layouts(mine, layouts, f" of {problem}")
+        return
+    _check_layouts(rows, tuning_layouts, "")
+
+
+def _check_layouts(rows: Sequence[Row], tuning_layouts: Iterable[int], where: str) -> None:
+    tuning = {int(v) for v in tuning_layouts}
+    present = {v for v in (layout_of(r["config"]) for r in rows) if v is not None}
+    if not present & tuning:
+        raise ValueError(
+            f"no runs on the tuning layouts {layouts_text(tuning)}{where} in the store (its"
+            f" layouts: {layouts_text(present) if present else 'none'}): there is nothing to"
+            " select the settings on"
+        )
+    if not present - tuning:
+        raise ValueError(
+            f"every layout{where} of the store ({layouts_text(present)}) is a tuning layout:"
+            " no held-out layouts are left, and reporting the layouts the settings were"
+            " selected on would be tuning on the test set"
+        )
+
+
 def _layouts_of_problem(tuning_layouts: TuningLayouts | None, problem: str) -> set[int] | None:
     """The tuning layouts that apply to ``problem`` (None: no layout split)."""
     if tuning_layouts is None:

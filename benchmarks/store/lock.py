@@ -119,7 +119,15 @@ class WriterLock:
         if self._fd is not None:
             raise RuntimeError(f"{self.path}: this lock is already held by this object")
         for _ in range(_ATTEMPTS):
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
+            try:
+                fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
+            except OSError as exc:  # a folder, or an unwritable store: no lock file to hold
+                what = "a folder" if self.path.is_dir() else exc.strerror or type(exc).__name__
+                raise StoreError(
+                    f"{self.path}: the store's writer lock cannot be opened ({what}); it must"
+                    f" be a file voot-bench may write (remove or rename what is there if no"
+                    f" voot-bench process is writing {self.path.parent})"
+                ) from None
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError as exc:

@@ -114,6 +114,78 @@ def test_check_value() -> None:
         check_value(math.inf, "q")
 
 
+@pytest.mark.parametrize(
+    ("value", "kind"),
+    [
+        (True, "bool"),
+        (np.bool_(False), "bool"),
+        (1 + 2j, "complex"),
+        (np.complex128(1), "complex128"),
+        (None, "NoneType"),
+        ("1.0", "str"),
+        (b"1", "bytes"),
+        ([1.0], "list"),
+        (np.array([1.0]), "ndarray"),
+    ],
+)
+def test_check_value_refuses_what_is_not_one_real_number(value: object, kind: str) -> None:
+    """Not read as 1.0 (a bool), parsed (a string), or left to a bare TypeError."""
+    with pytest.raises(ValueError, match=rf"q must be a real number .*of type {kind}"):
+        check_value(value, "q")  # type: ignore[arg-type]
+
+
+def test_check_value_takes_every_real_number() -> None:
+    from fractions import Fraction
+
+    assert check_value(np.array(2.5)) == 2.5  # a 0-d array of a number
+    assert check_value(Fraction(1, 4)) == 0.25
+    assert check_value(np.uint8(7)) == 7.0
+
+
+def test_a_refused_value_leaves_the_optimiser_unchanged() -> None:
+    from voot.optim import make_optimizer
+
+    opt = make_optimizer("voo", Bounds([0.0], [1.0]), seed=0)
+    x = opt.ask()
+    for bad in (True, 1j, None, "0.5"):
+        with pytest.raises(ValueError, match="value must be a real number"):
+            opt.tell(x, bad)  # type: ignore[arg-type]
+    assert opt.n_told == 0
+
+
+@pytest.mark.parametrize(
+    ("lower", "upper"), [([-1e308], [1e308]), ([0.0, -1.7e308], [1.0, 1.7e308])]
+)
+def test_bounds_whose_width_overflows_are_refused(lower: list, upper: list) -> None:
+    """Their width would be inf: VOO, SOO and random search asked ``inf`` or nan."""
+    with pytest.raises(ValueError, match=r"bounds are too wide in dimension .*overflows a float64"):
+        Bounds(lower, upper)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # VOO's squared distances overflow
+@pytest.mark.parametrize(
+    ("method", "options"),
+    [
+        ("voo", {}),
+        ("random", {}),
+        ("soo", {}),
+        ("soo", {"split": "bisect"}),
+        ("doo", {}),
+        ("rand_doo", {"split": "bisect"}),
+    ],
+)
+def test_a_box_near_the_float_limits_gets_finite_points_inside(method: str, options: dict) -> None:
+    """A box whose width is finite but whose cell edges' sums overflow (SOO asked -inf)."""
+    from voot.optim import make_optimizer
+
+    box = Bounds([-8e307, 0.0], [8e307, 1.0])  # width 1.6e308: finite
+    opt = make_optimizer(method, box, seed=0, **options)
+    for _ in range(40):
+        x = opt.ask()
+        assert np.all(np.isfinite(x)) and box.contains(x), (method, x)
+        opt.tell(x, float(-abs(x[0]) / 1e300))
+
+
 # ----- Optimizer ------------------------------------------------------------------------
 
 

@@ -114,3 +114,43 @@ def test_revalue_changes_the_model() -> None:
 def test_bad_config_raises(options: dict, match: str) -> None:
     with pytest.raises(ValueError, match=match):
         make_config("gp_ucb", **options)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # the model's predictions overflow
+@pytest.mark.parametrize("method", ["gp_ucb", "rembo", "bamsoo"])
+@pytest.mark.parametrize(
+    "values",
+    [
+        [1e308, -1e308],  # alternating at the limits: the variance overflowed
+        [1.7e308],  # all at the limit
+        [-1.7e308, 0.0, 1.0],  # one failure-like value among ordinary ones
+    ],
+    ids=["alternating", "constant", "one-huge"],
+)
+def test_values_near_the_float_limits_give_finite_points_inside(
+    method: str, values: list[float]
+) -> None:
+    """GP-UCB and REMBO raised IndexError (no candidate had a finite acquisition)."""
+    from voot.optim.base import Bounds
+
+    box = Bounds([0.0] * 3, [1.0] * 3)
+    fast = {"fit_restarts": 1} if method == "bamsoo" else {"n_candidates": 200, "fit_restarts": 1}
+    opt = make_optimizer(method, box, seed=0, **fast)
+    for i in range(12):
+        x = opt.ask()
+        assert np.all(np.isfinite(x)) and box.contains(x)
+        opt.tell(x, values[i % len(values)])
+
+
+def test_standardising_huge_values_matches_ordinary_ones() -> None:
+    """The overflow-free standardisation gives what the ordinary one gives, scaled."""
+    from voot.optim.gp import GaussianProcess
+
+    y = np.array([3.0, -1.0, 2.0, 0.5])
+    gp = GaussianProcess(1)
+    small, m, s = gp._standardize(y)
+    huge, mh, sh = gp._standardize(y * 1e300)
+    assert np.allclose(small, huge, rtol=1e-12)
+    assert np.isclose(mh, m * 1e300) and np.isclose(sh, s * 1e300)
+    flat, mf, sf = gp._standardize(np.full(3, 1.7e308))
+    assert np.all(flat == 0.0) and mf == 1.7e308 and sf == 1.7e308

@@ -201,3 +201,47 @@ def test_gym_problem_works_on_every_voot_id_or_names_env_problem(env_id: str) ->
         _, reward, _, _, info = env.step(action)
         rewards.append(reward - info["bonus"])
     assert rewards == res.rewards.tolist()
+
+
+class _RewardEnv(gym.Env[np.ndarray, np.ndarray]):
+    """An env with get_state/set_state whose step returns ``reward`` and ``info``."""
+
+    def __init__(self, reward: object, info: dict | None = None) -> None:
+        self.observation_space = gym.spaces.Box(-1.0, 1.0, (1,))
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (1,))
+        self.reward, self.info, self.state = reward, info or {}, 0
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
+        super().reset(seed=seed)
+        return np.zeros(1, dtype=np.float32), {}
+
+    def step(self, action: np.ndarray) -> tuple:
+        return np.zeros(1, dtype=np.float32), self.reward, False, False, dict(self.info)
+
+    def get_state(self) -> int:
+        return self.state
+
+    def set_state(self, state: int) -> None:
+        self.state = state
+
+
+@pytest.mark.parametrize(
+    ("reward", "info", "what"),
+    [
+        (None, {}, "reward must be a real number .*NoneType"),
+        ("1.5", {}, "reward must be a real number .*str"),
+        (True, {}, "reward must be a real number .*bool"),
+        (0.5, {"bonus": "1"}, r"info\['bonus'\] must be a real number .*str"),
+    ],
+)
+def test_a_gym_reward_that_is_not_a_number_is_refused_naming_the_step(
+    reward: object, info: dict, what: str
+) -> None:
+    problem = GymProblem(_RewardEnv(reward, info), seed=0)
+    with pytest.raises(ValueError, match=rf"env\.step\(action=\[0\.5\]\) returned {what}"):
+        problem.step(np.array([0.5]))
+
+
+def test_gym_rewards_of_numpy_types_still_count() -> None:
+    for reward in (np.float32(0.25), np.int64(2), 3):
+        assert GymProblem(_RewardEnv(reward), seed=0).step(np.array([0.5])).reward == float(reward)

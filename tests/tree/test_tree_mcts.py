@@ -885,3 +885,33 @@ def test_commit_reset_trigger_root_goal_child_ignores_deeper_goals() -> None:
     assert any(d == 0 for _, d in runs["goal_found"][first_goal + 1 :])
     deepest = max(d for _, d in runs["root_goal_child"])
     assert deepest == 5
+
+
+@pytest.mark.parametrize(
+    ("reward", "bonus", "what"),
+    [
+        (None, 0.0, "reward must be a real number .*NoneType"),
+        ("1.5", 0.0, "reward must be a real number .*str"),
+        (True, 0.0, "reward must be a real number .*bool"),
+        (1 + 0j, 0.0, "reward must be a real number .*complex"),
+        (0.5, "1", "goal bonus must be a real number .*str"),
+    ],
+)
+@pytest.mark.parametrize("planner", ["voot", "pw_uct"])
+def test_a_reward_that_is_not_a_number_is_refused_naming_the_step(
+    planner: str, reward: object, bonus: object, what: str
+) -> None:
+    """Not coerced (a string read as 1.5, True as 1) or a bare TypeError: the step is named."""
+    from problem_fixtures import BadReward
+
+    problem = BadReward(reward, bonus, after=3)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=rf"BadReward\.step\(action=\[.*\]\) returned {what}"):
+        plan(problem, planner, n_simulations=10, seed=0)
+
+
+def test_numpy_and_integer_rewards_still_count() -> None:
+    from problem_fixtures import BadReward
+
+    for reward in (np.float32(0.25), np.int64(1), 2, np.array(0.5)):
+        res = plan(BadReward(reward), "voot", n_simulations=4, seed=0, depth_limit=2)  # type: ignore[arg-type]
+        assert math.isfinite(res.best_return)

@@ -205,21 +205,39 @@ class CellTree:
         if self.split_rule is Split.BISECT:
             cut = float(mid[j])
             if not lo[j] < cut < hi[j]:  # an anchored centre on the boundary
-                cut = 0.5 * (float(lo[j]) + float(hi[j]))
+                cut = _between(float(lo[j]), float(hi[j]), 0.5)
             edges = [float(lo[j]), cut, float(hi[j])]
-            centres_j = [0.5 * (edges[0] + cut), 0.5 * (cut + edges[2])]
+            centres_j = [_between(edges[0], cut, 0.5), _between(cut, edges[2], 0.5)]
             keep = -1
         else:
-            a = (2.0 * lo[j] + hi[j]) / 3.0
-            b = (lo[j] + 2.0 * hi[j]) / 3.0
-            edges = [float(lo[j]), float(a), float(b), float(hi[j])]
-            centres_j = [0.5 * (edges[0] + a), float(mid[j]), 0.5 * (b + edges[3])]
+            a = _between(float(lo[j]), float(hi[j]), 1.0 / 3.0)
+            b = _between(float(lo[j]), float(hi[j]), 2.0 / 3.0)
+            edges = [float(lo[j]), a, b, float(hi[j])]
+            centres_j = [_between(edges[0], a, 0.5), float(mid[j]), _between(b, edges[3], 0.5)]
             keep = 1 if a <= mid[j] <= b else -1
             if keep < 0:
-                centres_j[1] = 0.5 * (a + b)
+                centres_j[1] = _between(a, b, 0.5)
         kids = []
         for k, cj in enumerate(centres_j):
             clo, chi, cmid = lo.copy(), hi.copy(), mid.copy()
             clo[j], chi[j], cmid[j] = edges[k], edges[k + 1], cj
             kids.append(self._add(clo, chi, cmid, c, depth))
         return kids, keep
+
+
+def _between(lo: float, hi: float, t: float) -> float:
+    """The point a fraction ``t`` (1/3, 1/2 or 2/3) of the way from ``lo`` to ``hi``.
+
+    Computed as the partition always has (``(2 lo + hi) / 3``, ``0.5 (lo + hi)``), so the
+    cells are bit for bit those of before; only where that overflows (a box near the
+    float limits) as ``lo * (1 - t) + hi * t``, which does not, so every cell stays in
+    the box."""
+    if t == 0.5:
+        v = 0.5 * (lo + hi)
+    elif t < 0.5:
+        v = (2.0 * lo + hi) / 3.0
+    else:
+        v = (lo + 2.0 * hi) / 3.0
+    if math.isfinite(v):
+        return v
+    return min(max(lo * (1.0 - t) + hi * t, lo), hi)

@@ -295,6 +295,10 @@ def maximize_ucb(
     d = gp.dim
     C = rng.random((n_candidates, d))
     order, scores = gp.top_ucb(C, zeta, min(n_starts, n_candidates), chunk=chunk)
+    if order.size == 0 or not np.isfinite(scores[0]):
+        # no candidate has a finite acquisition (a model of values near the float
+        # limits overflowed): the first uniform candidate, no local search on it
+        return C[0].copy(), -math.inf
     best_x, best_v = C[order[0]].copy(), float(scores[0])
     if maxiter < 1:
         return best_x, best_v

@@ -101,7 +101,16 @@ class Bounds:
             )
         lo.setflags(write=False)
         hi.setflags(write=False)
-        width = hi - lo
+        with np.errstate(over="ignore"):
+            width = hi - lo
+        wide = np.flatnonzero(~np.isfinite(width))
+        if wide.size:
+            i = int(wide[0])
+            raise ValueError(
+                f"bounds are too wide in dimension {i}: upper - lower = {float(hi[i])!r} - {float(lo[i])!r}"
+                f" overflows a float64 (its largest is {np.finfo(np.float64).max:.4g}); points"
+                " of such a box cannot be drawn, so shrink or rescale it"
+            )
         width.setflags(write=False)
         object.__setattr__(self, "lower", lo)
         object.__setattr__(self, "upper", hi)
@@ -269,8 +278,11 @@ class OptimizerConfig:
 
 
 def check_value(value: float, name: str = "value") -> float:
-    """A told value must be a finite real number (NaN is an error, not a silent -inf)."""
-    v = float(value)
+    """A told value must be a real number other than NaN and ``+inf`` (NaN is an error,
+    not a silent -inf); ``-inf`` is a failure. A bool, a complex number, a string, None
+    or another object is refused naming its type (:func:`voot.validation.real_number`),
+    rather than read as 1.0, parsed, or left to a bare TypeError."""
+    v = value if type(value) is float else V.real_number(value, name)
     if math.isnan(v):
         raise ValueError(
             f"{name} is NaN; tell finite values (use a large negative number for failures)"
@@ -321,7 +333,7 @@ class Optimizer(ABC):
         self,
         bounds: Bounds | ArrayLike,
         config: OptimizerConfig | None = None,
-        seed: int | np.random.SeedSequence | None = None,
+        seed: int | np.random.SeedSequence | np.random.Generator | None = None,
         initial_point: ArrayLike | None = None,
     ) -> None:
         self.bounds = Bounds.coerce(bounds)

@@ -59,6 +59,9 @@ _LOG_2PI = math.log(2.0 * math.pi)
 _SQ_CUTOFF = 80.0
 #: Up to this many data points, :meth:`GaussianProcess.top_ucb` scores every query exactly.
 _SMALL_N = 128
+#: Told values beyond this magnitude are standardised by :meth:`GaussianProcess._standardize_huge`
+#: (their squares, and so their variance, would overflow a float64).
+_HUGE = 1e150
 
 
 class GPMean(StrEnum):
@@ -544,6 +547,9 @@ class GaussianProcess:
         return float(np.median(d)) if d.size else 0.0
 
     def _standardize(self, y: FloatArray) -> tuple[FloatArray, float, float]:
+        big = float(np.max(np.abs(y))) if y.size else 0.0
+        if big > _HUGE:  # near the float limits: the moments below would overflow
+            return self._standardize_huge(y, big)
         mean = float(np.mean(y)) if self.mean is GPMean.CONSTANT and y.size else 0.0
         if self.mean is GPMean.CONSTANT:
             scale = float(np.std(y)) if y.size > 1 else 0.0
@@ -552,6 +558,22 @@ class GaussianProcess:
         if not (scale > 1e-12 * max(1.0, abs(mean))):
             scale = 1.0
         return (y - mean) / scale, mean, scale
+
+    def _standardize_huge(self, y: FloatArray, big: float) -> tuple[FloatArray, float, float]:
+        """:meth:`_standardize` of values up to the float limit: the moments of
+        ``y / big`` (all in [-1, 1], so nothing overflows), scaled back. The standardised
+        values are as :meth:`_standardize` would give them in exact arithmetic; a
+        prediction far beyond the told values may still overflow to an infinity, which
+        the acquisition's maximiser passes over (:func:`voot.optim._surrogate.maximize_ucb`)."""
+        u = y / big
+        mean_u = float(np.mean(u)) if self.mean is GPMean.CONSTANT else 0.0
+        if self.mean is GPMean.CONSTANT:
+            scale_u = float(np.std(u)) if y.size > 1 else 0.0
+        else:
+            scale_u = float(np.sqrt(np.mean(u * u)))
+        if not (scale_u > 1e-12 * max(1.0, abs(mean_u))):
+            return u - mean_u, mean_u * big, big  # (nearly) constant: in units of big
+        return (u - mean_u) / scale_u, mean_u * big, scale_u * big
 
     def _factorize(self) -> None:
         n = self.n

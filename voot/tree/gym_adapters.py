@@ -37,6 +37,7 @@ import numpy as np
 
 from voot.optim.base import Bounds, FloatArray
 from voot.tree.problem import StepResult
+from voot.validation import real_number
 
 
 def box_bounds(space: Any) -> Bounds:
@@ -172,9 +173,14 @@ class GymProblem:
         obs, reward, terminated, truncated, info = self.env.step(action)
         self.n_simulator_calls += 1
         self.last_observation = obs
-        bonus = float(info.get(self.bonus_key, 0.0))
+        bonus = info.get(self.bonus_key, 0.0)
+        if type(reward) is not float or type(bonus) is not float:
+            reward, bonus = (
+                _step_value(action, "reward", reward),
+                _step_value(action, f"info[{self.bonus_key!r}]", bonus),
+            )
         return StepResult(
-            float(reward) - bonus,
+            reward - bonus,
             feasible=bool(info.get(self.feasible_key, True)),
             terminal=bool(terminated or truncated),
             bonus=bonus,
@@ -228,3 +234,15 @@ class MujocoGymProblem(GymProblem):
         self._mujoco.mj_setState(self._model, data, state, self._sig)
         if self.forward:
             self._mujoco.mj_forward(self._model, data)
+
+
+def _step_value(action: FloatArray, what: str, value: object) -> float:
+    """A reward (or goal bonus) of ``env.step(action)`` as a float, or a ValueError naming
+    the step: None, a string, a bool or a complex number is not read as some number."""
+    try:
+        return real_number(value, what)
+    except ValueError as exc:
+        raise ValueError(
+            f"env.step(action={np.asarray(action).tolist()}) returned {exc}; a gymnasium"
+            " reward is a real number"
+        ) from None

@@ -51,6 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from voot.optim.base import Bounds
+from voot.validation import real_number
 
 
 @dataclass(frozen=True)
@@ -178,7 +179,25 @@ def step_values(
         raise TypeError(
             f"{type(problem).__name__}.step() must return a StepResult, got {type(res).__name__}"
         )
-    reward, bonus = float(res.reward), float(res.bonus)
+    reward, bonus = res.reward, res.bonus
+    if type(reward) is not float or type(bonus) is not float:
+        reward, bonus = (
+            _real_step_value(problem, action, "reward", reward),
+            _real_step_value(problem, action, "goal bonus", bonus),
+        )
     if not (math.isfinite(reward) and math.isfinite(bonus)):
         raise non_finite_step_error(problem, action, reward, bonus)
     return reward, bonus
+
+
+def _real_step_value(
+    problem: PlanningProblem, action: NDArray[np.float64], what: str, value: object
+) -> float:
+    """``value`` (a step's reward or goal bonus) as a float, or a ValueError naming the
+    step: a None, a string, a bool or a complex number is not read as some number."""
+    try:
+        return real_number(value, what)
+    except ValueError as exc:
+        raise ValueError(
+            f"{type(problem).__name__}.step(action={np.asarray(action).tolist()}) returned {exc}"
+        ) from None

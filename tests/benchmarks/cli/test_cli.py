@@ -10,6 +10,7 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -229,3 +230,214 @@ def test_console_script_help() -> None:
     assert done.returncode == 0
     for command in ("demo", "demo-voo", "bbfo", "plan", "plot", "measure", "select"):
         assert command in done.stdout
+
+
+# ----- a generative fuzz of the options of the generated families (issue 34) -------------
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+#: Layout seeds and levels as a user might type them, good and bad.
+_SEED_TEXT = st.one_of(
+    st.integers(-3, 12).map(str),
+    st.sampled_from(["1.5", "1.0", "true", "abc", '"1"', "null", "9223372036854775808", "1e3"]),
+)
+_RANGE_TEXT = st.one_of(
+    st.integers(-2, 6).map(str),
+    st.tuples(st.integers(-2, 8), st.integers(-2, 8)).map(lambda t: f"{t[0]}:{t[1]}"),
+    st.sampled_from(
+        ["0:2,5", "x", "1:2:3", "", "1000:1002", "9223372036854775807:9223372036854775808"]
+    ),
+)
+_LEVEL = st.sampled_from(["easy", "medium", "hard", "extreme", "EASY", ""])
+_FAMILY = st.sampled_from(
+    ["generated_storage", "conveyor_v2", "generated_kitchen", "conveyor_v1", "nosuch"]
+)
+
+
+def _option(name: str, values: st.SearchStrategy[str]) -> st.SearchStrategy[list[str]]:
+    """``[]`` or ``[name, value]``."""
+    return st.one_of(st.just([]), values.map(lambda v: [name, v]))
+
+
+def _outputs(tmp: Path, option: str) -> st.SearchStrategy[list[str]]:
+    """An output option: absent, fine, under a regular file, or the file itself."""
+    return st.sampled_from(
+        [[], [option, str(tmp / "ok" / "o.md")], [option, str(tmp / "file" / "o.md")]]
+    )
+
+
+def _check_refused_or_accepted(
+    argv: list[str], tmp: Path, capsys: Any, writes: bool, must_refuse: bool = False
+) -> None:
+    """The property: exit 0 (accepted), or exit 2 with one ``error`` line, no traceback and
+    every file under ``tmp`` as it was (``writes``: an accepted command may write).
+    ``must_refuse``: the request is known to be bad (the test's own oracle), so it must be
+    refused: a dry run that lists it would be a sweep of failed runs."""
+    from cli_fixtures import tree_snapshot
+
+    before = tree_snapshot(tmp)
+    try:
+        status = main(argv)
+    except SystemExit as exc:  # argparse's own refusal (a malformed option)
+        status = exc.code if isinstance(exc.code, int) else 1
+    err = capsys.readouterr().err
+    assert "Traceback" not in err, (argv, err)
+    assert status in (0, 2), (argv, status, err)
+    assert status == 2 or not must_refuse, ("accepted a bad request", argv)
+    if status == 2:
+        assert err.strip().splitlines()[-1].split(": error: ")[0] in (
+            "voot-bench",
+            f"voot-bench {argv[0]}",
+        ), (argv, err)
+    if status == 2 or not writes:
+        assert tree_snapshot(tmp) == before, (argv, err)
+
+
+@pytest.fixture(scope="module")
+def fuzz_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A folder with a regular file (``file``) to put outputs under, and a store of runs on
+    layouts (``heldout``) for ``claims``."""
+    from plan_fixtures import layout_rows
+
+    from voot.bench.store.result_store import ResultStore
+
+    tmp = tmp_path_factory.mktemp("fuzz")
+    (tmp / "file").write_text("x")
+    store = ResultStore(tmp / "heldout")
+    for r in layout_rows():
+        store.write(r)
+    store.load(status="ok", arrays=True)
+    return tmp
+
+
+_FUZZ = settings(
+    max_examples=25,
+    deadline=None,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
+)
+
+
+@_FUZZ
+@given(data=st.data())
+def test_fuzz_plan_options_of_the_generated_families(
+    fuzz_dir: Path, capsys: pytest.CaptureFixture[str], data: st.DataObject
+) -> None:
+    tmp = fuzz_dir
+    argv = ["plan", "--dry-run", "--planners", "voot", "--simulations", "2"]
+    family = data.draw(_FAMILY)
+    argv += ["--problems", family]
+    kwargs = data.draw(
+        st.lists(
+            st.one_of(
+                _SEED_TEXT.map(lambda v: f"layout_seed={v}"),
+                _LEVEL.map(lambda v: f"difficulty={v}"),
+            ),
+            max_size=2,
+        )
+    )
+    argv += ["--env-kwargs", *kwargs] if kwargs else []
+    layout_seeds = data.draw(_option("--layout-seeds", _RANGE_TEXT))
+    argv += layout_seeds
+    argv += data.draw(_option("--seeds", st.sampled_from(["1", "0:2", "5:6"])))
+    argv += ["--out", data.draw(st.sampled_from([str(tmp / "s"), str(tmp / "file" / "s")]))]
+    argv += data.draw(
+        st.sampled_from(
+            [[], ["--record", str(tmp / "r.rrd")], ["--record", str(tmp / "file" / "r.rrd")]]
+        )
+    )
+    # the oracle of a bad request: a layout seed that is not a plain integer >= 0, a
+    # level the families do not have, layouts of an env without them, an output under a file
+    bad_seed = any(
+        k.startswith("layout_seed=") and not k.split("=", 1)[1].isdigit() for k in kwargs
+    )
+    bad_level = any(
+        k.startswith("difficulty=") and k.split("=", 1)[1] not in ("easy", "medium", "hard")
+        for k in kwargs
+    )
+    no_layouts = family == "conveyor_v1" and (
+        bool(layout_seeds) or any(k.startswith("layout_seed=") for k in kwargs)
+    )
+    under_file = str(tmp / "file" / "") in " ".join(argv)
+    must_refuse = bad_seed or bad_level or no_layouts or under_file
+    _check_refused_or_accepted(argv, tmp, capsys, writes=False, must_refuse=must_refuse)
+
+
+@_FUZZ
+@given(data=st.data())
+def test_fuzz_ablation_options(
+    fuzz_dir: Path, capsys: pytest.CaptureFixture[str], data: st.DataObject
+) -> None:
+    tmp = fuzz_dir
+    argv = ["ablation", "--dry-run", "--out", str(tmp / "a")]
+    simulations = data.draw(_option("--simulations", st.integers(-6, 3).map(str)))
+    argv += simulations
+    problems = data.draw(
+        st.lists(
+            st.sampled_from(["kitchen_v1", "conveyor_v1", "kitchen_v2", "kitchen"]), max_size=2
+        )
+    )
+    argv += ["--problems", *problems] if problems else []
+    switches = data.draw(
+        st.lists(
+            st.sampled_from(["v1", "commit_10", "kappa_off", "authors_commit_10", "bad"]),
+            max_size=2,
+        )
+    )
+    argv += ["--switches", *switches] if switches else []
+    argv += data.draw(_option("--seeds", _RANGE_TEXT))
+    argv += data.draw(_option("--tuning-seeds", _RANGE_TEXT))
+    markdown = data.draw(_outputs(tmp, "--markdown"))
+    argv += markdown
+    # the oracle: a budget below 1; --markdown without --table; a problem the switches are
+    # not defined on (kitchen_v2, the v0 kitchen) with any switch but the v1 defaults alone
+    named = set(switches) - {"v1"}
+    off_domain = bool({"kitchen_v2", "kitchen"} & set(problems)) and (bool(named) or not switches)
+    too_few = bool(simulations) and int(simulations[1]) < 1
+    must_refuse = too_few or bool(markdown) or off_domain
+    _check_refused_or_accepted(argv, tmp, capsys, writes=False, must_refuse=must_refuse)
+
+
+@_FUZZ
+@given(data=st.data())
+def test_fuzz_ladder_options(
+    fuzz_dir: Path,
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
+    data: st.DataObject,
+) -> None:
+    """Only the options are checked: the ladder's measurement is replaced by a stand-in
+    (the refusals come before it; its own tests measure it)."""
+    from voot.bench.protocol import ladder
+
+    monkeypatch.setattr(ladder, "ladder_report", lambda *args, **kwargs: "(ladder)")
+    tmp = fuzz_dir
+    argv = ["ladder"]
+    argv += data.draw(
+        _option(
+            "--env",
+            st.sampled_from(
+                ["generated_kitchen", "kitchen_v2", "kitchen_v1", "CartPole-v1", "nosuch"]
+            ),
+        )
+    )
+    levels = data.draw(st.lists(_LEVEL, max_size=2))
+    argv += ["--levels", *levels] if levels else []
+    argv += data.draw(_option("--layouts", _RANGE_TEXT))
+    argv += data.draw(_option("--samples", st.integers(-1, 2).map(str)))
+    argv += data.draw(_option("--rollouts", st.integers(-1, 2).map(str)))
+    argv += data.draw(_outputs(tmp, "--markdown"))
+    _check_refused_or_accepted(argv, tmp, capsys, writes=True)
+
+
+@_FUZZ
+@given(data=st.data())
+def test_fuzz_claims_options(
+    fuzz_dir: Path, capsys: pytest.CaptureFixture[str], data: st.DataObject
+) -> None:
+    tmp = fuzz_dir
+    argv = ["claims", str(tmp / "heldout")]
+    argv += data.draw(_option("--tuning-layouts", _RANGE_TEXT))
+    argv += data.draw(_option("--tuning-seeds", _RANGE_TEXT))
+    argv += data.draw(st.sampled_from([[], ["--heldout"]]))
+    argv += data.draw(_outputs(tmp, "--markdown"))
+    _check_refused_or_accepted(argv, tmp, capsys, writes=True)

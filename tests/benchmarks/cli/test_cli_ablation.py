@@ -68,3 +68,40 @@ def test_a_tiny_ablation_runs_resumes_and_draws_its_table(
     assert main([*plot, "--markdown", str(md)]) == 0
     table = md.read_text()
     assert "voot[commit_off]" in table and "pw_uct" not in table
+
+
+# ----- options that would not run as asked are refused (issue 34) ------------------------
+@pytest.mark.parametrize(
+    ("extra", "needles"),
+    [
+        (["--simulations", "0"], ["--simulations must be >= 1, got 0"]),
+        (["--simulations", "-5"], ["--simulations must be >= 1, got -5"]),
+        (["--problems", "kitchen_v2"], ["no ablation switch applies to voot/KitchenClearing-v2"]),
+        (
+            ["--problems", "kitchen_v1", "--switches", "commit_10"],
+            ["commit_10 applies to voot/ConveyorPacking-v1 only"],
+        ),
+        (["--markdown", "t.md"], ["--markdown writes the table of --table"]),
+    ],
+)
+def test_ablation_options_that_would_not_run_as_asked_are_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], needles: list[str]
+) -> None:
+    from cli_fixtures import assert_refused
+
+    argv = ["ablation", "--out", str(tmp_path / "store"), "--seeds", "1", "--tuning-seeds", "5:6"]
+    # the dry run first: the old code ran (or listed) these without a word
+    assert_refused([*argv, *extra, "--dry-run"], tmp_path, capsys, *needles)
+    assert_refused([*argv, *extra, "--workers", "1", "--no-progress"], tmp_path, capsys, *needles)
+
+
+def test_ablation_switches_that_apply_somewhere_run(capsys: pytest.CaptureFixture[str]) -> None:
+    from voot.bench.cli.main import main
+
+    # commit_10 is conveyor-only: beside the kitchen it runs on the conveyor alone
+    argv = ["ablation", "--switches", "commit_10", "--seeds", "1", "--tuning-seeds", "5:6"]
+    assert main([*argv, "--no-baseline", "--dry-run"]) == 0
+    out = capsys.readouterr().out
+    assert "conveyor_v1" in out and "kitchen_v1" not in out
+    # the v1 defaults alone are a valid ablation of any problem
+    assert main([*argv[:1], "--switches", "v1", "--problems", "kitchen_v2", "--dry-run"]) == 0

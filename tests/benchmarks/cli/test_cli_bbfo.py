@@ -108,4 +108,6 @@ def test_out_under_a_file_is_a_clear_error(
     out = str(tmp_path / "file" / "store")
     args = ["bbfo", "--out", out, "--functions", "shekel", "--dims", "3", "--methods", "voo"]
     assert main([*args, "--seeds", "1", "--budget", "5", "--no-progress"]) == 2
-    assert "cannot create the result store there" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "--out" in err and "is a file, not a folder" in err  # refused before any run
+    assert not (tmp_path / "file" / "store").exists()

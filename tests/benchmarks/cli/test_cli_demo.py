@@ -77,3 +77,24 @@ def test_demo_and_figure5_default_to_the_papers_protocol() -> None:
         for a in parser._subparsers._group_actions[0].choices["demo"]._actions  # type: ignore[union-attr]
     }
     assert names_text("kitchen") in helps["env"]
+
+
+@pytest.mark.parametrize("command", ["demo", "record-demo", "figure5"])
+def test_demo_outputs_under_a_file_are_refused_before_planning(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
+) -> None:
+    from cli_fixtures import assert_refused
+
+    (tmp_path / "file").write_text("x")
+    bad = str(tmp_path / "file" / "out")
+    assert_refused([command, "--out", bad], tmp_path, capsys, "--out", "is a file, not a folder")
+    assert_refused([command, "--out", str(tmp_path / "file")], tmp_path, capsys, "not a folder")
+
+
+def test_env_figures_refuses_an_output_folder_under_a_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from cli_fixtures import assert_refused
+
+    (tmp_path / "file").write_text("x")
+    assert_refused(["env-figures", str(tmp_path / "file" / "f")], tmp_path, capsys, "OUT_DIR")

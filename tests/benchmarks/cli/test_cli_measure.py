@@ -4,6 +4,8 @@ measurements in tests/benchmarks/measure; ``store-speed``: test_cli_store.py).""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from voot.bench.cli.common import CLIError
@@ -58,3 +60,14 @@ def test_memory_prints_a_table_per_planner(capsys: pytest.CaptureFixture[str]) -
 def test_memory_refuses_zero_counts(flag: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["measure", "memory", flag, "0"]) == 2
     assert "must be >= 1" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("option", ["--json", "--figure"])
+def test_root_parallel_outputs_under_a_file_are_refused_before_measuring(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], option: str
+) -> None:
+    from cli_fixtures import assert_refused
+
+    (tmp_path / "file").write_text("x")
+    argv = ["measure", "root-parallel", option, str(tmp_path / "file" / "out")]
+    assert_refused(argv, tmp_path, capsys, option, "is a file, not a folder")

@@ -410,3 +410,99 @@ def test_an_outside_planner_through_plan_plot_claims_and_the_held_out_protocol(
     rows = ResultStore(held).load(kind="plan")
     assert {r["config"]["env_kwargs"]["layout_seed"] for r in rows} == {0, 1, 100, 101}
     assert main(["plot", str(held), "--heldout", "--png", str(tmp_path / "h.png")]) == 0
+
+
+# ----- refused before the first run (issue 34) -----------------------------------------
+_GENERATED = ["--planners", "voot", "--seeds", "1", "--simulations", "2", "--workers", "1"]
+
+
+@pytest.mark.parametrize(
+    ("extra", "needles"),
+    [
+        (["--env-kwargs", "layout_seed=-1"], ["--env-kwargs: layout_seed must be", "got -1"]),
+        (["--env-kwargs", "layout_seed=1.5"], ["layout_seed must be an integer", "(float)"]),
+        (["--env-kwargs", "layout_seed=1.0"], ["layout_seed must be an integer", "(float)"]),
+        (["--env-kwargs", "layout_seed=true"], ["layout_seed must be an integer", "(bool)"]),
+        (["--env-kwargs", "layout_seed=abc"], ["layout_seed must be an integer", "(str)"]),
+        (["--env-kwargs", "difficulty=extreme"], ["--env-kwargs", "valid levels are: easy"]),
+        (["--layout-seeds", "9223372036854775808:9223372036854775809"], ["--layout-seeds"]),
+    ],
+)
+def test_bad_env_arguments_are_refused_before_a_store_is_written(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], needles: list[str]
+) -> None:
+    from cli_fixtures import assert_refused
+
+    argv = ["plan", "--out", str(tmp_path / "store"), "--problems", "generated_storage"]
+    assert_refused([*argv, *_GENERATED, *extra], tmp_path, capsys, *needles)
+    assert not (tmp_path / "store").exists()
+
+
+def test_layout_seeds_on_a_problem_without_layouts_are_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from cli_fixtures import assert_refused
+
+    argv = ["plan", "--out", str(tmp_path / "store"), "--problems", "conveyor_v1", *_GENERATED]
+    line = assert_refused(
+        [*argv, "--layout-seeds", "0:2"], tmp_path, capsys, "--layout-seeds", "takes no layout_seed"
+    )
+    assert "voot/GeneratedStorage-v0" in line  # names where layouts exist
+    # the held-out protocol's tuning runs are checked as well
+    assert_refused(
+        [*argv, "--layout-seeds", "0:2", "--tuning-layouts", "5:6"], tmp_path, capsys, "--layout"
+    )
+
+
+def test_unwritable_outputs_are_refused_before_any_run(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from cli_fixtures import assert_refused
+
+    (tmp_path / "file").write_text("x")
+    tiny = ["plan", *PLAN_TINY]
+    assert_refused(
+        [*tiny, "--out", str(tmp_path / "file" / "store")],
+        tmp_path,
+        capsys,
+        "--out",
+        "not a folder",
+    )
+    assert_refused([*tiny, "--out", str(tmp_path / "file")], tmp_path, capsys, "not a folder")
+    rec = ["--planners", "voot", "--seeds", "1", "--out", str(tmp_path / "s")]
+    assert_refused(
+        [*tiny, *rec, "--record", str(tmp_path / "file" / "r.rrd")], tmp_path, capsys, "--record"
+    )
+    # a dry run is checked too: it is how a sweep is tried before it is run
+    assert_refused(
+        [*tiny, "--out", str(tmp_path / "file" / "s"), "--dry-run"], tmp_path, capsys, "--out"
+    )
+
+
+@pytest.mark.parametrize(
+    ("extra", "needle"),
+    [
+        (["--workers", "0"], "--workers must be >= 1"),
+        (["--workers", "-2"], "--workers must be >= 1"),
+        (["--backend", "ray", "--max-tries", "0"], "--max-tries must be >= 1"),
+    ],
+)
+@pytest.mark.parametrize("command", ["plan", "bbfo"])
+def test_backend_options_are_refused_before_the_store_is_made(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], needle: str, command: str
+) -> None:
+    """The backend refused them only after the store's folder was made."""
+    from cli_fixtures import assert_refused
+
+    if command == "bbfo" and "--max-tries" in extra:
+        return  # bbfo has no Ray retry option
+    tiny = (
+        ["plan", *PLAN_TINY]
+        if command == "plan"
+        else ["bbfo", "--functions", "shekel", "--dims", "3", "--methods", "voo", "--seeds", "1"]
+    )
+    if "--workers" in tiny:  # PLAN_TINY's own --workers 1 out
+        i = tiny.index("--workers")
+        tiny = tiny[:i] + tiny[i + 2 :]
+    assert_refused([*tiny, *extra, "--out", str(tmp_path / "s")], tmp_path, capsys, needle)
+    assert not (tmp_path / "s").exists()

@@ -89,9 +89,64 @@ def test_plot_and_claims_redraw_a_store_of_layouts(
     assert main(["plot", str(out), "--heldout", "--tuning-layouts", "1000:1002"]) == 2
     assert "not both" in capsys.readouterr().err
     assert main(["plot", str(out), "--tuning-layouts", "0:3", "1000:1002"]) == 2  # none held out
-    assert "no runs on held-out layouts" in capsys.readouterr().err
+    assert "every layout of the store (0-2, 1000-1001) is a tuning layout" in (
+        capsys.readouterr().err
+    )
     plain = tmp_path / "plain"
     assert main(["plan", "--out", str(plain), *PLAN_TINY]) == 0
     capsys.readouterr()
     assert main(["plot", str(plain), "--heldout"]) == 2
     assert "--heldout: no runs on the layouts of a family" in capsys.readouterr().err
+
+
+def _layout_store(tmp_path: Path) -> Path:
+    from plan_fixtures import layout_rows
+
+    from voot.bench.store.result_store import ResultStore
+
+    out = tmp_path / "heldout"
+    store = ResultStore(out)
+    for r in layout_rows():
+        store.write(r)
+    return out
+
+
+@pytest.mark.parametrize("command", ["claims", "plot"])
+def test_tuning_layouts_the_store_cannot_split_are_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
+) -> None:
+    """As --tuning-seeds: tuning layouts the store lacks, or covering all its layouts."""
+    from cli_fixtures import assert_refused
+
+    out = str(_layout_store(tmp_path))
+    md = ["--markdown", str(tmp_path / "t.md")]
+    assert_refused(
+        [command, out, "--tuning-layouts", "0:3", "1000:1002", *md],
+        tmp_path,
+        capsys,
+        "--tuning-layouts: every layout of the store (0-2, 1000-1001) is a tuning layout",
+    )
+    assert_refused(
+        [command, out, "--tuning-layouts", "500:510", *md],
+        tmp_path,
+        capsys,
+        "no runs on the tuning layouts 500-509 in the store (its layouts: 0-2, 1000-1001)",
+    )
+    assert main([command, out, "--tuning-layouts", "1000:1002", *md]) == 0  # a real split
+
+
+@pytest.mark.parametrize("command", ["claims", "plot"])
+def test_report_outputs_under_a_file_are_refused_before_the_report(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
+) -> None:
+    from cli_fixtures import assert_refused
+
+    out = str(_layout_store(tmp_path))
+    (tmp_path / "file").write_text("x")
+    bad = str(tmp_path / "file" / "t")
+    assert_refused(
+        [command, out, "--markdown", bad], tmp_path, capsys, "--markdown", "not a folder"
+    )
+    if command == "plot":
+        for option in ("--png", "--png-seconds", "--axes-dir"):
+            assert_refused([command, out, option, bad], tmp_path, capsys, option, "not a folder")

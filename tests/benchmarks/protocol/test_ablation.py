@@ -88,3 +88,26 @@ def test_check_switches_names_the_choices() -> None:
     text = switch_list()
     assert all(name in text for name in SWITCHES) and "[conveyor only]" in text
     assert set(ABLATION_PROBLEMS) == {"voot/KitchenClearing-v1", "voot/ConveyorPacking-v1"}
+
+
+def test_check_applicable_refuses_switches_and_problems_that_do_not_meet() -> None:
+    from voot.bench.protocol.ablation import SWITCHES, check_applicable
+
+    conveyor_only, both = SWITCHES["commit_10"], SWITCHES["kappa_off"]
+    check_applicable([conveyor_only], ["conveyor_v1"])
+    check_applicable([conveyor_only, both], ["kitchen_v1", "conveyor_v1"])
+    check_applicable([], ["kitchen_v2"])  # the v1 defaults alone run anywhere
+    with pytest.raises(ValueError, match="commit_10 applies to voot/ConveyorPacking-v1 only"):
+        check_applicable([conveyor_only], ["kitchen_v1"])  # named by default
+    with pytest.raises(ValueError, match="no ablation switch applies to voot/KitchenClearing-v1"):
+        check_applicable([conveyor_only], ["kitchen_v1"], named=False)
+    with pytest.raises(ValueError, match="no ablation switch applies to voot/KitchenClearing-v2"):
+        check_applicable([both], ["kitchen_v1", "kitchen_v2"])
+
+
+@pytest.mark.parametrize("simulations", [0, -5, True, 2.5])
+def test_ablation_specs_refuse_a_budget_that_is_not_a_positive_integer(simulations: object) -> None:
+    from voot.bench.protocol.ablation import SWITCHES, ablation_specs
+
+    with pytest.raises(ValueError, match="simulations must be an integer >= 1"):
+        ablation_specs([SWITCHES["kappa_off"]], [0], simulations=simulations)  # type: ignore[arg-type]

@@ -190,3 +190,28 @@ def test_select_on_training_layouts_report_held_out_layouts() -> None:
         " held-out layouts reported"
     )
     assert tuning_sentence([], [7]).startswith("Settings selected on training layouts 7,")
+
+
+def test_check_layout_split_needs_a_tuning_and_a_held_out_layout() -> None:
+    from voot.bench.protocol.tuning import check_layout_split
+
+    def row(problem: str, layout: int | None) -> dict:
+        kwargs = {} if layout is None else {"layout_seed": layout}
+        return {"config": {"problem": problem, "env_kwargs": kwargs, "seed": 0}}
+
+    rows = [row("a", 0), row("a", 1), row("a", 1000), row("b", None)]
+    check_layout_split(rows, [1000])
+    check_layout_split(rows, {"a": [1000, 1001]})
+    with pytest.raises(
+        ValueError,
+        match=r"no runs on the tuning layouts 5-6 in the store \(its layouts: 0-1, 1000\)",
+    ):
+        check_layout_split(rows, [5, 6])
+    with pytest.raises(
+        ValueError, match=r"every layout of the store \(0-1, 1000\) is a tuning layout"
+    ):
+        check_layout_split(rows, [0, 1, 1000])
+    with pytest.raises(ValueError, match="no runs on the tuning layouts 1000 of b in the store"):
+        check_layout_split(rows, {"a": [1000], "b": [1000]})
+    with pytest.raises(ValueError, match="its layouts: none"):
+        check_layout_split([row("b", None)], [0])

@@ -134,3 +134,22 @@ def test_two_plan_processes_on_one_out(tmp_path: Path) -> None:
     rows = ResultStore(out).load(status=None)
     assert len({r["run_id"] for r in rows}) == len(rows) >= 4
     assert len(rows) >= before
+
+
+def test_a_lock_that_is_a_folder_is_a_store_error_naming_it(tmp_path: Path) -> None:
+    store = ResultStore(tmp_path / "r")
+    (store.path / LOCK_NAME).mkdir()
+    with pytest.raises(StoreError, match=f"{LOCK_NAME}: the store's writer lock cannot be opened"):
+        WriterLock(store.path).acquire()
+    assert (store.path / LOCK_NAME).is_dir()  # left for the user to look at
+
+
+def test_the_cli_reports_a_lock_folder_in_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from cli_fixtures import PLAN_TINY, assert_refused
+
+    store = ResultStore(tmp_path / "r")
+    (store.path / LOCK_NAME).mkdir()
+    argv = ["plan", "--out", str(store.path), *PLAN_TINY]
+    assert_refused(argv, tmp_path, capsys, "writer lock cannot be opened (a folder)")
