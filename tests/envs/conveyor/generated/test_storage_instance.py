@@ -52,7 +52,12 @@ def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
     assert SI.storage_instance(4, "medium") is cold  # the process's memo
     record = json.loads((cache / "medium-4.json").read_text())
     assert record["attempt"] == cold.layout.attempt
-    assert record["generator_version"] == GENERATOR_VERSION
+    assert record["key"] == {
+        "layout_seed": 4,
+        "difficulty": "medium",
+        "generator_version": GENERATOR_VERSION,
+        "mujoco": mujoco.__version__,
+    }
     assert (cache / "medium-4.mjb.z").is_file()
     assert cache.name == f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
     SI.clear_memo()
