@@ -50,8 +50,9 @@ V = TypeVar("V")
 #: The environment variable naming the cache folder.
 ENV_VAR = "VOOT_CACHE"
 
-#: The folders found unusable in this process (each warned about once).
+#: The folders found unusable in this process, and the cache roots warned about (once each).
 _UNUSABLE: set[Path] = set()
+_WARNED: set[Path] = set()
 
 
 class CacheWarning(UserWarning):
@@ -68,8 +69,9 @@ def cache_dir() -> Path:
 def writable_dir(folder: Path) -> bool:
     """Whether ``folder`` (under :func:`cache_dir`) exists or can be made, and takes files.
 
-    False, with one :class:`CacheWarning` naming ``VOOT_CACHE`` per folder and process,
-    when it cannot (a regular file in the way, a read-only folder): the caller then keeps
+    False, with one :class:`CacheWarning` naming ``VOOT_CACHE`` per cache root and
+    process (the meshes' and the storage rooms' folders under it warn once together), when
+    it cannot (a regular file in the way, a read-only folder): the caller then keeps
     what it made in memory. Never raises an ``OSError``.
     """
     if folder in _UNUSABLE:
@@ -81,6 +83,10 @@ def writable_dir(folder: Path) -> bool:
         os.unlink(probe)
     except OSError as exc:
         _UNUSABLE.add(folder)
+        root = cache_dir()
+        if root in _WARNED:
+            return False
+        _WARNED.add(root)
         where = os.environ.get(ENV_VAR)
         named = f"{ENV_VAR}={where}" if where else f"{ENV_VAR} unset, default {cache_dir()}"
         warnings.warn(

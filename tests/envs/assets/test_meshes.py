@@ -113,7 +113,8 @@ def test_a_corrupt_cache_file_is_rebuilt(mesh_cache: Path) -> None:
     path = mesh_cache / "meshes" / f"{spec.key}.mesh.npz"
     path.write_bytes(b"not a zip file")
     M.clear_memory_cache()
-    assert M.mesh_assets([spec]) == cold
+    with pytest.warns(CacheWarning, match=rf"{spec.key}\.mesh\.npz cannot be read"):
+        assert M.mesh_assets([spec]) == cold
     assert path.read_bytes()[:2] == b"PK"  # rewritten
 
 
@@ -238,3 +239,37 @@ def test_cached_and_fresh_meshes_compile_to_the_same_model() -> None:
     cached = M.compile_scene(xml, specs)
     for name in ("mesh_vert", "mesh_face", "geom_pos", "geom_quat", "body_mass", "body_inertia"):
         np.testing.assert_array_equal(getattr(fresh, name), getattr(cached, name), err_msg=name)
+
+
+def test_swapped_or_edited_mesh_files_are_rebuilt_naming_them(mesh_cache: Path) -> None:
+    """Before: a file copied over another spec's was served (the kitchen got the wrong
+    shapes); now each file is checked against the spec and tag it was made for."""
+    mug, bowl = ShapeSpec("mug", SIZES["mug"]), ShapeSpec("bowl", SIZES["bowl"])
+    right = M.mesh_assets([mug])
+    M.mesh_assets([bowl])
+    folder = mesh_cache / "meshes"
+    mug_file, bowl_file = folder / f"{mug.key}.mesh.npz", folder / f"{bowl.key}.mesh.npz"
+    mug_file.write_bytes(bowl_file.read_bytes())
+    M.clear_memory_cache()
+    with pytest.warns(CacheWarning, match=rf"{mug.key}\.mesh\.npz holds 'mesh\|bowl"):
+        assert M.mesh_assets([mug]) == right
+    # an edit inside a file with its key: refused by its digest
+    with np.load(mug_file) as z:
+        arrays = {k: z[k] for k in z.files}
+    arrays["inertial"] = arrays["inertial"] * 2.0
+    np.savez(mug_file, **arrays)
+    M.clear_memory_cache()
+    with pytest.warns(CacheWarning, match="does not match its digest"):
+        assert M.mesh_assets([mug]) == right
+    # a grasp table's file under a mesh's name: another tag
+    from voot.envs.robot.mesh_grasp import grasp_set
+
+    grasp_set(mug)
+    mug_file.write_bytes((folder / f"{mug.key}.grasp.npz").read_bytes())
+    M.clear_memory_cache()
+    with pytest.warns(CacheWarning, match="holds 'grasp"):
+        assert M.mesh_assets([mug]) == right
+
+
+def test_the_memory_caches_are_bounded() -> None:
+    assert all(memo.size == M.MEMO_SIZE for memo in M.MEMORY_CACHES)
