@@ -132,12 +132,10 @@ def check_render(
         raise ValueError(
             f"render_camera must be one of {', '.join(CAMERAS)}; got {render_camera!r}"
         )
-    size = render_size
-    ok = isinstance(size, tuple | list) and len(size) == 2 and all(V.is_integer(v) for v in size)
-    if ok:
-        w, h = (int(v) for v in size)  # type: ignore[union-attr, call-overload]
-        ok = w in RENDER_WIDTHS and h in RENDER_HEIGHTS
-    if not ok:
+    w = h = -1
+    if isinstance(render_size, tuple | list) and len(render_size) == 2:
+        w, h = (V.integer(v, "render_size") if V.is_integer(v) else -1 for v in render_size)
+    if w not in RENDER_WIDTHS or h not in RENDER_HEIGHTS:
         raise ValueError(
             "render_size must be (width, height), two integers within"
             f" {RENDER_WIDTHS.start}..{RENDER_WIDTHS.stop - 1} x"

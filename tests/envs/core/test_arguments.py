@@ -74,7 +74,7 @@ def test_levels_and_splits_by_exact_name() -> None:
     for bad in ("Hard", " hard", "extreme", 1, None, b"easy"):
         with pytest.raises(ValueError, match="valid levels are: easy, medium, hard"):
             check_difficulty(bad)
-    with pytest.raises(ValueError, match="valid levels are: easy$"):
+    with pytest.raises(ValueError, match=r"valid levels are: easy$"):
         check_difficulty("hard", (Difficulty.EASY,))
     assert check_split(None) is None and check_split("heldout") is Split.HELDOUT
     for bad in ("Training", 1, "train"):

@@ -13,8 +13,8 @@ import pytest
 from gymnasium.utils.env_checker import data_equivalence
 
 from voot.envs.conveyor.generated import instance as SI
-from voot.envs.core.caches import CacheWarning
 from voot.envs.conveyor.generated.layout import GENERATOR_VERSION, generate_storage_layout
+from voot.envs.core.caches import CacheWarning
 
 
 @pytest.fixture
