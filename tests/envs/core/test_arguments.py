@@ -88,10 +88,19 @@ def test_render_arguments() -> None:
     for size in bad_sizes:
         with pytest.raises(ValueError, match=r"render_size must be \(width, height\), two integ"):
             check_render(None, "perspective", size)
-    with pytest.raises(ValueError, match="render_mode must be None or one of rgb_array"):
-        check_render("human", "perspective", (640, 480))
-    with pytest.raises(ValueError, match="render_camera must be one of perspective, top_down"):
-        check_render(None, ["top_down"], (640, 480))
+    assert check_render("rgb_array", "perspective", (16, 16))[0] == "rgb_array"
+    # the ends of the ranges: 16..1280 x 16..960
+    for w, h in ((16, 16), (1280, 960), (16, 960), (1280, 16)):
+        assert check_render(None, "perspective", (w, h))[2] == (w, h)
+    for w, h in ((15, 480), (1281, 480), (640, 15), (640, 961)):
+        with pytest.raises(ValueError, match=r"within 16\.\.1280 x 16\.\.960"):
+            check_render(None, "perspective", (w, h))
+    for mode in ("human", ["rgb_array"]):
+        with pytest.raises(ValueError, match="render_mode must be None or one of rgb_array"):
+            check_render(mode, "perspective", (640, 480))
+    for camera in (["top_down"], "side"):
+        with pytest.raises(ValueError, match="render_camera must be one of perspective, top_d"):
+            check_render(None, camera, (640, 480))
 
 
 @pytest.mark.parametrize("family", FAMILIES)
