@@ -34,9 +34,10 @@ def test_an_unusable_folder_is_said_once_naming_voot_cache(
     for root in _unusable_paths(tmp_path):
         monkeypatch.setenv("VOOT_CACHE", str(root))
         with pytest.warns(CacheWarning, match=f"VOOT_CACHE={root}") as got:
-            assert not C.writable_dir(root / "meshes")
-            assert not C.writable_dir(root / "storage")  # the same root: no second warning
-            assert not C.write_atomic(root / "meshes" / "x.npz", b"data")
+            assert C.writable_dir(root / "meshes") is False
+            assert C.writable_dir(root / "meshes") is False  # known now: not tried again
+            assert C.writable_dir(root / "storage") is False  # the same root: no 2nd warning
+            assert C.write_atomic(root / "meshes" / "x.npz", b"data") is False
         assert len(got) == 1
 
 
@@ -48,7 +49,27 @@ def test_an_unwritable_folder_is_unusable(tmp_path: Path, monkeypatch: pytest.Mo
     monkeypatch.setenv("VOOT_CACHE", str(tmp_path))
     monkeypatch.setattr(tempfile, "mkstemp", refuse)
     with pytest.warns(CacheWarning, match="Permission denied.*VOOT_CACHE"):
-        assert not C.writable_dir(tmp_path / "meshes")
+        assert C.writable_dir(tmp_path / "meshes") is False
+
+
+def test_a_write_that_fails_leaves_nothing_and_says_so(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def broken(*args: object, **kwargs: object) -> None:
+        raise OSError(28, "No space left on device")
+
+    path = tmp_path / "f.bin"
+    assert C.writable_dir(tmp_path) is True
+    with monkeypatch.context() as mp:
+        mp.setattr(os, "replace", broken)
+        with pytest.warns(CacheWarning, match=r"could not write .*f\.bin .*No space left"):
+            assert C.write_atomic(path, b"data") is False
+    assert list(tmp_path.iterdir()) == []  # no file, no temporary
+    with monkeypatch.context() as mp:  # the folder takes files, but this one cannot start
+        mp.setattr(C, "writable_dir", lambda folder: True)
+        mp.setattr(tempfile, "mkstemp", broken)
+        assert C.write_atomic(path, b"data") is False
+    assert C.write_atomic(path, b"data") is True and path.read_bytes() == b"data"
 
 
 def test_write_atomic_writes_whole_files(tmp_path: Path) -> None:
@@ -72,6 +93,9 @@ def test_lru_memo_keeps_its_last_entries() -> None:
     assert sorted(memo) == [1, 3] and memo.get(2) is None and memo.get(2, "x") == "x"
     with pytest.raises(ValueError, match="size must be an integer >= 1"):
         LRUMemo(0)
+    one: LRUMemo[str, int] = LRUMemo(1)
+    one["a"], one["b"] = 1, 2
+    assert dict(one) == {"b": 2}
 
 
 @pytest.mark.parametrize("family", ["voot/GeneratedStorage-v0", "voot/GeneratedKitchen-v0"])

@@ -49,7 +49,9 @@ def test_rejected_attempts_are_counted_and_the_next_draw_kept() -> None:
     assert again.rejections == inst.rejections and again.witness == inst.witness
 
 
-def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
+def test_the_cache_round_trip_gives_the_same_instance(
+    cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     cold = SI.storage_instance(4, "medium")
     assert SI.storage_instance(4, "medium") is cold  # the process's memo
     record = json.loads((cache / "medium-4.json").read_text())
@@ -63,7 +65,13 @@ def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
     assert (cache / "medium-4.mjb.z").is_file()
     assert cache.name == f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
     SI.clear_memo()
-    warm = SI.storage_instance(4, "medium")
+
+    def no_generation(*args: object) -> None:
+        raise AssertionError("a warm cache must load, not generate")
+
+    with monkeypatch.context() as mp:
+        mp.setattr(SI, "generate_instance", no_generation)
+        warm = SI.storage_instance(4, "medium")
     assert warm is not cold
     assert warm.layout == cold.layout and warm.witness == cold.witness
     assert warm.rejections == cold.rejections and warm.xml_sha256 == cold.xml_sha256
