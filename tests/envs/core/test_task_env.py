@@ -112,6 +112,29 @@ def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> Non
     assert env.get_state() == start
 
 
+def test_a_fixed_scene_state_names_its_family_and_the_physics_bound() -> None:
+    from voot.envs.conveyor.env import ConveyorPackingEnv
+    from voot.envs.core.env import MAX_PHYSICS
+    from voot.envs.core.state import EnvState
+
+    for env, family in ((KitchenClearingEnv(), "kitchen"), (ConveyorPackingEnv(), "conveyor")):
+        env.reset(seed=0)
+        s = env.get_state()
+        assert s.scene is env.scene_identity
+        assert (s.scene.family, s.scene.version, s.scene.layout_seed) == (family, "", None)
+        for value, ok in ((MAX_PHYSICS, True), (-MAX_PHYSICS, True), (MAX_PHYSICS * 1.001, False)):
+            physics = s.physics.copy()
+            physics[0] = value  # the time: any value within the bound is a state
+            state = EnvState(**{**vars(s), "physics": physics})
+            if ok:
+                env.set_state(state)
+                assert env.get_state() == state
+            else:
+                with pytest.raises(ValueError, match=r"within \+-1e\+06"):
+                    env.set_state(state)
+        env.set_state(s)
+
+
 def test_plain_action_is_the_validated_action_or_none(kitchen: KitchenClearingEnv) -> None:
     a = np.linspace(-1.0, 1.0, kitchen.action_dim)
     assert kitchen._plain_action(a) is a
