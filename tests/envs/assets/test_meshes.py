@@ -273,3 +273,30 @@ def test_swapped_or_edited_mesh_files_are_rebuilt_naming_them(mesh_cache: Path) 
 
 def test_the_memory_caches_are_bounded() -> None:
     assert all(memo.size == M.MEMO_SIZE for memo in M.MEMORY_CACHES)
+
+
+def test_cached_arrays_come_from_the_disk_when_intact(mesh_cache: Path) -> None:
+    spec = ShapeSpec("crate", SIZES["crate"])
+    built = {"a": np.arange(3.0), "b": np.array([7], dtype=np.int64)}
+    calls = []
+
+    def build() -> dict[str, np.ndarray]:
+        calls.append(1)
+        return built
+
+    first, from_disk = M.cached_arrays(spec, "probe", build, ("a", "b"))
+    assert from_disk is False and len(calls) == 1 and first is built
+    again, from_disk = M.cached_arrays(spec, "probe", build, ("a", "b"))
+    assert from_disk is True and len(calls) == 1  # read back, not built
+    assert sorted(again) == ["a", "b"] and np.array_equal(again["a"], built["a"])
+    # a required array missing: rebuilt
+    _, from_disk = M.cached_arrays(spec, "probe", build, ("a", "b", "c"))
+    assert from_disk is False and len(calls) == 2
+    # a file with its key but no digest (or the reverse) is not served
+    path = mesh_cache / "meshes" / f"{spec.key}.probe.npz"
+    with np.load(path) as z:
+        members = {k: z[k] for k in z.files}
+    for drop in ("__key__", "__sha256__"):
+        np.savez(path, **{k: v for k, v in members.items() if k != drop})
+        _, from_disk = M.cached_arrays(spec, "probe", build)
+        assert from_disk is False
