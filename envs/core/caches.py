@@ -120,16 +120,14 @@ def write_atomic(path: Path, data: bytes) -> bool:
             os.fsync(f.fileno())
         os.replace(tmp, path)
     except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
         warnings.warn(
             f"voot cache: could not write {path} ({type(exc).__name__}: {exc}); kept in memory",
             CacheWarning,
             stacklevel=3,
         )
         return False
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    finally:
+        Path(tmp).unlink(missing_ok=True)  # a failed write's; renamed away after success
     return True
 
 
