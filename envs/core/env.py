@@ -432,8 +432,9 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
                 f"{size} numbers ({type(physics).__name__}), expected signature"
                 f" {self.STATE_SIGNATURE} and {self._state_size} numbers (a float64 array)"
             )
-        if not (np.abs(physics) <= MAX_PHYSICS).all():
-            bad = np.flatnonzero(~(np.abs(physics) <= MAX_PHYSICS))
+        within = np.abs(physics) <= MAX_PHYSICS  # False for NaN too
+        if not within.all():
+            bad = np.flatnonzero(~within)
             raise ValueError(
                 f"state.physics must be finite and within +-{MAX_PHYSICS:g}, got"
                 f" {float(physics[bad[0]])!r} at {bad.size} of its {physics.size} entries"
