@@ -11,20 +11,22 @@ and :func:`compile_scene` compiles a scene that includes ``robot.xml`` with them
 Cost: building a shape (sweep, hulls, mass properties, STL bytes and the grasp rays of
 :mod:`voot.envs.robot.mesh_grasp`) takes 14-45 ms of CPU; each spec's result is cached on disk
 (:func:`cache_dir`: ``$VOOT_CACHE`` or ``~/.cache/voot``, under ``meshes/``, keyed by a
-hash of the spec and :data:`GENERATOR_VERSION`, written atomically) and in the process.
+hash of the spec and :data:`GENERATOR_VERSION`, written atomically, each file checked
+against the spec it was made for and its digest before it is served:
+:mod:`voot.envs.core.caches`) and in the process (the last :data:`MEMO_SIZE` shapes).
 The measured figures are in docs/meshes.md (``voot-bench mesh-speed``).
 """
 
 from __future__ import annotations
 
-import os
+import io
 import struct
-import tempfile
 import zipfile
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -42,6 +44,7 @@ from voot.envs.assets.mesh_shapes import (
     built_shape,
 )
 from voot.envs.assets.mjcf import OBJECT_PREFIX, ROBOT_INCLUDE, collision_defaults
+from voot.envs.core.caches import LRUMemo, cache_dir, sha256, warn_rebuilt, write_atomic
 
 FloatArray = NDArray[np.float64]
 
@@ -49,6 +52,7 @@ __all__ = [
     "DENSITY",
     "GENERATOR_VERSION",
     "MEMORY_CACHES",
+    "MEMO_SIZE",
     "SHAPE_KINDS",
     "MeshShape",
     "ShapeSpec",
@@ -97,42 +101,69 @@ class _Entry:
     inertia: FloatArray
 
 
-def cache_dir() -> Path:
-    """The on-disk cache's folder: ``$VOOT_CACHE`` if set, else ``~/.cache/voot``."""
-    env = os.environ.get("VOOT_CACHE")
-    return Path(env) if env else Path.home() / ".cache" / "voot"
-
-
 def _mesh_dir() -> Path:
     return cache_dir() / "meshes"
 
 
-def _write_npz(path: Path, arrays: dict[str, np.ndarray]) -> None:
-    """Write ``arrays`` to ``path`` atomically: a temporary file, then a rename.
+def _arrays_digest(arrays: Mapping[str, np.ndarray]) -> str:
+    """SHA-256 of ``arrays``: each one's name, dtype, shape and bytes, by name."""
+    parts: list[bytes] = []
+    for name in sorted(arrays):
+        a = np.ascontiguousarray(arrays[name])
+        parts += [name.encode(), a.dtype.str.encode(), repr(a.shape).encode(), a.tobytes()]
+    return sha256(*parts)
 
-    Two processes building the same spec each write a complete file and the last rename
-    wins; a reader sees the old file, the new one or none, never half of one.
+
+def _cache_key(spec: ShapeSpec, tag: str) -> str:
+    """What a cache file holds, written in it and checked on reading: the spec (every
+    number exactly), the tag and the generator's version."""
+    size = ",".join(v.hex() for v in spec.size)
+    return f"{tag}|{spec.kind}|{size}|{spec.variant}|g{GENERATOR_VERSION}"
+
+
+def _write_npz(path: Path, arrays: dict[str, np.ndarray], key: str) -> None:
+    """Write ``arrays`` to ``path`` with their key and digest, atomically
+    (:func:`voot.envs.core.caches.write_atomic`); nothing if the cache is unusable."""
+    stored = dict(arrays)
+    stored[_KEY] = np.frombuffer(key.encode(), dtype=np.uint8)
+    stored[_DIGEST] = np.frombuffer(_arrays_digest(arrays).encode(), dtype=np.uint8)
+    buffer = io.BytesIO()
+    np.savez(buffer, **stored)  # type: ignore[arg-type]
+    write_atomic(path, buffer.getvalue())
+
+
+def _read_npz(path: Path, key: str) -> dict[str, np.ndarray] | None:
+    """The arrays of ``path`` if it holds those of ``key``, intact; else None.
+
+    A missing file is None silently (it is built); a file that cannot be read, that was
+    made for another key (swapped or copied in) or whose arrays do not match their
+    digest (edited) is None with a :class:`~voot.envs.core.caches.CacheWarning` naming
+    it (it is rebuilt and replaced). A file of the format before keys (no key inside) is
+    rebuilt silently.
     """
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            np.savez(f, **arrays)  # type: ignore[arg-type]
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _read_npz(path: Path) -> dict[str, np.ndarray] | None:
-    """The arrays of ``path``, or None if it is missing or unreadable (then rebuilt)."""
+    if not path.is_file():
+        return None
     try:
         with np.load(path, allow_pickle=False) as z:
-            return {k: z[k] for k in z.files}
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile):
+            got = {k: z[k] for k in z.files}
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+        warn_rebuilt(path, f"cannot be read ({type(exc).__name__})")
         return None
+    stored_key = got.pop(_KEY, None)
+    stored_digest = got.pop(_DIGEST, None)
+    if stored_key is None or stored_digest is None:
+        return None  # written before files carried their key: rebuilt
+    if stored_key.tobytes() != key.encode():
+        warn_rebuilt(path, f"holds {stored_key.tobytes().decode(errors='replace')!r}, not {key!r}")
+        return None
+    if stored_digest.tobytes() != _arrays_digest(got).encode():
+        warn_rebuilt(path, "does not match its digest (edited)")
+        return None
+    return got
+
+
+#: The names of a cache file's key and digest members.
+_KEY, _DIGEST = "__key__", "__sha256__"
 
 
 def cached_arrays(
@@ -143,23 +174,31 @@ def cached_arrays(
 ) -> tuple[dict[str, np.ndarray], bool]:
     """The arrays ``build`` makes for ``spec``, from the disk cache if there.
 
-    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically). A
-    file that cannot be read, or lacks one of the ``required`` arrays, is rebuilt and
-    replaced. Returns the arrays and whether they came from the disk.
+    Stored as ``meshes/<key>.<tag>.npz`` under :func:`cache_dir` (written atomically),
+    with the spec and tag they were made for and their digest. A file that cannot be
+    read, was made for another spec or tag, was edited, or lacks one of the ``required``
+    arrays is rebuilt and replaced (with a warning naming it). If the cache folder is
+    unusable the arrays are built and not written (one warning names ``VOOT_CACHE``).
+    Returns the arrays and whether they came from the disk.
     """
     path = _mesh_dir() / f"{spec.key}.{tag}.npz"
-    got = _read_npz(path)
+    key = _cache_key(spec, tag)
+    got = _read_npz(path, key)
     if got is not None and all(k in got for k in required):
         return got, True
     arrays = build()
-    _write_npz(path, arrays)
+    _write_npz(path, arrays, key)
     return arrays, False
 
 
-_MEMORY: dict[ShapeSpec, _Entry] = {}
+#: The most shapes whose files and inertials this process keeps (each is tens of kB; a
+#: generated layout brings new shapes, so the memo is bounded).
+MEMO_SIZE = 512
+
+_MEMORY: LRUMemo[ShapeSpec, _Entry] = LRUMemo(MEMO_SIZE)
 #: Every in-process cache of per-spec results (this module's and the grasp sets' of
 #: :mod:`voot.envs.robot.mesh_grasp`, which adds its own): :func:`clear_memory_cache` empties them.
-MEMORY_CACHES: list[dict[ShapeSpec, object]] = [_MEMORY]  # type: ignore[list-item]
+MEMORY_CACHES: list[LRUMemo[ShapeSpec, Any]] = [_MEMORY]
 
 
 def clear_memory_cache() -> None:

@@ -51,17 +51,19 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
+from voot.envs.core.arguments import check_render
 from voot.envs.core.metrics import Distance
 from voot.envs.core.names import Operator
 from voot.envs.core.rendering import CAMERAS, RENDER_MODES, new_renderer
 from voot.envs.core.scene import (
     load_model,
+    model_digest,
     movable_objects,
     object_footprint,
     object_pose,
     static_footprints,
 )
-from voot.envs.core.state import EnvState, StepTiming, TaskT
+from voot.envs.core.state import EnvState, SceneIdentity, StepTiming, TaskT
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, Box2D
 from voot.envs.robot.arm_ik import ArmIK, IKConfig
 from voot.envs.robot.collision import CollisionChecker
@@ -69,6 +71,12 @@ from voot.envs.robot.model import TUCK, Robot
 from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
+
+
+#: The largest magnitude a snapshot's physics entry may have (metres, radians, their
+#: rates, seconds): a state beyond it is no state a step reaches (the scenes span tens of
+#: metres), and squaring 1e300 overflows in the next step's checks. ``set_state`` refuses it.
+MAX_PHYSICS = 1e6
 
 
 class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
@@ -113,19 +121,7 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         render_camera: str = "perspective",
         render_size: tuple[int, int] = (640, 480),
     ) -> None:
-        if render_mode is not None and render_mode not in RENDER_MODES:
-            raise ValueError(
-                f"render_mode must be None or one of {', '.join(RENDER_MODES)}; got {render_mode!r}"
-            )
-        if render_camera not in CAMERAS:
-            raise ValueError(
-                f"render_camera must be one of {', '.join(CAMERAS)}; got {render_camera!r}"
-            )
-        w, h = (int(v) for v in render_size)
-        if not (16 <= w <= 1280 and 16 <= h <= 960):
-            raise ValueError(
-                f"render_size must be (width, height) within 16..1280 x 16..960, got {render_size}"
-            )
+        render_mode, render_camera, (w, h) = check_render(render_mode, render_camera, render_size)
         self.render_mode = render_mode
         self.render_camera = render_camera
         self.render_size = (w, h)
@@ -153,6 +149,8 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         self.task: TaskT = self._initial_task()
         #: The class of this env's task record: what a snapshot's ``task`` must be.
         self._task_type: type = type(self.task)
+        #: What this env's snapshots belong to: ``set_state`` takes no other's.
+        self.scene_identity: SceneIdentity = self._scene_identity()
 
     def __getstate__(self) -> dict[str, Any]:
         """The env for :mod:`pickle` and :func:`copy.deepcopy`: a copy steps as the env.
@@ -170,6 +168,16 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         return state
 
     # ----- to implement --------------------------------------------------------------------
+    def _scene_identity(self) -> SceneIdentity:
+        """The identity of this env's scene (a generated family adds its layout)."""
+        return SceneIdentity(
+            family=self.family or type(self).__name__,
+            version="",
+            layout_seed=None,
+            difficulty=None,
+            digest=model_digest(self.model),
+        )
+
     def _initial_task(self) -> TaskT:
         raise NotImplementedError
 
@@ -358,7 +366,9 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         physics = np.empty(self._state_size)
         mujoco.mj_getState(self.model, self.data, physics, self.STATE_SIGNATURE)
         physics.setflags(write=False)
-        return EnvState(physics, self.STATE_SIGNATURE, self.task, self._rng_snapshot())
+        return EnvState(
+            physics, self.STATE_SIGNATURE, self.task, self._rng_snapshot(), self.scene_identity
+        )
 
     def _rng_snapshot(self) -> Mapping[str, Any]:
         """The generator's state for a snapshot, shared with the last one if unchanged.
@@ -382,9 +392,13 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
     def set_state(self, state: EnvState[TaskT]) -> None:
         """Return to the snapshot ``state`` exactly, or raise and change nothing.
 
-        The whole snapshot is checked before anything is applied: an :class:`EnvState`,
-        physics of this env's signature and size, all finite (a NaN would otherwise
-        surface deep in the base planner, or as a NaN observation), a task record of this
+        The whole snapshot is checked before anything is applied: an :class:`EnvState`
+        of this env's scene (its :class:`~voot.envs.core.state.SceneIdentity` equal to
+        :attr:`scene_identity`: the same family, version, layout, level and compiled
+        scene; a state of another layout with as many objects is refused, the message
+        naming both), physics of this env's signature and size, all finite and within
+        :data:`MAX_PHYSICS` (a NaN would otherwise surface deep in the base planner, or
+        as a NaN observation; a 1e300 overflows the next step), a task record of this
         env's class (not None, not the other environment's) whose contents this env can
         reach (:meth:`_task_error`: a known operator, object indices in range; checked
         once per record, which is immutable), and a generator state that this env's bit
@@ -397,6 +411,13 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
         if not isinstance(state, EnvState):
             raise ValueError(
                 f"state must be an EnvState from get_state(), got {type(state).__name__}"
+            )
+        scene = state.scene
+        if scene is not self.scene_identity and scene != self.scene_identity:
+            raise ValueError(
+                "state belongs to another scene: it was made by"
+                f" {scene or 'no env (it carries no scene identity)'}, this env is"
+                f" {self.scene_identity}; the env is unchanged"
             )
         physics = state.physics
         if (
@@ -411,11 +432,13 @@ class ManipulationEnv(gym.Env[FloatArray, FloatArray], Generic[TaskT]):
                 f"{size} numbers ({type(physics).__name__}), expected signature"
                 f" {self.STATE_SIGNATURE} and {self._state_size} numbers (a float64 array)"
             )
-        if not np.isfinite(physics).all():
-            bad = np.flatnonzero(~np.isfinite(physics))
+        within = np.abs(physics) <= MAX_PHYSICS  # False for NaN too
+        if not within.all():
+            bad = np.flatnonzero(~within)
             raise ValueError(
-                f"state.physics must be finite, got {float(physics[bad[0]])!r} at {bad.size} of its"
-                f" {physics.size} entries (first: index {int(bad[0])})"
+                f"state.physics must be finite and within +-{MAX_PHYSICS:g}, got"
+                f" {float(physics[bad[0]])!r} at {bad.size} of its {physics.size} entries"
+                f" (first: index {int(bad[0])}); the env is unchanged"
             )
         if type(state.task) is not self._task_type:
             raise ValueError(

@@ -41,14 +41,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from voot import validation as V
-from voot.envs.core.generation import (
-    PROTOCOL_SPLIT,
-    LayoutSplit,
+from voot.envs.core.arguments import (
+    check_difficulty,
     check_layout_seed,
-    parse_difficulty,
+    check_render,
+    check_split,
 )
 from voot.envs.core.names import Difficulty, Split
 from voot.envs.core.rendering import RenderOptions
+from voot.envs.core.scene import model_digest
+from voot.envs.core.splits import PROTOCOL_SPLIT, LayoutSplit
+from voot.envs.core.state import SceneIdentity
 
 __all__ = ["RESET_OPTIONS", "LayoutFamily"]
 
@@ -81,8 +84,12 @@ class LayoutFamily:
     LEVELS: ClassVar[Collection[Difficulty]]
     #: The family's split of layout seeds (the protocol's).
     LAYOUT_SPLIT: ClassVar[LayoutSplit] = PROTOCOL_SPLIT
+    #: The version of the family's generator (part of every state's identity).
+    GENERATOR_VERSION: ClassVar[int]
 
     # set by the scene env this is mixed into
+    family: ClassVar[str]
+    model: Any
     objects: Any
     observation_space: Any
     action_space: Any
@@ -99,39 +106,53 @@ class LayoutFamily:
         split: str | None = None,
         **options: Any,
     ) -> None:
-        """Check the arguments and build the env on its first layout: ``layout_seed``
+        """Check every argument, then build the env on its first layout: ``layout_seed``
         (default: 0, or the split's first layout in split mode). ``options`` (the env's
-        config keywords, checked first by :meth:`_take_options`) and the render
-        arguments are kept for every layout the env is built on."""
+        config keywords, checked by :meth:`_take_options`) and the render arguments are
+        kept for every layout the env is built on.
+
+        Every argument is checked (:mod:`voot.envs.core.arguments`) before any layout is
+        generated, looked up in a cache or written to one: a refused call changes nothing.
+        """
         options = dict(options)
-        self._take_options(options)  # before the (costly) generation
-        self._options: dict[str, Any] = options
-        self._render = RenderOptions(
-            render_mode=render_mode, render_camera=render_camera, render_size=render_size
-        )
-        self.split: Split | None = (
-            None if split is None else V.choice(Split, split, "split", "splits")
-        )
+        level = check_difficulty(difficulty, self.LEVELS)
+        self.split: Split | None = check_split(split)
         self._split_seeds: tuple[int, ...] = (
             () if self.split is None else self.LAYOUT_SPLIT.seeds(self.split)
         )
-        self._split_rng: np.random.Generator | None = None
-        level = parse_difficulty(difficulty, self.LEVELS)
         if layout_seed is None:
             seed = self._split_seeds[0] if self._split_seeds else 0
         else:
             seed = self._split_layout(layout_seed)
+        mode, camera, size = check_render(render_mode, render_camera, render_size)
+        self._take_options(options)  # before the (costly, cached) generation
+        self._options: dict[str, Any] = options
+        self._render = RenderOptions(render_mode=mode, render_camera=camera, render_size=size)
+        self._split_rng: np.random.Generator | None = None
         self._build(seed, level)
 
     # ----- to implement --------------------------------------------------------------------
     def _take_options(self, options: dict[str, Any]) -> None:
         """Check the env's keywords (a ValueError names a refused one) and take out those
-        the family reads itself; the rest are config fields."""
+        the family reads itself; the rest are config fields. Called before any layout is
+        generated: it must check every keyword without one (a config built without the
+        layout's fields)."""
 
     def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         """(Re)build the env on the accepted instance of ``(layout_seed, difficulty)``, as
         the family's ``__init__`` builds it (with ``self._options`` and ``self._render``)."""
         raise NotImplementedError
+
+    def _scene_identity(self) -> SceneIdentity:
+        """The scene env's identity with the layout's seed and level and the generator's
+        version: a state of another layout is refused even where its sizes fit."""
+        return SceneIdentity(
+            family=self.family or type(self).__name__,
+            version=f"generator-{self.GENERATOR_VERSION}",
+            layout_seed=int(self.layout.layout_seed),
+            difficulty=str(self.layout.difficulty),
+            digest=model_digest(self.model),
+        )
 
     def _split_layout(self, layout_seed: object) -> int:
         """``layout_seed`` checked (and, in split mode, one of the split's)."""
@@ -207,7 +228,7 @@ class LayoutFamily:
             raise ValueError(
                 f"reset takes the options {', '.join(RESET_OPTIONS)}; got {', '.join(unknown)}"
             )
-        level = parse_difficulty(options.get("difficulty", self.difficulty), self.LEVELS)
+        level = check_difficulty(options.get("difficulty", self.difficulty), self.LEVELS)
         if "layout_seed" in options:
             return self._split_layout(options["layout_seed"]), level
         if not self._split_seeds:

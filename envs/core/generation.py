@@ -10,7 +10,7 @@ frozen record drawn from ``(layout_seed, difficulty, attempt)``, pure numpy) ->
 common parts:
 
 * :func:`parse_difficulty` and :func:`check_layout_seed`: the two arguments, checked
-  the same way in both families (an error names the valid levels);
+  the same way in both families (:mod:`voot.envs.core.arguments`, re-exported here);
 * :func:`level_table`: a family's levels from a table of each field's value per level;
 * :func:`first_accepted`: draw attempts 0, 1, ... of a seed until one is accepted, and
   keep why the others were rejected (:class:`Rejection`);
@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any, Generic, NamedTuple, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
-from voot import validation as V
+from voot.envs.core.arguments import check_difficulty, check_layout_seed
 from voot.envs.core.names import Difficulty
 from voot.envs.core.splits import HELDOUT_LAYOUTS, PROTOCOL_SPLIT, TRAINING_LAYOUTS, LayoutSplit
 
@@ -70,20 +70,12 @@ T = TypeVar("T")
 
 
 def parse_difficulty(difficulty: object, levels: Collection[Difficulty]) -> Difficulty:
-    """``difficulty`` (a :class:`Difficulty` or its string) as one of ``levels``.
+    """``difficulty`` as one of ``levels``: :func:`voot.envs.core.arguments.check_difficulty`.
 
     Raises:
-        ValueError: Not one of ``levels`` (the message names them).
+        ValueError: Not one of ``levels`` by its exact name (the message names them).
     """
-    try:
-        level = Difficulty(difficulty)  # type: ignore[arg-type]
-    except (ValueError, TypeError):
-        level = None
-    if level is None or level not in levels:
-        raise ValueError(
-            f"unknown difficulty {difficulty!r}; valid levels are: {', '.join(levels)}"
-        )
-    return level
+    return check_difficulty(difficulty, levels)
 
 
 def level_table(
@@ -108,11 +100,6 @@ def level_table(
             for k, d in enumerate(levels)
         }
     )
-
-
-def check_layout_seed(layout_seed: object) -> int:
-    """``layout_seed`` as an ``int`` in ``[0, 2**63)`` (a ValueError otherwise)."""
-    return V.integer(layout_seed, "layout_seed", 0, 2**63 - 1)
 
 
 class Rejection(NamedTuple):

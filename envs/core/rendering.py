@@ -21,10 +21,8 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike
 
-#: Cameras every scene defines, for ``render_camera``.
-CAMERAS = ("perspective", "top_down")
-#: Render modes.
-RENDER_MODES = ("rgb_array",)
+from voot.envs.core.arguments import CAMERAS as CAMERAS  # the cameras, checked there
+from voot.envs.core.arguments import RENDER_MODES as RENDER_MODES
 
 
 class RenderOptions(TypedDict, total=False):

@@ -10,7 +10,9 @@ compiled :class:`mujoco.MjModel` into what the task layer needs:
   free-joint address, its geoms, and its footprint rectangle in its own frame;
 * :func:`object_footprint`: that rectangle at the object's current pose;
 * :func:`object_pose` and :func:`set_object_pose`: an object's ``(x, y, z, yaw)``
-  read from and written to its free joint's ``qpos``.
+  read from and written to its free joint's ``qpos``;
+* :func:`model_digest`: a hash of the compiled scene, part of every snapshot's identity
+  (:class:`voot.envs.core.state.SceneIdentity`).
 
 The conventions it reads (collision bits, the ``obj_`` prefix) are the MJCF writers'
 (:mod:`voot.envs.assets.mjcf`); tests of a footprint against a region are
@@ -24,6 +26,7 @@ around its vertices.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
 from importlib import resources
@@ -37,6 +40,7 @@ from voot.envs.assets.mjcf import OBJECT_BIT, OBJECT_PREFIX, ROBOT_BIT, SCENE_BI
 from voot.envs.motion.planar import Box2D
 
 __all__ = [
+    "DIGEST_FIELDS",
     "OBJECT_BIT",
     "OBJECT_PREFIX",
     "ROBOT_BIT",
@@ -44,6 +48,7 @@ __all__ = [
     "SCENE_BIT",
     "ObjectInfo",
     "load_model",
+    "model_digest",
     "model_path",
     "movable_objects",
     "object_footprint",
@@ -74,6 +79,41 @@ def model_path(scene: str) -> Path:
 def load_model(scene: str) -> mujoco.MjModel:
     """Compile the scene ``scene`` (one of :data:`SCENES`)."""
     return mujoco.MjModel.from_xml_path(str(model_path(scene)))
+
+
+#: The compiled model's fields :func:`model_digest` hashes: the sizes, the bodies' tree and
+#: placement, the joints, the geoms' shapes and placement, the meshes. Not the collision
+#: filters (an env may change them) nor colours and cameras (they change no state).
+DIGEST_FIELDS = (
+    "body_parentid",
+    "body_pos",
+    "body_quat",
+    "body_mass",
+    "jnt_type",
+    "jnt_bodyid",
+    "geom_type",
+    "geom_bodyid",
+    "geom_dataid",
+    "geom_size",
+    "geom_pos",
+    "geom_quat",
+    "mesh_vert",
+    "mesh_face",
+)
+
+
+def model_digest(model: mujoco.MjModel) -> str:
+    """A hash (hex BLAKE2b, 128 bits) of a compiled scene's geometry (:data:`DIGEST_FIELDS`).
+
+    Equal for the same scene compiled in any process; different for another layout (its
+    walls, objects or meshes). Costs about a millisecond (the meshes' vertices dominate).
+    """
+    h = hashlib.blake2b(digest_size=16)
+    h.update(np.array([model.nq, model.nv, model.na, model.nbody], dtype=np.int64).tobytes())
+    for name in DIGEST_FIELDS:
+        h.update(name.encode())
+        h.update(np.ascontiguousarray(getattr(model, name)).tobytes())
+    return h.hexdigest()
 
 
 def yaw_of_quat(quat: FloatArray) -> float:

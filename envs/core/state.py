@@ -1,7 +1,8 @@
 """The values an env's state is made of: snapshots, task records, step timings.
 
 :class:`EnvState` is the immutable snapshot :meth:`~voot.envs.core.env.ManipulationEnv.get_state`
-returns (physics, task record, generator state); :class:`StepTiming` the seconds a step
+returns (physics, task record, generator state, and the :class:`SceneIdentity` of the scene
+that produced it); :class:`StepTiming` the seconds a step
 spent in its checks. The task records themselves are each env's own frozen dataclasses
 (:class:`voot.envs.kitchen.task.KitchenTask`, :class:`voot.envs.conveyor.env.ConveyorTask`);
 what they share lives here: :func:`replace`, a cheap copy with changes (the envs replace
@@ -118,6 +119,41 @@ def pose_tuple(pose: ArrayLike) -> tuple[float, float, float]:
 TaskT = TypeVar("TaskT")
 
 
+@dataclass(frozen=True)
+class SceneIdentity:
+    """What produced a snapshot: the scene a state belongs to (and only to).
+
+    Two envs take each other's states iff their identities are equal: the same family,
+    version, layout, level and compiled scene. A state of another layout with as many
+    objects has a physics vector of the right size, and would otherwise be accepted.
+
+    Attributes:
+        family: The env's family (``"kitchen"``, ``"conveyor"``; its class name if it
+            declares none).
+        version: The scene's version: a generated family's generator version
+            (``"generator-1"``), ``""`` for a fixed scene (its v0 and v1 share it: a
+            version's rules change what a step does, not what a state is).
+        layout_seed: The generated layout's seed (None: a fixed scene).
+        difficulty: The generated layout's level (None: a fixed scene).
+        digest: A hash of the compiled scene (:func:`voot.envs.core.scene.model_digest`).
+    """
+
+    family: str
+    version: str
+    layout_seed: int | None
+    difficulty: str | None
+    digest: str
+
+    def __str__(self) -> str:
+        where = (
+            "fixed scene"
+            if self.layout_seed is None
+            else (f"layout_seed={self.layout_seed}, difficulty={self.difficulty}")
+        )
+        version = f" {self.version}" if self.version else ""
+        return f"{self.family}{version} ({where}, scene {self.digest[:12]})"
+
+
 @dataclass(frozen=True, eq=False)
 class EnvState(Generic[TaskT]):
     """An immutable snapshot of a :class:`ManipulationEnv`.
@@ -127,12 +163,16 @@ class EnvState(Generic[TaskT]):
         signature: Its ``mjtState`` signature (``mjSTATE_INTEGRATION``).
         task: The task's progress (an immutable dataclass of the environment).
         rng_state: The env's ``np_random`` bit-generator state.
+        scene: The identity of the scene that produced it (:class:`SceneIdentity`);
+            ``set_state`` refuses a state of another (None: a state made by hand, which
+            no env takes).
     """
 
     physics: FloatArray
     signature: int
     task: TaskT
     rng_state: Mapping[str, Any]
+    scene: SceneIdentity | None = None
 
     def __eq__(self, other: object) -> bool:
         return (
@@ -141,6 +181,7 @@ class EnvState(Generic[TaskT]):
             and np.array_equal(self.physics, other.physics)
             and self.task == other.task
             and self.rng_state == other.rng_state
+            and self.scene == other.scene
         )
 
     __hash__ = None  # type: ignore[assignment]
@@ -153,7 +194,11 @@ class EnvState(Generic[TaskT]):
         """
         out: EnvState[TaskT] = object.__new__(EnvState)
         out.__dict__.update(
-            physics=self.physics, signature=self.signature, task=task, rng_state=self.rng_state
+            physics=self.physics,
+            signature=self.signature,
+            task=task,
+            rng_state=self.rng_state,
+            scene=self.scene,
         )
         return out
 

@@ -39,7 +39,14 @@ import numpy as np
 import trimesh
 from numpy.typing import ArrayLike, NDArray
 
-from voot.envs.assets.meshes import MEMORY_CACHES, ShapeSpec, built_shape, cached_arrays
+from voot.envs.assets.meshes import (
+    MEMO_SIZE,
+    MEMORY_CACHES,
+    ShapeSpec,
+    built_shape,
+    cached_arrays,
+)
+from voot.envs.core.caches import LRUMemo
 from voot.envs.core.scene import ObjectInfo
 from voot.envs.robot.grasp import GraspPose, side_grasp
 
@@ -225,8 +232,8 @@ def _build_arrays(spec: ShapeSpec) -> dict[str, np.ndarray]:
     return {"depth": depth, "normal": normal, "box": np.array(mesh.extents, dtype=np.float64)}
 
 
-_MEMORY: dict[ShapeSpec, MeshGraspSet] = {}
-MEMORY_CACHES.append(_MEMORY)  # type: ignore[arg-type]
+_MEMORY: LRUMemo[ShapeSpec, MeshGraspSet] = LRUMemo(MEMO_SIZE)
+MEMORY_CACHES.append(_MEMORY)
 
 
 def grasp_set(spec: ShapeSpec) -> MeshGraspSet:

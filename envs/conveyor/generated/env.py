@@ -30,15 +30,17 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from voot.envs.conveyor.env import conveyor_config
 from voot.envs.conveyor.generated.instance import (
+    LAYOUT_FIELDS,
     SceneConveyorEnv,
     layout_config,
     storage_instance,
 )
-from voot.envs.conveyor.generated.layout import DIFFICULTIES, StorageLayout
+from voot.envs.conveyor.generated.layout import DIFFICULTIES, GENERATOR_VERSION, StorageLayout
 from voot.envs.conveyor.generated.witness import Witness
 from voot.envs.core.family import LayoutFamily
-from voot.envs.core.generation import Rejection, witness_arrays
+from voot.envs.core.generation import Rejection, reject_layout_fields, witness_arrays
 from voot.envs.core.names import Difficulty
 
 __all__ = ["MAX_OBJECTS", "ConveyorFamilyEnv", "witness_return"]
@@ -77,6 +79,7 @@ class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
     OBJECT_FIELDS = 5
     TAIL = 2
     LEVELS = tuple(DIFFICULTIES)
+    GENERATOR_VERSION = GENERATOR_VERSION
 
     def _take_options(self, options: dict[str, Any]) -> None:
         for name in ("config", "preset"):
@@ -85,6 +88,10 @@ class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
                     f"voot/GeneratedStorage-v0 takes no {name!r}: its config is v1's on the"
                     " generated layout (pass ConveyorConfig fields as keywords)"
                 )
+        # every keyword checked now, before any layout is generated or cached (the
+        # layout's own fields are no option)
+        reject_layout_fields(options, LAYOUT_FIELDS)
+        conveyor_config("v1", **options)
 
     def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         instance = storage_instance(layout_seed, difficulty)

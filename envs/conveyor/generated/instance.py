@@ -16,22 +16,25 @@ compiled model is stored in MuJoCo's binary format, which is version specific): 
 record (the attempt, the rejections, the witness, a hash of the scene's MJCF) and the
 model (``.mjb.z``: MuJoCo's binary model, zlib-compressed: its procedural textures make
 2.8 MB of an uncompressed file, about 45 kB compressed). A cached instance loads without
-generating, compiling or searching;
-its record is used only if the hash matches the scene the generator writes for that
-attempt, else it is regenerated. The folder is under voot's cache
-(:func:`voot.envs.assets.meshes.cache_dir`: ``$VOOT_CACHE``, else ``~/.cache/voot``), beside the
-meshes' cache; if it cannot be written the instance is still made (and kept in the
-process). Files are written atomically (a temporary file
-renamed), so concurrent processes can share the cache.
+generating, compiling or searching, and only if it is the one made for the key asked
+(:func:`_load`): the record names its key and carries a hash of its own contents and of
+the model file, and its scene hash must match the scene the generator writes for that
+attempt; a foreign, swapped or edited file is regenerated and replaced, with one
+:class:`~voot.envs.core.caches.CacheWarning` naming it. The folder is under voot's cache
+(:func:`voot.envs.core.caches.cache_dir`: ``$VOOT_CACHE``, else ``~/.cache/voot``), beside
+the meshes' cache; if it cannot be written (``$VOOT_CACHE`` a file, a path under a file, a
+read-only folder) the instance is still made and kept in the process, with one warning
+naming ``VOOT_CACHE``. Files are written atomically (a temporary file renamed), so
+concurrent processes can share the cache. The process keeps the last
+:data:`STORAGE_CACHE_SIZE` instances (:data:`INSTANCES`).
 """
 
 from __future__ import annotations
 
 import copy
 import json
-import os
-import tempfile
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Unpack
@@ -39,7 +42,6 @@ from typing import Any, Unpack
 import mujoco
 import numpy as np
 
-from voot.envs.assets.meshes import cache_dir as voot_cache_dir
 from voot.envs.assets.mjcf import mjcf_sha256
 from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv, conveyor_config
 from voot.envs.conveyor.generated.layout import (
@@ -50,6 +52,8 @@ from voot.envs.conveyor.generated.layout import (
 )
 from voot.envs.conveyor.generated.scene import compile_storage_scene, storage_xml
 from voot.envs.conveyor.generated.witness import Witness, find_witness
+from voot.envs.core.caches import cache_dir as voot_cache_dir
+from voot.envs.core.caches import sha256, warn_rebuilt, write_atomic
 from voot.envs.core.generation import (
     GeneratedInstance,
     InstanceCache,
@@ -123,8 +127,15 @@ def cache_dir() -> Path:
     return voot_cache_dir() / f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
 
 
+#: Storage instances kept per process (the least recently used one is forgotten past
+#: this: an instance holds its compiled model, about 3.5 MB with its textures; 48 keep
+#: the protocol's 40 split layouts). Measured: docs/environments.md.
+STORAGE_CACHE_SIZE = 48
+
 #: The instances made or loaded in this process, by ``(layout_seed, difficulty)``.
-INSTANCES: InstanceCache[tuple[int, Difficulty], StorageInstance] = InstanceCache(None)
+INSTANCES: InstanceCache[tuple[int, Difficulty], StorageInstance] = InstanceCache(
+    STORAGE_CACHE_SIZE
+)
 
 
 def clear_memo() -> None:
@@ -180,48 +191,88 @@ def _paths(layout_seed: int, difficulty: str) -> tuple[Path, Path]:
     return stem.with_suffix(".json"), stem.with_suffix(".mjb.z")
 
 
+#: The format of the cache's records: a record of another format is regenerated silently.
+RECORD_FORMAT = 2
+
+
+def _key(layout_seed: int, difficulty: str) -> dict[str, Any]:
+    """What a cached instance was made for (written in its record, checked on loading)."""
+    return {
+        "layout_seed": int(layout_seed),
+        "difficulty": str(difficulty),
+        "generator_version": GENERATOR_VERSION,
+        "mujoco": mujoco.__version__,
+    }
+
+
+def _record_sha256(record: Mapping[str, Any]) -> str:
+    """SHA-256 of a record's canonical JSON, without its own ``record_sha256``."""
+    body = {k: v for k, v in record.items() if k != "record_sha256"}
+    return sha256(json.dumps(body, sort_keys=True).encode())
+
+
 def _load(layout_seed: int, difficulty: str) -> StorageInstance | None:
-    """The cached instance, or None (missing, unreadable, or not this generator's)."""
+    """The cached instance of ``(layout_seed, difficulty)``, or None (then regenerated).
+
+    Missing files, or a record of an older format, are None silently. Otherwise the
+    record must be the one written for this key (its key, the hash of its own contents:
+    an edited witness is refused), its scene hash the scene the generator writes for that
+    key and attempt, and the model file the one written with it (its SHA-256 in the
+    record: another layout's model copied over it is refused); a file that fails a check
+    or cannot be read is None with one :class:`~voot.envs.core.caches.CacheWarning`
+    naming it.
+    """
     record_path, model_path = _paths(layout_seed, difficulty)
+    if not record_path.is_file():
+        return None
     try:
         record = json.loads(record_path.read_text())
+        if not isinstance(record, dict) or record.get("format") != RECORD_FORMAT:
+            return None  # an older record: regenerated and replaced
+        if record.get("record_sha256") != _record_sha256(record):
+            warn_rebuilt(record_path, "does not match its digest (edited)")
+            return None
+        if record.get("key") != _key(layout_seed, difficulty):
+            warn_rebuilt(
+                record_path,
+                f"was made for {record.get('key')}, not {_key(layout_seed, difficulty)}",
+            )
+            return None
         layout = generate_storage_layout(layout_seed, difficulty, int(record["attempt"]))
         sha = mjcf_sha256(storage_xml(layout))
         if record["xml_sha256"] != sha:
+            warn_rebuilt(record_path, "records another scene than this layout's")
             return None
         blob = zlib.decompress(model_path.read_bytes())
+        if sha256(blob) != record["model_sha256"]:
+            warn_rebuilt(model_path, "is not the model its record was written with")
+            return None
         model = mujoco.MjModel.from_binary_path("model.mjb", {"model.mjb": blob})
         witness = Witness.from_json(record["witness"])
         rejections = tuple(Rejection(int(k), str(why)) for k, why in record["rejections"])
-    except (OSError, ValueError, KeyError, TypeError, zlib.error):
+    except (OSError, ValueError, KeyError, TypeError, zlib.error) as exc:
+        warn_rebuilt(record_path, f"or its model cannot be read ({type(exc).__name__})")
         return None
     return StorageInstance(layout, model, witness, rejections, sha)
 
 
 def _store(instance: StorageInstance) -> None:
-    """Write ``instance`` to the disk cache (atomically); silently skipped if impossible."""
+    """Write ``instance`` to the disk cache (atomically, the model first); skipped (one
+    warning naming ``VOOT_CACHE``) if the folder is unusable."""
     layout = instance.layout
     record_path, model_path = _paths(layout.layout_seed, layout.difficulty)
-    record = {
-        "layout_seed": layout.layout_seed,
-        "difficulty": layout.difficulty,
-        "generator_version": GENERATOR_VERSION,
+    buffer = np.zeros(mujoco.mj_sizeModel(instance.model), dtype=np.uint8)
+    mujoco.mj_saveModel(instance.model, None, buffer)
+    blob = buffer.tobytes()
+    record: dict[str, Any] = {
+        "format": RECORD_FORMAT,
+        "key": _key(layout.layout_seed, layout.difficulty),
         "attempt": layout.attempt,
         "rejections": [list(r) for r in instance.rejections],
         "witness": instance.witness.to_json(),
         "xml_sha256": instance.xml_sha256,
+        "model_sha256": sha256(blob),
     }
-    try:
-        record_path.parent.mkdir(parents=True, exist_ok=True)
-        buffer = np.zeros(mujoco.mj_sizeModel(instance.model), dtype=np.uint8)
-        mujoco.mj_saveModel(instance.model, None, buffer)
-        fd, tmp = tempfile.mkstemp(dir=record_path.parent, suffix=".mjb.tmp")
-        with os.fdopen(fd, "wb") as f:
-            f.write(zlib.compress(buffer.tobytes(), 6))
-        os.replace(tmp, model_path)
-        fd, tmp = tempfile.mkstemp(dir=record_path.parent, suffix=".json.tmp")
-        with os.fdopen(fd, "w") as f:
-            json.dump(record, f, sort_keys=True)
-        os.replace(tmp, record_path)
-    except OSError:  # pragma: no cover - a read-only home: the instance stays in memory
-        return
+    record["record_sha256"] = _record_sha256(record)
+    if write_atomic(model_path, zlib.compress(blob, 6)):
+        write_atomic(record_path, json.dumps(record, sort_keys=True).encode())

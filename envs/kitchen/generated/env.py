@@ -33,14 +33,15 @@ from numpy.typing import NDArray
 from voot.envs.core.family import LayoutFamily
 from voot.envs.core.generation import reject_layout_fields, witness_arrays
 from voot.envs.core.names import Difficulty
-from voot.envs.kitchen.config import KitchenConfig
+from voot.envs.core.presets import env_config
+from voot.envs.kitchen.config import KITCHEN_PRESETS, KitchenConfig
 from voot.envs.kitchen.generated.instance import (
     LAYOUT_FIELDS,
     SceneKitchenEnv,
     generated_kitchen,
     kitchen_config,
 )
-from voot.envs.kitchen.generated.layout import DIFFICULTIES
+from voot.envs.kitchen.generated.layout import DIFFICULTIES, GENERATOR_VERSION
 
 __all__ = ["MAX_OBJECTS", "GeneratedKitchenEnv"]
 
@@ -73,10 +74,14 @@ class GeneratedKitchenEnv(LayoutFamily, SceneKitchenEnv):
     OBJECT_FIELDS = 6
     TAIL = 3
     LEVELS = tuple(DIFFICULTIES)
+    GENERATOR_VERSION = GENERATOR_VERSION
 
     def _take_options(self, options: dict[str, Any]) -> None:
         reject_layout_fields(options, LAYOUT_FIELDS)
         self._config: KitchenConfig | None = options.pop("config", None)
+        # the whole config checked now, before any kitchen is generated or cached: the
+        # layout's fields, set later, are no option
+        env_config(KitchenConfig, KITCHEN_PRESETS, self._config, "v1", options)
 
     def _load_layout(self, layout_seed: int, difficulty: Difficulty) -> None:
         kitchen = generated_kitchen(layout_seed, difficulty)

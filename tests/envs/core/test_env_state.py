@@ -11,6 +11,7 @@ import pytest
 
 from voot.envs.core.state import (
     EnvState,
+    SceneIdentity,
     StepTiming,
     is_count,
     is_finite_tuple,
@@ -71,3 +72,25 @@ def test_env_state_compares_by_value_and_shares_with_task() -> None:
     assert t.task is other and t.physics is s.physics and t.rng_state is s.rng_state
     assert t.signature == 7 and t != s and type(t) is EnvState
     assert pickle.loads(pickle.dumps(t)) == t
+
+
+def test_a_state_carries_its_scene_identity() -> None:
+    physics = np.arange(5.0)
+    physics.setflags(write=False)
+    task = KitchenTask(0, "pick", -1, (0.0, 0.0, 0.0), (), (1,), False, False)
+    rng = {"bit_generator": "PCG64", "state": {"state": 1, "inc": 3}}
+    here = SceneIdentity("conveyor", "generator-1", 3, "easy", "ab" * 16)
+    there = dataclasses.replace(here, layout_seed=4)
+    s = EnvState(physics, 7, task, rng, here)
+    assert s != EnvState(physics, 7, task, rng, there) and s != EnvState(physics, 7, task, rng)
+    assert s == EnvState(physics, 7, task, rng, dataclasses.replace(here))
+    moved = s.with_task(replace(task, steps=1))
+    assert moved.scene is here  # an infeasible step's snapshot keeps the scene
+    assert pickle.loads(pickle.dumps(s)) == s
+    assert str(here) == "conveyor generator-1 (layout_seed=3, difficulty=easy, scene abababababab)"
+    fixed = SceneIdentity("kitchen", "", None, None, "cd" * 16)
+    assert str(fixed) == "kitchen (fixed scene, scene cdcdcdcdcdcd)"
+    # a snapshot pickled before states carried a scene loads with none (and is refused)
+    old = EnvState(physics, 7, task, rng)
+    del old.__dict__["scene"]
+    assert pickle.loads(pickle.dumps(old)).scene is None

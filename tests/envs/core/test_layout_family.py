@@ -129,3 +129,72 @@ def test_a_seeded_action_space_keeps_its_stream_across_layouts(env_id: str) -> N
     first, second = draws(), draws()
     assert all(np.array_equal(a, b) for a, b in zip(first, second, strict=True))
     assert not np.array_equal(first[0], first[2])  # one stream, not re-seeded per layout
+
+
+# ----- a state knows its scene ----------------------------------------------------------
+def _same_size_layout(env_id: str, first: int) -> tuple[Any, Any]:
+    """Two envs of different layouts whose states have the same size (the same object
+    count), found by the generator (not hard-coded)."""
+    a = _make(env_id, layout_seed=first)
+    for k in range(first + 1, first + 40):
+        b = _make(env_id, layout_seed=k)
+        if b._state_size == a._state_size and len(b.objects) == len(a.objects):
+            return a, b
+    raise AssertionError("no layout of the same size")  # pragma: no cover
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_a_state_of_another_layout_of_the_same_size_is_refused(env_id: str) -> None:
+    """Before, only the signature and the vector's size were checked: another layout's
+    state with as many objects was taken (and the next step read the wrong scene)."""
+    import copy
+    import pickle
+
+    a, b = _same_size_layout(env_id, 1)
+    a.reset(seed=0)
+    b.reset(seed=0)
+    theirs = a.get_state()
+    before = b.get_state()
+    obs = b._observation()
+    with pytest.raises(ValueError, match="state belongs to another scene") as err:
+        b.set_state(theirs)
+    message = str(err.value)
+    assert f"layout_seed={a.layout_seed}" in message and f"layout_seed={b.layout_seed}" in message
+    assert b.get_state() == before and np.array_equal(b._observation(), obs)  # unchanged
+    # the identity names what made the state
+    ident = theirs.scene
+    assert (ident.layout_seed, ident.difficulty) == (a.layout_seed, "easy")
+    assert ident.version == f"generator-{a.GENERATOR_VERSION}" and ident.family == a.family
+    # pickled and copied states keep working, in another env of the same layout too
+    twin = _make(env_id, layout_seed=a.layout_seed)
+    for state in (pickle.loads(pickle.dumps(theirs)), copy.deepcopy(theirs)):
+        twin.set_state(state)
+        assert twin.get_state() == theirs
+
+
+def test_a_fixed_v1_state_is_refused_by_a_generated_room_of_its_size() -> None:
+    fixed = _make("voot/ConveyorPacking-v1")
+    for k in range(10, 60):  # a hard room of 20 boxes, as v1's belt (found, not hard-coded)
+        room = _make("voot/GeneratedStorage-v0", layout_seed=k, difficulty="hard")
+        if room._state_size == fixed._state_size:
+            break
+    else:  # pragma: no cover - the generator has hard rooms of 20 boxes
+        raise AssertionError("no generated room of the v1 state size in hard layouts 10-59")
+    fixed.reset(seed=0)
+    room.reset(seed=0)
+    before = room.get_state()
+    with pytest.raises(ValueError, match=r"made by conveyor \(fixed scene"):
+        room.set_state(fixed.get_state())
+    assert room.get_state() == before
+
+
+@pytest.mark.parametrize("env_id", FAMILIES)
+def test_a_reset_onto_another_layout_changes_the_identity(env_id: str) -> None:
+    env = _make(env_id, layout_seed=0)
+    old = env.get_state()
+    env.reset(seed=0, options={"layout_seed": 2, "difficulty": "medium"})
+    assert (env.scene_identity.layout_seed, env.scene_identity.difficulty) == (2, "medium")
+    with pytest.raises(ValueError, match="state belongs to another scene"):
+        env.set_state(old)
+    env.reset(seed=0, options={"layout_seed": 0, "difficulty": "easy"})
+    env.set_state(old)  # the same layout again: the same identity

@@ -64,6 +64,8 @@ def _bad_snapshots(env: Any, other: Any) -> list[tuple[Any, str]]:
     nan_physics[3] = np.nan
     inf_physics = s.physics.copy()
     inf_physics[-1] = -np.inf
+    huge_physics = s.physics.copy()
+    huge_physics[1] = 1e300  # finite, but the next step would overflow
     rng_missing = {k: v for k, v in s.rng_state.items() if k != "uinteger"}
     rng_overflow = {**s.rng_state, "state": {"state": -1, "inc": 5}}
 
@@ -71,8 +73,11 @@ def _bad_snapshots(env: Any, other: Any) -> list[tuple[Any, str]]:
         return EnvState(**{**vars(s), **fields})
 
     return [
-        (with_(physics=nan_physics), r"state\.physics must be finite, got nan"),
-        (with_(physics=inf_physics), r"state\.physics must be finite, got -inf"),
+        (with_(physics=nan_physics), r"state\.physics must be finite and within .*, got nan"),
+        (with_(physics=inf_physics), r"state\.physics must be finite and within .*, got -inf"),
+        (with_(physics=huge_physics), r"state\.physics must be finite and within .*, got 1e\+300"),
+        (with_(scene=other.get_state().scene), "state belongs to another scene"),
+        (with_(scene=None), "carries no scene identity"),
         (with_(physics=list(s.physics)), "state does not fit this environment"),
         (with_(task=other.get_state().task), rf"state\.task must be a {type(s.task).__name__}"),
         (with_(task=None), "got NoneType"),
@@ -105,6 +110,29 @@ def test_set_state_refuses_a_bad_snapshot_and_changes_nothing(which: str) -> Non
         assert np.array_equal(env._observation(), obs_here)
     env.set_state(start)  # a good snapshot still restores exactly
     assert env.get_state() == start
+
+
+def test_a_fixed_scene_state_names_its_family_and_the_physics_bound() -> None:
+    from voot.envs.conveyor.env import ConveyorPackingEnv
+    from voot.envs.core.env import MAX_PHYSICS
+    from voot.envs.core.state import EnvState
+
+    for env, family in ((KitchenClearingEnv(), "kitchen"), (ConveyorPackingEnv(), "conveyor")):
+        env.reset(seed=0)
+        s = env.get_state()
+        assert s.scene is env.scene_identity
+        assert (s.scene.family, s.scene.version, s.scene.layout_seed) == (family, "", None)
+        for value, ok in ((MAX_PHYSICS, True), (-MAX_PHYSICS, True), (MAX_PHYSICS * 1.001, False)):
+            physics = s.physics.copy()
+            physics[0] = value  # the time: any value within the bound is a state
+            state = EnvState(**{**vars(s), "physics": physics})
+            if ok:
+                env.set_state(state)
+                assert env.get_state() == state
+            else:
+                with pytest.raises(ValueError, match=r"within \+-1e\+06"):
+                    env.set_state(state)
+        env.set_state(s)
 
 
 def test_plain_action_is_the_validated_action_or_none(kitchen: KitchenClearingEnv) -> None:
@@ -331,7 +359,7 @@ def test_v1_set_state_of_the_other_domain_or_version() -> None:
         env.reset(seed=1)
         other.reset(seed=1)
         before = _bits(env)
-        with pytest.raises(ValueError, match="state does not fit this environment"):
+        with pytest.raises(ValueError, match="state belongs to another scene"):
             env.set_state(other.get_state())
         assert _bits(env) == before
     kitchen.reset(seed=2)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import warnings
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -13,6 +14,7 @@ from gymnasium.utils.env_checker import data_equivalence
 
 from voot.envs.conveyor.generated import instance as SI
 from voot.envs.conveyor.generated.layout import GENERATOR_VERSION, generate_storage_layout
+from voot.envs.core.caches import CacheWarning
 
 
 @pytest.fixture
@@ -47,16 +49,29 @@ def test_rejected_attempts_are_counted_and_the_next_draw_kept() -> None:
     assert again.rejections == inst.rejections and again.witness == inst.witness
 
 
-def test_the_cache_round_trip_gives_the_same_instance(cache: Path) -> None:
+def test_the_cache_round_trip_gives_the_same_instance(
+    cache: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     cold = SI.storage_instance(4, "medium")
     assert SI.storage_instance(4, "medium") is cold  # the process's memo
     record = json.loads((cache / "medium-4.json").read_text())
     assert record["attempt"] == cold.layout.attempt
-    assert record["generator_version"] == GENERATOR_VERSION
+    assert record["key"] == {
+        "layout_seed": 4,
+        "difficulty": "medium",
+        "generator_version": GENERATOR_VERSION,
+        "mujoco": mujoco.__version__,
+    }
     assert (cache / "medium-4.mjb.z").is_file()
     assert cache.name == f"storage-g{GENERATOR_VERSION}-mj{mujoco.__version__}"
     SI.clear_memo()
-    warm = SI.storage_instance(4, "medium")
+
+    def no_generation(*args: object) -> None:
+        raise AssertionError("a warm cache must load, not generate")
+
+    with monkeypatch.context() as mp:
+        mp.setattr(SI, "generate_instance", no_generation)
+        warm = SI.storage_instance(4, "medium")
     assert warm is not cold
     assert warm.layout == cold.layout and warm.witness == cold.witness
     assert warm.rejections == cold.rejections and warm.xml_sha256 == cold.xml_sha256
@@ -85,18 +100,31 @@ def test_a_stale_cache_record_is_regenerated(cache: Path) -> None:
     cold = SI.storage_instance(2, "easy")
     path = cache / "easy-2.json"
     record = json.loads(path.read_text())
-    record["xml_sha256"] = "0" * 64
+    record["xml_sha256"] = "0" * 64  # as if the scene writer had changed since
+    record["record_sha256"] = SI._record_sha256(record)
     path.write_text(json.dumps(record))
     SI.clear_memo()
-    again = SI.storage_instance(2, "easy")
+    with pytest.warns(CacheWarning, match="records another scene than this layout's"):
+        again = SI.storage_instance(2, "easy")
     assert again.layout == cold.layout and again.witness == cold.witness
     assert json.loads(path.read_text())["xml_sha256"] == cold.xml_sha256  # rewritten
     (cache / "easy-2.json").write_text("not json")
     SI.clear_memo()
-    assert SI.storage_instance(2, "easy").witness == cold.witness
+    with pytest.warns(CacheWarning, match="cannot be read"):
+        assert SI.storage_instance(2, "easy").witness == cold.witness
     (cache / "easy-2.mjb.z").write_bytes(b"not zlib")
     SI.clear_memo()
-    assert SI.storage_instance(2, "easy").model.ngeom == cold.model.ngeom
+    with pytest.warns(CacheWarning, match="cannot be read"):
+        assert SI.storage_instance(2, "easy").model.ngeom == cold.model.ngeom
+    # a record of the format before keys is regenerated silently
+    record = json.loads(path.read_text())
+    del record["format"]
+    path.write_text(json.dumps(record))
+    SI.clear_memo()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert SI.storage_instance(2, "easy").witness == cold.witness
+    assert json.loads(path.read_text())["format"] == SI.RECORD_FORMAT
 
 
 def test_without_the_disk_nothing_is_written(cache: Path) -> None:
@@ -129,3 +157,62 @@ def test_bad_arguments() -> None:
         SI.storage_instance(0, "trivial")
     with pytest.raises(ValueError, match="layout_seed"):
         SI.storage_instance(-2, "easy")
+
+
+# ----- the cache serves only what it was made for ---------------------------------------
+def _warm(cache: Path, seed: int) -> SI.StorageInstance:
+    SI.storage_instance(seed, "easy")
+    SI.clear_memo()
+    return SI.generate_instance(seed, "easy")
+
+
+def _check_rebuilt(seed: int, fresh: SI.StorageInstance, warned: str) -> None:
+    with pytest.warns(CacheWarning, match=warned):
+        got = SI.storage_instance(seed, "easy")
+    assert got.layout == fresh.layout and got.witness == fresh.witness
+    assert np.array_equal(got.model.geom_size, fresh.model.geom_size)
+    SI.clear_memo()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # rebuilt and replaced: served silently now
+        again = SI.storage_instance(seed, "easy")
+    assert again.witness == fresh.witness
+    assert np.array_equal(again.model.geom_size, fresh.model.geom_size)
+    SI.clear_memo()
+
+
+def test_another_layouts_model_copied_over_is_rebuilt(cache: Path) -> None:
+    """Before: loaded silently (the env then played another layout's scene)."""
+    fresh = _warm(cache, 2)
+    _warm(cache, 3)
+    (cache / "easy-2.mjb.z").write_bytes((cache / "easy-3.mjb.z").read_bytes())
+    _check_rebuilt(2, fresh, r"easy-2\.mjb\.z is not the model its record was written with")
+
+
+def test_another_layouts_record_and_model_are_rebuilt(cache: Path) -> None:
+    fresh = _warm(cache, 2)
+    _warm(cache, 3)
+    for suffix in (".json", ".mjb.z"):
+        (cache / f"easy-2{suffix}").write_bytes((cache / f"easy-3{suffix}").read_bytes())
+    _check_rebuilt(2, fresh, r"easy-2\.json was made for .*'layout_seed': 3")
+
+
+def test_a_one_sign_edit_of_the_witness_is_rebuilt(cache: Path) -> None:
+    """Before: the edited witness was used as is."""
+    fresh = _warm(cache, 2)
+    path = cache / "easy-2.json"
+    record = json.loads(path.read_text())
+    first = record["witness"]["actions"][0]
+    first[0] = -first[0]
+    path.write_text(json.dumps(record, sort_keys=True))
+    _check_rebuilt(2, fresh, r"easy-2\.json does not match its digest \(edited\)")
+
+
+def test_the_memo_is_bounded(cache: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Before: unbounded (about 149 MB more over 40 layouts)."""
+    assert SI.INSTANCES.size == SI.STORAGE_CACHE_SIZE
+    monkeypatch.setattr(SI.INSTANCES, "size", 2)
+    first = SI.storage_instance(0, "easy")
+    for seed in (1, 2):
+        SI.storage_instance(seed, "easy")
+    assert len(SI.INSTANCES) == 2
+    assert SI.storage_instance(0, "easy") is not first  # forgotten, loaded from the disk
