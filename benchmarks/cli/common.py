@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from voot.bench.store.format import StoreError
 from voot.bench.store.result_store import ResultStore
 from voot.bench.sweep.engine import Spec
+from voot.envs.core.arguments import LAYOUT_SEEDS, check_layout_seed
 
 if TYPE_CHECKING:
     from voot.bench.sweep.backends import Backend
@@ -338,24 +339,21 @@ def check_output(path: str | os.PathLike[str] | None, option: str, folder: bool 
         )
 
 
-#: The largest layout seed a generated family takes (a 64-bit seed; the envs' own check
-#: agrees: ``layout_seed must be an integer in [0, 2**63 - 1]``).
-MAX_LAYOUT_SEED = 2**63 - 1
+#: The largest layout seed a generated family takes (the envs' own range,
+#: :data:`voot.envs.core.arguments.LAYOUT_SEEDS`).
+MAX_LAYOUT_SEED = LAYOUT_SEEDS.stop - 1
 
 
 def check_layout_value(value: object, option: str) -> None:
-    """Refuse a ``layout_seed`` given as an env keyword unless it is an integer in
-    ``[0, MAX_LAYOUT_SEED]`` (a bool, a float such as ``1.5`` or ``1.0``, or a string
-    names the type: JSON keeps ``1.0`` a float, and an env must not round it to a layout)."""
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise CLIError(
-            f"{option}: layout_seed must be an integer in [0, {MAX_LAYOUT_SEED}], got"
-            f" {value!r} ({type(value).__name__})"
-        )
-    if not 0 <= value <= MAX_LAYOUT_SEED:
-        raise CLIError(
-            f"{option}: layout_seed must be an integer in [0, {MAX_LAYOUT_SEED}], got {value}"
-        )
+    """Refuse a ``layout_seed`` given as an env keyword unless the families' own validator
+    (:func:`voot.envs.core.arguments.check_layout_seed`: an integer in ``[0,
+    MAX_LAYOUT_SEED]``; a bool, a float such as ``1.5`` or ``1.0``, or a string refused)
+    takes it: one rule for the envs and the command line. JSON keeps ``1.0`` a float, and
+    an env must not round it to a layout."""
+    try:
+        check_layout_seed(value)
+    except ValueError as exc:
+        raise CLIError(f"{option}: {exc} ({type(value).__name__})") from None
 
 
 def check_envs(
