@@ -61,6 +61,7 @@ from voot.bench.cli import (
     demo,
     difficulty,
     env_cost,
+    leaderboard,
     measure,
     plan,
     report,
@@ -88,6 +89,7 @@ COMMANDS: tuple[Callable[[Subparsers], None], ...] = (
     report.register,  # select, plot, claims
     difficulty.register,  # difficulty, ladder
     store.register,  # compact, shipped, export
+    leaderboard.register,  # leaderboard run, report, card, verify
 )
 
 #: The project's own measurements (``voot-bench measure NAME``), in the order of

@@ -20,7 +20,7 @@ from voot.bench.cli.main import COMMANDS, MEASUREMENTS, build_parser, main, meas
 #: The researcher's commands in the order ``voot-bench --help`` lists them.
 RESEARCH = (
     "demo record-demo figure5 demo-voo env-figures bbfo plan ablation select plot claims"
-    " difficulty ladder compact shipped export measure"
+    " difficulty ladder compact shipped export leaderboard measure"
 ).split()
 #: The measurements in the order ``voot-bench measure --help`` lists them.
 MEASURE = (
@@ -38,7 +38,7 @@ def listed_commands(argv: list[str], capsys: pytest.CaptureFixture[str]) -> list
 
 
 def test_the_commands_in_the_order_of_the_help(capsys: pytest.CaptureFixture[str]) -> None:
-    assert len(COMMANDS) == 7 and len(MEASUREMENTS) == 3
+    assert len(COMMANDS) == 8 and len(MEASUREMENTS) == 3
     assert listed_commands([], capsys) == RESEARCH
     assert listed_commands(["measure"], capsys) == MEASURE
     assert measurement_names(build_parser()) == MEASURE
