@@ -54,7 +54,12 @@ def test_demo_on_a_generated_kitchen(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert "voot/GeneratedKitchen-v0, layout_seed 2, difficulty easy" in capsys.readouterr().out
 
 
-def test_demo_takes_the_old_generated_kitchen_name_with_a_warning(tmp_path: Path) -> None:
+def test_demo_takes_the_old_generated_kitchen_name_with_a_warning(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import voot._registration
+
+    monkeypatch.setattr(voot._registration, "_WARNED", set())  # it warns once per process
     argv = ["demo", "--env", "kitchen_v2", "--layout-seed", "2", "--difficulty", "easy"]
     with pytest.warns(FutureWarning, match="now voot/GeneratedKitchen-v0"):
         assert main([*argv, "--simulations", "2", "--no-video", "--out", str(tmp_path)]) == 0
