@@ -57,6 +57,8 @@ from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.core.units import denormalize, padded_parameters
+from voot.envs.motion.footprint import Footprint
+from voot.envs.motion.planar import Box2D
 from voot.envs.motion.planner import BasePath, BasePlannerConfig
 from voot.envs.motion.rects import rect_inside
 from voot.envs.robot.arm_ik import IKConfig
@@ -292,6 +294,21 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             )
         return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
 
+    def footprint(self, i: int) -> Footprint:
+        """The exact footprint carrying box ``i`` (frame of its carry disc's centre).
+
+        Three rectangles: the base square, the box at its fixed grasp, and the bounding
+        rectangle (in the base frame) of the arm's collision geoms at the fixed grasp's
+        joint values, read from MuJoCo. Used by the base planner's exact-footprint option
+        (:attr:`BasePlannerConfig.footprint`); the disc of the pick encloses it.
+        """
+        cache = self.__dict__.setdefault("_footprints", {})
+        hit = cache.get(i)
+        if hit is None:
+            hit = _carry_footprint(self, self.picks[i])
+            cache[i] = hit
+        return hit  # type: ignore[no-any-return]
+
     def _scene_model(self) -> str | mujoco.MjModel:
         """The scene to load: ``voot.models``' fixed ``conveyor.xml`` (the paper's instance).
 
@@ -478,7 +495,14 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
         ]
         disc = pick.disc
-        path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
+        if cfg.planner.footprint is None:
+            path = self.planner.plan(
+                disc.center(cfg.start), disc.center(base), disc.radius, movable
+            )
+        else:
+            path = self.planner.plan_footprint(
+                disc.center(cfg.start), disc.center(base), disc.radius, self.footprint(i), movable
+            )
         plan_time = time.perf_counter() - t0
         if path is None:
             return Failure(Reason.NO_BASE_PATH, "no base path"), col_time, plan_time
@@ -563,6 +587,40 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             0.0,
             (1.0, 0.85, 0.1, 0.10),
         )
+
+
+def _carry_footprint(env: ConveyorPackingEnv, pick: FixedPick) -> Footprint:
+    """:meth:`ConveyorPackingEnv.footprint` of ``pick`` (computed once per box)."""
+    model = env.model
+    data = mujoco.MjData(model)
+    env.robot.set_base(data, (0.0, 0.0, 0.0))
+    env.robot.set_arm(data, pick.arm_q)
+    mujoco.mj_kinematics(model, data)
+    base_body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "base")
+    lo = np.array([np.inf, np.inf])
+    hi = -lo
+    for g in env.robot.geoms:
+        if model.geom_bodyid[g] == base_body:
+            continue  # the base's own geoms: inside the base square
+        if model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0:
+            continue  # visual only
+        centre, half = model.geom_aabb[g, :3], model.geom_aabb[g, 3:]
+        signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
+        corners = data.geom_xpos[g] + (centre + signs * half) @ data.geom_xmat[g].reshape(3, 3).T
+        lo = np.minimum(lo, corners[:, :2].min(axis=0))
+        hi = np.maximum(hi, corners[:, :2].max(axis=0))
+    ox, oy = pick.disc.offset
+    obj = env.objects[env.picks.index(pick)]
+    held = object_footprint(obj, *pick.rel)
+    parts = [
+        Box2D(-ox, -oy, BASE_HALF, BASE_HALF, 0.0, "base"),
+        Box2D(held.cx - ox, held.cy - oy, held.half_x, held.half_y, held.yaw, obj.name),
+    ]
+    if np.all(np.isfinite(lo)):
+        c = 0.5 * (lo + hi)
+        h = 0.5 * (hi - lo)
+        parts.append(Box2D(float(c[0]) - ox, float(c[1]) - oy, float(h[0]), float(h[1]), 0.0, "arm"))
+    return Footprint(tuple(parts))
 
 
 def _of_box(reason: str, k: int, m: int, name: str) -> Failure:
