@@ -68,8 +68,8 @@ def test_the_footprint_passes_a_door_the_disc_cannot() -> None:
                 crossing.append(abs(math.cos(q[2])))
     # its long axis crosses the door (diagonally is enough in a 0.1 m wall)
     assert crossing and min(crossing) > 0.6
-    # the straight line plus two quarter turns at least, and not much more
-    assert 4.0 + math.pi - 1e-9 <= path.length < 4.0 + math.pi + 1.0
+    # longer than the straight line (it turns), shorter than it plus two quarter turns + 1 m
+    assert 4.0 + 0.5 < path.length < 4.0 + math.pi + 1.0
 
 
 @pytest.mark.parametrize("label_after", [0, 30, 10**9])
