@@ -110,7 +110,9 @@ class Footprint:
     @property
     def reach(self) -> float:
         """The largest distance from the planned point to a rectangle corner."""
-        return max(math.hypot(p.cx, p.cy) + math.hypot(p.half_x, p.half_y) for p in self.parts)
+        return max(
+            math.hypot(px, py) for p in self.parts for px, py in p.corners().tolist()
+        )
 
     def at(self, x: float, y: float, theta: float) -> list[Box2D]:
         """The rectangles in the world for the planned point at ``(x, y, theta)``."""

@@ -52,7 +52,8 @@ def test_footprint_pose_and_reach() -> None:
     assert world[0].cx == pytest.approx(1.0) and world[0].cy == pytest.approx(2.0)
     assert world[1].cx == pytest.approx(1.0 - 0.2) and world[1].cy == pytest.approx(2.5)
     assert world[1].yaw == pytest.approx(math.pi / 2 + 0.3)
-    assert LONG.reach == pytest.approx(max(math.hypot(0.8, 0.3), math.hypot(0.5, 0.2) + math.hypot(0.1, 0.15)))
+    corners = np.concatenate([p.corners() for p in LONG.parts])
+    assert LONG.reach == pytest.approx(float(np.hypot(corners[:, 0], corners[:, 1]).max()))
 
 
 def test_hits_turns_with_the_heading() -> None:
