@@ -68,6 +68,7 @@ from voot.bench.cli import (
     store,
 )
 from voot.bench.cli.common import CLIError
+from voot.bench.measure import footprint_speed
 from voot.bench.store.format import StoreError
 from voot.rl.train import MissingExtraError
 
@@ -96,6 +97,7 @@ MEASUREMENTS: tuple[Callable[[Subparsers], None], ...] = (
     measure.register,  # speed, voo-speed, overhead, record-overhead, memory, root-parallel, ...
     env_cost.register,  # env-speed, mesh-speed
     speedup.register,  # speedup
+    footprint_speed.register,  # footprint-speed
 )
 
 

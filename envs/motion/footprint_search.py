@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import heapq
 import math
+import time
 from collections import OrderedDict
 from typing import Protocol
 
@@ -99,6 +100,8 @@ class FootprintSearch:
         self._scene: tuple[tuple[Footprint, tuple[Box2D, ...]], bytearray, BoolArray] | None = None
         #: A* expansions of the last exact query (for the benchmark's statistics).
         self.last_expansions = 0
+        #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
+        self.timings: list[float] | None = None
 
     def free_grid(self, footprint: Footprint, movable: tuple[Box2D, ...]) -> BoolArray:
         """The lattice poses (``(headings, nx, ny)``) where ``footprint`` is free."""
@@ -128,6 +131,22 @@ class FootprintSearch:
         lattice path. The answer "a path exists" is the same; the search is local to
         the goal.
         """
+        if self.timings is None:
+            return self._plan(start, goal, footprint, movable, hub)
+        t0 = time.process_time()
+        out = self._plan(start, goal, footprint, movable, hub)
+        self.timings.append(time.process_time() - t0)
+        return out
+
+    def _plan(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> FloatArray | None:
+        """:meth:`plan` untimed."""
         self.last_expansions = 0
         if not (self.is_free(footprint, start, movable) and self.is_free(footprint, goal, movable)):
             return None
