@@ -69,6 +69,7 @@ from voot.bench.cli import (
 )
 from voot.bench.cli.common import CLIError
 from voot.bench.measure import footprint_speed
+from voot.bench.protocol import domain_ablation
 from voot.bench.store.format import StoreError
 from voot.rl.train import MissingExtraError
 
@@ -98,6 +99,7 @@ MEASUREMENTS: tuple[Callable[[Subparsers], None], ...] = (
     env_cost.register,  # env-speed, mesh-speed
     speedup.register,  # speedup
     footprint_speed.register,  # footprint-speed
+    domain_ablation.register,  # domain-ablation
 )
 
 

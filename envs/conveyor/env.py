@@ -109,8 +109,22 @@ class ConveyorConfig:
             code): the three placements' region and collision checks, in sequence; the
             base paths (through the door, which the big boxes' carry disc cannot pass)
             are found only when the action is executed.
+        big_box_ban: The authors' explicit rule at execution (``problem_environments/
+            conveyor_belt_env.py`` in beomjoonkim/voot): the big boxes may not be placed in
+            the big rooms. False (v0, v1): voot lets the base planner's disc and the door
+            width keep them out (the carry disc of a big box cannot pass the 1.62 m door).
+            True: executing a placement of one of the first ``big_boxes`` boxes whose
+            centre lies outside ``first_room`` fails ("forbidden room"); the pre-check
+            does not test it (as in the authors' code).
+        big_boxes: How many of the first boxes are big (2: the original's
+            ``create_objects`` and :func:`voot.envs.assets.fixed_scenes.conveyor_box_sizes`).
+        first_room: The region the big boxes must stay in under ``big_box_ban``: voot's
+            first room x in [-4, -0.7], y in [-1, 3] (``models/conveyor.xml``).
         ik: IK settings.
-        planner: Base planner settings.
+        planner: Base planner settings. Its ``footprint`` option
+            (:class:`~voot.envs.motion.footprint.FootprintConfig`) plans the exact footprint
+            of robot, arm and box (:meth:`ConveyorPackingEnv.footprint`) where the disc
+            finds no path.
     """
 
     start: tuple[float, float, float] = (0.0, 1.05, 0.0)
@@ -127,12 +141,18 @@ class ConveyorConfig:
     horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
+    big_box_ban: bool = False
+    big_boxes: int = 2
+    first_room: tuple[float, float, float, float] = (-4.0, -0.7, -1.0, 3.0)
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
-        for name in ("loading_region", "workspace"):
+        if type(self.big_box_ban) is not bool:
+            raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
+        V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)
+        for name in ("loading_region", "workspace", "first_room"):
             object.__setattr__(self, name, V.region(f"ConveyorConfig.{name}", getattr(self, name)))
         object.__setattr__(
             self, "place_theta", V.range_pair("ConveyorConfig.place_theta", self.place_theta)
@@ -489,6 +509,11 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         if reason:
             return reason, col_time, plan_time
         assert base is not None  # passed the region checks
+        if cfg.big_box_ban and i < cfg.big_boxes:
+            rxmin, rxmax, rymin, rymax = cfg.first_room
+            if not (rxmin <= x <= rxmax and rymin <= y <= rymax):
+                text = "forbidden room: a big box outside the first room"
+                return Failure(Reason.FORBIDDEN_ROOM, text), col_time, plan_time
         pick = self.picks[i]
         t0 = time.perf_counter()
         movable = [self.object_box(j) for j in range(self.task.placed)] + [
@@ -619,7 +644,9 @@ def _carry_footprint(env: ConveyorPackingEnv, pick: FixedPick) -> Footprint:
     if np.all(np.isfinite(lo)):
         c = 0.5 * (lo + hi)
         h = 0.5 * (hi - lo)
-        parts.append(Box2D(float(c[0]) - ox, float(c[1]) - oy, float(h[0]), float(h[1]), 0.0, "arm"))
+        parts.append(
+            Box2D(float(c[0]) - ox, float(c[1]) - oy, float(h[0]), float(h[1]), 0.0, "arm")
+        )
     return Footprint(tuple(parts))
 
 

@@ -110,9 +110,7 @@ class Footprint:
     @property
     def reach(self) -> float:
         """The largest distance from the planned point to a rectangle corner."""
-        return max(
-            math.hypot(px, py) for p in self.parts for px, py in p.corners().tolist()
-        )
+        return max(math.hypot(px, py) for p in self.parts for px, py in p.corners().tolist())
 
     def at(self, x: float, y: float, theta: float) -> list[Box2D]:
         """The rectangles in the world for the planned point at ``(x, y, theta)``."""
@@ -194,8 +192,8 @@ class FootprintLattice:
         self.tolerance = tolerance
         step = config.xy_step
         xmin, xmax, ymin, ymax = workspace
-        self.nx = int(math.floor((xmax - xmin) / step + 1e-9)) + 1
-        self.ny = int(math.floor((ymax - ymin) / step + 1e-9)) + 1
+        self.nx = math.floor((xmax - xmin) / step + 1e-9) + 1
+        self.ny = math.floor((ymax - ymin) / step + 1e-9) + 1
         self.nk = config.headings
         self.xs = xmin + step * np.arange(self.nx, dtype=np.float64)
         self.ys = ymin + step * np.arange(self.ny, dtype=np.float64)
@@ -214,11 +212,11 @@ class FootprintLattice:
     def nearest(self, x: float, y: float, theta: float) -> tuple[int, int, int] | None:
         """The index of the lattice pose nearest ``(x, y, theta)``, None outside."""
         step = self.config.xy_step
-        i = int(round((x - self.workspace[0]) / step))
-        j = int(round((y - self.workspace[2]) / step))
+        i = round((x - self.workspace[0]) / step)
+        j = round((y - self.workspace[2]) / step)
         if not (0 <= i < self.nx and 0 <= j < self.ny):
             return None
-        k = int(round(theta / self.config.heading_step)) % self.nk
+        k = round(theta / self.config.heading_step) % self.nk
         return (k, i, j)
 
     def blocked_window(
@@ -236,10 +234,10 @@ class FootprintLattice:
         ext_x = box.half_x * abs(cb) + box.half_y * abs(sb)
         ext_y = box.half_x * abs(sb) + box.half_y * abs(cb)
         grow = footprint.reach + step
-        i0 = max(0, int(math.floor((box.cx - ext_x - grow - xmin) / step)))
-        i1 = min(self.nx, int(math.ceil((box.cx + ext_x + grow - xmin) / step)) + 1)
-        j0 = max(0, int(math.floor((box.cy - ext_y - grow - ymin) / step)))
-        j1 = min(self.ny, int(math.ceil((box.cy + ext_y + grow - ymin) / step)) + 1)
+        i0 = max(0, math.floor((box.cx - ext_x - grow - xmin) / step))
+        i1 = min(self.nx, math.ceil((box.cx + ext_x + grow - xmin) / step) + 1)
+        j0 = max(0, math.floor((box.cy - ext_y - grow - ymin) / step))
+        j1 = min(self.ny, math.ceil((box.cy + ext_y + grow - ymin) / step) + 1)
         if i0 >= i1 or j0 >= j1:
             return None
         # positions relative to the box centre, (1, ni, 1) and (1, 1, nj)
@@ -258,8 +256,12 @@ class FootprintLattice:
             part_hit = np.ones_like(hit)
             axes = ((cb, sb), (-sb, cb), (ca, sa), (-sa, ca))
             for ux, uy in axes:
-                hb = box.half_x * np.abs(ux * cb + uy * sb) + box.half_y * np.abs(-ux * sb + uy * cb)
-                hp = part.half_x * np.abs(ux * ca + uy * sa) + part.half_y * np.abs(-ux * sa + uy * ca)
+                hb = box.half_x * np.abs(ux * cb + uy * sb) + box.half_y * np.abs(
+                    -ux * sb + uy * cb
+                )
+                hp = part.half_x * np.abs(ux * ca + uy * sa) + part.half_y * np.abs(
+                    -ux * sa + uy * ca
+                )
                 proj = ux * (px + ox) + uy * (py + oy)
                 part_hit &= np.abs(proj) < hb + hp - tol
             hit |= part_hit

@@ -64,6 +64,7 @@ class DiscHub(Protocol):
     def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
         """The disc's waypoints ``(k, 3)`` from the start to ``pose``, or None."""
 
+
 _SQRT2 = math.sqrt(2.0)
 
 
@@ -166,7 +167,10 @@ class FootprintSearch:
         if found is None:
             return None
         cells, head = found
-        poses = [lat.pose(*np.unravel_index(c, lat.shape)) for c in cells][::-1]
+        plane = lat.nx * lat.ny
+        poses = [
+            lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)
+        ]
         if head is None:
             return self._tighten([start, *poses, goal], free_bytes)
         tail = self._tighten([*poses, goal], free_bytes)
@@ -357,4 +361,3 @@ class FootprintSearch:
             kept.append(path[b])
             a = b
         return np.array(kept, dtype=np.float64)
-

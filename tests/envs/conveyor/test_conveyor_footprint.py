@@ -95,3 +95,35 @@ def test_a_root_action_the_disc_refuses_passes_with_the_footprint(env: ConveyorP
         assert info["base_path_length"] > 0.0
         return
     pytest.fail("no root action refused by the disc passed with the footprint")
+
+
+def test_big_box_ban_at_execution_only() -> None:
+    """The authors' explicit rule: a big box outside the first room fails when executed
+    (not in the pre-check); off by default; the scripted solution still solves."""
+    assert ConveyorPackingEnv(preset="v1").config.big_box_ban is False
+    ban = ConveyorPackingEnv(preset="v1", big_box_ban=True)
+    free = ConveyorPackingEnv(preset="v1")
+    for e in (ban, free):
+        e.reset(seed=0)
+    script = ban.solution_actions()
+    # the first action with its first (big) box moved to the west room, as the scripted
+    # small boxes are placed there
+    a = script[0].copy()
+    a[:3] = script[1][:3]
+    for e in (ban, free):
+        ok, _ = e.precheck(a)
+        assert ok
+    _, _, _, info = ban.transition(a)
+    assert not info["feasible"]
+    assert info["reason"].startswith("box 1/3 (obj_00): forbidden room")
+    _, _, _, info = free.transition(a)
+    assert "forbidden" not in info["reason"]
+    ban.reset(seed=0)
+    total = 0.0
+    for act in script:
+        r, _, _, info = ban.transition(act)
+        assert info["feasible"]
+        total += r
+    assert ban.task.done and total > 7.0
+    with pytest.raises(ValueError, match="big_box_ban must be a bool"):
+        ConveyorPackingEnv(preset="v1", big_box_ban=1)

@@ -18,9 +18,7 @@ from voot.envs.motion.planar import Box2D
 
 WS = (0.0, 4.0, 0.0, 3.0)
 #: A long robot: a 1.6 m x 0.6 m rectangle about the planned point, plus a small arm.
-LONG = Footprint(
-    (Box2D(0.0, 0.0, 0.8, 0.3, 0.0, "body"), Box2D(0.5, 0.2, 0.1, 0.15, 0.3, "arm"))
-)
+LONG = Footprint((Box2D(0.0, 0.0, 0.8, 0.3, 0.0, "body"), Box2D(0.5, 0.2, 0.1, 0.15, 0.3, "arm")))
 
 
 @pytest.mark.parametrize(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import subprocess
 import sys
@@ -31,7 +32,11 @@ def door_wall(width: float) -> list[Box2D]:
 
 
 def planner(width: float, **kwargs: object) -> BasePlanner:
-    return BasePlanner(WS, door_wall(width), BasePlannerConfig(footprint=FootprintConfig(**{**CFG.__dict__, **kwargs})))
+    return BasePlanner(
+        WS,
+        door_wall(width),
+        BasePlannerConfig(footprint=FootprintConfig(**{**CFG.__dict__, **kwargs})),
+    )
 
 
 #: Long axis along the wall at both ends: the robot must turn to pass the door.
@@ -59,7 +64,7 @@ def test_the_footprint_passes_a_door_the_disc_cannot() -> None:
     margin = CFG.xy_step * math.sqrt(2) + BODY.reach * CFG.heading_step
     tight = shrunk(BODY, margin)
     crossing = []
-    for a, b in zip(w[:-1], w[1:], strict=True):
+    for a, b in itertools.pairwise(w):
         d = float(wrap_angle(b[2] - a[2]))
         for t in np.linspace(0.0, 1.0, 40):
             q = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * d)
@@ -76,7 +81,9 @@ def test_the_footprint_passes_a_door_the_disc_cannot() -> None:
 def test_no_path_through_a_door_narrower_than_every_heading(label_after: int) -> None:
     p = planner(0.5, label_after=label_after)
     assert p.plan_footprint(START, GOAL, RADIUS, BODY) is None
-    assert planner(1.0, label_after=label_after).plan_footprint(START, GOAL, RADIUS, BODY) is not None
+    assert (
+        planner(1.0, label_after=label_after).plan_footprint(START, GOAL, RADIUS, BODY) is not None
+    )
 
 
 def test_disc_path_first_and_option_off() -> None:
@@ -99,7 +106,9 @@ def test_colliding_ends_have_no_path() -> None:
     assert p.plan_footprint((3.0, 1.0, 0.0), GOAL, RADIUS, BODY) is None  # in the wall
     assert p.plan_footprint(START, (5.5, 2.0, 0.0), RADIUS, BODY) is None  # leaves the workspace
     # a movable box on the goal
-    assert p.plan_footprint(START, GOAL, RADIUS, BODY, [Box2D(5.0, 2.0, 0.2, 0.2, 0.0, 'box')]) is None
+    assert (
+        p.plan_footprint(START, GOAL, RADIUS, BODY, [Box2D(5.0, 2.0, 0.2, 0.2, 0.0, "box")]) is None
+    )
 
 
 def test_movable_boxes_block_the_door() -> None:
