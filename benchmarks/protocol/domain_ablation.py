@@ -139,7 +139,8 @@ def _rate(k: int, n: int) -> str:
     z = 1.96
     centre = (p + z * z / (2 * n)) / (1 + z * z / n)
     half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return f"{100 * p:.1f}% ({k}/{n}; {100 * (centre - half):.0f}-{100 * (centre + half):.0f}%)"
+    lo, hi = max(0.0, centre - half), min(1.0, centre + half)
+    return f"{100 * p:.1f}% ({k}/{n}; {100 * lo:.0f}-{100 * hi:.0f}%)"
 
 
 def table(store: Mapping[str, Any]) -> str:
