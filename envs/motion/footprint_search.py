@@ -168,9 +168,7 @@ class FootprintSearch:
             return None
         cells, head = found
         plane = lat.nx * lat.ny
-        poses = [
-            lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)
-        ]
+        poses = [lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)]
         if head is None:
             return self._tighten([start, *poses, goal], free_bytes)
         tail = self._tighten([*poses, goal], free_bytes)
