@@ -40,14 +40,13 @@ from typing import Any
 
 import numpy as np
 
-#: The domain switches: ConveyorConfig overrides (``"footprint"`` stands for the base
-#: planner's exact-footprint option at its default resolution).
+#: The domain switches: ConveyorConfig overrides.
 SWITCHES: Mapping[str, Mapping[str, Any]] = MappingProxyType(
     {
         "v1": MappingProxyType({}),
-        "footprint": MappingProxyType({"footprint": True}),
+        "footprint": MappingProxyType({"base_model": "footprint"}),
         "big_box_ban": MappingProxyType({"big_box_ban": True}),
-        "authors_domain": MappingProxyType({"footprint": True, "big_box_ban": True}),
+        "authors_domain": MappingProxyType({"base_model": "footprint", "big_box_ban": True}),
     }
 )
 #: The nodes: scripted actions taken before the statistics.
@@ -59,15 +58,10 @@ RETRIES = 50
 def make_env(switch: str) -> Any:
     """``ConveyorPacking-v1`` with the overrides of ``switch``."""
     from voot.envs.conveyor.env import ConveyorPackingEnv
-    from voot.envs.motion.footprint import FootprintConfig
-    from voot.envs.motion.planner import BasePlannerConfig
 
     if switch not in SWITCHES:
         raise ValueError(f"unknown switch {switch!r}; choose from {', '.join(SWITCHES)}")
-    options = dict(SWITCHES[switch])
-    if options.pop("footprint", False):
-        options["planner"] = BasePlannerConfig(footprint=FootprintConfig(static_cache_size=20))
-    return ConveyorPackingEnv(preset="v1", **options)
+    return ConveyorPackingEnv(preset="v1", **SWITCHES[switch])
 
 
 def measure(

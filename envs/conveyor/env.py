@@ -57,7 +57,7 @@ from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.core.units import denormalize, padded_parameters
-from voot.envs.motion.footprint import Footprint
+from voot.envs.motion.footprint import Footprint, FootprintConfig
 from voot.envs.motion.planar import Box2D
 from voot.envs.motion.planner import BasePath, BasePlannerConfig
 from voot.envs.motion.rects import rect_inside
@@ -78,6 +78,8 @@ from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
+#: The choices of :attr:`ConveyorConfig.base_model`.
+BASE_MODELS = ("disc", "footprint")
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: The shape of a step info's ``parameters``: a pose per box of a full action.
@@ -109,6 +111,11 @@ class ConveyorConfig:
             code): the three placements' region and collision checks, in sequence; the
             base paths (through the door, which the big boxes' carry disc cannot pass)
             are found only when the action is executed.
+        base_model: ``"disc"`` (v0, v1): the base planner's config as given (the disc,
+            unless its ``footprint`` is set) or ``"footprint"`` (the exact oriented footprint where the disc
+            finds no path: sets ``planner.footprint`` to a default
+            :class:`~voot.envs.motion.footprint.FootprintConfig` when it is None; a
+            keyword ``gymnasium.make`` and ``voot-bench plan --env-kwargs`` can pass).
         big_box_ban: The authors' explicit rule at execution (``problem_environments/
             conveyor_belt_env.py`` in beomjoonkim/voot): the big boxes may not be placed in
             the big rooms. False (v0, v1): voot lets the base planner's disc and the door
@@ -141,6 +148,7 @@ class ConveyorConfig:
     horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
+    base_model: str = "disc"
     big_box_ban: bool = False
     big_boxes: int = 2
     first_room: tuple[float, float, float, float] = (-4.0, -0.7, -1.0, 3.0)
@@ -149,6 +157,16 @@ class ConveyorConfig:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
+        if self.base_model not in BASE_MODELS:
+            raise ValueError(
+                f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
+                f"got {self.base_model!r}"
+            )
+        if self.base_model == "footprint" and isinstance(self.planner, BasePlannerConfig):
+            if self.planner.footprint is None:
+                object.__setattr__(
+                    self, "planner", replace(self.planner, footprint=FootprintConfig())
+                )
         if type(self.big_box_ban) is not bool:
             raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
         V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)

@@ -49,7 +49,8 @@ class FootprintConfig:
         headings: Number of lattice headings over the full turn, in [8, 360]. 72 (5 deg)
             as in that measurement.
         static_cache_size: Footprints whose static-obstacle occupancy is kept (>= 1); one
-            per carried object recurs through a search.
+            per carried object recurs through a search. Each takes one byte per lattice
+            pose (10.8 MB on the conveyor at the default resolution).
         mask_cache_size: ``(footprint, movable box)`` occupancy windows kept (>= 0).
         heuristic_weight: A* inflates its admissible heuristic by this factor, >= 1.
             1 gives the lattice's shortest path (slow where the footprint must turn to
@@ -64,7 +65,7 @@ class FootprintConfig:
 
     xy_step: float = 0.025
     headings: int = 72
-    static_cache_size: int = 4
+    static_cache_size: int = 8
     mask_cache_size: int = 512
     heuristic_weight: float = 3.0
     label_after: int = 20_000

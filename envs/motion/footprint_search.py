@@ -94,7 +94,7 @@ class FootprintSearch:
         self.static_obstacles = tuple(static_obstacles)
         self.lattice = FootprintLattice(workspace, config, tolerance)
         self._static_boxes = self.static_obstacles + bound_boxes(workspace)
-        self._static: OrderedDict[Footprint, tuple[BoolArray, bytes]] = OrderedDict()
+        self._static: OrderedDict[Footprint, bytes] = OrderedDict()
         self._masks: OrderedDict[
             tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
         ] = OrderedDict()
@@ -184,14 +184,13 @@ class FootprintSearch:
             return self._scene[1], self._scene[2]
         static = self._static.get(footprint)
         if static is None:
-            grid = ~self.lattice.occupancy(footprint, self._static_boxes)
-            static = (grid, grid.tobytes())
+            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
             self._static[footprint] = static
             if len(self._static) > self.config.static_cache_size:
                 self._static.popitem(last=False)
         else:
             self._static.move_to_end(footprint)
-        buffer = bytearray(static[1])
+        buffer = bytearray(static)
         free = np.frombuffer(buffer, dtype=bool).reshape(self.lattice.shape)
         for box in movable:
             window = self._mask(footprint, box)

@@ -59,8 +59,12 @@ def test_the_footprint_agrees_with_mujoco_on_sampled_poses(env: ConveyorPackingE
     assert conservative <= 0.02 * total
 
 
-def test_default_planner_has_no_footprint() -> None:
+def test_default_planner_has_no_footprint_and_base_model_sets_it() -> None:
     assert ConveyorPackingEnv(preset="v1").config.planner.footprint is None
+    cfg = ConveyorPackingEnv(preset="v1", base_model="footprint").config
+    assert cfg.planner.footprint == FootprintConfig()
+    with pytest.raises(ValueError, match="base_model must be one of disc, footprint"):
+        ConveyorPackingEnv(preset="v1", base_model="box")
 
 
 def test_a_root_action_the_disc_refuses_passes_with_the_footprint(env: ConveyorPackingEnv) -> None:
