@@ -21,10 +21,11 @@ prints :func:`table`; ``--table FILE`` redraws the table from a stored file. VOO
 PW-UCT at the paper's protocol on each switch are not run here (see
 ``docs/results-planning.md``, "Domain ablation", for their CPU cost and command).
 
-Not yet switchable (the authors' geometry): the 1.5 m entrance, the 3.3 x 3.0 m first
-room with its 1.7 m door against the west wall, the 2.0 m south-west opening, and paths
-starting at each box's pick pose on the belt (``convbelt_env_diffcult_shapes_two_rooms.xml``
-and ``problem_environments/conveyor_belt_env.py`` in beomjoonkim/voot).
+The switches: ``footprint`` (``base_model="footprint"``: the exact oriented footprint
+where the disc finds no path), ``big_box_ban`` (the authors' explicit rule at execution),
+``authors_rooms`` (``rooms="authors"``: the walls of the authors' scene). Not yet
+switchable: paths starting at each box's pick pose on the belt
+(``problem_environments/conveyor_belt_env.py`` in beomjoonkim/voot).
 """
 
 from __future__ import annotations
@@ -46,7 +47,10 @@ SWITCHES: Mapping[str, Mapping[str, Any]] = MappingProxyType(
         "v1": MappingProxyType({}),
         "footprint": MappingProxyType({"base_model": "footprint"}),
         "big_box_ban": MappingProxyType({"big_box_ban": True}),
-        "authors_domain": MappingProxyType({"base_model": "footprint", "big_box_ban": True}),
+        "authors_rooms": MappingProxyType({"rooms": "authors"}),
+        "authors_domain": MappingProxyType(
+            {"base_model": "footprint", "big_box_ban": True, "rooms": "authors"}
+        ),
     }
 )
 #: The nodes: scripted actions taken before the statistics.

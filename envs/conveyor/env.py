@@ -78,6 +78,8 @@ from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
+#: The choices of :attr:`ConveyorConfig.rooms`.
+ROOMS = ("voot", "authors")
 #: The choices of :attr:`ConveyorConfig.base_model`.
 BASE_MODELS = ("disc", "footprint")
 #: Boxes placed by one action.
@@ -111,6 +113,13 @@ class ConveyorConfig:
             code): the three placements' region and collision checks, in sequence; the
             base paths (through the door, which the big boxes' carry disc cannot pass)
             are found only when the action is executed.
+        rooms: ``"voot"`` (v0, v1): voot's storage rooms (``models/conveyor.xml``: a
+            2.6 m entrance, a 3.3 x 4 m first room with a 1.62 m door mid-wall, a 3.5 m
+            south-west opening). ``"authors"``: the walls of the authors'
+            ``convbelt_env_diffcult_shapes_two_rooms.xml`` (a 1.5 m entrance, a 3.3 x 3.0 m
+            first room with a 1.7 m door against its west wall, a 2.0 m south-west
+            opening: :mod:`voot.envs.conveyor.authors_rooms`). The scripted solution
+            is voot's and does not fit them.
         base_model: ``"disc"`` (v0, v1): the base planner's config as given (the disc,
             unless its ``footprint`` is set) or ``"footprint"`` (the exact oriented footprint where the disc
             finds no path: sets ``planner.footprint`` to a default
@@ -148,6 +157,7 @@ class ConveyorConfig:
     horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
+    rooms: str = "voot"
     base_model: str = "disc"
     big_box_ban: bool = False
     big_boxes: int = 2
@@ -157,6 +167,10 @@ class ConveyorConfig:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
+        if self.rooms not in ROOMS:
+            raise ValueError(
+                f"ConveyorConfig.rooms must be one of {', '.join(ROOMS)}, got {self.rooms!r}"
+            )
         if self.base_model not in BASE_MODELS:
             raise ValueError(
                 f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
@@ -351,8 +365,13 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         """The scene to load: ``voot.models``' fixed ``conveyor.xml`` (the paper's instance).
 
         A subclass with a generated layout returns its compiled model instead; it is
-        called once, in ``__init__``, after :attr:`config` is set.
+        called once, in ``__init__``, after :attr:`config` is set. ``rooms="authors"``
+        gives the authors' walls (:mod:`voot.envs.conveyor.authors_rooms`).
         """
+        if self.config.rooms == "authors":
+            from voot.envs.conveyor.authors_rooms import authors_rooms_model
+
+            return authors_rooms_model()
         return "conveyor"
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------

@@ -14,10 +14,11 @@ STORE = ROOT / "docs" / "data" / "domain-ablation-v1.json"
 
 
 def test_switches_and_unknown_switch() -> None:
-    assert list(D.SWITCHES) == ["v1", "footprint", "big_box_ban", "authors_domain"]
+    assert list(D.SWITCHES) == ["v1", "footprint", "big_box_ban", "authors_rooms", "authors_domain"]
     with pytest.raises(ValueError, match="choose from v1, footprint"):
         D.make_env("nope")
-    assert D.make_env("authors_domain").config.big_box_ban is True
+    authors = D.make_env("authors_domain").config
+    assert authors.big_box_ban is True and authors.rooms == "authors"
     assert D.make_env("footprint").config.planner.footprint is not None
     assert D.make_env("v1").config.planner.footprint is None
 

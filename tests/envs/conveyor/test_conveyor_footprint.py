@@ -131,3 +131,22 @@ def test_big_box_ban_at_execution_only() -> None:
     assert ban.task.done and total > 7.0
     with pytest.raises(ValueError, match="big_box_ban must be a bool"):
         ConveyorPackingEnv(preset="v1", big_box_ban=1)
+
+
+def test_authors_rooms() -> None:
+    """The authors' walls replace voot's; the 1.5 m entrance stops the big boxes' disc."""
+    from voot.envs.conveyor.authors_rooms import AUTHORS_WALLS
+
+    env = ConveyorPackingEnv(preset="v1", rooms="authors")
+    env.reset(seed=0)
+    names = [b.name for b in env.static_boxes]
+    assert names == [w[0] for w in AUTHORS_WALLS] + ["belt_frame"]
+    gaps = {w[0]: w[1:] for w in AUTHORS_WALLS}
+    assert gaps["wall_east_n"][2] - gaps["wall_east_s"][3] == pytest.approx(1.5)  # entrance
+    assert gaps["wall_room1_s"][0] - gaps["wall_rooms_mid"][1] == pytest.approx(1.695)  # door
+    assert 2 * env.picks[0].disc.radius > 1.5
+    _, _, _, info = env.transition(env.solution_actions()[0])
+    assert info["reason"] == "box 1/3 (obj_00): no base path"
+    assert ConveyorPackingEnv(preset="v1").config.rooms == "voot"
+    with pytest.raises(ValueError, match="rooms must be one of voot, authors"):
+        ConveyorPackingEnv(preset="v1", rooms="paper")
