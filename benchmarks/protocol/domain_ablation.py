@@ -6,7 +6,8 @@ Each :data:`SWITCHES` entry is a set of :class:`~voot.envs.conveyor.env.Conveyor
 overrides on ``ConveyorPacking-v1``; ``authors_domain`` sets all the implemented ones
 at once. The statistics need no planner (cheap, so they come first):
 
-* per node (the start, and the states after 1 and 3 actions of the scripted solution):
+* per node (the start, and the states after 1 and 3 actions of the scripted solution,
+  "not reached" where the scripted actions do not fit the switch's rooms):
   of ``draws`` uniform 9-D actions, how many pass the v1 pre-check (the pre-check does
   not depend on the switches, so every switch sees the same draws: common random
   numbers), and of the first ``executions`` that pass, how many execute feasibly;
@@ -81,6 +82,10 @@ def measure(
         env.reset(seed=seed)
         for a in script[:depth]:
             env.transition(a)
+        if env.task.placed != min(env.n, 3 * depth):
+            # the scripted actions do not fit this domain: the node is not reached
+            nodes.append({"depth": depth, "reached": False})
+            continue
         state = env.get_state()
         rng = np.random.default_rng([seed, depth])
         passed = executed = feasible = 0
@@ -96,8 +101,8 @@ def measure(
                 feasible += bool(info["feasible"])
                 env.set_state(state)
         nodes.append(
-            {"depth": depth, "draws": draws, "passed": passed, "executed": executed,
-             "feasible": feasible}
+            {"depth": depth, "reached": True, "draws": draws, "passed": passed,
+             "executed": executed, "feasible": feasible}
         )  # fmt: skip
     placed = []
     rng = np.random.default_rng([seed, 99])
@@ -151,6 +156,9 @@ def table(store: Mapping[str, Any]) -> str:
     for row in store["rows"]:
         cells = [f"`{row['switch']}`"]
         for node in row["nodes"]:
+            if not node["reached"]:
+                cells += ["not reached", "not reached"]
+                continue
             cells.append(_rate(node["passed"], node["draws"]))
             cells.append(_rate(node["feasible"], node["executed"]))
         placed = row["rollouts_placed"]

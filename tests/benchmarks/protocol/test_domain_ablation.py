@@ -30,6 +30,7 @@ def test_measure_counts_and_the_common_draws() -> None:
     # the pre-check does not depend on the switch: the same passes
     assert [n["passed"] for n in a["nodes"]] == [n["passed"] for n in b["nodes"]]
     for n in a["nodes"]:
+        assert n["reached"]
         assert 0 <= n["feasible"] <= n["executed"] <= min(3, n["passed"]) <= 60
     assert a["scripted_solves"] and b["scripted_solves"]
     assert a["scripted_return"] == pytest.approx(b["scripted_return"])
