@@ -47,7 +47,9 @@ def authors_rooms_xml() -> str:
     lines = conveyor_xml().splitlines(keepends=True)
     kept = [ln for ln in lines if 'name="wall_' not in ln and 'name="shelf_' not in ln]
     at = next(k for k, ln in enumerate(kept) if 'name="belt_frame"' in ln)
-    walls = [wall(name, *xy, CONVEYOR_WALL_HEIGHT) for name, *xy in AUTHORS_WALLS]
+    walls = [
+        wall(name, x0, x1, y0, y1, CONVEYOR_WALL_HEIGHT) for name, x0, x1, y0, y1 in AUTHORS_WALLS
+    ]
     return "".join(kept[:at] + walls + kept[at:])
 
 
