@@ -21,6 +21,8 @@ The measurements (``voot-bench measure --help`` lists them)::
     voot-bench measure speed              cost per ask of VOO, CMA-ES and GP-UCB
     voot-bench measure mesh-speed         cost of the trimesh object meshes and grasp lookups
     voot-bench measure speedup            tree search on the robot domains: 6af33b5 vs now
+    voot-bench measure footprint-speed    cost of the base planner's exact-footprint option
+    voot-bench measure domain-ablation    the conveyor's domain departures, one at a time
 
 A measurement's old spelling without ``measure`` (``voot-bench speed``) still works; it is
 not listed in ``voot-bench --help``. ``voot-bench --version`` prints the version.
@@ -69,6 +71,8 @@ from voot.bench.cli import (
     store,
 )
 from voot.bench.cli.common import CLIError
+from voot.bench.measure import footprint_speed
+from voot.bench.protocol import domain_ablation
 from voot.bench.store.format import StoreError
 from voot.rl.train import MissingExtraError
 
@@ -98,6 +102,8 @@ MEASUREMENTS: tuple[Callable[[Subparsers], None], ...] = (
     measure.register,  # speed, voo-speed, overhead, record-overhead, memory, root-parallel, ...
     env_cost.register,  # env-speed, mesh-speed
     speedup.register,  # speedup
+    footprint_speed.register,  # footprint-speed
+    domain_ablation.register,  # domain-ablation
 )
 
 

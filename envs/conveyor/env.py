@@ -57,6 +57,8 @@ from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.core.units import denormalize, padded_parameters
+from voot.envs.motion.footprint import Footprint, FootprintConfig
+from voot.envs.motion.planar import Box2D
 from voot.envs.motion.planner import BasePath, BasePlannerConfig
 from voot.envs.motion.rects import rect_inside
 from voot.envs.robot.arm_ik import IKConfig
@@ -76,6 +78,10 @@ from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
+#: The choices of :attr:`ConveyorConfig.rooms`.
+ROOMS = ("voot", "authors")
+#: The choices of :attr:`ConveyorConfig.base_model`.
+BASE_MODELS = ("disc", "footprint")
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: The shape of a step info's ``parameters``: a pose per box of a full action.
@@ -107,8 +113,34 @@ class ConveyorConfig:
             code): the three placements' region and collision checks, in sequence; the
             base paths (through the door, which the big boxes' carry disc cannot pass)
             are found only when the action is executed.
+        rooms: ``"voot"`` (v0, v1): voot's storage rooms (``models/conveyor.xml``: a
+            2.6 m entrance, a 3.3 x 4 m first room with a 1.62 m door mid-wall, a 3.5 m
+            south-west opening). ``"authors"``: the walls of the authors'
+            ``convbelt_env_diffcult_shapes_two_rooms.xml`` (a 1.5 m entrance, a 3.3 x 3.0 m
+            first room with a 1.7 m door against its west wall, a 2.0 m south-west
+            opening: :mod:`voot.envs.conveyor.authors_rooms`). The scripted solution
+            is voot's and does not fit them.
+        base_model: ``"disc"`` (v0, v1): the base planner's config as given (the disc,
+            unless its ``footprint`` is set) or ``"footprint"`` (the exact oriented footprint where the disc
+            finds no path: sets ``planner.footprint`` to a default
+            :class:`~voot.envs.motion.footprint.FootprintConfig` when it is None; a
+            keyword ``gymnasium.make`` and ``voot-bench plan --env-kwargs`` can pass).
+        big_box_ban: The authors' explicit rule at execution (``problem_environments/
+            conveyor_belt_env.py`` in beomjoonkim/voot): the big boxes may not be placed in
+            the big rooms. False (v0, v1): voot lets the base planner's disc and the door
+            width keep them out (the carry disc of a big box cannot pass the 1.62 m door).
+            True: executing a placement of one of the first ``big_boxes`` boxes whose
+            centre lies outside ``first_room`` fails ("forbidden room"); the pre-check
+            does not test it (as in the authors' code).
+        big_boxes: How many of the first boxes are big (2: the original's
+            ``create_objects`` and :func:`voot.envs.assets.fixed_scenes.conveyor_box_sizes`).
+        first_room: The region the big boxes must stay in under ``big_box_ban``: voot's
+            first room x in [-4, -0.7], y in [-1, 3] (``models/conveyor.xml``).
         ik: IK settings.
-        planner: Base planner settings.
+        planner: Base planner settings. Its ``footprint`` option
+            (:class:`~voot.envs.motion.footprint.FootprintConfig`) plans the exact footprint
+            of robot, arm and box (:meth:`ConveyorPackingEnv.footprint`) where the disc
+            finds no path.
     """
 
     start: tuple[float, float, float] = (0.0, 1.05, 0.0)
@@ -125,12 +157,34 @@ class ConveyorConfig:
     horizon: int = HORIZON
     render_overlays: bool = True
     precheck: Precheck = Precheck.FULL_STEP
+    rooms: str = "voot"
+    base_model: str = "disc"
+    big_box_ban: bool = False
+    big_boxes: int = 2
+    first_room: tuple[float, float, float, float] = (-4.0, -0.7, -1.0, 3.0)
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
-        for name in ("loading_region", "workspace"):
+        if self.rooms not in ROOMS:
+            raise ValueError(
+                f"ConveyorConfig.rooms must be one of {', '.join(ROOMS)}, got {self.rooms!r}"
+            )
+        if self.base_model not in BASE_MODELS:
+            raise ValueError(
+                f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
+                f"got {self.base_model!r}"
+            )
+        if self.base_model == "footprint" and isinstance(self.planner, BasePlannerConfig):
+            if self.planner.footprint is None:
+                object.__setattr__(
+                    self, "planner", replace(self.planner, footprint=FootprintConfig())
+                )
+        if type(self.big_box_ban) is not bool:
+            raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
+        V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)
+        for name in ("loading_region", "workspace", "first_room"):
             object.__setattr__(self, name, V.region(f"ConveyorConfig.{name}", getattr(self, name)))
         object.__setattr__(
             self, "place_theta", V.range_pair("ConveyorConfig.place_theta", self.place_theta)
@@ -292,12 +346,32 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             )
         return FixedPick(rel, tuple(float(v) for v in ik.q), disc)
 
+    def footprint(self, i: int) -> Footprint:
+        """The exact footprint carrying box ``i`` (frame of its carry disc's centre).
+
+        Three rectangles: the base square, the box at its fixed grasp, and the bounding
+        rectangle (in the base frame) of the arm's collision geoms at the fixed grasp's
+        joint values, read from MuJoCo. Used by the base planner's exact-footprint option
+        (:attr:`BasePlannerConfig.footprint`); the disc of the pick encloses it.
+        """
+        cache = self.__dict__.setdefault("_footprints", {})
+        hit = cache.get(i)
+        if hit is None:
+            hit = _carry_footprint(self, self.picks[i])
+            cache[i] = hit
+        return hit  # type: ignore[no-any-return]
+
     def _scene_model(self) -> str | mujoco.MjModel:
         """The scene to load: ``voot.models``' fixed ``conveyor.xml`` (the paper's instance).
 
         A subclass with a generated layout returns its compiled model instead; it is
-        called once, in ``__init__``, after :attr:`config` is set.
+        called once, in ``__init__``, after :attr:`config` is set. ``rooms="authors"``
+        gives the authors' walls (:mod:`voot.envs.conveyor.authors_rooms`).
         """
+        if self.config.rooms == "authors":
+            from voot.envs.conveyor.authors_rooms import authors_rooms_model
+
+            return authors_rooms_model()
         return "conveyor"
 
     # ----- ManipulationEnv hooks -------------------------------------------------------------
@@ -472,13 +546,25 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         if reason:
             return reason, col_time, plan_time
         assert base is not None  # passed the region checks
+        if cfg.big_box_ban and i < cfg.big_boxes:
+            rxmin, rxmax, rymin, rymax = cfg.first_room
+            if not (rxmin <= x <= rxmax and rymin <= y <= rymax):
+                text = "forbidden room: a big box outside the first room"
+                return Failure(Reason.FORBIDDEN_ROOM, text), col_time, plan_time
         pick = self.picks[i]
         t0 = time.perf_counter()
         movable = [self.object_box(j) for j in range(self.task.placed)] + [
             object_footprint(self.objects[j], p[0], p[1], p[3]) for j, p in moved.items()
         ]
         disc = pick.disc
-        path = self.planner.plan(disc.center(cfg.start), disc.center(base), disc.radius, movable)
+        if cfg.planner.footprint is None:
+            path = self.planner.plan(
+                disc.center(cfg.start), disc.center(base), disc.radius, movable
+            )
+        else:
+            path = self.planner.plan_footprint(
+                disc.center(cfg.start), disc.center(base), disc.radius, self.footprint(i), movable
+            )
         plan_time = time.perf_counter() - t0
         if path is None:
             return Failure(Reason.NO_BASE_PATH, "no base path"), col_time, plan_time
@@ -563,6 +649,42 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
             0.0,
             (1.0, 0.85, 0.1, 0.10),
         )
+
+
+def _carry_footprint(env: ConveyorPackingEnv, pick: FixedPick) -> Footprint:
+    """:meth:`ConveyorPackingEnv.footprint` of ``pick`` (computed once per box)."""
+    model = env.model
+    data = mujoco.MjData(model)
+    env.robot.set_base(data, (0.0, 0.0, 0.0))
+    env.robot.set_arm(data, pick.arm_q)
+    mujoco.mj_kinematics(model, data)
+    base_body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "base")
+    lo = np.array([np.inf, np.inf])
+    hi = -lo
+    for g in env.robot.geoms:
+        if model.geom_bodyid[g] == base_body:
+            continue  # the base's own geoms: inside the base square
+        if model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0:
+            continue  # visual only
+        centre, half = model.geom_aabb[g, :3], model.geom_aabb[g, 3:]
+        signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)])
+        corners = data.geom_xpos[g] + (centre + signs * half) @ data.geom_xmat[g].reshape(3, 3).T
+        lo = np.minimum(lo, corners[:, :2].min(axis=0))
+        hi = np.maximum(hi, corners[:, :2].max(axis=0))
+    ox, oy = pick.disc.offset
+    obj = env.objects[env.picks.index(pick)]
+    held = object_footprint(obj, *pick.rel)
+    parts = [
+        Box2D(-ox, -oy, BASE_HALF, BASE_HALF, 0.0, "base"),
+        Box2D(held.cx - ox, held.cy - oy, held.half_x, held.half_y, held.yaw, obj.name),
+    ]
+    if np.all(np.isfinite(lo)):
+        c = 0.5 * (lo + hi)
+        h = 0.5 * (hi - lo)
+        parts.append(
+            Box2D(float(c[0]) - ox, float(c[1]) - oy, float(h[0]), float(h[1]), 0.0, "arm")
+        )
+    return Footprint(tuple(parts))
 
 
 def _of_box(reason: str, k: int, m: int, name: str) -> Failure:

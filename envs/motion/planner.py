@@ -87,6 +87,8 @@ from voot.envs.motion.disc_geometry import (
     points_inside,
     segments_hit_any,
 )
+from voot.envs.motion.footprint import Footprint, FootprintConfig
+from voot.envs.motion.footprint_search import FootprintSearch
 from voot.envs.motion.graph_search import no_path, search
 from voot.envs.motion.planar import (
     BasePath,
@@ -107,6 +109,8 @@ __all__ = [
     "BasePlannerConfig",
     "Box2D",
     "DiscProbe",
+    "Footprint",
+    "FootprintConfig",
     "Pose2D",
     "path_length",
     "se2_distance",
@@ -139,6 +143,11 @@ class BasePlannerConfig:
         static_cache_size: Number of radii whose static visibility graph is kept; >= 1.
         graph_cache_size: Number of ``(radius, movable obstacles)`` graphs kept; >= 0
             (0 disables the cache: every query rebuilds the movable part).
+        footprint: None (default): :meth:`BasePlanner.plan_footprint` is the disc's
+            :meth:`BasePlanner.plan`. A :class:`FootprintConfig`: where the disc finds no
+            path, :meth:`BasePlanner.plan_footprint` searches the exact oriented
+            footprint of robot and load on an (x, y, theta) lattice at that resolution
+            (:mod:`voot.envs.motion.footprint_search`).
     """
 
     rotation_weight: float = 1.0
@@ -149,6 +158,7 @@ class BasePlannerConfig:
     radius_step: float = 0.0
     static_cache_size: int = 8
     graph_cache_size: int = 32
+    footprint: FootprintConfig | None = None
 
     def __post_init__(self) -> None:
         rw = _finite(self.rotation_weight, "BasePlannerConfig.rotation_weight")
@@ -185,6 +195,11 @@ class BasePlannerConfig:
         object.__setattr__(self, "clearance", cl)
         object.__setattr__(self, "vertex_margin", vm)
         object.__setattr__(self, "contact_tolerance", ct)
+        if self.footprint is not None and not isinstance(self.footprint, FootprintConfig):
+            raise ValueError(
+                "BasePlannerConfig.footprint must be None or a FootprintConfig, got "
+                f"{type(self.footprint).__name__}"
+            )
 
 
 class DiscProbe:
@@ -254,6 +269,27 @@ class DiscProbe:
         return None if unsure else False
 
 
+class _DiscHub:
+    """The disc's free positions reachable from a start (:class:`DiscHub` of a query)."""
+
+    def __init__(
+        self, planner: BasePlanner, start: Pose2D, radius: float, movable: tuple[Box2D, ...]
+    ) -> None:
+        self._planner = planner
+        self._start = start
+        self._radius = radius
+        self._movable = movable
+        self._probe = planner.disc_probe(movable)
+        self._start_free = not self._probe.blocked(start.x, start.y, radius)
+
+    def is_free(self, x: float, y: float) -> bool:
+        return self._start_free and not self._probe.blocked(x, y, self._radius)
+
+    def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
+        path = self._planner.plan(self._start, pose, self._radius, self._movable)
+        return None if path is None else path.waypoints
+
+
 class BasePlanner:
     """Shortest collision-free paths of a disc-shaped holonomic base (see the module doc).
 
@@ -300,6 +336,7 @@ class BasePlanner:
         self._lists_cache: dict[tuple[Box2D, ...], tuple[tuple[list[float], ...], list[str]]] = {}
         self._arrays_cache: dict[tuple[Box2D, ...], tuple[BoxArrays, BoxArrays]] = {}
         self._graph_cache: OrderedDict[tuple[float, tuple[Box2D, ...]], _Scene] = OrderedDict()
+        self._footprint_search: FootprintSearch | None = None
 
     # ----- public API -------------------------------------------------------------------
     def plan(
@@ -339,6 +376,59 @@ class BasePlanner:
         path = self._plan(s, g, robot_radius, mov)
         self._last_plan = (key, mov, path)
         return path
+
+    def plan_footprint(
+        self,
+        start: Pose2D | ArrayLike,
+        goal: Pose2D | ArrayLike,
+        robot_radius: float,
+        footprint: Footprint,
+        movable: Sequence[Box2D] = (),
+    ) -> BasePath | None:
+        """:meth:`plan` for the disc, then, if it fails, the exact ``footprint``'s path.
+
+        The disc of ``robot_radius`` encloses ``footprint`` (given in the frame of the
+        planned point, turning with its heading), so a disc path is a footprint path and
+        is returned as is. Where the disc finds none and
+        :attr:`BasePlannerConfig.footprint` is set, the lattice search of
+        :class:`~voot.envs.motion.footprint_search.FootprintSearch` decides (deterministic,
+        complete at its resolution); with the option unset this is :meth:`plan`.
+        """
+        path = self.plan(start, goal, robot_radius, movable)
+        fcfg = self.config.footprint
+        if path is not None or fcfg is None:
+            return path
+        if not isinstance(footprint, Footprint):
+            raise ValueError(f"footprint must be a Footprint, got {type(footprint).__name__}")
+        s = Pose2D.coerce(start, "start")
+        g = Pose2D.coerce(goal, "goal")
+        mov = self._movable(movable)
+        hub = _DiscHub(self, s, robot_radius, mov)
+        waypoints = self.footprint_search().plan(
+            (s.x, s.y, s.theta), (g.x, g.y, g.theta), footprint, mov, hub
+        )
+        if waypoints is None:
+            return None
+        return BasePath._from_owned(waypoints, self.config.rotation_weight)
+
+    def footprint_search(self) -> FootprintSearch:
+        """The exact-footprint search of this floor plan (made on first use).
+
+        Raises:
+            ValueError: If :attr:`BasePlannerConfig.footprint` is None.
+        """
+        fcfg = self.config.footprint
+        if fcfg is None:
+            raise ValueError("BasePlannerConfig.footprint is None: no exact-footprint search")
+        if self._footprint_search is None:
+            self._footprint_search = FootprintSearch(
+                self.workspace,
+                self.static_obstacles,
+                fcfg,
+                self.config.rotation_weight,
+                self.config.contact_tolerance,
+            )
+        return self._footprint_search
 
     def _plan(
         self, s: Pose2D, g: Pose2D, robot_radius: float, mov: tuple[Box2D, ...]

@@ -1,0 +1,163 @@
+"""What the base planner's exact-footprint option costs on the conveyor (a command, not a test).
+
+``voot-bench measure footprint-speed [--rollouts N] [--seed S]`` prints (:func:`run`,
+:func:`report`):
+
+* the CPU time of the exact lattice search per query (the queries where the disc finds
+  no path, so :meth:`~voot.envs.motion.planner.BasePlanner.plan_footprint` searches the
+  lattice): median, 90th percentile and count, with the static occupancy of every
+  carried box's footprint built beforehand (its one-off cost per footprint is printed
+  apart);
+* the CPU cost of conveyor simulations with the option against the disc
+  (``ConveyorPacking-v1``, ``BasePlannerConfig(footprint=FootprintConfig())`` vs the
+  default): the same random rollouts (from the start, each action uniform in the 9-D
+  box, redrawn up to 50 times until it passes the pre-check, executed, until a step is
+  infeasible or every box is placed), measured in the same run, with and without the
+  one-off static occupancy;
+
+and the rollouts' boxes placed with each model. The issue's goals: a median exact query
+under 10 ms, a simulation at most 3x the disc's CPU cost.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from typing import Any
+
+import numpy as np
+
+#: Draws of an action per step before the last one is executed (the authors' 50).
+RETRIES = 50
+
+
+def _record(env: Any, n: int, seed: int) -> tuple[list[tuple[Any, list[Any], Any]], list[int]]:
+    """``n`` random rollouts of ``env``: per step its state, the pre-checked draws and the
+    executed action; and the boxes each rollout placed."""
+    rng = np.random.default_rng(seed)
+    steps: list[tuple[Any, list[Any], Any]] = []
+    placed: list[int] = []
+    for _ in range(n):
+        env.reset(seed=seed)
+        while True:
+            state = env.get_state()
+            draws = []
+            for _ in range(RETRIES):
+                a = rng.uniform(-1.0, 1.0, env.action_dim)
+                draws.append(a)
+                ok, _ = env.precheck(a)
+                if ok:
+                    break
+            steps.append((state, draws, a))
+            _, terminated, truncated, info = env.transition(a)
+            if not info["feasible"] or terminated or truncated:
+                break
+        placed.append(env.task.placed)
+    return steps, placed
+
+
+def _replay(env: Any, steps: list[tuple[Any, list[Any], Any]]) -> tuple[float, int]:
+    """CPU seconds of the recorded steps' pre-checks and transitions in ``env``; feasible steps."""
+    total = 0.0
+    feasible = 0
+    for state, draws, action in steps:
+        env.set_state(state)
+        t0 = time.process_time()
+        for a in draws:
+            env.precheck(a)
+        _, _, _, info = env.transition(action)
+        total += time.process_time() - t0
+        feasible += bool(info["feasible"])
+    return total, feasible
+
+
+def run(rollouts: int = 20, seed: int = 0) -> dict[str, Any]:
+    """Measure the exact queries and the simulation cost ratio (see the module doc)."""
+    from voot.envs.conveyor.env import ConveyorPackingEnv
+    from voot.envs.motion.footprint import FootprintConfig
+    from voot.envs.motion.planner import BasePlannerConfig
+
+    fcfg = FootprintConfig(static_cache_size=20)
+    option = BasePlannerConfig(footprint=fcfg)
+    # the steps of random rollouts with the option (they go deeper than the disc's)
+    steps, placed = _record(ConveyorPackingEnv(preset="v1", planner=option), rollouts, seed)
+    disc = ConveyorPackingEnv(preset="v1")
+    exact = ConveyorPackingEnv(preset="v1", planner=option)
+    # the one-off static occupancy of each box's footprint
+    t0 = time.process_time()
+    search = exact.planner.footprint_search()
+    for i in range(exact.n):
+        search.free_grid(exact.footprint(i), ())
+    static = time.process_time() - t0
+    queries: list[float] = []
+    search.timings = queries
+    disc_cpu, disc_ok = _replay(disc, steps)
+    exact_cpu, exact_ok = _replay(exact, steps)
+    return {
+        "rollouts": rollouts,
+        "seed": seed,
+        "lattice": (fcfg.xy_step, fcfg.headings),
+        "static_seconds": static,
+        "boxes": exact.n,
+        "steps": len(steps),
+        "disc_cpu": disc_cpu,
+        "exact_cpu": exact_cpu,
+        "disc_feasible": disc_ok,
+        "exact_feasible": exact_ok,
+        "placed": placed,
+        "queries": queries,
+    }
+
+
+def report(r: dict[str, Any]) -> str:
+    """The figures of :func:`run` as text."""
+    q = sorted(r["queries"])
+    step, headings = r["lattice"]
+    lines = [
+        f"exact-footprint option on ConveyorPacking-v1, lattice {step * 100:g} cm x "
+        f"{360 / headings:g} deg, {r['rollouts']} random rollouts (seed {r['seed']}), CPU time",
+        f"static occupancy: {r['static_seconds']:.1f} s for {r['boxes']} footprints "
+        f"({r['static_seconds'] / r['boxes'] * 1000:.0f} ms each, once per env)",
+    ]
+    if q:
+        p90 = q[min(len(q) - 1, int(0.9 * len(q)))]
+        lines.append(
+            f"exact queries (the disc found no path): {len(q)}, median "
+            f"{statistics.median(q) * 1000:.1f} ms, 90th percentile {p90 * 1000:.1f} ms "
+            "(goal: median < 10 ms)"
+        )
+    else:
+        lines.append("exact queries: none (the disc found every path)")
+    ratio = r["exact_cpu"] / r["disc_cpu"] if r["disc_cpu"] > 0 else float("nan")
+    with_static = (r["exact_cpu"] + r["static_seconds"]) / r["disc_cpu"]
+    n = r["steps"]
+    lines += [
+        f"the same {n} steps (pre-checks and execution; states of the footprint's rollouts): "
+        f"disc {r['disc_cpu']:.2f} s ({r['disc_cpu'] / n * 1000:.1f} ms a step, "
+        f"{r['disc_feasible']} feasible), footprint {r['exact_cpu']:.2f} s "
+        f"({r['exact_cpu'] / n * 1000:.1f} ms a step, {r['exact_feasible']} feasible): "
+        f"ratio {ratio:.1f}x, {with_static:.1f}x with the static occupancy (goal: <= 3x)",
+        f"boxes placed per rollout with the footprint: mean {np.mean(r['placed']):.2f}",
+    ]
+    return "\n".join(lines)
+
+
+def _command(args: argparse.Namespace) -> int:
+    if args.rollouts < 1:
+        raise SystemExit("--rollouts must be >= 1")
+    print(report(run(args.rollouts, args.seed)))
+    return 0
+
+
+def register(sub: Any) -> None:
+    """Add ``footprint-speed`` to ``voot-bench measure``."""
+    p = sub.add_parser(
+        "footprint-speed",
+        help="cost of the base planner's exact-footprint option on the conveyor",
+        description="Median exact lattice query and the conveyor simulation CPU-cost ratio"
+        " of the exact-footprint option against the disc, measured in the same run.",
+    )
+    p.add_argument("--rollouts", type=int, default=20, help="random rollouts (default 20)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the random actions")
+    p.set_defaults(func=_command)

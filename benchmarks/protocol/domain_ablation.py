@@ -1,0 +1,218 @@
+"""Domain ablation of the conveyor: each departure from the authors' domain switched on alone.
+
+The planner ablation (:mod:`voot.bench.protocol.ablation`) flips planner options and
+leaves the domains alone; here the planners are left out and the domain is flipped.
+Each :data:`SWITCHES` entry is a set of :class:`~voot.envs.conveyor.env.ConveyorConfig`
+overrides on ``ConveyorPacking-v1``; ``authors_domain`` sets all the implemented ones
+at once. The statistics need no planner (cheap, so they come first):
+
+* per node (the start, and the states after 1 and 3 actions of the scripted solution,
+  "not reached" where the scripted actions do not fit the switch's rooms):
+  of ``draws`` uniform 9-D actions, how many pass the v1 pre-check (the pre-check does
+  not depend on the switches, so every switch sees the same draws: common random
+  numbers), and of the first ``executions`` that pass, how many execute feasibly;
+* random rollouts: from the start, each action uniform and redrawn until it passes the
+  pre-check (at most 50 draws, the authors' retries), executed until a step fails or
+  every box is placed; the boxes placed;
+* whether the scripted solution (:mod:`voot.envs.conveyor.scripted`) still solves the
+  task, and its return.
+
+``voot-bench measure domain-ablation --out FILE`` writes the store (JSON, a few kB) and
+prints :func:`table`; ``--table FILE`` redraws the table from a stored file. VOOT and
+PW-UCT at the paper's protocol on each switch are not run here (see
+``docs/results-planning.md``, "Domain ablation", for their CPU cost and command).
+
+The switches: ``footprint`` (``base_model="footprint"``: the exact oriented footprint
+where the disc finds no path), ``big_box_ban`` (the authors' explicit rule at execution),
+``authors_rooms`` (``rooms="authors"``: the walls of the authors' scene). Not yet
+switchable: paths starting at each box's pick pose on the belt
+(``problem_environments/conveyor_belt_env.py`` in beomjoonkim/voot).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from collections.abc import Mapping
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+
+#: The domain switches: ConveyorConfig overrides.
+SWITCHES: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {
+        "v1": MappingProxyType({}),
+        "footprint": MappingProxyType({"base_model": "footprint"}),
+        "big_box_ban": MappingProxyType({"big_box_ban": True}),
+        "authors_rooms": MappingProxyType({"rooms": "authors"}),
+        "authors_domain": MappingProxyType(
+            {"base_model": "footprint", "big_box_ban": True, "rooms": "authors"}
+        ),
+    }
+)
+#: The nodes: scripted actions taken before the statistics.
+NODES = (0, 1, 3)
+#: Draws of an action in a rollout before the last one is executed (the authors' 50).
+RETRIES = 50
+
+
+def make_env(switch: str) -> Any:
+    """``ConveyorPacking-v1`` with the overrides of ``switch``."""
+    from voot.envs.conveyor.env import ConveyorPackingEnv
+
+    if switch not in SWITCHES:
+        raise ValueError(f"unknown switch {switch!r}; choose from {', '.join(SWITCHES)}")
+    return ConveyorPackingEnv(preset="v1", **SWITCHES[switch])
+
+
+def measure(
+    switch: str, draws: int = 2000, executions: int = 40, rollouts: int = 5, seed: int = 0
+) -> dict[str, Any]:
+    """The planner-agnostic statistics of one switch (see the module doc)."""
+    env = make_env(switch)
+    t0 = time.process_time()
+    env.reset(seed=seed)
+    script = env.solution_actions()
+    nodes = []
+    for depth in NODES:
+        env.reset(seed=seed)
+        for a in script[:depth]:
+            env.transition(a)
+        if env.task.placed != min(env.n, 3 * depth):
+            # the scripted actions do not fit this domain: the node is not reached
+            nodes.append({"depth": depth, "reached": False})
+            continue
+        state = env.get_state()
+        rng = np.random.default_rng([seed, depth])
+        passed = executed = feasible = 0
+        for _ in range(draws):
+            a = rng.uniform(-1.0, 1.0, env.action_dim)
+            ok, _ = env.precheck(a)
+            if not ok:
+                continue
+            passed += 1
+            if executed < executions:
+                executed += 1
+                _, _, _, info = env.transition(a)
+                feasible += bool(info["feasible"])
+                env.set_state(state)
+        nodes.append(
+            {"depth": depth, "reached": True, "draws": draws, "passed": passed,
+             "executed": executed, "feasible": feasible}
+        )  # fmt: skip
+    placed = []
+    rng = np.random.default_rng([seed, 99])
+    for _ in range(rollouts):
+        env.reset(seed=seed)
+        while True:
+            for _ in range(RETRIES):
+                a = rng.uniform(-1.0, 1.0, env.action_dim)
+                if env.precheck(a)[0]:
+                    break
+            _, terminated, truncated, info = env.transition(a)
+            if not info["feasible"] or terminated or truncated:
+                break
+        placed.append(env.task.placed)
+    env.reset(seed=seed)
+    ret = 0.0
+    solved = True
+    for a in script:
+        r, terminated, _, info = env.transition(a)
+        ret += r
+        solved &= bool(info["feasible"])
+    return {
+        "switch": switch,
+        "nodes": nodes,
+        "rollouts_placed": placed,
+        "scripted_solves": solved and env.task.done,
+        "scripted_return": round(ret, 6),
+        "cpu_seconds": round(time.process_time() - t0, 1),
+    }
+
+
+def _rate(k: int, n: int) -> str:
+    """``k/n`` as a percentage with its Wilson 95% interval."""
+    if n == 0:
+        return "-"
+    p = k / n
+    z = 1.96
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    lo, hi = max(0.0, centre - half), min(1.0, centre + half)
+    return f"{100 * p:.1f}% ({k}/{n}; {100 * lo:.0f}-{100 * hi:.0f}%)"
+
+
+def table(store: Mapping[str, Any]) -> str:
+    """The store's statistics as a markdown table (one row per switch)."""
+    head = ["switch"]
+    for depth in NODES:
+        head += [f"pre-check, {depth} actions", f"executes, {depth} actions"]
+    head += ["random rollouts: boxes placed", "scripted solution"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for row in store["rows"]:
+        cells = [f"`{row['switch']}`"]
+        for node in row["nodes"]:
+            if not node["reached"]:
+                cells += ["not reached", "not reached"]
+                continue
+            cells.append(_rate(node["passed"], node["draws"]))
+            cells.append(_rate(node["feasible"], node["executed"]))
+        placed = row["rollouts_placed"]
+        cells.append(f"mean {np.mean(placed):.1f} ({', '.join(str(p) for p in placed)})")
+        cells.append(
+            f"solves, return {row['scripted_return']:.2f}" if row["scripted_solves"] else "fails"
+        )
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def run(
+    switches: tuple[str, ...], draws: int, executions: int, rollouts: int, seed: int
+) -> dict[str, Any]:
+    """:func:`measure` every switch; the store."""
+    return {
+        "problem": "voot/ConveyorPacking-v1",
+        "settings": {"draws": draws, "executions": executions, "rollouts": rollouts,
+                     "seed": seed},
+        "rows": [measure(s, draws, executions, rollouts, seed) for s in switches],
+    }  # fmt: skip
+
+
+def _command(args: argparse.Namespace) -> int:
+    if args.table is not None:
+        print(table(json.loads(Path(args.table).read_text())))
+        return 0
+    for name in ("draws", "executions", "rollouts"):
+        if getattr(args, name) < 1:
+            raise SystemExit(f"--{name} must be >= 1")
+    switches = tuple(args.switches or SWITCHES)
+    for s in switches:
+        if s not in SWITCHES:
+            raise SystemExit(f"unknown switch {s!r}; choose from {', '.join(SWITCHES)}")
+    store = run(switches, args.draws, args.executions, args.rollouts, args.seed)
+    if args.out is not None:
+        Path(args.out).write_text(json.dumps(store, indent=1) + "\n")
+    print(table(store))
+    return 0
+
+
+def register(sub: Any) -> None:
+    """Add ``domain-ablation`` to ``voot-bench measure``."""
+    p = sub.add_parser(
+        "domain-ablation",
+        help="the conveyor's domain departures switched one at a time: planner-agnostic statistics",
+        description="Pre-check and execution rates by node, random-rollout success and the"
+        " scripted solution, on ConveyorPacking-v1 with each domain switch.",
+    )
+    p.add_argument("--switches", nargs="*", default=None, help=f"default: {' '.join(SWITCHES)}")
+    p.add_argument("--draws", type=int, default=2000, help="uniform draws per node")
+    p.add_argument("--executions", type=int, default=40, help="executed passes per node")
+    p.add_argument("--rollouts", type=int, default=5, help="random rollouts")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--out", default=None, help="write the store (JSON) here")
+    p.add_argument("--table", default=None, help="only redraw the table of this store")
+    p.set_defaults(func=_command)

@@ -1,0 +1,360 @@
+"""Exact-footprint base paths: A* over the (x, y, theta) lattice of :mod:`.footprint`.
+
+The search behind :meth:`voot.envs.motion.planner.BasePlanner.plan_footprint`, run when
+the disc finds no path (a disc path is a footprint path, so the disc stays the fast
+sufficient test). It is deterministic and complete at its resolution:
+
+1. The exact start and goal poses must be free (:func:`footprint_hits`), and so must
+   their nearest lattice poses.
+2. The lattice's free poses are those whose footprint clears the static obstacles (computed
+   once per footprint) and the movable boxes (once per footprint and box), exactly at
+   each lattice pose.
+3. A* from the start's lattice pose to the goal's over the free poses, each joined to
+   its 8 neighbours in (x, y) at the same heading and to the two neighbouring headings
+   at the same position; a move costs its SE(2) length (``|dp| + w |dtheta|``), the
+   heuristic is the straight-line SE(2) distance (admissible), ties are broken by the
+   lattice index. After ``label_after`` expansions the lattice's connected components
+   are labelled once (scipy), so that "no path" is proved without expanding a whole
+   room pose by pose.
+4. The lattice path is pulled tight: from each kept waypoint the next kept one is the
+   farthest along the path joined to it by a straight SE(2) segment whose samples (at
+   most ``xy_step`` / 2 and a half heading step apart) all snap to free lattice poses;
+   the path's length is the original's sum of SE(2) distances (:func:`path_length`)
+   of the tightened path, from the exact start to the exact goal.
+
+Guarantee: every lattice pose on the returned path is free exactly (the separating-axis
+test of oriented rectangles). Between two lattice poses the footprint moves by at most
+``xy_step * sqrt(2)`` or turns by one heading step (at its farthest corner
+``reach * heading_step``): the tolerance of the resolution, as for any lattice planner.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+from collections import OrderedDict
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import ndimage
+
+from voot.envs.motion.footprint import (
+    BoolArray,
+    Footprint,
+    FootprintConfig,
+    FootprintLattice,
+    bound_boxes,
+    footprint_hits,
+)
+from voot.envs.motion.planar import Box2D
+
+FloatArray = NDArray[np.float64]
+
+__all__ = ["DiscHub", "FootprintSearch"]
+
+
+class DiscHub(Protocol):
+    """The disc's free positions reachable from the query's start (see :meth:`FootprintSearch.plan`)."""
+
+    def is_free(self, x: float, y: float) -> bool:
+        """Is the disc centred at ``(x, y)`` free (then every heading is free there)?"""
+
+    def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
+        """The disc's waypoints ``(k, 3)`` from the start to ``pose``, or None."""
+
+
+_SQRT2 = math.sqrt(2.0)
+
+
+class FootprintSearch:
+    """Exact-footprint paths among static and movable rectangles (see the module doc).
+
+    Args:
+        workspace: ``(xmin, xmax, ymin, ymax)``: every rectangle must stay inside.
+        static_obstacles: Footprints that never move.
+        config: The lattice's resolution and caches.
+        rotation_weight: Weight of ``|dtheta|`` in the path length and the move costs.
+        tolerance: Contact depth (metres) that does not count as a collision.
+    """
+
+    def __init__(
+        self,
+        workspace: tuple[float, float, float, float],
+        static_obstacles: tuple[Box2D, ...],
+        config: FootprintConfig,
+        rotation_weight: float = 1.0,
+        tolerance: float = 1e-9,
+    ) -> None:
+        self.workspace = workspace
+        self.config = config
+        self.rotation_weight = rotation_weight
+        self.tolerance = tolerance
+        self.static_obstacles = tuple(static_obstacles)
+        self.lattice = FootprintLattice(workspace, config, tolerance)
+        self._static_boxes = self.static_obstacles + bound_boxes(workspace)
+        self._static: OrderedDict[Footprint, bytes] = OrderedDict()
+        self._masks: OrderedDict[
+            tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
+        ] = OrderedDict()
+        self._scene: tuple[tuple[Footprint, tuple[Box2D, ...]], bytearray, BoolArray] | None = None
+        #: A* expansions of the last exact query (for the benchmark's statistics).
+        self.last_expansions = 0
+        #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
+        self.timings: list[float] | None = None
+
+    def free_grid(self, footprint: Footprint, movable: tuple[Box2D, ...]) -> BoolArray:
+        """The lattice poses (``(headings, nx, ny)``) where ``footprint`` is free."""
+        return self._free(footprint, movable)[1]
+
+    def is_free(
+        self, footprint: Footprint, pose: tuple[float, float, float], movable: tuple[Box2D, ...]
+    ) -> bool:
+        """Is ``footprint`` at ``pose`` inside the workspace and clear of every obstacle?"""
+        return not footprint_hits(
+            footprint, pose, self.static_obstacles + movable, self.workspace, self.tolerance
+        )
+
+    def plan(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None = None,
+    ) -> FloatArray | None:
+        """Waypoints ``(k, 3)`` from ``start`` to ``goal`` (exactly), or None if none exists.
+
+        With a ``hub`` (the disc's free positions reachable from ``start``), the search
+        runs from the goal and stops at the first lattice pose whose position is one: the
+        disc's path from the start to it (on which any heading is free) is joined to the
+        lattice path. The answer "a path exists" is the same; the search is local to
+        the goal.
+        """
+        if self.timings is None:
+            return self._plan(start, goal, footprint, movable, hub)
+        t0 = time.process_time()
+        out = self._plan(start, goal, footprint, movable, hub)
+        self.timings.append(time.process_time() - t0)
+        return out
+
+    def _plan(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> FloatArray | None:
+        """:meth:`plan` untimed."""
+        self.last_expansions = 0
+        if not (self.is_free(footprint, start, movable) and self.is_free(footprint, goal, movable)):
+            return None
+        lat = self.lattice
+        s = lat.nearest(*start)
+        g = lat.nearest(*goal)
+        if s is None or g is None:
+            return None
+        free_bytes, free = self._free(footprint, movable)
+        nx, ny = lat.nx, lat.ny
+        si = (s[0] * nx + s[1]) * ny + s[2]
+        gi = (g[0] * nx + g[1]) * ny + g[2]
+        if not (free_bytes[si] and free_bytes[gi]):
+            return None
+        # search from the goal: to the start, or to the first hub
+        found = self._astar(gi, si, free_bytes, free, hub)
+        if found is None:
+            return None
+        cells, head = found
+        plane = lat.nx * lat.ny
+        poses = [lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)]
+        if head is None:
+            return self._tighten([start, *poses, goal], free_bytes)
+        tail = self._tighten([*poses, goal], free_bytes)
+        return np.concatenate([head[:-1], tail])
+
+    # ----- internals ----------------------------------------------------------------------
+    def _free(
+        self, footprint: Footprint, movable: tuple[Box2D, ...]
+    ) -> tuple[bytearray, BoolArray]:
+        """The free lattice of the scene as bytes (A*'s lookups) and as an array (a view)."""
+        key = (footprint, movable)
+        if self._scene is not None and self._scene[0] == key:
+            return self._scene[1], self._scene[2]
+        static = self._static.get(footprint)
+        if static is None:
+            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
+            self._static[footprint] = static
+            if len(self._static) > self.config.static_cache_size:
+                self._static.popitem(last=False)
+        else:
+            self._static.move_to_end(footprint)
+        buffer = bytearray(static)
+        free = np.frombuffer(buffer, dtype=bool).reshape(self.lattice.shape)
+        for box in movable:
+            window = self._mask(footprint, box)
+            if window is not None:
+                i0, i1, j0, j1, mask = window
+                free[:, i0:i1, j0:j1] &= ~mask
+        self._scene = (key, buffer, free)
+        return buffer, free
+
+    def _mask(
+        self, footprint: Footprint, box: Box2D
+    ) -> tuple[int, int, int, int, BoolArray] | None:
+        key = (footprint, box)
+        if key in self._masks:
+            self._masks.move_to_end(key)
+            return self._masks[key]
+        window = self.lattice.blocked_window(footprint, box)
+        if self.config.mask_cache_size > 0:
+            self._masks[key] = window
+            if len(self._masks) > self.config.mask_cache_size:
+                self._masks.popitem(last=False)
+        return window
+
+    def _astar(
+        self, si: int, gi: int, free_bytes: bytearray, free: BoolArray, hub: DiscHub | None
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """Lattice indices from ``si`` to ``gi`` or to a hub (both ends included), or None.
+
+        Returns the cells and, when the search stopped at a hub, the disc's waypoints
+        from the hub's start to the last cell (None when it reached ``gi``).
+        """
+        lat = self.lattice
+        nk, nx, ny = lat.shape
+        step = self.config.xy_step
+        w = self.rotation_weight * self.config.heading_step
+        plane = nx * ny
+        gk, grem = divmod(gi, plane)
+        gx, gy = divmod(grem, ny)
+        eps = self.config.heuristic_weight
+        h_step = eps * step
+        moves = [
+            (d_i * ny + d_j, d_i, d_j, step * (_SQRT2 if d_i and d_j else 1.0))
+            for d_i in (-1, 0, 1)
+            for d_j in (-1, 0, 1)
+            if d_i or d_j
+        ]
+        best: dict[int, float] = {si: 0.0}
+        parent: dict[int, int] = {si: -1}
+        closed: set[int] = set()
+        heap: list[tuple[float, int]] = [(0.0, si)]
+        label_after = self.config.label_after
+        hub_failed: set[int] = set()
+        hub_nbrs = [d_i * ny + d_j for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j]
+        expansions = 0
+        while heap:
+            _, v = heapq.heappop(heap)
+            if v in closed:
+                continue
+            k, rem = divmod(v, plane)
+            i, j = divmod(rem, ny)
+            head = None
+            if v != gi and hub is not None and rem not in hub_failed:
+                x, y = float(lat.xs[i]), float(lat.ys[j])
+                if hub.is_free(x, y):
+                    # a disc position next to one the disc cannot reach from the start is
+                    # (almost always) in the same region: not asked again (skipping a hub
+                    # costs time, never completeness)
+                    near = any(rem + d in hub_failed for d in hub_nbrs)
+                    head = None if near else hub.connect(lat.pose(k, i, j))
+                    if head is None:
+                        hub_failed.add(rem)
+            if v == gi or head is not None:
+                out = []
+                while v >= 0:
+                    out.append(v)
+                    v = parent[v]
+                self.last_expansions = expansions
+                return out[::-1], head
+            closed.add(v)
+            expansions += 1
+            if expansions == label_after and not self._connected(si, gi, free):
+                self.last_expansions = expansions
+                return None
+            gv = best[v]
+            nbrs: list[tuple[int, float, int, int, int]] = []
+            for delta, d_i, d_j, cost in moves:
+                ii, jj = i + d_i, j + d_j
+                if 0 <= ii < nx and 0 <= jj < ny:
+                    nbrs.append((v + delta, cost, k, ii, jj))
+            for dk in (-1, 1):
+                kk = (k + dk) % nk
+                nbrs.append((kk * plane + rem, w, kk, i, j))
+            for u, cost, kk, ii, jj in nbrs:
+                if not free_bytes[u] or u in closed:
+                    continue
+                gu = gv + cost
+                if gu < best.get(u, math.inf):
+                    best[u] = gu
+                    parent[u] = v
+                    dk_abs = abs(kk - gk)
+                    h = h_step * math.hypot(ii - gx, jj - gy) + eps * w * min(dk_abs, nk - dk_abs)
+                    heapq.heappush(heap, (gu + h, u))
+        self.last_expansions = expansions
+        return None
+
+    def _connected(self, si: int, gi: int, free: BoolArray) -> bool:
+        """Are the lattice poses ``si`` and ``gi`` in one connected component of ``free``?"""
+        structure = np.zeros((3, 3, 3), dtype=bool)
+        structure[1] = True  # 8 neighbours in (x, y) at one heading
+        structure[0, 1, 1] = structure[2, 1, 1] = True  # the neighbouring headings
+        # the heading wraps: label with the first heading repeated after the last one
+        wrapped = np.concatenate([free, free[:1]], axis=0)
+        labels, _ = ndimage.label(wrapped, structure=structure)
+        first, last = labels[0].ravel(), labels[-1].ravel()
+        pairs = np.unique(np.stack([first, last], axis=1)[first > 0], axis=0)
+        # union-find over the labels joined across the wrap
+        root: dict[int, int] = {}
+
+        def find(a: int) -> int:
+            while root.get(a, a) != a:
+                a = root[a]
+            return a
+
+        for a, b in pairs.tolist():
+            ra, rb = find(a), find(b)
+            if ra != rb:
+                root[max(ra, rb)] = min(ra, rb)
+        flat = labels[:-1].ravel()
+        return find(int(flat[si])) == find(int(flat[gi]))
+
+    def _segment_free(
+        self, a: tuple[float, float, float], b: tuple[float, float, float], free_bytes: bytearray
+    ) -> bool:
+        """Do the samples of the straight SE(2) segment ``a``-``b`` snap to free poses?"""
+        lat = self.lattice
+        step = self.config.xy_step
+        dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
+        n = max(
+            1,
+            math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
+            math.ceil(abs(dtheta) / (0.5 * self.config.heading_step)),
+        )
+        t = np.linspace(0.0, 1.0, n + 1)
+        x = a[0] + t * (b[0] - a[0])
+        y = a[1] + t * (b[1] - a[1])
+        th = a[2] + t * dtheta
+        i = np.rint((x - self.workspace[0]) / step).astype(np.intp)
+        j = np.rint((y - self.workspace[2]) / step).astype(np.intp)
+        if i.min() < 0 or j.min() < 0 or i.max() >= lat.nx or j.max() >= lat.ny:
+            return False
+        k = np.rint(th / self.config.heading_step).astype(np.intp) % lat.nk
+        flat = (k * lat.nx + i) * lat.ny + j
+        view = np.frombuffer(free_bytes, dtype=bool)
+        return bool(view[flat].all())
+
+    def _tighten(self, path: list[tuple[float, float, float]], free_bytes: bytearray) -> FloatArray:
+        """Pull the lattice path tight (see the module doc); the ends stay exact."""
+        kept = [path[0]]
+        a = 0
+        last = len(path) - 1
+        while a < last:
+            b = a + 1
+            while b < last and self._segment_free(path[a], path[b + 1], free_bytes):
+                b += 1
+            kept.append(path[b])
+            a = b
+        return np.array(kept, dtype=np.float64)

@@ -1,0 +1,44 @@
+"""Tests of voot.bench.protocol.domain_ablation: the statistics, the table, the shipped store."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from voot.bench.protocol import domain_ablation as D
+
+ROOT = Path(__file__).resolve().parents[3]
+STORE = ROOT / "docs" / "data" / "domain-ablation-v1.json"
+
+
+def test_switches_and_unknown_switch() -> None:
+    assert list(D.SWITCHES) == ["v1", "footprint", "big_box_ban", "authors_rooms", "authors_domain"]
+    with pytest.raises(ValueError, match="choose from v1, footprint"):
+        D.make_env("nope")
+    authors = D.make_env("authors_domain").config
+    assert authors.big_box_ban is True and authors.rooms == "authors"
+    assert D.make_env("footprint").config.planner.footprint is not None
+    assert D.make_env("v1").config.planner.footprint is None
+
+
+def test_measure_counts_and_the_common_draws() -> None:
+    a = D.measure("v1", draws=60, executions=3, rollouts=1)
+    b = D.measure("big_box_ban", draws=60, executions=3, rollouts=1)
+    assert [n["depth"] for n in a["nodes"]] == list(D.NODES)
+    # the pre-check does not depend on the switch: the same passes
+    assert [n["passed"] for n in a["nodes"]] == [n["passed"] for n in b["nodes"]]
+    for n in a["nodes"]:
+        assert n["reached"]
+        assert 0 <= n["feasible"] <= n["executed"] <= min(3, n["passed"]) <= 60
+    assert a["scripted_solves"] and b["scripted_solves"]
+    assert a["scripted_return"] == pytest.approx(b["scripted_return"])
+    text = D.table({"rows": [a, b]})
+    assert text.count("\n") == 3 and "`big_box_ban`" in text
+
+
+def test_shipped_store_redraws_the_docs_table() -> None:
+    store = json.loads(STORE.read_text())
+    assert [r["switch"] for r in store["rows"]] == list(D.SWITCHES)
+    assert D.table(store) in (ROOT / "docs" / "results-planning.md").read_text()
