@@ -382,8 +382,9 @@ def check_envs(
         if P.is_chain(spec.problem):
             continue
         kwargs = dict(spec.env_kwargs)
+        explicit = LAYOUT_KEY in kwargs
         layout = kwargs.pop(LAYOUT_KEY, None)
-        if layout is not None:
+        if explicit:  # null too: omit the keyword for the default layout, one spelling
             check_layout_value(layout, option)
         key = (spec.problem, json.dumps(kwargs, sort_keys=True, default=repr))
         entry = groups.setdefault(key, (kwargs, set()))

@@ -1,16 +1,21 @@
 """What the environments cost, under ``voot-bench measure``: ``env-speed`` (step costs and
-sparsity of the robot domains, :mod:`voot.bench.measure.env_speed`) and ``mesh-speed``
+sparsity of the robot domains, :mod:`voot.bench.measure.env_speed`), ``mesh-speed``
 (the trimesh object meshes, per shape and per scene, cold and cached, and a grasp lookup,
-:mod:`voot.bench.measure.mesh_speed`). Both need the ``envs`` extra, imported only when
-the command runs."""
+:mod:`voot.bench.measure.mesh_speed`), ``footprint-speed`` (the base planner's
+exact-footprint option, :mod:`voot.bench.measure.footprint_speed`) and
+``domain-ablation`` (the conveyor's domain departures one at a time,
+:mod:`voot.bench.protocol.domain_ablation`). All need the ``envs`` extra, imported only
+when the command runs; every option and output path is checked before the work starts."""
 
 from __future__ import annotations
 
 import argparse
+import json
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voot.bench.cli.common import CLIError
+from voot.bench.cli.common import CLIError, check_output
 from voot.bench.cli.types import seed_argument
 
 if TYPE_CHECKING:
@@ -77,8 +82,47 @@ def cmd_mesh_speed(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_footprint_speed(args: argparse.Namespace) -> int:
+    """Print :mod:`voot.bench.measure.footprint_speed`'s query times and cost ratio."""
+    from voot.bench.measure.footprint_speed import report, run
+
+    if args.rollouts < 1:
+        raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
+    print(report(run(args.rollouts, args.seed)))
+    return 0
+
+
+def cmd_domain_ablation(args: argparse.Namespace) -> int:
+    """Run (or with ``--table`` redraw) :mod:`voot.bench.protocol.domain_ablation`."""
+    from voot.bench.protocol import domain_ablation as D
+
+    if args.table is not None:
+        try:
+            store = json.loads(Path(args.table).read_text(encoding="utf-8"))
+            text = D.table(store)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+            raise CLIError(
+                f"--table {args.table}: not a readable domain-ablation store ({exc})"
+            ) from None
+        print(text)
+        return 0
+    for name in ("draws", "executions", "rollouts"):
+        if getattr(args, name) < 1:
+            raise CLIError(f"--{name} must be >= 1, got {getattr(args, name)}")
+    switches = tuple(args.switches or D.SWITCHES)
+    unknown = [s for s in switches if s not in D.SWITCHES]
+    if unknown:
+        raise CLIError(f"unknown switch {unknown[0]!r}; valid switches: {', '.join(D.SWITCHES)}")
+    check_output(args.out, "--out")
+    store = D.run(switches, args.draws, args.executions, args.rollouts, args.seed)
+    if args.out is not None:
+        Path(args.out).write_text(json.dumps(store, indent=1) + "\n")
+    print(D.table(store))
+    return 0
+
+
 def register(sub: Subparsers) -> None:
-    """Add ``env-speed`` and ``mesh-speed``."""
+    """Add ``env-speed``, ``mesh-speed``, ``footprint-speed`` and ``domain-ablation``."""
     p = sub.add_parser(
         "env-speed",
         help="step costs and sparsity of the robot domains",
@@ -111,3 +155,28 @@ def register(sub: Subparsers) -> None:
         " on a machine shared with other jobs; file reads waiting on the disk not counted)",
     )
     p.set_defaults(func=cmd_mesh_speed)
+
+    p = sub.add_parser(
+        "footprint-speed",
+        help="cost of the base planner's exact-footprint option on the conveyor",
+        description="Median exact lattice query and the conveyor simulation CPU-cost ratio"
+        " of the exact-footprint option against the disc, measured in the same run.",
+    )
+    p.add_argument("--rollouts", type=int, default=20, help="random rollouts (default 20)")
+    p.add_argument("--seed", type=seed_argument, default=0, help="seed of the random actions")
+    p.set_defaults(func=cmd_footprint_speed)
+
+    p = sub.add_parser(
+        "domain-ablation",
+        help="the conveyor's domain departures switched one at a time: planner-agnostic statistics",
+        description="Pre-check and execution rates by node, random-rollout success and the"
+        " scripted solution, on ConveyorPacking-v1 with each domain switch.",
+    )
+    p.add_argument("--switches", nargs="*", default=None, help="default: every switch")
+    p.add_argument("--draws", type=int, default=2000, help="uniform draws per node")
+    p.add_argument("--executions", type=int, default=40, help="executed passes per node")
+    p.add_argument("--rollouts", type=int, default=5, help="random rollouts")
+    p.add_argument("--seed", type=seed_argument, default=0)
+    p.add_argument("--out", default=None, help="write the store (JSON) here")
+    p.add_argument("--table", default=None, help="only redraw the table of this store")
+    p.set_defaults(func=cmd_domain_ablation)

@@ -46,6 +46,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     from voot.bench.store.compact import CompactConfig
 
     C.check_sweep_options(args)
+    C.check_output(args.out, "--out", folder=True)
     suite = _suite(args)
     entries = _entries(suite, args.planners)
     workers = args.workers or os.cpu_count() or 1

@@ -20,9 +20,9 @@ The measurements (``voot-bench measure --help`` lists them)::
 
     voot-bench measure speed              cost per ask of VOO, CMA-ES and GP-UCB
     voot-bench measure mesh-speed         cost of the trimesh object meshes and grasp lookups
-    voot-bench measure speedup            tree search on the robot domains: 6af33b5 vs now
     voot-bench measure footprint-speed    cost of the base planner's exact-footprint option
     voot-bench measure domain-ablation    the conveyor's domain departures, one at a time
+    voot-bench measure speedup            tree search on the robot domains: 6af33b5 vs now
 
 A measurement's old spelling without ``measure`` (``voot-bench speed``) still works; it is
 not listed in ``voot-bench --help``. ``voot-bench --version`` prints the version.
@@ -71,8 +71,6 @@ from voot.bench.cli import (
     store,
 )
 from voot.bench.cli.common import CLIError
-from voot.bench.measure import footprint_speed
-from voot.bench.protocol import domain_ablation
 from voot.bench.store.format import StoreError
 from voot.rl.train import MissingExtraError
 
@@ -100,10 +98,8 @@ COMMANDS: tuple[Callable[[Subparsers], None], ...] = (
 #: ``voot-bench measure --help``.
 MEASUREMENTS: tuple[Callable[[Subparsers], None], ...] = (
     measure.register,  # speed, voo-speed, overhead, record-overhead, memory, root-parallel, ...
-    env_cost.register,  # env-speed, mesh-speed
+    env_cost.register,  # env-speed, mesh-speed, footprint-speed, domain-ablation
     speedup.register,  # speedup
-    footprint_speed.register,  # footprint-speed
-    domain_ablation.register,  # domain-ablation
 )
 
 

@@ -21,7 +21,6 @@ under 10 ms, a simulation at most 3x the disc's CPU cost.
 
 from __future__ import annotations
 
-import argparse
 import statistics
 import time
 from typing import Any
@@ -141,23 +140,3 @@ def report(r: dict[str, Any]) -> str:
         f"boxes placed per rollout with the footprint: mean {np.mean(r['placed']):.2f}",
     ]
     return "\n".join(lines)
-
-
-def _command(args: argparse.Namespace) -> int:
-    if args.rollouts < 1:
-        raise SystemExit("--rollouts must be >= 1")
-    print(report(run(args.rollouts, args.seed)))
-    return 0
-
-
-def register(sub: Any) -> None:
-    """Add ``footprint-speed`` to ``voot-bench measure``."""
-    p = sub.add_parser(
-        "footprint-speed",
-        help="cost of the base planner's exact-footprint option on the conveyor",
-        description="Median exact lattice query and the conveyor simulation CPU-cost ratio"
-        " of the exact-footprint option against the disc, measured in the same run.",
-    )
-    p.add_argument("--rollouts", type=int, default=20, help="random rollouts (default 20)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the random actions")
-    p.set_defaults(func=_command)

@@ -31,12 +31,9 @@ switchable: paths starting at each box's pick pose on the belt
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
 import time
 from collections.abc import Mapping
-from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
@@ -180,39 +177,3 @@ def run(
                      "seed": seed},
         "rows": [measure(s, draws, executions, rollouts, seed) for s in switches],
     }  # fmt: skip
-
-
-def _command(args: argparse.Namespace) -> int:
-    if args.table is not None:
-        print(table(json.loads(Path(args.table).read_text())))
-        return 0
-    for name in ("draws", "executions", "rollouts"):
-        if getattr(args, name) < 1:
-            raise SystemExit(f"--{name} must be >= 1")
-    switches = tuple(args.switches or SWITCHES)
-    for s in switches:
-        if s not in SWITCHES:
-            raise SystemExit(f"unknown switch {s!r}; choose from {', '.join(SWITCHES)}")
-    store = run(switches, args.draws, args.executions, args.rollouts, args.seed)
-    if args.out is not None:
-        Path(args.out).write_text(json.dumps(store, indent=1) + "\n")
-    print(table(store))
-    return 0
-
-
-def register(sub: Any) -> None:
-    """Add ``domain-ablation`` to ``voot-bench measure``."""
-    p = sub.add_parser(
-        "domain-ablation",
-        help="the conveyor's domain departures switched one at a time: planner-agnostic statistics",
-        description="Pre-check and execution rates by node, random-rollout success and the"
-        " scripted solution, on ConveyorPacking-v1 with each domain switch.",
-    )
-    p.add_argument("--switches", nargs="*", default=None, help=f"default: {' '.join(SWITCHES)}")
-    p.add_argument("--draws", type=int, default=2000, help="uniform draws per node")
-    p.add_argument("--executions", type=int, default=40, help="executed passes per node")
-    p.add_argument("--rollouts", type=int, default=5, help="random rollouts")
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", default=None, help="write the store (JSON) here")
-    p.add_argument("--table", default=None, help="only redraw the table of this store")
-    p.set_defaults(func=_command)

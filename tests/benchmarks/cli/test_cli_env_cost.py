@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from cli_fixtures import assert_refused
 
 from voot.bench.cli.main import main
 
@@ -28,3 +29,22 @@ def test_mesh_speed_rejects_bad_arguments(capsys: pytest.CaptureFixture[str]) ->
     assert "unknown kind 'teapot'; valid kinds: box, crate" in capsys.readouterr().err
     assert main(["measure", "mesh-speed", "--repeats", "0"]) == 2
     assert "--repeats and --calls must be >= 1" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("argv", "needle"),
+    [
+        (["measure", "domain-ablation", "--draws", "0"], "--draws must be >= 1"),
+        (["measure", "domain-ablation", "--switches", "walls"], "valid switches: v1"),
+        (["measure", "domain-ablation", "--out", "{file}/x.json"], "is a file, not a folder"),
+        (["measure", "domain-ablation", "--table", "{file}"], "not a readable domain-ablation"),
+        (["measure", "footprint-speed", "--rollouts", "0"], "--rollouts must be >= 1"),
+        (["leaderboard", "run", "--out", "{file}/store", "--estimate-only"], "is a file"),
+    ],
+)
+def test_new_measurements_refuse_bad_options_before_any_work(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], argv: list[str], needle: str
+) -> None:
+    file = tmp_path / "a-file"
+    file.write_text("not a store\n")
+    assert_refused([a.format(file=file) for a in argv], tmp_path, capsys, needle)

@@ -424,6 +424,7 @@ _GENERATED = ["--planners", "voot", "--seeds", "1", "--simulations", "2", "--wor
         (["--env-kwargs", "layout_seed=1.0"], ["layout_seed must be an integer", "(float)"]),
         (["--env-kwargs", "layout_seed=true"], ["layout_seed must be an integer", "(bool)"]),
         (["--env-kwargs", "layout_seed=abc"], ["layout_seed must be an integer", "(str)"]),
+        (["--env-kwargs", "layout_seed=null"], ["layout_seed must be an integer", "(NoneType)"]),
         (["--env-kwargs", "difficulty=extreme"], ["--env-kwargs", "valid levels are: easy"]),
         (["--layout-seeds", "9223372036854775808:9223372036854775809"], ["--layout-seeds"]),
     ],
