@@ -241,20 +241,30 @@ class FootprintLattice:
         j1 = min(self.ny, math.ceil((box.cy + ext_y + grow - ymin) / step) + 1)
         if i0 >= i1 or j0 >= j1:
             return None
-        # positions relative to the box centre, (1, ni, 1) and (1, 1, nj)
-        px = (self.xs[i0:i1] - box.cx)[None, :, None]
-        py = (self.ys[j0:j1] - box.cy)[None, None, :]
-        th = self.thetas[:, None, None]
-        cos_t, sin_t = self._cos, self._sin
         hit = np.zeros((self.nk, i1 - i0, j1 - j0), dtype=bool)
         tol = self.tolerance
+        cos_t, sin_t = self._cos, self._sin
+        th = self.thetas[:, None, None]
         for part in footprint.parts:
+            # the part's own window (its reach, not the footprint's): every pose outside
+            # it keeps the part clear of the box, so the test runs on fewer poses and
+            # each pose's arithmetic is that of the whole window's
+            p_grow = max(math.hypot(cx, cy) for cx, cy in part.corners().tolist()) + step
+            a0 = max(i0, math.floor((box.cx - ext_x - p_grow - xmin) / step))
+            a1 = min(i1, math.ceil((box.cx + ext_x + p_grow - xmin) / step) + 1)
+            b0 = max(j0, math.floor((box.cy - ext_y - p_grow - ymin) / step))
+            b1 = min(j1, math.ceil((box.cy + ext_y + p_grow - ymin) / step) + 1)
+            if a0 >= a1 or b0 >= b1:
+                continue
+            # positions relative to the box centre, (1, ni, 1) and (1, 1, nj)
+            px = (self.xs[a0:a1] - box.cx)[None, :, None]
+            py = (self.ys[b0:b1] - box.cy)[None, None, :]
             # the part's centre offset (rotated with the heading) and its axes
             ox = cos_t * part.cx - sin_t * part.cy
             oy = sin_t * part.cx + cos_t * part.cy
             ang = th + part.yaw
             ca, sa = np.cos(ang), np.sin(ang)
-            part_hit = np.ones_like(hit)
+            part_hit = np.ones((self.nk, a1 - a0, b1 - b0), dtype=bool)
             axes = ((cb, sb), (-sb, cb), (ca, sa), (-sa, ca))
             for ux, uy in axes:
                 hb = box.half_x * np.abs(ux * cb + uy * sb) + box.half_y * np.abs(
@@ -265,7 +275,7 @@ class FootprintLattice:
                 )
                 proj = ux * (px + ox) + uy * (py + oy)
                 part_hit &= np.abs(proj) < hb + hp - tol
-            hit |= part_hit
+            hit[:, a0 - i0 : a1 - i0, b0 - j0 : b1 - j0] |= part_hit
         if not hit.any():
             return None
         return (i0, i1, j0, j1, hit)

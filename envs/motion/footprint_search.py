@@ -221,6 +221,12 @@ class FootprintSearch:
 
         Returns the cells and, when the search stopped at a hub, the disc's waypoints
         from the hub's start to the last cell (None when it reached ``gi``).
+
+        The loop is written for CPython's speed (the profile's hot spot): the closed set
+        is a byte per lattice pose, the neighbours are enumerated inline, the heuristic's
+        two terms are looked up per position and per heading, and the disc's test of a
+        position is asked once per query (it does not depend on the heading). The order
+        of expansions, and so the path, is that of the plain A* it replaces.
         """
         lat = self.lattice
         nk, nx, ny = lat.shape
@@ -231,30 +237,40 @@ class FootprintSearch:
         gx, gy = divmod(grem, ny)
         eps = self.config.heuristic_weight
         h_step = eps * step
+        diag = step * _SQRT2
+        # (delta, d_i, d_j, cost) in the order of the plain loop (d_i, then d_j)
         moves = [
-            (d_i * ny + d_j, d_i, d_j, step * (_SQRT2 if d_i and d_j else 1.0))
+            (d_i * ny + d_j, d_i, d_j, diag if d_i and d_j else step)
             for d_i in (-1, 0, 1)
             for d_j in (-1, 0, 1)
             if d_i or d_j
         ]
+        # the heuristic's heading term per heading
+        h_head = [eps * w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
         best: dict[int, float] = {si: 0.0}
         parent: dict[int, int] = {si: -1}
-        closed: set[int] = set()
+        closed = bytearray(nk * plane)
         heap: list[tuple[float, int]] = [(0.0, si)]
+        heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
+        inf = math.inf
         label_after = self.config.label_after
         hub_failed: set[int] = set()
+        disc_free: dict[int, bool] = {}
         hub_nbrs = [d_i * ny + d_j for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j]
+        xs, ys = lat.xs.tolist(), lat.ys.tolist()
         expansions = 0
         while heap:
-            _, v = heapq.heappop(heap)
-            if v in closed:
+            v = heappop(heap)[1]
+            if closed[v]:
                 continue
             k, rem = divmod(v, plane)
             i, j = divmod(rem, ny)
             head = None
             if v != gi and hub is not None and rem not in hub_failed:
-                x, y = float(lat.xs[i]), float(lat.ys[j])
-                if hub.is_free(x, y):
+                dfree = disc_free.get(rem)
+                if dfree is None:
+                    dfree = disc_free[rem] = hub.is_free(xs[i], ys[j])
+                if dfree:
                     # a disc position next to one the disc cannot reach from the start is
                     # (almost always) in the same region: not asked again (skipping a hub
                     # costs time, never completeness)
@@ -269,30 +285,37 @@ class FootprintSearch:
                     v = parent[v]
                 self.last_expansions = expansions
                 return out[::-1], head
-            closed.add(v)
+            closed[v] = 1
             expansions += 1
             if expansions == label_after and not self._connected(si, gi, free):
                 self.last_expansions = expansions
                 return None
             gv = best[v]
-            nbrs: list[tuple[int, float, int, int, int]] = []
+            hk = h_head[k]
+            inner = 0 < i < nx - 1 and 0 < j < ny - 1
             for delta, d_i, d_j, cost in moves:
-                ii, jj = i + d_i, j + d_j
-                if 0 <= ii < nx and 0 <= jj < ny:
-                    nbrs.append((v + delta, cost, k, ii, jj))
-            for dk in (-1, 1):
-                kk = (k + dk) % nk
-                nbrs.append((kk * plane + rem, w, kk, i, j))
-            for u, cost, kk, ii, jj in nbrs:
-                if not free_bytes[u] or u in closed:
+                u = v + delta
+                if not inner:
+                    ii, jj = i + d_i, j + d_j
+                    if not (0 <= ii < nx and 0 <= jj < ny):
+                        continue
+                if not free_bytes[u] or closed[u]:
                     continue
                 gu = gv + cost
-                if gu < best.get(u, math.inf):
+                if gu < best.get(u, inf):
                     best[u] = gu
                     parent[u] = v
-                    dk_abs = abs(kk - gk)
-                    h = h_step * math.hypot(ii - gx, jj - gy) + eps * w * min(dk_abs, nk - dk_abs)
-                    heapq.heappush(heap, (gu + h, u))
+                    heappush(heap, (gu + (h_step * hypot(i + d_i - gx, j + d_j - gy) + hk), u))
+            for dk in (-1, 1):
+                kk = (k + dk) % nk
+                u = kk * plane + rem
+                if not free_bytes[u] or closed[u]:
+                    continue
+                gu = gv + w
+                if gu < best.get(u, inf):
+                    best[u] = gu
+                    parent[u] = v
+                    heappush(heap, (gu + (h_step * hypot(i - gx, j - gy) + h_head[kk]), u))
         self.last_expansions = expansions
         return None
 

@@ -83,6 +83,27 @@ def test_lattice_occupancy_is_the_exact_test_at_every_lattice_pose() -> None:
         assert occ[k, i, j] == footprint_hits(LONG, lat.pose(k, i, j), boxes[:4], WS)
 
 
+def test_each_part_window_misses_no_pose() -> None:
+    """Each rectangle is tested on its own window only: every lattice pose still agrees.
+
+    A small part at the planned point and a far one (1.2 m out) beside one small box:
+    checked exhaustively, so a window cut too tight for either part shows up.
+    """
+    far = Footprint(
+        (Box2D(0.0, 0.0, 0.1, 0.1, 0.0, "base"), Box2D(1.2, -0.3, 0.2, 0.05, 0.7, "load"))
+    )
+    lat = FootprintLattice(WS, FootprintConfig(xy_step=0.1, headings=24))
+    box = Box2D(2.05, 1.45, 0.12, 0.3, 0.4, "box")
+    window = lat.blocked_window(far, box)
+    assert window is not None
+    occ = lat.occupancy(far, (box,))
+    assert occ.any()
+    for k in range(lat.nk):
+        for i in range(lat.nx):
+            for j in range(lat.ny):
+                assert occ[k, i, j] == footprint_hits(far, lat.pose(k, i, j), [box])
+
+
 def test_nearest_lattice_pose() -> None:
     lat = FootprintLattice(WS, FootprintConfig(xy_step=0.1, headings=36))
     assert lat.nearest(0.26, 0.04, math.radians(-4.0)) == (0, 3, 0)
