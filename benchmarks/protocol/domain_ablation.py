@@ -2,7 +2,7 @@
 
 The planner ablation (:mod:`voot.bench.protocol.ablation`) flips planner options and
 leaves the domains alone; here the planners are left out and the domain is flipped.
-Each :data:`SWITCHES` entry is a set of :class:`~voot.envs.conveyor.env.ConveyorConfig`
+Each :data:`SWITCHES` entry is a set of :class:`~voot.envs.conveyor.config.ConveyorConfig`
 overrides on ``ConveyorPacking-v1``; ``authors_domain`` sets all the implemented ones
 at once. The statistics need no planner (cheap, so they come first):
 

@@ -36,9 +36,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Mapping
-from dataclasses import dataclass, field
-from types import MappingProxyType
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -46,22 +44,21 @@ import mujoco
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from voot import validation as V
 from voot.envs.assets.mjcf import belt_pose
-from voot.envs.conveyor.problems import FAMILY, HORIZON
+from voot.envs.conveyor.config import CONVEYOR_PRESETS, ConveyorConfig
+from voot.envs.conveyor.problems import FAMILY
 from voot.envs.core.env import ManipulationEnv
 from voot.envs.core.metrics import Distance, place_distance
-from voot.envs.core.names import Failure, Operator, Precheck, Reason, reason_code
-from voot.envs.core.presets import check_step_rules, env_config, preset_config
+from voot.envs.core.names import Failure, Operator, Reason, reason_code
+from voot.envs.core.presets import env_config
 from voot.envs.core.rendering import add_marker_box
 from voot.envs.core.scene import object_footprint, set_object_pose
 from voot.envs.core.state import StepTiming, is_count, pose_tuple, replace
 from voot.envs.core.units import denormalize, padded_parameters
-from voot.envs.motion.footprint import Footprint, FootprintConfig
+from voot.envs.motion.footprint import Footprint
 from voot.envs.motion.planar import Box2D
-from voot.envs.motion.planner import BasePath, BasePlannerConfig
+from voot.envs.motion.planner import BasePath
 from voot.envs.motion.rects import rect_inside
-from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.grasp import side_grasp
 from voot.envs.robot.model import (
     BASE_HALF,
@@ -78,145 +75,10 @@ from voot.optim.base import Bounds
 
 FloatArray = NDArray[np.float64]
 
-#: The choices of :attr:`ConveyorConfig.rooms`.
-ROOMS = ("voot", "authors")
-#: The choices of :attr:`ConveyorConfig.base_model`.
-BASE_MODELS = ("disc", "footprint")
 #: Boxes placed by one action.
 OBJECTS_PER_ACTION = 3
 #: The shape of a step info's ``parameters``: a pose per box of a full action.
 _PARAMETERS_SHAPE = (OBJECTS_PER_ACTION, 3)
-
-
-@dataclass(frozen=True)
-class ConveyorConfig:
-    """Settings of :class:`ConveyorPackingEnv` (defaults: the paper's / original's values).
-
-    Attributes:
-        start: The robot's base pose where every box is presented ((0, 1.05, 0)).
-        loading_region: Where boxes may be placed ``(xmin, xmax, ymin, ymax)``; also the
-            x, y ranges of the action.
-        workspace: Where the robot's base may go (the base planner's workspace).
-        place_theta: Range of a placed box's heading (radians).
-        n_objects: Boxes to pack, the first ``n_objects`` of the belt (1..20).
-        grasp_angle: The fixed grasp's roll about the approach axis (radians).
-        height_fraction: The fixed grasp's height as a fraction of the box height.
-        depth_fraction: The fixed grasp's position across the grasped face.
-        present_gap: Gap between the base's front and the presented box (metres).
-        length_scale: ``c`` in the placement reward ``exp(-c L)``.
-        infeasible_reward: Reward of an infeasible action.
-        horizon: Steps after which an episode is truncated.
-        render_overlays: Draw the loading region in rendered images.
-        precheck: What the planners' pre-check of an action covers (stage 1 of
-            :mod:`voot.tree.problem`; :meth:`ConveyorPackingEnv.precheck`).
-            ``"full_step"`` (v0): the whole step. ``"kinematic"`` (v1, the authors'
-            code): the three placements' region and collision checks, in sequence; the
-            base paths (through the door, which the big boxes' carry disc cannot pass)
-            are found only when the action is executed.
-        rooms: ``"voot"`` (v0, v1): voot's storage rooms (``models/conveyor.xml``: a
-            2.6 m entrance, a 3.3 x 4 m first room with a 1.62 m door mid-wall, a 3.5 m
-            south-west opening). ``"authors"``: the walls of the authors'
-            ``convbelt_env_diffcult_shapes_two_rooms.xml`` (a 1.5 m entrance, a 3.3 x 3.0 m
-            first room with a 1.7 m door against its west wall, a 2.0 m south-west
-            opening: :mod:`voot.envs.conveyor.authors_rooms`). The scripted solution
-            is voot's and does not fit them.
-        base_model: ``"disc"`` (v0, v1): the base planner's config as given (the disc,
-            unless its ``footprint`` is set) or ``"footprint"`` (the exact oriented footprint where the disc
-            finds no path: sets ``planner.footprint`` to a default
-            :class:`~voot.envs.motion.footprint.FootprintConfig` when it is None; a
-            keyword ``gymnasium.make`` and ``voot-bench plan --env-kwargs`` can pass).
-        big_box_ban: The authors' explicit rule at execution (``problem_environments/
-            conveyor_belt_env.py`` in beomjoonkim/voot): the big boxes may not be placed in
-            the big rooms. False (v0, v1): voot lets the base planner's disc and the door
-            width keep them out (the carry disc of a big box cannot pass the 1.62 m door).
-            True: executing a placement of one of the first ``big_boxes`` boxes whose
-            centre lies outside ``first_room`` fails ("forbidden room"); the pre-check
-            does not test it (as in the authors' code).
-        big_boxes: How many of the first boxes are big (2: the original's
-            ``create_objects`` and :func:`voot.envs.assets.fixed_scenes.conveyor_box_sizes`).
-        first_room: The region the big boxes must stay in under ``big_box_ban``: voot's
-            first room x in [-4, -0.7], y in [-1, 3] (``models/conveyor.xml``).
-        ik: IK settings.
-        planner: Base planner settings. Its ``footprint`` option
-            (:class:`~voot.envs.motion.footprint.FootprintConfig`) plans the exact footprint
-            of robot, arm and box (:meth:`ConveyorPackingEnv.footprint`) where the disc
-            finds no path.
-    """
-
-    start: tuple[float, float, float] = (0.0, 1.05, 0.0)
-    loading_region: tuple[float, float, float, float] = (-7.4, -0.5, -7.5, 3.0)
-    workspace: tuple[float, float, float, float] = (-7.4, 1.5, -7.5, 3.0)
-    place_theta: tuple[float, float] = (0.0, 2.0 * math.pi)
-    n_objects: int = 20
-    grasp_angle: float = math.pi / 2
-    height_fraction: float = 0.75
-    depth_fraction: float = 0.5
-    present_gap: float = 0.2
-    length_scale: float = 0.1
-    infeasible_reward: float = -2.0
-    horizon: int = HORIZON
-    render_overlays: bool = True
-    precheck: Precheck = Precheck.FULL_STEP
-    rooms: str = "voot"
-    base_model: str = "disc"
-    big_box_ban: bool = False
-    big_boxes: int = 2
-    first_room: tuple[float, float, float, float] = (-4.0, -0.7, -1.0, 3.0)
-    ik: IKConfig = field(default_factory=IKConfig)
-    planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "start", V.pose("ConveyorConfig.start", self.start))
-        if self.rooms not in ROOMS:
-            raise ValueError(
-                f"ConveyorConfig.rooms must be one of {', '.join(ROOMS)}, got {self.rooms!r}"
-            )
-        if self.base_model not in BASE_MODELS:
-            raise ValueError(
-                f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
-                f"got {self.base_model!r}"
-            )
-        if self.base_model == "footprint" and isinstance(self.planner, BasePlannerConfig):
-            if self.planner.footprint is None:
-                object.__setattr__(
-                    self, "planner", replace(self.planner, footprint=FootprintConfig())
-                )
-        if type(self.big_box_ban) is not bool:
-            raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
-        V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)
-        for name in ("loading_region", "workspace", "first_room"):
-            object.__setattr__(self, name, V.region(f"ConveyorConfig.{name}", getattr(self, name)))
-        object.__setattr__(
-            self, "place_theta", V.range_pair("ConveyorConfig.place_theta", self.place_theta)
-        )
-        V.integer(self.n_objects, "ConveyorConfig.n_objects", 1, 20)
-        for name in ("grasp_angle", "present_gap", "length_scale"):
-            object.__setattr__(
-                self, name, V.positive_number(f"ConveyorConfig.{name}", getattr(self, name))
-            )
-        for name in ("height_fraction", "depth_fraction"):
-            v = V.number(getattr(self, name), f"ConveyorConfig.{name}", 0.0, 1.0)
-            object.__setattr__(self, name, v)
-        check_step_rules(self)
-
-    @property
-    def place_ranges(self) -> tuple[tuple[float, float], ...]:
-        """Ranges of one placement's parameters (x, y, theta)."""
-        r = self.loading_region
-        return ((r[0], r[1]), (r[2], r[3]), self.place_theta)
-
-
-#: Named versions of the domain: :class:`ConveyorConfig` overrides (see
-#: :data:`voot.envs.kitchen.config.KITCHEN_PRESETS`).
-CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
-    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": Precheck.KINEMATIC})}
-)
-
-
-def conveyor_config(preset: str = "v0", **overrides: Any) -> ConveyorConfig:
-    """The :class:`ConveyorConfig` of a named version (:data:`CONVEYOR_PRESETS`)."""
-    config: ConveyorConfig = preset_config(ConveyorConfig, CONVEYOR_PRESETS, preset, **overrides)
-    return config
 
 
 @dataclass(frozen=True)

@@ -2,7 +2,7 @@
 
 An env's config is a frozen dataclass; its named versions (``"v0"``, ``"v1"``) are
 mappings of field overrides (:data:`voot.envs.kitchen.config.KITCHEN_PRESETS`,
-:data:`voot.envs.conveyor.env.CONVEYOR_PRESETS`). :func:`preset_config` builds one version
+:data:`voot.envs.conveyor.config.CONVEYOR_PRESETS`). :func:`preset_config` builds one version
 with further overrides, :func:`env_config` the config an env constructor ends up with
 (an explicit config or the preset's, then the constructor's options); both check the
 field names, so a typo is an error naming the valid fields, not a silent default.

@@ -17,7 +17,7 @@ every layout and level (:data:`MAX_OBJECTS` box slots and their mask), the layou
 at ``reset(options={"layout_seed": k})``, and a split mode (``split="training"`` or
 ``"heldout"``) that draws each reset's layout from the protocol's split.
 
-Other keywords are :class:`~voot.envs.conveyor.env.ConveyorConfig` fields, as for v1
+Other keywords are :class:`~voot.envs.conveyor.config.ConveyorConfig` fields, as for v1
 (``horizon``, ``precheck``...); the solvability proof holds for the default grasp and
 planner settings (changing ``grasp_angle``, ``present_gap``, ``planner``... voids it).
 """
@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.conveyor.env import conveyor_config
+from voot.envs.conveyor.config import conveyor_config
 from voot.envs.conveyor.generated.instance import (
     LAYOUT_FIELDS,
     SceneConveyorEnv,
@@ -64,7 +64,7 @@ class ConveyorFamilyEnv(LayoutFamily, SceneConveyorEnv):
         split: None (one layout, or the one a reset's options name), ``"training"`` or
             ``"heldout"``: each reset draws a layout of that part of the protocol's split
             (:class:`~voot.envs.core.family.LayoutFamily`).
-        **options: :class:`~voot.envs.conveyor.env.ConveyorConfig` fields overriding v1's,
+        **options: :class:`~voot.envs.conveyor.config.ConveyorConfig` fields overriding v1's,
             except those the layout sets (``loading_region``, ``workspace``,
             ``n_objects``).
 

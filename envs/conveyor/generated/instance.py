@@ -43,7 +43,8 @@ import mujoco
 import numpy as np
 
 from voot.envs.assets.mjcf import mjcf_sha256
-from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv, conveyor_config
+from voot.envs.conveyor.config import ConveyorConfig, conveyor_config
+from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.conveyor.generated.layout import (
     DIFFICULTIES,
     GENERATOR_VERSION,

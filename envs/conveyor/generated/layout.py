@@ -67,7 +67,7 @@ ENTRANCE = (0.0, 2.6)
 MIN_ROOM_SIDE = 2.6
 #: Wall kept on either side of a door (metres).
 DOOR_JAMB = 0.25
-#: Most boxes a belt carries (:class:`voot.envs.conveyor.env.ConveyorConfig` allows 20).
+#: Most boxes a belt carries (:class:`voot.envs.conveyor.config.ConveyorConfig` allows 20).
 MAX_BOXES = 20
 #: The shapes of the boxes (:data:`voot.envs.assets.meshes.SHAPE_KINDS` names).
 BOX_KINDS = ("box", "crate")

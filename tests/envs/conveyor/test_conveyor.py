@@ -15,7 +15,8 @@ from env_fixtures import (
 from gymnasium.utils.env_checker import data_equivalence
 
 import voot  # noqa: F401  (registers the ids)
-from voot.envs.conveyor.env import ConveyorConfig, ConveyorPackingEnv
+from voot.envs.conveyor.config import ConveyorConfig
+from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.conveyor.scripted import CONVEYOR_SOLUTION, conveyor_actions
 from voot.envs.core.units import normalize
 

@@ -10,7 +10,8 @@ from gymnasium.utils.env_checker import check_env
 from process_fixtures import run_pickled
 
 import voot  # noqa: F401  (registers the ids)
-from voot.envs.conveyor.env import ConveyorPackingEnv, conveyor_config
+from voot.envs.conveyor.config import conveyor_config
+from voot.envs.conveyor.env import ConveyorPackingEnv
 from voot.envs.conveyor.scripted import conveyor_actions
 from voot.envs.core.problem import EnvProblem
 

@@ -1,0 +1,34 @@
+"""voot.envs.conveyor.config: the storage rooms' settings, validated, and their versions."""
+
+from __future__ import annotations
+
+import pytest
+
+from voot.envs.conveyor.config import (
+    BASE_MODELS,
+    CONVEYOR_PRESETS,
+    ROOMS,
+    ConveyorConfig,
+    conveyor_config,
+)
+from voot.envs.core.names import Precheck
+
+
+def test_the_versions_differ_only_in_the_precheck() -> None:
+    assert set(CONVEYOR_PRESETS) == {"v0", "v1"}
+    v0, v1 = conveyor_config("v0"), conveyor_config("v1")
+    assert v1.precheck == Precheck.KINEMATIC
+    assert conveyor_config("v1", precheck=v0.precheck) == v0
+
+
+def test_the_authors_options_are_off_by_default_and_named() -> None:
+    config = ConveyorConfig()
+    assert (config.rooms, config.base_model, config.big_box_ban) == ("voot", "disc", False)
+    assert config.planner.footprint is None
+    assert ConveyorConfig(base_model="footprint").planner.footprint is not None
+    with pytest.raises(ValueError, match=", ".join(ROOMS)):
+        ConveyorConfig(rooms="paper")
+    with pytest.raises(ValueError, match=", ".join(BASE_MODELS)):
+        ConveyorConfig(base_model="square")
+    with pytest.raises(ValueError, match="unknown"):
+        conveyor_config("v9")
