@@ -40,7 +40,7 @@ from pathlib import Path
 from typing import Any
 
 from voot.bench.leaderboard.suite import Entry, Family, Suite
-from voot.bench.protocol.estimate import CostLine
+from voot.bench.protocol.estimate import CostLine, cost_table
 from voot.bench.store.format import Row
 from voot.bench.store.result_store import ResultStore
 from voot.bench.sweep.plan import PlanSpec, build_plan_specs
@@ -332,16 +332,7 @@ def estimate_suite(
 
 def format_costs(costs: Sequence[CostLine], workers: int) -> str:
     """The estimate as a markdown table, its total, and the wall-hours on ``workers``."""
-    lines = [
-        "| family | entry | runs | to run | simulations to run | ms per simulation | source"
-        " | CPU-hours |",
-        "| --- | --- | ---: | ---: | ---: | ---: | --- | ---: |",
-    ]
-    for c in costs:
-        lines.append(
-            f"| {short_name(c.problem)} | {c.planner} | {c.runs} | {c.pending} | {c.simulations}"
-            f" | {1000.0 * c.seconds_per_simulation:.3g} | {c.source} | {c.cpu_hours:.3g} |"
-        )
+    lines = cost_table(costs, ("family", "entry"), short_name)
     total = math.fsum(c.cpu_hours for c in costs)
     runs = sum(c.pending for c in costs)
     lines += [

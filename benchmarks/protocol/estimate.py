@@ -159,19 +159,30 @@ def estimate(
     return out
 
 
-def format_estimate(lines: Sequence[CostLine], workers: int) -> str:
-    """The estimate as a markdown table, the total and the wall-hours at ``workers``."""
-    n_workers = V.integer(workers, "workers", 1)
+def cost_table(
+    lines: Sequence[CostLine],
+    columns: tuple[str, str] = ("problem", "planner"),
+    name: Callable[[str], str] = str,
+) -> list[str]:
+    """The markdown rows (header first) of cost ``lines``: the first two ``columns``
+    named as given, each problem written by ``name``."""
     table = [
-        "| problem | planner | runs | to run | simulations to run | ms per simulation"
-        " | source | CPU-hours |",
+        f"| {columns[0]} | {columns[1]} | runs | to run | simulations to run |"
+        " ms per simulation | source | CPU-hours |",
         "| --- | --- | ---: | ---: | ---: | ---: | --- | ---: |",
     ]
     for c in lines:
         table.append(
-            f"| {c.problem} | {c.planner} | {c.runs} | {c.pending} | {c.simulations}"
+            f"| {name(c.problem)} | {c.planner} | {c.runs} | {c.pending} | {c.simulations}"
             f" | {1000.0 * c.seconds_per_simulation:.3g} | {c.source} | {c.cpu_hours:.3g} |"
         )
+    return table
+
+
+def format_estimate(lines: Sequence[CostLine], workers: int) -> str:
+    """The estimate as a markdown table, the total and the wall-hours at ``workers``."""
+    n_workers = V.integer(workers, "workers", 1)
+    table = cost_table(lines)
     total = math.fsum(c.cpu_hours for c in lines)
     runs = sum(c.pending for c in lines)
     table.append("")
