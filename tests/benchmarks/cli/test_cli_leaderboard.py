@@ -98,3 +98,22 @@ def test_clear_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
         ]
     )
     assert code == 2 and "unknown planner 'nosuch'" in capsys.readouterr().err
+
+
+@pytest.mark.ray
+def test_a_run_on_ray_gives_the_rows_of_a_serial_run(tmp_path: Path) -> None:
+    """``--backend ray`` (a local instance the command starts) writes the same runs as the
+    serial backend, bit for bit once timings are set aside."""
+    ray = pytest.importorskip("ray")
+    from voot.bench.sweep.plan import strip_timings
+
+    rows = {}
+    for backend in ("serial", "ray"):
+        out = tmp_path / backend
+        args = ["leaderboard", "run", "--suite", str(tiny_suite_file()), "--out", str(out)]
+        assert main([*args, "--backend", backend, "--workers", "2", "--no-progress"]) == 0
+        loaded = ResultStore(out, create=False).load(kind="plan")
+        rows[backend] = {r["run_id"]: strip_timings(r) for r in loaded}
+    assert len(rows["ray"]) == 6
+    assert rows["ray"] == rows["serial"]
+    assert not ray.is_initialized()  # the instance the command started is stopped
