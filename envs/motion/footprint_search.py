@@ -34,6 +34,7 @@ import heapq
 import math
 import time
 from collections import OrderedDict
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -48,6 +49,7 @@ from voot.envs.motion.footprint import (
     bound_boxes,
     footprint_hits,
 )
+from voot.envs.motion.footprint_scene import PENDING, LazyScene
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
@@ -99,6 +101,11 @@ class FootprintSearch:
             tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
         ] = OrderedDict()
         self._scene: tuple[tuple[Footprint, tuple[Box2D, ...]], bytearray, BoolArray] | None = None
+        self._lazy: OrderedDict[Footprint, LazyScene] = OrderedDict()
+        # A*'s closed set, one byte per lattice pose: allocated once (10.8 MB on the
+        # conveyor, whose first touch costs more than most searches) and cleared after
+        # each search at the poses it closed
+        self._closed: bytearray | None = None
         #: A* expansions of the last exact query (for the benchmark's statistics).
         self.last_expansions = 0
         #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
@@ -156,22 +163,35 @@ class FootprintSearch:
         g = lat.nearest(*goal)
         if s is None or g is None:
             return None
-        free_bytes, free = self._free(footprint, movable)
         nx, ny = lat.nx, lat.ny
         si = (s[0] * nx + s[1]) * ny + s[2]
         gi = (g[0] * nx + g[1]) * ny + g[2]
+        resolve: Callable[[int], int] | None
+        scene: LazyScene | None = None
+        if self.config.lazy_tile > 0:
+            scene = self._lazy_scene(footprint, movable)
+            free_bytes, resolve = scene.buffer, scene.resolve
+            for index in (si, gi):
+                if free_bytes[index] == PENDING:
+                    resolve(index)
+        else:
+            free_bytes, resolve = self._free(footprint, movable)[0], None
         if not (free_bytes[si] and free_bytes[gi]):
             return None
+
+        def full() -> BoolArray:
+            return self._free(footprint, movable)[1]
+
         # search from the goal: to the start, or to the first hub
-        found = self._astar(gi, si, free_bytes, free, hub)
+        found = self._astar(gi, si, free_bytes, resolve, full, hub)
         if found is None:
             return None
         cells, head = found
         plane = lat.nx * lat.ny
         poses = [lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)]
         if head is None:
-            return self._tighten([start, *poses, goal], free_bytes)
-        tail = self._tighten([*poses, goal], free_bytes)
+            return self._tighten([start, *poses, goal], free_bytes, scene)
+        tail = self._tighten([*poses, goal], free_bytes, scene)
         return np.concatenate([head[:-1], tail])
 
     # ----- internals ----------------------------------------------------------------------
@@ -182,15 +202,7 @@ class FootprintSearch:
         key = (footprint, movable)
         if self._scene is not None and self._scene[0] == key:
             return self._scene[1], self._scene[2]
-        static = self._static.get(footprint)
-        if static is None:
-            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
-            self._static[footprint] = static
-            if len(self._static) > self.config.static_cache_size:
-                self._static.popitem(last=False)
-        else:
-            self._static.move_to_end(footprint)
-        buffer = bytearray(static)
+        buffer = bytearray(self._static_bytes(footprint))
         free = np.frombuffer(buffer, dtype=bool).reshape(self.lattice.shape)
         for box in movable:
             window = self._mask(footprint, box)
@@ -199,6 +211,42 @@ class FootprintSearch:
                 free[:, i0:i1, j0:j1] &= ~mask
         self._scene = (key, buffer, free)
         return buffer, free
+
+    def _static_bytes(self, footprint: Footprint) -> bytes:
+        """The static obstacles' free lattice of ``footprint`` (cached, LRU)."""
+        static = self._static.get(footprint)
+        if static is None:
+            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
+            self._static[footprint] = static
+            if len(self._static) > self.config.static_cache_size:
+                self._static.popitem(last=False)
+        else:
+            self._static.move_to_end(footprint)
+        return static
+
+    def _lazy_scene(self, footprint: Footprint, movable: tuple[Box2D, ...]) -> LazyScene:
+        """``footprint``'s :class:`LazyScene`, updated to ``movable`` (cached like the static)."""
+        scene = self._lazy.get(footprint)
+        if scene is None:
+            scene = LazyScene(
+                self.lattice, footprint, self._static_bytes(footprint), self.config.lazy_tile
+            )
+            self._lazy[footprint] = scene
+            if len(self._lazy) > self.config.static_cache_size:
+                self._lazy.popitem(last=False)
+        else:
+            self._lazy.move_to_end(footprint)
+        scene.update(movable)
+        return scene
+
+    def warm(self, footprint: Footprint) -> None:
+        """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost)."""
+        if self.config.lazy_tile > 0:
+            self._lazy_scene(footprint, ())
+        else:
+            self._static_bytes(footprint)
+        if self._closed is None:
+            self._closed = bytearray(self.lattice.nk * self.lattice.nx * self.lattice.ny)
 
     def _mask(
         self, footprint: Footprint, box: Box2D
@@ -215,19 +263,49 @@ class FootprintSearch:
         return window
 
     def _astar(
-        self, si: int, gi: int, free_bytes: bytearray, free: BoolArray, hub: DiscHub | None
+        self,
+        si: int,
+        gi: int,
+        free_bytes: bytearray,
+        resolve: Callable[[int], int] | None,
+        full: Callable[[], BoolArray],
+        hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
         """Lattice indices from ``si`` to ``gi`` or to a hub (both ends included), or None.
 
         Returns the cells and, when the search stopped at a hub, the disc's waypoints
         from the hub's start to the last cell (None when it reached ``gi``).
+        ``free_bytes`` is the scene (a pose :data:`PENDING` is tested by ``resolve``);
+        ``full()`` is the whole free lattice, for the connectivity proof.
 
         The loop is written for CPython's speed (the profile's hot spot): the closed set
-        is a byte per lattice pose, the neighbours are enumerated inline, the heuristic's
+        is a byte per lattice pose (one buffer, cleared after each search), the neighbours are enumerated inline, the heuristic's
         two terms are looked up per position and per heading, and the disc's test of a
         position is asked once per query (it does not depend on the heading). The order
         of expansions, and so the path, is that of the plain A* it replaces.
         """
+        lat = self.lattice
+        best: dict[int, float] = {si: 0.0}
+        if self._closed is None:
+            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
+        try:
+            return self._astar_loop(si, gi, free_bytes, resolve, full, hub, best)
+        finally:
+            closed = self._closed
+            for u in best:
+                closed[u] = 0
+
+    def _astar_loop(
+        self,
+        si: int,
+        gi: int,
+        free_bytes: bytearray,
+        resolve: Callable[[int], int] | None,
+        full: Callable[[], BoolArray],
+        hub: DiscHub | None,
+        best: dict[int, float],
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """:meth:`_astar`'s loop; every pose it closes is a key of ``best``."""
         lat = self.lattice
         nk, nx, ny = lat.shape
         step = self.config.xy_step
@@ -247,9 +325,9 @@ class FootprintSearch:
         ]
         # the heuristic's heading term per heading
         h_head = [eps * w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
-        best: dict[int, float] = {si: 0.0}
         parent: dict[int, int] = {si: -1}
-        closed = bytearray(nk * plane)
+        closed = self._closed
+        assert closed is not None
         heap: list[tuple[float, int]] = [(0.0, si)]
         heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
         inf = math.inf
@@ -287,7 +365,7 @@ class FootprintSearch:
                 return out[::-1], head
             closed[v] = 1
             expansions += 1
-            if expansions == label_after and not self._connected(si, gi, free):
+            if expansions == label_after and not self._connected(si, gi, full()):
                 self.last_expansions = expansions
                 return None
             gv = best[v]
@@ -299,7 +377,10 @@ class FootprintSearch:
                     ii, jj = i + d_i, j + d_j
                     if not (0 <= ii < nx and 0 <= jj < ny):
                         continue
-                if not free_bytes[u] or closed[u]:
+                f = free_bytes[u]
+                if not f or closed[u]:
+                    continue
+                if f == PENDING and not resolve(u):  # type: ignore[misc]
                     continue
                 gu = gv + cost
                 if gu < best.get(u, inf):
@@ -309,7 +390,10 @@ class FootprintSearch:
             for dk in (-1, 1):
                 kk = (k + dk) % nk
                 u = kk * plane + rem
-                if not free_bytes[u] or closed[u]:
+                f = free_bytes[u]
+                if not f or closed[u]:
+                    continue
+                if f == PENDING and not resolve(u):  # type: ignore[misc]
                     continue
                 gu = gv + w
                 if gu < best.get(u, inf):
@@ -345,7 +429,11 @@ class FootprintSearch:
         return find(int(flat[si])) == find(int(flat[gi]))
 
     def _segment_free(
-        self, a: tuple[float, float, float], b: tuple[float, float, float], free_bytes: bytearray
+        self,
+        a: tuple[float, float, float],
+        b: tuple[float, float, float],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
     ) -> bool:
         """Do the samples of the straight SE(2) segment ``a``-``b`` snap to free poses?"""
         lat = self.lattice
@@ -366,17 +454,28 @@ class FootprintSearch:
             return False
         k = np.rint(th / self.config.heading_step).astype(np.intp) % lat.nk
         flat = (k * lat.nx + i) * lat.ny + j
-        view = np.frombuffer(free_bytes, dtype=bool)
-        return bool(view[flat].all())
+        view = np.frombuffer(free_bytes, dtype=np.uint8)
+        values = view[flat]
+        if not values.all():
+            return False
+        if scene is not None and bool((values == PENDING).any()):
+            scene.resolve_all(flat)
+            values = view[flat]
+        return bool(values.all())
 
-    def _tighten(self, path: list[tuple[float, float, float]], free_bytes: bytearray) -> FloatArray:
+    def _tighten(
+        self,
+        path: list[tuple[float, float, float]],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
+    ) -> FloatArray:
         """Pull the lattice path tight (see the module doc); the ends stay exact."""
         kept = [path[0]]
         a = 0
         last = len(path) - 1
         while a < last:
             b = a + 1
-            while b < last and self._segment_free(path[a], path[b + 1], free_bytes):
+            while b < last and self._segment_free(path[a], path[b + 1], free_bytes, scene):
                 b += 1
             kept.append(path[b])
             a = b
