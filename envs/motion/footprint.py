@@ -61,6 +61,14 @@ class FootprintConfig:
             static lattice (the first version). The answers are the same bit for bit;
             only the time differs. Each footprint's scene takes one more byte per
             lattice pose.
+        coarse_first: False (default): the search runs on this lattice. True: it first
+            runs on the lattice of twice the step and half the headings (16 times
+            fewer poses, whose poses are poses of this one), and a path found there,
+            each coarse move split in two and every pose of it checked free on this
+            lattice, is the answer; where it finds none, or a pose fails the check,
+            this lattice is searched as without the option. So "a path exists" is
+            answered as without it (every returned path is a path of this lattice),
+            but the path, and so its length, is another one. ``headings`` must be even.
         heuristic_weight: A* inflates its admissible heuristic by this factor, >= 1.
             1 gives the lattice's shortest path (slow where the footprint must turn to
             pass a door: A* then expands most of a room at every heading); above 1,
@@ -79,6 +87,7 @@ class FootprintConfig:
     heuristic_weight: float = 3.0
     label_after: int = 20_000
     lazy_tile: int = 32
+    coarse_first: bool = False
 
     def __post_init__(self) -> None:
         step = _finite(self.xy_step, "FootprintConfig.xy_step")
@@ -94,6 +103,16 @@ class FootprintConfig:
         object.__setattr__(self, "heuristic_weight", hw)
         V.integer(self.label_after, "FootprintConfig.label_after", 0)
         V.integer(self.lazy_tile, "FootprintConfig.lazy_tile", 0, 256)
+        if not isinstance(self.coarse_first, bool):
+            raise ValueError(
+                f"FootprintConfig.coarse_first must be True or False, got {self.coarse_first!r}"
+            )
+        if self.coarse_first and (self.headings % 2 or self.headings < 16 or step > 0.1):
+            raise ValueError(
+                "FootprintConfig.coarse_first needs even headings >= 16 and xy_step <= 0.1 "
+                f"(the coarse lattice halves them), got headings={self.headings}, "
+                f"xy_step={step}"
+            )
 
     @property
     def heading_step(self) -> float:

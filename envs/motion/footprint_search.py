@@ -31,10 +31,12 @@ test of oriented rectangles). Between two lattice poses the footprint moves by a
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 import time
 from collections import OrderedDict
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Protocol
 
 import numpy as np
@@ -101,6 +103,16 @@ class FootprintSearch:
             tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
         ] = OrderedDict()
         self._scene: tuple[tuple[Footprint, tuple[Box2D, ...]], bytearray, BoolArray] | None = None
+        #: The coarse lattice searched first (FootprintConfig.coarse_first), or None.
+        self._coarse: FootprintSearch | None = None
+        if config.coarse_first:
+            coarse = replace(
+                config, xy_step=2.0 * config.xy_step, headings=config.headings // 2,
+                coarse_first=False,
+            )  # fmt: skip
+            self._coarse = FootprintSearch(
+                workspace, static_obstacles, coarse, rotation_weight, tolerance
+            )
         self._lazy: OrderedDict[Footprint, LazyScene] = OrderedDict()
         # A*'s closed set, one byte per lattice pose: allocated once (10.8 MB on the
         # conveyor, whose first touch costs more than most searches) and cleared after
@@ -158,6 +170,47 @@ class FootprintSearch:
         self.last_expansions = 0
         if not (self.is_free(footprint, start, movable) and self.is_free(footprint, goal, movable)):
             return None
+        found = self._find(start, goal, footprint, movable, hub)
+        if found is None:
+            return None
+        return self._finish(found[0], found[1], start, goal, footprint, movable)
+
+    def _find(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """:meth:`_search`, after the coarse lattice's path if it has one that refines."""
+        if self._coarse is not None:
+            found = self._coarse._find(start, goal, footprint, movable, hub)
+            self.last_expansions = self._coarse.last_expansions
+            if found is not None:
+                cells = self._refine(found[0], start, goal, found[1] is None, footprint, movable)
+                if cells is not None:
+                    return cells, found[1]
+        return self._search(start, goal, footprint, movable, hub)
+
+    def _scene_bytes(
+        self, footprint: Footprint, movable: tuple[Box2D, ...]
+    ) -> tuple[bytearray, Callable[[int], int] | None, LazyScene | None]:
+        """The scene's bytes, the test of a :data:`PENDING` pose, and the lazy scene (or None)."""
+        if self.config.lazy_tile > 0:
+            scene = self._lazy_scene(footprint, movable)
+            return scene.buffer, scene.resolve, scene
+        return self._free(footprint, movable)[0], None, None
+
+    def _search(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """A* on this lattice (:meth:`_astar`) between the lattice poses nearest the ends."""
         lat = self.lattice
         s = lat.nearest(*start)
         g = lat.nearest(*goal)
@@ -166,16 +219,11 @@ class FootprintSearch:
         nx, ny = lat.nx, lat.ny
         si = (s[0] * nx + s[1]) * ny + s[2]
         gi = (g[0] * nx + g[1]) * ny + g[2]
-        resolve: Callable[[int], int] | None
-        scene: LazyScene | None = None
-        if self.config.lazy_tile > 0:
-            scene = self._lazy_scene(footprint, movable)
-            free_bytes, resolve = scene.buffer, scene.resolve
+        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+        if resolve is not None:
             for index in (si, gi):
                 if free_bytes[index] == PENDING:
                     resolve(index)
-        else:
-            free_bytes, resolve = self._free(footprint, movable)[0], None
         if not (free_bytes[si] and free_bytes[gi]):
             return None
 
@@ -183,10 +231,72 @@ class FootprintSearch:
             return self._free(footprint, movable)[1]
 
         # search from the goal: to the start, or to the first hub
-        found = self._astar(gi, si, free_bytes, resolve, full, hub)
-        if found is None:
+        return self._astar(gi, si, free_bytes, resolve, full, hub)
+
+    def _refine(
+        self,
+        coarse: list[int],
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        to_start: bool,
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+    ) -> list[int] | None:
+        """The coarse lattice path ``coarse`` as a path of this lattice, or None.
+
+        A coarse pose ``(k, i, j)`` is this lattice's ``(2k, 2i, 2j)`` (twice the step,
+        half the headings); each coarse move is two moves here, whose middle pose must
+        be free, and the ends are joined to the poses nearest ``goal`` (and ``start``
+        when ``to_start``) by at most one move in position and one in heading. Every
+        pose of the result is free on this lattice, so it is a path this lattice's
+        search could have returned; None if one is not.
+        """
+        assert self._coarse is not None
+        lat, clat = self.lattice, self._coarse.lattice
+        nk, nx, ny = lat.shape
+        cplane = clat.nx * clat.ny
+        g = lat.nearest(*goal)
+        s = lat.nearest(*start)
+        if g is None or s is None:
             return None
-        cells, head = found
+        poses = [g]
+        for c in coarse:
+            k, rem = divmod(c, cplane)
+            i, j = divmod(rem, clat.ny)
+            poses.append((2 * k, 2 * i, 2 * j))
+        if to_start:
+            poses.append(s)
+        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+
+        def free(k: int, i: int, j: int) -> bool:
+            u = (k * nx + i) * ny + j
+            value = free_bytes[u]
+            if value == PENDING and resolve is not None:
+                value = resolve(u)
+            return bool(value)
+
+        if not free(*poses[0]):
+            return None
+        path = [poses[0]]
+        for a, b in itertools.pairwise(poses):
+            step = _step_between(a, b, nk, free) or _join_locally(a, b, lat.shape, free)
+            if step is None:
+                return None
+            path.extend(step)
+        return [(k * nx + i) * ny + j for k, i, j in path]
+
+    def _finish(
+        self,
+        cells: list[int],
+        head: FloatArray | None,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+    ) -> FloatArray:
+        """The waypoints of the lattice path ``cells`` (goal first) and the disc's ``head``."""
+        lat = self.lattice
+        free_bytes, _, scene = self._scene_bytes(footprint, movable)
         plane = lat.nx * lat.ny
         poses = [lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)]
         if head is None:
@@ -480,3 +590,81 @@ class FootprintSearch:
             kept.append(path[b])
             a = b
         return np.array(kept, dtype=np.float64)
+
+
+Pose = tuple[int, int, int]
+
+
+def _step_between(
+    a: Pose, b: Pose, nk: int, free: Callable[[int, int, int], bool]
+) -> list[Pose] | None:
+    """Lattice moves from ``a`` to ``b`` (position first, then heading), ``b`` included.
+
+    None if a pose on the way is blocked, or ``b`` is more than 4 moves away.
+    """
+    k, i, j = a
+    kb, ib, jb = b
+    out = []
+    while (k, i, j) != b:
+        if (i, j) != (ib, jb):
+            i += (ib > i) - (ib < i)
+            j += (jb > j) - (jb < j)
+        else:
+            k = (k + (1 if (kb - k) % nk <= nk // 2 else -1)) % nk
+        if len(out) == 4 or not free(k, i, j):
+            return None
+        out.append((k, i, j))
+    return out
+
+
+def _join_locally(
+    a: Pose, b: Pose, shape: tuple[int, int, int], free: Callable[[int, int, int], bool]
+) -> list[Pose] | None:
+    """The fewest lattice moves from ``a`` to ``b`` within one pose of their bounding box.
+
+    Breadth-first over the free poses whose position is at most one step outside the
+    box spanned by ``a`` and ``b`` and whose heading is at most one step outside the
+    shorter arc between theirs (neighbours in a fixed order: deterministic); ``b``
+    included, None if there is no such way.
+    """
+    nk, nx, ny = shape
+    ka, ia, ja = a
+    kb, ib, jb = b
+    i0, i1 = max(0, min(ia, ib) - 1), min(nx - 1, max(ia, ib) + 1)
+    j0, j1 = max(0, min(ja, jb) - 1), min(ny - 1, max(ja, jb) + 1)
+    arc = (kb - ka) % nk
+    lo, span = (ka, arc) if arc <= nk // 2 else (kb, nk - arc)
+    headings = {(lo + d) % nk for d in range(-1, span + 2)}
+    parent: dict[Pose, Pose | None] = {a: None}
+    frontier = [a]
+    while frontier and b not in parent:
+        nxt = []
+        for k, i, j in frontier:
+            for dk, di, dj in _LOCAL_MOVES:
+                u = ((k + dk) % nk, i + di, j + dj)
+                if (
+                    u in parent
+                    or u[0] not in headings
+                    or not (i0 <= u[1] <= i1 and j0 <= u[2] <= j1)
+                    or not free(*u)
+                ):
+                    continue
+                parent[u] = (k, i, j)
+                nxt.append(u)
+        frontier = nxt
+    if b not in parent:
+        return None
+    out = []
+    v: Pose | None = b
+    while v is not None and v != a:
+        out.append(v)
+        v = parent[v]
+    return out[::-1]
+
+
+#: The lattice moves (d_heading, d_i, d_j): 8 in position, then the two headings.
+_LOCAL_MOVES = (
+    *((0, d_i, d_j) for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j),
+    (-1, 0, 0),
+    (1, 0, 0),
+)
