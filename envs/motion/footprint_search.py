@@ -7,8 +7,9 @@ sufficient test). It is deterministic and complete at its resolution:
 1. The exact start and goal poses must be free (:func:`footprint_hits`), and so must
    their nearest lattice poses.
 2. The lattice's free poses are those whose footprint clears the static obstacles (computed
-   once per footprint) and the movable boxes (once per footprint and box), exactly at
-   each lattice pose.
+   once per footprint) and the movable boxes, exactly at each lattice pose; the boxes
+   are tested where the search looks, tile by tile (:mod:`.footprint_scene`,
+   ``lazy_tile``; 0 tests every box's whole window first, with the same answers).
 3. A* from the start's lattice pose to the goal's over the free poses, each joined to
    its 8 neighbours in (x, y) at the same heading and to the two neighbouring headings
    at the same position; a move costs its SE(2) length (``|dp| + w |dtheta|``), the
@@ -21,6 +22,13 @@ sufficient test). It is deterministic and complete at its resolution:
    most ``xy_step`` / 2 and a half heading step apart) all snap to free lattice poses;
    the path's length is the original's sum of SE(2) distances (:func:`path_length`)
    of the tightened path, from the exact start to the exact goal.
+
+With ``coarse_first``, steps 2-3 run first on the lattice of twice the step and half
+the headings, whose poses are poses of this one; its path, each move split in two (or
+joined by a breadth-first search within one pose of the move where the middle pose is
+blocked) and checked free pose by pose here, is the lattice path; where the coarse
+lattice has no path or the check fails, steps 2-3 run here. Every returned path is a
+path of this lattice, so "a path exists" is answered as without the option.
 
 Guarantee: every lattice pose on the returned path is free exactly (the separating-axis
 test of oriented rectangles). Between two lattice poses the footprint moves by at most
