@@ -612,7 +612,7 @@ def _step_between(
     """
     k, i, j = a
     kb, ib, jb = b
-    out = []
+    out: list[Pose] = []
     while (k, i, j) != b:
         if (i, j) != (ib, jb):
             i += (ib > i) - (ib < i)
@@ -662,7 +662,7 @@ def _join_locally(
         frontier = nxt
     if b not in parent:
         return None
-    out = []
+    out: list[Pose] = []
     v: Pose | None = b
     while v is not None and v != a:
         out.append(v)
