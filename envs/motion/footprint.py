@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -138,9 +139,9 @@ class Footprint:
             raise ValueError(f"Footprint.parts must be one or more Box2D, got {self.parts!r}")
         object.__setattr__(self, "parts", parts)
 
-    @property
+    @cached_property
     def reach(self) -> float:
-        """The largest distance from the planned point to a rectangle corner."""
+        """The largest distance from the planned point to a rectangle corner (computed once)."""
         return max(math.hypot(px, py) for p in self.parts for px, py in p.corners().tolist())
 
     def at(self, x: float, y: float, theta: float) -> list[Box2D]:

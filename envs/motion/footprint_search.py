@@ -193,13 +193,41 @@ class FootprintSearch:
     ) -> tuple[list[int], FloatArray | None] | None:
         """:meth:`_search`, after the coarse lattice's path if it has one that refines."""
         if self._coarse is not None:
-            found = self._coarse._find(start, goal, footprint, movable, hub)
+            ends = self._coarse_ends(start, goal)
+            found = None if ends is None else self._coarse._search(*ends, footprint, movable, hub)
             self.last_expansions = self._coarse.last_expansions
             if found is not None:
                 cells = self._refine(found[0], start, goal, found[1] is None, footprint, movable)
                 if cells is not None:
                     return cells, found[1]
-        return self._search(start, goal, footprint, movable, hub)
+        lat = self.lattice
+        s = lat.nearest(*start)
+        g = lat.nearest(*goal)
+        if s is None or g is None:
+            return None
+        return self._search([s], [g], footprint, movable, hub)
+
+    def _coarse_ends(
+        self, start: tuple[float, float, float], goal: tuple[float, float, float]
+    ) -> tuple[list[Pose], list[Pose]] | None:
+        """The coarse lattice poses next to the lattice poses nearest ``start`` and ``goal``.
+
+        Up to 8 each (the coarse poses at most one move of this lattice away in position
+        and in heading), in a fixed order; the coarse search starts from the first free one.
+        """
+        assert self._coarse is not None
+        lat, clat = self.lattice, self._coarse.lattice
+        out = []
+        for pose in (start, goal):
+            near = lat.nearest(*pose)
+            if near is None:
+                return None
+            k, i, j = near
+            ks = sorted({k // 2, ((k + 1) // 2) % clat.nk})
+            i_s = [a for a in sorted({i // 2, (i + 1) // 2}) if a < clat.nx]
+            j_s = [b for b in sorted({j // 2, (j + 1) // 2}) if b < clat.ny]
+            out.append([(a, b, c) for a in ks for b in i_s for c in j_s])
+        return out[0], out[1]
 
     def _scene_bytes(
         self, footprint: Footprint, movable: tuple[Box2D, ...]
@@ -212,28 +240,28 @@ class FootprintSearch:
 
     def _search(
         self,
-        start: tuple[float, float, float],
-        goal: tuple[float, float, float],
+        starts: list[Pose],
+        goals: list[Pose],
         footprint: Footprint,
         movable: tuple[Box2D, ...],
         hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
-        """A* on this lattice (:meth:`_astar`) between the lattice poses nearest the ends."""
+        """A* on this lattice (:meth:`_astar`) between the first free of ``starts`` and of ``goals``."""
         lat = self.lattice
-        s = lat.nearest(*start)
-        g = lat.nearest(*goal)
-        if s is None or g is None:
-            return None
         nx, ny = lat.nx, lat.ny
-        si = (s[0] * nx + s[1]) * ny + s[2]
-        gi = (g[0] * nx + g[1]) * ny + g[2]
         free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
-        if resolve is not None:
-            for index in (si, gi):
-                if free_bytes[index] == PENDING:
+        ends = []
+        for candidates in (starts, goals):
+            for k, i, j in candidates:
+                index = (k * nx + i) * ny + j
+                if free_bytes[index] == PENDING and resolve is not None:
                     resolve(index)
-        if not (free_bytes[si] and free_bytes[gi]):
-            return None
+                if free_bytes[index]:
+                    ends.append(index)
+                    break
+            else:
+                return None
+        si, gi = ends
 
         def full() -> BoolArray:
             return self._free(footprint, movable)[1]
@@ -546,40 +574,63 @@ class FootprintSearch:
         flat = labels[:-1].ravel()
         return find(int(flat[si])) == find(int(flat[gi]))
 
-    def _segment_free(
+    def _segments_free(
         self,
         a: tuple[float, float, float],
-        b: tuple[float, float, float],
+        ends: list[tuple[float, float, float]],
         free_bytes: bytearray,
         scene: LazyScene | None,
-    ) -> bool:
-        """Do the samples of the straight SE(2) segment ``a``-``b`` snap to free poses?"""
+    ) -> int:
+        """How many of the straight SE(2) segments from ``a`` to ``ends`` are free, in order.
+
+        A segment is free iff its samples (at most ``xy_step`` / 2 and half a heading step
+        apart, both ends included) snap to free lattice poses; the count stops at the
+        first segment that is not. All segments are sampled in one pass of numpy (each
+        sample by the arithmetic of a segment on its own).
+        """
         lat = self.lattice
         step = self.config.xy_step
-        dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
-        n = max(
-            1,
-            math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
-            math.ceil(abs(dtheta) / (0.5 * self.config.heading_step)),
-        )
-        t = np.linspace(0.0, 1.0, n + 1)
-        x = a[0] + t * (b[0] - a[0])
-        y = a[1] + t * (b[1] - a[1])
-        th = a[2] + t * dtheta
+        half_turn = 0.5 * self.config.heading_step
+        ts, counts, dthetas = [], [], []
+        for b in ends:
+            dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
+            n = max(
+                1,
+                math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
+                math.ceil(abs(dtheta) / half_turn),
+            )
+            ts.append(np.linspace(0.0, 1.0, n + 1))
+            counts.append(n + 1)
+            dthetas.append(dtheta)
+        t = np.concatenate(ts)
+        which = np.repeat(np.arange(len(ends)), counts)
+        bx = np.array([b[0] for b in ends], dtype=np.float64)[which]
+        by = np.array([b[1] for b in ends], dtype=np.float64)[which]
+        x = a[0] + t * (bx - a[0])
+        y = a[1] + t * (by - a[1])
+        th = a[2] + t * np.array(dthetas, dtype=np.float64)[which]
         i = np.rint((x - self.workspace[0]) / step).astype(np.intp)
         j = np.rint((y - self.workspace[2]) / step).astype(np.intp)
-        if i.min() < 0 or j.min() < 0 or i.max() >= lat.nx or j.max() >= lat.ny:
-            return False
+        outside = (i < 0) | (j < 0) | (i >= lat.nx) | (j >= lat.ny)
         k = np.rint(th / self.config.heading_step).astype(np.intp) % lat.nk
-        flat = (k * lat.nx + i) * lat.ny + j
+        flat = (k * lat.nx + np.clip(i, 0, lat.nx - 1)) * lat.ny + np.clip(j, 0, lat.ny - 1)
         view = np.frombuffer(free_bytes, dtype=np.uint8)
         values = view[flat]
-        if not values.all():
-            return False
-        if scene is not None and bool((values == PENDING).any()):
-            scene.resolve_all(flat)
-            values = view[flat]
-        return bool(values.all())
+        blocked = outside | (values == 0)
+        pending = values == PENDING
+        free = 0
+        offset = 0
+        for count in counts:
+            part = slice(offset, offset + count)
+            offset += count
+            if blocked[part].any():
+                break
+            if scene is not None and pending[part].any():
+                scene.resolve_all(flat[part])
+                if not view[flat[part]].all():
+                    break
+            free += 1
+        return free
 
     def _tighten(
         self,
@@ -587,14 +638,25 @@ class FootprintSearch:
         free_bytes: bytearray,
         scene: LazyScene | None,
     ) -> FloatArray:
-        """Pull the lattice path tight (see the module doc); the ends stay exact."""
+        """Pull the lattice path tight (see the module doc); the ends stay exact.
+
+        From each kept waypoint ``path[a]`` the next is ``path[b]``, the last of the
+        waypoints after ``a`` to which every segment from ``path[a]`` is free, in order
+        (asked in batches of growing size: the answer is that of one segment at a time).
+        """
         kept = [path[0]]
         a = 0
         last = len(path) - 1
         while a < last:
             b = a + 1
-            while b < last and self._segment_free(path[a], path[b + 1], free_bytes, scene):
-                b += 1
+            batch = 4
+            while b < last:
+                m = min(batch, last - b)
+                n = self._segments_free(path[a], path[b + 1 : b + 1 + m], free_bytes, scene)
+                b += n
+                if n < m:
+                    break
+                batch = min(2 * batch, 64)
             kept.append(path[b])
             a = b
         return np.array(kept, dtype=np.float64)
