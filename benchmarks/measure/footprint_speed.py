@@ -92,8 +92,6 @@ def run(rollouts: int = 20, seed: int = 0, coarse_first: bool = False) -> dict[s
     search = exact.planner.footprint_search()
     for i in range(exact.n):
         search.warm(exact.footprint(i))
-        if search._coarse is not None:
-            search._coarse.warm(exact.footprint(i))
     static = time.process_time() - t0
     queries: list[float] = []
     search.timings = queries

@@ -386,7 +386,12 @@ class FootprintSearch:
         return scene
 
     def warm(self, footprint: Footprint) -> None:
-        """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost)."""
+        """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost).
+
+        With ``coarse_first``, the coarse lattice's too.
+        """
+        if self._coarse is not None:
+            self._coarse.warm(footprint)
         if self.config.lazy_tile > 0:
             self._lazy_scene(footprint, ())
         else:
