@@ -180,3 +180,24 @@ def test_coarse_first_needs_a_lattice_to_halve() -> None:
         FootprintConfig(xy_step=0.15, coarse_first=True)
     with pytest.raises(ValueError, match="coarse_first"):
         FootprintConfig(coarse_first=1)  # type: ignore[arg-type]
+
+
+def test_coarse_first_without_a_hub_reaches_the_start() -> None:
+    """The lattice search alone (no disc hub): the coarse path is joined to both ends."""
+    from voot.envs.motion.footprint_search import FootprintSearch
+
+    walls = tuple(door_wall(1.0))
+    fine = FootprintSearch(WS, walls, CFG)
+    coarse = FootprintSearch(WS, walls, FootprintConfig(**{**CFG.__dict__, "coarse_first": True}))
+    for start, goal in (
+        (START, GOAL),
+        ((1.02, 1.97, 1.6), (4.96, 2.04, 1.5)),
+        (START, (3.0, 2.0, 0.0)),
+    ):
+        a, b = fine.plan(start, goal, BODY, ()), coarse.plan(start, goal, BODY, ())
+        assert (a is None) == (b is None)
+        if b is None:
+            continue
+        assert tuple(b[0]) == start and tuple(b[-1]) == goal
+        for q in b:
+            assert not footprint_hits(BODY, tuple(q), walls, WS)
