@@ -88,7 +88,7 @@ def cmd_footprint_speed(args: argparse.Namespace) -> int:
 
     if args.rollouts < 1:
         raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
-    print(report(run(args.rollouts, args.seed)))
+    print(report(run(args.rollouts, args.seed, args.coarse_first)))
     return 0
 
 
@@ -164,6 +164,11 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument("--rollouts", type=int, default=20, help="random rollouts (default 20)")
     p.add_argument("--seed", type=seed_argument, default=0, help="seed of the random actions")
+    p.add_argument(
+        "--coarse-first",
+        action="store_true",
+        help="FootprintConfig(coarse_first=True): the lattice of twice the step first",
+    )
     p.set_defaults(func=cmd_footprint_speed)
 
     p = sub.add_parser(

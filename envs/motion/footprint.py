@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -52,6 +53,23 @@ class FootprintConfig:
             per carried object recurs through a search. Each takes one byte per lattice
             pose (10.8 MB on the conveyor at the default resolution).
         mask_cache_size: ``(footprint, movable box)`` occupancy windows kept (>= 0).
+        lazy_tile: Side (lattice positions) of the tiles in which a query's movable
+            boxes are tested on demand, in [0, 256]. 32 (default): each footprint keeps
+            its free lattice for the last set of movable boxes, re-marks only the
+            windows of boxes added or removed since, and tests a tile (all headings)
+            the first time the search looks at it (:mod:`.footprint_scene`). 0: every
+            box's whole window is tested before the search, on a fresh copy of the
+            static lattice (the first version). The answers are the same bit for bit;
+            only the time differs. Each footprint's scene takes one more byte per
+            lattice pose.
+        coarse_first: False (default): the search runs on this lattice. True: it first
+            runs on the lattice of twice the step and half the headings (16 times
+            fewer poses, whose poses are poses of this one), and a path found there,
+            each coarse move split in two and every pose of it checked free on this
+            lattice, is the answer; where it finds none, or a pose fails the check,
+            this lattice is searched as without the option. So "a path exists" is
+            answered as without it (every returned path is a path of this lattice),
+            but the path, and so its length, is another one. ``headings`` must be even.
         heuristic_weight: A* inflates its admissible heuristic by this factor, >= 1.
             1 gives the lattice's shortest path (slow where the footprint must turn to
             pass a door: A* then expands most of a room at every heading); above 1,
@@ -69,6 +87,8 @@ class FootprintConfig:
     mask_cache_size: int = 512
     heuristic_weight: float = 3.0
     label_after: int = 20_000
+    lazy_tile: int = 32
+    coarse_first: bool = False
 
     def __post_init__(self) -> None:
         step = _finite(self.xy_step, "FootprintConfig.xy_step")
@@ -83,6 +103,17 @@ class FootprintConfig:
             raise ValueError(f"FootprintConfig.heuristic_weight must be >= 1, got {hw}")
         object.__setattr__(self, "heuristic_weight", hw)
         V.integer(self.label_after, "FootprintConfig.label_after", 0)
+        V.integer(self.lazy_tile, "FootprintConfig.lazy_tile", 0, 256)
+        if not isinstance(self.coarse_first, bool):
+            raise ValueError(
+                f"FootprintConfig.coarse_first must be True or False, got {self.coarse_first!r}"
+            )
+        if self.coarse_first and (self.headings % 2 or self.headings < 16 or step > 0.1):
+            raise ValueError(
+                "FootprintConfig.coarse_first needs even headings >= 16 and xy_step <= 0.1 "
+                f"(the coarse lattice halves them), got headings={self.headings}, "
+                f"xy_step={step}"
+            )
 
     @property
     def heading_step(self) -> float:
@@ -108,9 +139,9 @@ class Footprint:
             raise ValueError(f"Footprint.parts must be one or more Box2D, got {self.parts!r}")
         object.__setattr__(self, "parts", parts)
 
-    @property
+    @cached_property
     def reach(self) -> float:
-        """The largest distance from the planned point to a rectangle corner."""
+        """The largest distance from the planned point to a rectangle corner (computed once)."""
         return max(math.hypot(px, py) for p in self.parts for px, py in p.corners().tolist())
 
     def at(self, x: float, y: float, theta: float) -> list[Box2D]:
@@ -220,14 +251,10 @@ class FootprintLattice:
         k = round(theta / self.config.heading_step) % self.nk
         return (k, i, j)
 
-    def blocked_window(
-        self, footprint: Footprint, box: Box2D
-    ) -> tuple[int, int, int, int, BoolArray] | None:
-        """Where ``footprint`` overlaps ``box``: ``(i0, i1, j0, j1, mask)``, or None.
+    def box_window(self, footprint: Footprint, box: Box2D) -> tuple[int, int, int, int] | None:
+        """The positions ``[i0, i1) x [j0, j1)`` outside which ``footprint`` clears ``box``.
 
-        ``mask`` has shape ``(headings, i1 - i0, j1 - j0)``: True at the lattice poses
-        ``(k, i0 + a, j0 + b)`` whose footprint overlaps ``box`` by more than the
-        tolerance (every pose outside the window is clear of it).
+        None when the window is empty (the box is out of the lattice's reach).
         """
         step = self.config.xy_step
         xmin, _, ymin, _ = self.workspace
@@ -241,6 +268,37 @@ class FootprintLattice:
         j1 = min(self.ny, math.ceil((box.cy + ext_y + grow - ymin) / step) + 1)
         if i0 >= i1 or j0 >= j1:
             return None
+        return (i0, i1, j0, j1)
+
+    def blocked_window(
+        self,
+        footprint: Footprint,
+        box: Box2D,
+        within: tuple[int, int, int, int] | None = None,
+    ) -> tuple[int, int, int, int, BoolArray] | None:
+        """Where ``footprint`` overlaps ``box``: ``(i0, i1, j0, j1, mask)``, or None.
+
+        ``mask`` has shape ``(headings, i1 - i0, j1 - j0)``: True at the lattice poses
+        ``(k, i0 + a, j0 + b)`` whose footprint overlaps ``box`` by more than the
+        tolerance (every pose outside the window is clear of it). ``within`` (positions
+        ``(i0, i1, j0, j1)``) clips the window: each pose's test is computed by the same
+        arithmetic whatever the window, so a clipped mask is the full one's crop, bit for
+        bit (what the lazy scenes of :mod:`voot.envs.motion.footprint_scene` rely on).
+        """
+        step = self.config.xy_step
+        xmin, _, ymin, _ = self.workspace
+        cb, sb = math.cos(box.yaw), math.sin(box.yaw)
+        ext_x = box.half_x * abs(cb) + box.half_y * abs(sb)
+        ext_y = box.half_x * abs(sb) + box.half_y * abs(cb)
+        bounds = self.box_window(footprint, box)
+        if bounds is None:
+            return None
+        i0, i1, j0, j1 = bounds
+        if within is not None:
+            i0, i1 = max(i0, within[0]), min(i1, within[1])
+            j0, j1 = max(j0, within[2]), min(j1, within[3])
+            if i0 >= i1 or j0 >= j1:
+                return None
         hit = np.zeros((self.nk, i1 - i0, j1 - j0), dtype=bool)
         tol = self.tolerance
         cos_t, sin_t = self._cos, self._sin

@@ -7,8 +7,9 @@ sufficient test). It is deterministic and complete at its resolution:
 1. The exact start and goal poses must be free (:func:`footprint_hits`), and so must
    their nearest lattice poses.
 2. The lattice's free poses are those whose footprint clears the static obstacles (computed
-   once per footprint) and the movable boxes (once per footprint and box), exactly at
-   each lattice pose.
+   once per footprint) and the movable boxes, exactly at each lattice pose; the boxes
+   are tested where the search looks, tile by tile (:mod:`.footprint_scene`,
+   ``lazy_tile``; 0 tests every box's whole window first, with the same answers).
 3. A* from the start's lattice pose to the goal's over the free poses, each joined to
    its 8 neighbours in (x, y) at the same heading and to the two neighbouring headings
    at the same position; a move costs its SE(2) length (``|dp| + w |dtheta|``), the
@@ -22,6 +23,13 @@ sufficient test). It is deterministic and complete at its resolution:
    the path's length is the original's sum of SE(2) distances (:func:`path_length`)
    of the tightened path, from the exact start to the exact goal.
 
+With ``coarse_first``, steps 2-3 run first on the lattice of twice the step and half
+the headings, whose poses are poses of this one; its path, each move split in two (or
+joined by a breadth-first search within one pose of the move where the middle pose is
+blocked) and checked free pose by pose here, is the lattice path; where the coarse
+lattice has no path or the check fails, steps 2-3 run here. Every returned path is a
+path of this lattice, so "a path exists" is answered as without the option.
+
 Guarantee: every lattice pose on the returned path is free exactly (the separating-axis
 test of oriented rectangles). Between two lattice poses the footprint moves by at most
 ``xy_step * sqrt(2)`` or turns by one heading step (at its farthest corner
@@ -31,9 +39,12 @@ test of oriented rectangles). Between two lattice poses the footprint moves by a
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 import time
 from collections import OrderedDict
+from collections.abc import Callable
+from dataclasses import replace
 from typing import Protocol
 
 import numpy as np
@@ -48,6 +59,7 @@ from voot.envs.motion.footprint import (
     bound_boxes,
     footprint_hits,
 )
+from voot.envs.motion.footprint_scene import PENDING, LazyScene
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
@@ -99,6 +111,21 @@ class FootprintSearch:
             tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
         ] = OrderedDict()
         self._scene: tuple[tuple[Footprint, tuple[Box2D, ...]], bytearray, BoolArray] | None = None
+        #: The coarse lattice searched first (FootprintConfig.coarse_first), or None.
+        self._coarse: FootprintSearch | None = None
+        if config.coarse_first:
+            coarse = replace(
+                config, xy_step=2.0 * config.xy_step, headings=config.headings // 2,
+                coarse_first=False,
+            )  # fmt: skip
+            self._coarse = FootprintSearch(
+                workspace, static_obstacles, coarse, rotation_weight, tolerance
+            )
+        self._lazy: OrderedDict[Footprint, LazyScene] = OrderedDict()
+        # A*'s closed set, one byte per lattice pose: allocated once (10.8 MB on the
+        # conveyor, whose first touch costs more than most searches) and cleared after
+        # each search at the poses it closed
+        self._closed: bytearray | None = None
         #: A* expansions of the last exact query (for the benchmark's statistics).
         self.last_expansions = 0
         #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
@@ -151,27 +178,166 @@ class FootprintSearch:
         self.last_expansions = 0
         if not (self.is_free(footprint, start, movable) and self.is_free(footprint, goal, movable)):
             return None
+        found = self._find(start, goal, footprint, movable, hub)
+        if found is None:
+            return None
+        return self._finish(found[0], found[1], start, goal, footprint, movable)
+
+    def _find(
+        self,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """:meth:`_search`, after the coarse lattice's path if it has one that refines."""
+        if self._coarse is not None:
+            ends = self._coarse_ends(start, goal)
+            found = None if ends is None else self._coarse._search(*ends, footprint, movable, hub)
+            self.last_expansions = self._coarse.last_expansions
+            if found is not None:
+                cells = self._refine(found[0], start, goal, found[1] is None, footprint, movable)
+                if cells is not None:
+                    return cells, found[1]
         lat = self.lattice
         s = lat.nearest(*start)
         g = lat.nearest(*goal)
         if s is None or g is None:
             return None
-        free_bytes, free = self._free(footprint, movable)
+        return self._search([s], [g], footprint, movable, hub)
+
+    def _coarse_ends(
+        self, start: tuple[float, float, float], goal: tuple[float, float, float]
+    ) -> tuple[list[Pose], list[Pose]] | None:
+        """The coarse lattice poses next to the lattice poses nearest ``start`` and ``goal``.
+
+        Up to 8 each (the coarse poses at most one move of this lattice away in position
+        and in heading), in a fixed order; the coarse search starts from the first free one.
+        """
+        assert self._coarse is not None
+        lat, clat = self.lattice, self._coarse.lattice
+        out = []
+        for pose in (start, goal):
+            near = lat.nearest(*pose)
+            if near is None:
+                return None
+            k, i, j = near
+            ks = sorted({k // 2, ((k + 1) // 2) % clat.nk})
+            i_s = [a for a in sorted({i // 2, (i + 1) // 2}) if a < clat.nx]
+            j_s = [b for b in sorted({j // 2, (j + 1) // 2}) if b < clat.ny]
+            out.append([(a, b, c) for a in ks for b in i_s for c in j_s])
+        return out[0], out[1]
+
+    def _scene_bytes(
+        self, footprint: Footprint, movable: tuple[Box2D, ...]
+    ) -> tuple[bytearray, Callable[[int], int] | None, LazyScene | None]:
+        """The scene's bytes, the test of a :data:`PENDING` pose, and the lazy scene (or None)."""
+        if self.config.lazy_tile > 0:
+            scene = self._lazy_scene(footprint, movable)
+            return scene.buffer, scene.resolve, scene
+        return self._free(footprint, movable)[0], None, None
+
+    def _search(
+        self,
+        starts: list[Pose],
+        goals: list[Pose],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+        hub: DiscHub | None,
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """A* on this lattice (:meth:`_astar`) between the first free of ``starts`` and of ``goals``."""
+        lat = self.lattice
         nx, ny = lat.nx, lat.ny
-        si = (s[0] * nx + s[1]) * ny + s[2]
-        gi = (g[0] * nx + g[1]) * ny + g[2]
-        if not (free_bytes[si] and free_bytes[gi]):
-            return None
+        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+        ends = []
+        for candidates in (starts, goals):
+            for k, i, j in candidates:
+                index = (k * nx + i) * ny + j
+                if free_bytes[index] == PENDING and resolve is not None:
+                    resolve(index)
+                if free_bytes[index]:
+                    ends.append(index)
+                    break
+            else:
+                return None
+        si, gi = ends
+
+        def full() -> BoolArray:
+            return self._free(footprint, movable)[1]
+
         # search from the goal: to the start, or to the first hub
-        found = self._astar(gi, si, free_bytes, free, hub)
-        if found is None:
+        return self._astar(gi, si, free_bytes, resolve, full, hub)
+
+    def _refine(
+        self,
+        coarse: list[int],
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        to_start: bool,
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+    ) -> list[int] | None:
+        """The coarse lattice path ``coarse`` as a path of this lattice, or None.
+
+        A coarse pose ``(k, i, j)`` is this lattice's ``(2k, 2i, 2j)`` (twice the step,
+        half the headings); each coarse move is two moves here, whose middle pose must
+        be free, and the ends are joined to the poses nearest ``goal`` (and ``start``
+        when ``to_start``) by at most one move in position and one in heading. Every
+        pose of the result is free on this lattice, so it is a path this lattice's
+        search could have returned; None if one is not.
+        """
+        assert self._coarse is not None
+        lat, clat = self.lattice, self._coarse.lattice
+        nk, nx, ny = lat.shape
+        cplane = clat.nx * clat.ny
+        g = lat.nearest(*goal)
+        s = lat.nearest(*start)
+        if g is None or s is None:
             return None
-        cells, head = found
+        poses = [g]
+        for c in coarse:
+            k, rem = divmod(c, cplane)
+            i, j = divmod(rem, clat.ny)
+            poses.append((2 * k, 2 * i, 2 * j))
+        if to_start:
+            poses.append(s)
+        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+
+        def free(k: int, i: int, j: int) -> bool:
+            u = (k * nx + i) * ny + j
+            value = free_bytes[u]
+            if value == PENDING and resolve is not None:
+                value = resolve(u)
+            return bool(value)
+
+        if not free(*poses[0]):
+            return None
+        path = [poses[0]]
+        for a, b in itertools.pairwise(poses):
+            step = _step_between(a, b, nk, free) or _join_locally(a, b, lat.shape, free)
+            if step is None:
+                return None
+            path.extend(step)
+        return [(k * nx + i) * ny + j for k, i, j in path]
+
+    def _finish(
+        self,
+        cells: list[int],
+        head: FloatArray | None,
+        start: tuple[float, float, float],
+        goal: tuple[float, float, float],
+        footprint: Footprint,
+        movable: tuple[Box2D, ...],
+    ) -> FloatArray:
+        """The waypoints of the lattice path ``cells`` (goal first) and the disc's ``head``."""
+        lat = self.lattice
+        free_bytes, _, scene = self._scene_bytes(footprint, movable)
         plane = lat.nx * lat.ny
         poses = [lat.pose(c // plane, (c % plane) // lat.ny, c % lat.ny) for c in reversed(cells)]
         if head is None:
-            return self._tighten([start, *poses, goal], free_bytes)
-        tail = self._tighten([*poses, goal], free_bytes)
+            return self._tighten([start, *poses, goal], free_bytes, scene)
+        tail = self._tighten([*poses, goal], free_bytes, scene)
         return np.concatenate([head[:-1], tail])
 
     # ----- internals ----------------------------------------------------------------------
@@ -182,15 +348,7 @@ class FootprintSearch:
         key = (footprint, movable)
         if self._scene is not None and self._scene[0] == key:
             return self._scene[1], self._scene[2]
-        static = self._static.get(footprint)
-        if static is None:
-            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
-            self._static[footprint] = static
-            if len(self._static) > self.config.static_cache_size:
-                self._static.popitem(last=False)
-        else:
-            self._static.move_to_end(footprint)
-        buffer = bytearray(static)
+        buffer = bytearray(self._static_bytes(footprint))
         free = np.frombuffer(buffer, dtype=bool).reshape(self.lattice.shape)
         for box in movable:
             window = self._mask(footprint, box)
@@ -199,6 +357,47 @@ class FootprintSearch:
                 free[:, i0:i1, j0:j1] &= ~mask
         self._scene = (key, buffer, free)
         return buffer, free
+
+    def _static_bytes(self, footprint: Footprint) -> bytes:
+        """The static obstacles' free lattice of ``footprint`` (cached, LRU)."""
+        static = self._static.get(footprint)
+        if static is None:
+            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
+            self._static[footprint] = static
+            if len(self._static) > self.config.static_cache_size:
+                self._static.popitem(last=False)
+        else:
+            self._static.move_to_end(footprint)
+        return static
+
+    def _lazy_scene(self, footprint: Footprint, movable: tuple[Box2D, ...]) -> LazyScene:
+        """``footprint``'s :class:`LazyScene`, updated to ``movable`` (cached like the static)."""
+        scene = self._lazy.get(footprint)
+        if scene is None:
+            scene = LazyScene(
+                self.lattice, footprint, self._static_bytes(footprint), self.config.lazy_tile
+            )
+            self._lazy[footprint] = scene
+            if len(self._lazy) > self.config.static_cache_size:
+                self._lazy.popitem(last=False)
+        else:
+            self._lazy.move_to_end(footprint)
+        scene.update(movable)
+        return scene
+
+    def warm(self, footprint: Footprint) -> None:
+        """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost).
+
+        With ``coarse_first``, the coarse lattice's too.
+        """
+        if self._coarse is not None:
+            self._coarse.warm(footprint)
+        if self.config.lazy_tile > 0:
+            self._lazy_scene(footprint, ())
+        else:
+            self._static_bytes(footprint)
+        if self._closed is None:
+            self._closed = bytearray(self.lattice.nk * self.lattice.nx * self.lattice.ny)
 
     def _mask(
         self, footprint: Footprint, box: Box2D
@@ -215,19 +414,49 @@ class FootprintSearch:
         return window
 
     def _astar(
-        self, si: int, gi: int, free_bytes: bytearray, free: BoolArray, hub: DiscHub | None
+        self,
+        si: int,
+        gi: int,
+        free_bytes: bytearray,
+        resolve: Callable[[int], int] | None,
+        full: Callable[[], BoolArray],
+        hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
         """Lattice indices from ``si`` to ``gi`` or to a hub (both ends included), or None.
 
         Returns the cells and, when the search stopped at a hub, the disc's waypoints
         from the hub's start to the last cell (None when it reached ``gi``).
+        ``free_bytes`` is the scene (a pose :data:`PENDING` is tested by ``resolve``);
+        ``full()`` is the whole free lattice, for the connectivity proof.
 
         The loop is written for CPython's speed (the profile's hot spot): the closed set
-        is a byte per lattice pose, the neighbours are enumerated inline, the heuristic's
+        is a byte per lattice pose (one buffer, cleared after each search), the neighbours are enumerated inline, the heuristic's
         two terms are looked up per position and per heading, and the disc's test of a
         position is asked once per query (it does not depend on the heading). The order
         of expansions, and so the path, is that of the plain A* it replaces.
         """
+        lat = self.lattice
+        best: dict[int, float] = {si: 0.0}
+        if self._closed is None:
+            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
+        try:
+            return self._astar_loop(si, gi, free_bytes, resolve, full, hub, best)
+        finally:
+            closed = self._closed
+            for u in best:
+                closed[u] = 0
+
+    def _astar_loop(
+        self,
+        si: int,
+        gi: int,
+        free_bytes: bytearray,
+        resolve: Callable[[int], int] | None,
+        full: Callable[[], BoolArray],
+        hub: DiscHub | None,
+        best: dict[int, float],
+    ) -> tuple[list[int], FloatArray | None] | None:
+        """:meth:`_astar`'s loop; every pose it closes is a key of ``best``."""
         lat = self.lattice
         nk, nx, ny = lat.shape
         step = self.config.xy_step
@@ -247,9 +476,9 @@ class FootprintSearch:
         ]
         # the heuristic's heading term per heading
         h_head = [eps * w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
-        best: dict[int, float] = {si: 0.0}
         parent: dict[int, int] = {si: -1}
-        closed = bytearray(nk * plane)
+        closed = self._closed
+        assert closed is not None
         heap: list[tuple[float, int]] = [(0.0, si)]
         heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
         inf = math.inf
@@ -287,7 +516,7 @@ class FootprintSearch:
                 return out[::-1], head
             closed[v] = 1
             expansions += 1
-            if expansions == label_after and not self._connected(si, gi, free):
+            if expansions == label_after and not self._connected(si, gi, full()):
                 self.last_expansions = expansions
                 return None
             gv = best[v]
@@ -299,7 +528,10 @@ class FootprintSearch:
                     ii, jj = i + d_i, j + d_j
                     if not (0 <= ii < nx and 0 <= jj < ny):
                         continue
-                if not free_bytes[u] or closed[u]:
+                f = free_bytes[u]
+                if not f or closed[u]:
+                    continue
+                if f == PENDING and not resolve(u):  # type: ignore[misc]
                     continue
                 gu = gv + cost
                 if gu < best.get(u, inf):
@@ -309,7 +541,10 @@ class FootprintSearch:
             for dk in (-1, 1):
                 kk = (k + dk) % nk
                 u = kk * plane + rem
-                if not free_bytes[u] or closed[u]:
+                f = free_bytes[u]
+                if not f or closed[u]:
+                    continue
+                if f == PENDING and not resolve(u):  # type: ignore[misc]
                     continue
                 gu = gv + w
                 if gu < best.get(u, inf):
@@ -344,40 +579,167 @@ class FootprintSearch:
         flat = labels[:-1].ravel()
         return find(int(flat[si])) == find(int(flat[gi]))
 
-    def _segment_free(
-        self, a: tuple[float, float, float], b: tuple[float, float, float], free_bytes: bytearray
-    ) -> bool:
-        """Do the samples of the straight SE(2) segment ``a``-``b`` snap to free poses?"""
+    def _segments_free(
+        self,
+        a: tuple[float, float, float],
+        ends: list[tuple[float, float, float]],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
+    ) -> int:
+        """How many of the straight SE(2) segments from ``a`` to ``ends`` are free, in order.
+
+        A segment is free iff its samples (at most ``xy_step`` / 2 and half a heading step
+        apart, both ends included) snap to free lattice poses; the count stops at the
+        first segment that is not. All segments are sampled in one pass of numpy (each
+        sample by the arithmetic of a segment on its own).
+        """
         lat = self.lattice
         step = self.config.xy_step
-        dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
-        n = max(
-            1,
-            math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
-            math.ceil(abs(dtheta) / (0.5 * self.config.heading_step)),
-        )
-        t = np.linspace(0.0, 1.0, n + 1)
-        x = a[0] + t * (b[0] - a[0])
-        y = a[1] + t * (b[1] - a[1])
-        th = a[2] + t * dtheta
+        half_turn = 0.5 * self.config.heading_step
+        ts, counts, dthetas = [], [], []
+        for b in ends:
+            dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
+            n = max(
+                1,
+                math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
+                math.ceil(abs(dtheta) / half_turn),
+            )
+            ts.append(np.linspace(0.0, 1.0, n + 1))
+            counts.append(n + 1)
+            dthetas.append(dtheta)
+        t = np.concatenate(ts)
+        which = np.repeat(np.arange(len(ends)), counts)
+        bx = np.array([b[0] for b in ends], dtype=np.float64)[which]
+        by = np.array([b[1] for b in ends], dtype=np.float64)[which]
+        x = a[0] + t * (bx - a[0])
+        y = a[1] + t * (by - a[1])
+        th = a[2] + t * np.array(dthetas, dtype=np.float64)[which]
         i = np.rint((x - self.workspace[0]) / step).astype(np.intp)
         j = np.rint((y - self.workspace[2]) / step).astype(np.intp)
-        if i.min() < 0 or j.min() < 0 or i.max() >= lat.nx or j.max() >= lat.ny:
-            return False
+        outside = (i < 0) | (j < 0) | (i >= lat.nx) | (j >= lat.ny)
         k = np.rint(th / self.config.heading_step).astype(np.intp) % lat.nk
-        flat = (k * lat.nx + i) * lat.ny + j
-        view = np.frombuffer(free_bytes, dtype=bool)
-        return bool(view[flat].all())
+        flat = (k * lat.nx + np.clip(i, 0, lat.nx - 1)) * lat.ny + np.clip(j, 0, lat.ny - 1)
+        view = np.frombuffer(free_bytes, dtype=np.uint8)
+        values = view[flat]
+        blocked = outside | (values == 0)
+        pending = values == PENDING
+        free = 0
+        offset = 0
+        for count in counts:
+            part = slice(offset, offset + count)
+            offset += count
+            if blocked[part].any():
+                break
+            if scene is not None and pending[part].any():
+                scene.resolve_all(flat[part])
+                if not view[flat[part]].all():
+                    break
+            free += 1
+        return free
 
-    def _tighten(self, path: list[tuple[float, float, float]], free_bytes: bytearray) -> FloatArray:
-        """Pull the lattice path tight (see the module doc); the ends stay exact."""
+    def _tighten(
+        self,
+        path: list[tuple[float, float, float]],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
+    ) -> FloatArray:
+        """Pull the lattice path tight (see the module doc); the ends stay exact.
+
+        From each kept waypoint ``path[a]`` the next is ``path[b]``, the last of the
+        waypoints after ``a`` to which every segment from ``path[a]`` is free, in order
+        (asked in batches of growing size: the answer is that of one segment at a time).
+        """
         kept = [path[0]]
         a = 0
         last = len(path) - 1
         while a < last:
             b = a + 1
-            while b < last and self._segment_free(path[a], path[b + 1], free_bytes):
-                b += 1
+            batch = 4
+            while b < last:
+                m = min(batch, last - b)
+                n = self._segments_free(path[a], path[b + 1 : b + 1 + m], free_bytes, scene)
+                b += n
+                if n < m:
+                    break
+                batch = min(2 * batch, 64)
             kept.append(path[b])
             a = b
         return np.array(kept, dtype=np.float64)
+
+
+Pose = tuple[int, int, int]
+
+
+def _step_between(
+    a: Pose, b: Pose, nk: int, free: Callable[[int, int, int], bool]
+) -> list[Pose] | None:
+    """Lattice moves from ``a`` to ``b`` (position first, then heading), ``b`` included.
+
+    None if a pose on the way is blocked, or ``b`` is more than 4 moves away.
+    """
+    k, i, j = a
+    kb, ib, jb = b
+    out: list[Pose] = []
+    while (k, i, j) != b:
+        if (i, j) != (ib, jb):
+            i += (ib > i) - (ib < i)
+            j += (jb > j) - (jb < j)
+        else:
+            k = (k + (1 if (kb - k) % nk <= nk // 2 else -1)) % nk
+        if len(out) == 4 or not free(k, i, j):
+            return None
+        out.append((k, i, j))
+    return out
+
+
+def _join_locally(
+    a: Pose, b: Pose, shape: tuple[int, int, int], free: Callable[[int, int, int], bool]
+) -> list[Pose] | None:
+    """The fewest lattice moves from ``a`` to ``b`` within one pose of their bounding box.
+
+    Breadth-first over the free poses whose position is at most one step outside the
+    box spanned by ``a`` and ``b`` and whose heading is at most one step outside the
+    shorter arc between theirs (neighbours in a fixed order: deterministic); ``b``
+    included, None if there is no such way.
+    """
+    nk, nx, ny = shape
+    ka, ia, ja = a
+    kb, ib, jb = b
+    i0, i1 = max(0, min(ia, ib) - 1), min(nx - 1, max(ia, ib) + 1)
+    j0, j1 = max(0, min(ja, jb) - 1), min(ny - 1, max(ja, jb) + 1)
+    arc = (kb - ka) % nk
+    lo, span = (ka, arc) if arc <= nk // 2 else (kb, nk - arc)
+    headings = {(lo + d) % nk for d in range(-1, span + 2)}
+    parent: dict[Pose, Pose | None] = {a: None}
+    frontier = [a]
+    while frontier and b not in parent:
+        nxt = []
+        for k, i, j in frontier:
+            for dk, di, dj in _LOCAL_MOVES:
+                u = ((k + dk) % nk, i + di, j + dj)
+                if (
+                    u in parent
+                    or u[0] not in headings
+                    or not (i0 <= u[1] <= i1 and j0 <= u[2] <= j1)
+                    or not free(*u)
+                ):
+                    continue
+                parent[u] = (k, i, j)
+                nxt.append(u)
+        frontier = nxt
+    if b not in parent:
+        return None
+    out: list[Pose] = []
+    v: Pose | None = b
+    while v is not None and v != a:
+        out.append(v)
+        v = parent[v]
+    return out[::-1]
+
+
+#: The lattice moves (d_heading, d_i, d_j): 8 in position, then the two headings.
+_LOCAL_MOVES = (
+    *((0, d_i, d_j) for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j),
+    (-1, 0, 0),
+    (1, 0, 0),
+)

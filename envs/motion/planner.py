@@ -71,7 +71,7 @@ import itertools
 import math
 import struct
 from collections import OrderedDict
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -232,6 +232,17 @@ class DiscProbe:
             x, y, self._lists, r_hit, self._blocked_hint
         )
 
+    def blocked_test(self, robot_radius: float) -> Callable[[float, float], bool]:
+        """:meth:`blocked` for one radius, as a function of ``(x, y)`` (the radius checked once)."""
+        planner = self._planner
+        r_hit = planner._inflated_radius(robot_radius) - planner.config.contact_tolerance
+        inside, lists, hint = planner._inside_xy, self._lists, self._blocked_hint
+
+        def blocked(x: float, y: float) -> bool:
+            return not inside(x, y, r_hit) or _point_hits_any(x, y, lists, r_hit, hint)
+
+        return blocked
+
     def verdict(self, x: float, y: float, robot_radius: float, margin: float) -> bool | None:
         """:meth:`blocked` for a disc known to within ``margin`` metres; None if unsure."""
         planner = self._planner
@@ -279,11 +290,11 @@ class _DiscHub:
         self._start = start
         self._radius = radius
         self._movable = movable
-        self._probe = planner.disc_probe(movable)
-        self._start_free = not self._probe.blocked(start.x, start.y, radius)
+        self._blocked = planner.disc_probe(movable).blocked_test(radius)
+        self._start_free = not self._blocked(start.x, start.y)
 
     def is_free(self, x: float, y: float) -> bool:
-        return self._start_free and not self._probe.blocked(x, y, self._radius)
+        return self._start_free and not self._blocked(x, y)
 
     def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
         path = self._planner.plan(self._start, pose, self._radius, self._movable)

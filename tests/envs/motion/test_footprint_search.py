@@ -139,3 +139,65 @@ def test_same_path_in_another_process_and_with_warm_caches() -> None:
     again = p.plan_footprint(START, GOAL, RADIUS, BODY)
     assert again is not None
     assert f"{again.waypoints.tobytes().hex()} {again.length!r}" == first
+
+
+def test_coarse_first_answers_as_the_lattice_does() -> None:
+    """coarse_first: the same "a path exists" answers, every path free, deterministic."""
+    plug = Box2D(3.0, 2.0, 0.15, 0.15, 0.0, "plug")
+    side = Box2D(4.2, 2.9, 0.3, 0.2, 0.5, "side")
+    goals = [GOAL, (4.5, 1.0, 1.0), (5.0, 3.2, 0.0), (1.0, 0.6, 2.5)]
+    answers = {False: [], True: []}
+    for width in (0.5, 0.62, 0.7, 1.0):
+        for coarse in (False, True):
+            p = planner(width, coarse_first=coarse)
+            if coarse:
+                search = p.footprint_search()
+                assert search._coarse is not None
+                assert search._coarse.lattice.shape == (18, 61, 41)
+            for goal in goals:
+                for movable in ((), (side,), (plug,)):
+                    path = p.plan_footprint(START, goal, RADIUS, BODY, movable)
+                    answers[coarse].append(path is not None)
+                    if path is None:
+                        continue
+                    w = path.waypoints
+                    assert tuple(w[0]) == START and tuple(w[-1]) == goal
+                    obstacles = door_wall(width) + list(movable)
+                    for q in w:
+                        assert not footprint_hits(BODY, tuple(q), obstacles, WS)
+                    again = planner(width, coarse_first=coarse).plan_footprint(
+                        START, goal, RADIUS, BODY, movable
+                    )
+                    assert again is not None and np.array_equal(again.waypoints, w)
+    assert answers[True] == answers[False]
+    assert 0 < sum(answers[True]) < len(answers[True])
+
+
+def test_coarse_first_needs_a_lattice_to_halve() -> None:
+    with pytest.raises(ValueError, match="coarse_first"):
+        FootprintConfig(headings=35, coarse_first=True)
+    with pytest.raises(ValueError, match="coarse_first"):
+        FootprintConfig(xy_step=0.15, coarse_first=True)
+    with pytest.raises(ValueError, match="coarse_first"):
+        FootprintConfig(coarse_first=1)  # type: ignore[arg-type]
+
+
+def test_coarse_first_without_a_hub_reaches_the_start() -> None:
+    """The lattice search alone (no disc hub): the coarse path is joined to both ends."""
+    from voot.envs.motion.footprint_search import FootprintSearch
+
+    walls = tuple(door_wall(1.0))
+    fine = FootprintSearch(WS, walls, CFG)
+    coarse = FootprintSearch(WS, walls, FootprintConfig(**{**CFG.__dict__, "coarse_first": True}))
+    for start, goal in (
+        (START, GOAL),
+        ((1.02, 1.97, 1.6), (4.96, 2.04, 1.5)),
+        (START, (3.0, 2.0, 0.0)),
+    ):
+        a, b = fine.plan(start, goal, BODY, ()), coarse.plan(start, goal, BODY, ())
+        assert (a is None) == (b is None)
+        if b is None:
+            continue
+        assert tuple(b[0]) == start and tuple(b[-1]) == goal
+        for q in b:
+            assert not footprint_hits(BODY, tuple(q), walls, WS)

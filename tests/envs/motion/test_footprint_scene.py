@@ -1,0 +1,96 @@
+"""Tests of voot.envs.motion.footprint_scene: the lazy scene is the eager one, bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from voot.envs.motion.footprint import (
+    Footprint,
+    FootprintConfig,
+    FootprintLattice,
+    bound_boxes,
+)
+from voot.envs.motion.footprint_scene import PENDING, LazyScene
+from voot.envs.motion.footprint_search import FootprintSearch
+from voot.envs.motion.planar import Box2D
+
+WS = (0.0, 4.0, 0.0, 3.0)
+CFG = FootprintConfig(xy_step=0.1, headings=24)
+ROBOT = Footprint((Box2D(0.0, 0.0, 0.3, 0.3, 0.0, "base"), Box2D(0.5, 0.1, 0.2, 0.25, 0.3, "load")))
+STATIC = (Box2D(2.0, 0.4, 0.05, 0.4, 0.0, "wall"),)
+
+
+def boxes(seed: int, n: int) -> tuple[Box2D, ...]:
+    rng = np.random.default_rng(seed)
+    return tuple(
+        Box2D(float(rng.uniform(0.3, 3.7)), float(rng.uniform(0.3, 2.7)),
+              float(rng.uniform(0.05, 0.3)), float(rng.uniform(0.05, 0.3)),
+              float(rng.uniform(-3, 3)), f"b{seed}_{k}")
+        for k in range(n)
+    )  # fmt: skip
+
+
+def test_a_clipped_window_is_the_full_windows_crop() -> None:
+    lat = FootprintLattice(WS, CFG)
+    box = boxes(0, 1)[0]
+    full = lat.blocked_window(ROBOT, box)
+    assert full is not None
+    i0, i1, j0, j1, mask = full
+    within = (i0 + 3, i1 - 2, j0 + 1, min(j1, j0 + 7))
+    part = lat.blocked_window(ROBOT, box, within)
+    assert part is not None
+    c0, c1, d0, d1, sub = part
+    assert (c0, c1, d0, d1) == within
+    assert np.array_equal(sub, mask[:, c0 - i0 : c1 - i0, d0 - j0 : d1 - j0])
+    assert lat.blocked_window(ROBOT, box, (0, 1, 0, 1)) is None  # far from the box
+
+
+@pytest.mark.parametrize("tile", [1, 5, 32])
+def test_the_lazy_scene_is_the_eager_free_lattice_through_updates(tile: int) -> None:
+    """Boxes added, removed, restored: every pose, once resolved, is the eager answer."""
+    search = FootprintSearch(WS, STATIC, CFG)
+    lat = search.lattice
+    static = (~lat.occupancy(ROBOT, STATIC + bound_boxes(WS))).tobytes()
+    scene = LazyScene(lat, ROBOT, static, tile)
+    a, b = boxes(1, 3), boxes(2, 2)
+    for movable in (a, a + b, b, (), a[:1] + b, a + b):
+        scene.update(movable)
+        eager = search.free_grid(ROBOT, movable).astype(np.uint8).ravel()
+        view = np.frombuffer(scene.buffer, dtype=np.uint8)
+        # pending poses are free statically; known poses already agree
+        known = view != PENDING
+        assert np.array_equal(view[known], eager[known])
+        assert np.all(np.frombuffer(static, dtype=np.uint8)[~known] == 1)
+        scene.resolve_all(np.arange(view.size, dtype=np.intp))
+        assert np.array_equal(view, eager)
+        assert 0 < eager.mean() < 1
+
+
+def test_tile_size_changes_no_path() -> None:
+    """The search's answers do not depend on lazy_tile (0: the eager first version)."""
+    gate = Box2D(2.0, 1.9, 0.05, 1.1, 0.0, "gate")  # closes the wall's gap: no path
+    pair = (Box2D(1.3, 1.0, 0.2, 0.15, 0.4, "p"), Box2D(2.6, 2.2, 0.1, 0.3, -0.7, "q"))
+    scenes = (pair, (gate,), pair[:1], (), (*pair, gate), pair)
+    paths = []
+    for tile in (0, 1, 7, 32):
+        search = FootprintSearch(WS, STATIC, FootprintConfig(**{**CFG.__dict__, "lazy_tile": tile}))
+        out = []
+        for goal in ((3.0, 1.5, 0.5), (3.2, 2.3, 3.0), (3.3, 0.6, 1.57)):
+            for mov in scenes:
+                out.append(search.plan((0.6, 1.5, 0.0), goal, ROBOT, mov))
+        paths.append(out)
+    assert sum(p is not None for p in paths[0]) >= 6
+    assert sum(p is None for p in paths[0]) >= 3
+    for other in paths[1:]:
+        for p, q in zip(paths[0], other, strict=True):
+            assert (p is None and q is None) or np.array_equal(p, q)
+
+
+def test_lazy_tile_is_validated() -> None:
+    with pytest.raises(ValueError, match="lazy_tile"):
+        FootprintConfig(lazy_tile=-1)
+    with pytest.raises(ValueError, match="lazy_tile"):
+        FootprintConfig(lazy_tile=257)
+    with pytest.raises(ValueError, match="tile"):
+        LazyScene(FootprintLattice(WS, CFG), ROBOT, bytes(24 * 41 * 31), 0)
