@@ -78,7 +78,7 @@ def test_the_search_rederives_the_table_and_says_when_nothing_fits() -> None:
 
 @pytest.mark.slow
 def test_the_authors_table_solves_the_authors_domain() -> None:
-    """About 4 CPU minutes: 18 exact-footprint paths into the west room."""
+    """About 2 CPU minutes: 18 exact-footprint paths into the west room."""
     env = ConveyorPackingEnv(**AUTHORS)  # type: ignore[arg-type]
     env.reset(seed=0)
     for a in conveyor_actions(env):
