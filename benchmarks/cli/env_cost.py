@@ -113,8 +113,24 @@ def cmd_domain_ablation(args: argparse.Namespace) -> int:
     unknown = [s for s in switches if s not in D.SWITCHES]
     if unknown:
         raise CLIError(f"unknown switch {unknown[0]!r}; valid switches: {', '.join(D.SWITCHES)}")
+    bounds: dict[str, int] = {}
+    for item in args.executions_for or ():
+        name, _, value = item.partition("=")
+        if name not in D.SWITCHES:
+            raise CLIError(
+                f"--executions-for {item!r}: unknown switch {name!r}; valid switches:"
+                f" {', '.join(D.SWITCHES)}"
+            )
+        try:
+            bounds[name] = int(value)
+        except ValueError:
+            bounds[name] = 0
+        if bounds[name] < 1:
+            raise CLIError(f"--executions-for {item!r}: give SWITCH=N with N >= 1")
     check_output(args.out, "--out")
-    store = D.run(switches, args.draws, args.executions, args.rollouts, args.seed)
+    store = D.run(
+        switches, args.draws, args.executions, args.rollouts, args.seed, executions_for=bounds
+    )
     if args.out is not None:
         Path(args.out).write_text(json.dumps(store, indent=1) + "\n")
     print(D.table(store))
@@ -180,6 +196,13 @@ def register(sub: Subparsers) -> None:
     p.add_argument("--switches", nargs="*", default=None, help="default: every switch")
     p.add_argument("--draws", type=int, default=2000, help="uniform draws per node")
     p.add_argument("--executions", type=int, default=40, help="executed passes per node")
+    p.add_argument(
+        "--executions-for",
+        nargs="*",
+        default=None,
+        metavar="SWITCH=N",
+        help="a switch's own bound on the executed passes per node (for the slow ones)",
+    )
     p.add_argument("--rollouts", type=int, default=5, help="random rollouts")
     p.add_argument("--seed", type=seed_argument, default=0)
     p.add_argument("--out", default=None, help="write the store (JSON) here")

@@ -35,7 +35,9 @@ class ConveyorConfig:
     """Settings of :class:`ConveyorPackingEnv` (defaults: the paper's / original's values).
 
     Attributes:
-        start: The robot's base pose where every box is presented ((0, 1.05, 0)).
+        start: The robot's base pose where every box is presented and every placement's
+            base path starts ((0, 1.05, 0): the authors' ``init_base_conf``, where their
+            robot is set back after each pick before its path is planned).
         loading_region: Where boxes may be placed ``(xmin, xmax, ymin, ymax)``; also the
             x, y ranges of the action.
         workspace: Where the robot's base may go (the base planner's workspace).
@@ -60,8 +62,9 @@ class ConveyorConfig:
             south-west opening). ``"authors"``: the walls of the authors'
             ``convbelt_env_diffcult_shapes_two_rooms.xml`` (a 1.5 m entrance, a 3.3 x 3.0 m
             first room with a 1.7 m door against its west wall, a 2.0 m south-west
-            opening: :mod:`voot.envs.conveyor.authors_rooms`). The scripted solution
-            is voot's and does not fit them.
+            opening: :mod:`voot.envs.conveyor.authors_rooms`). Their scripted solution
+            is :data:`~voot.envs.conveyor.scripted.AUTHORS_SOLUTION` (voot's does not fit
+            them); it needs ``base_model="footprint"``.
         base_model: ``"disc"`` (v0, v1): the base planner's config as given (the disc,
             unless its ``footprint`` is set) or ``"footprint"`` (the exact oriented footprint where the disc
             finds no path: sets ``planner.footprint`` to a default

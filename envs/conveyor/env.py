@@ -323,7 +323,9 @@ class ConveyorPackingEnv(ManipulationEnv[ConveyorTask]):
         return f"{operator} ({OBJECTS_PER_ACTION} boxes)"
 
     def solution_actions(self) -> list[FloatArray]:
-        """The hand-chosen packing of the paper's conveyor (:mod:`voot.envs.conveyor.scripted`)."""
+        """A packing of every box in this env's rooms (:mod:`voot.envs.conveyor.scripted`):
+        the hand-chosen one in voot's, the searched one in the authors' (which needs
+        ``base_model="footprint"``)."""
         from voot.envs.conveyor.scripted import conveyor_actions
 
         return conveyor_actions(self)

@@ -36,6 +36,9 @@ def test_mesh_speed_rejects_bad_arguments(capsys: pytest.CaptureFixture[str]) ->
     [
         (["measure", "domain-ablation", "--draws", "0"], "--draws must be >= 1"),
         (["measure", "domain-ablation", "--switches", "walls"], "valid switches: v1"),
+        (["measure", "domain-ablation", "--executions-for", "walls=3"], "unknown switch 'walls'"),
+        (["measure", "domain-ablation", "--executions-for", "v1=0"], "give SWITCH=N with N >= 1"),
+        (["measure", "domain-ablation", "--executions-for", "v1"], "give SWITCH=N with N >= 1"),
         (["measure", "domain-ablation", "--out", "{file}/x.json"], "is a file, not a folder"),
         (["measure", "domain-ablation", "--table", "{file}"], "not a readable domain-ablation"),
         (["measure", "footprint-speed", "--rollouts", "0"], "--rollouts must be >= 1"),

@@ -38,6 +38,27 @@ def test_measure_counts_and_the_common_draws() -> None:
     assert text.count("\n") == 3 and "`big_box_ban`" in text
 
 
+def test_a_switch_can_have_its_own_execution_bound() -> None:
+    store = D.run(("v1", "big_box_ban"), 40, 3, 1, 0, executions_for={"big_box_ban": 1})
+    assert store["settings"]["executions_for"] == {"big_box_ban": 1}
+    v1, ban = store["rows"]
+    assert (v1["executions"], ban["executions"]) == (3, 1)
+    assert all(n["executed"] <= 1 for n in ban["nodes"])
+    assert any(n["executed"] > 1 for n in v1["nodes"])
+    with pytest.raises(ValueError, match="unknown switch 'walls'; choose from v1"):
+        D.run(("v1",), 10, 1, 1, 0, executions_for={"walls": 1})
+    with pytest.raises(ValueError, match="must be an int >= 1, got 0"):
+        D.run(("v1",), 10, 1, 1, 0, executions_for={"v1": 0})
+
+
+def test_the_authors_rooms_use_their_own_scripted_solution() -> None:
+    from voot.envs.conveyor.scripted import AUTHORS_SOLUTION, solution_poses
+
+    assert solution_poses(D.make_env("authors_domain")) is AUTHORS_SOLUTION
+    assert solution_poses(D.make_env("authors_rooms")) is AUTHORS_SOLUTION
+    assert solution_poses(D.make_env("footprint")) is not AUTHORS_SOLUTION
+
+
 def test_shipped_store_redraws_the_docs_table() -> None:
     store = json.loads(STORE.read_text())
     assert [r["switch"] for r in store["rows"]] == list(D.SWITCHES)

@@ -132,3 +132,37 @@ def test_options_and_bad_keywords() -> None:
         _make(0, "impossible")
     with pytest.raises(ValueError, match="layout_seed"):
         _make(-1, "easy")
+
+
+def test_the_exact_footprint_option() -> None:
+    """``base_model="footprint"`` reaches the generated rooms as it does v1: off by
+    default; the witness still packs every box with the same return (a disc path is a
+    footprint path, and the exact search runs only where the disc finds none); and a root
+    action the disc refuses executes with the footprint, the same way twice."""
+    disc = _make(0, "easy")
+    exact = _make(0, "easy", base_model="footprint")
+    assert disc.config.planner.footprint is None
+    assert exact.config.planner.footprint is not None
+    assert exact.layout == disc.layout
+    assert witness_return(exact) == witness_return(disc)
+    for e in (disc, exact):
+        e.reset(seed=0)
+    d_snap, e_snap = disc.get_state(), exact.get_state()
+    rng = np.random.default_rng(5)
+    for _ in range(2000):
+        a = rng.uniform(-1.0, 1.0, 9)
+        if not disc.precheck(a)[0]:
+            continue
+        _, _, _, d_info = disc.transition(a)
+        disc.set_state(d_snap)
+        if d_info["feasible"]:
+            continue
+        r1, _, _, i1 = exact.transition(a)
+        exact.set_state(e_snap)
+        if not i1["feasible"]:
+            continue
+        r2, _, _, i2 = exact.transition(a)
+        assert d_info["reason"].endswith("no base path")
+        assert (r1, i1["base_path_lengths"]) == (r2, i2["base_path_lengths"])
+        return
+    pytest.fail("no root action refused by the disc passed with the footprint")
