@@ -35,7 +35,7 @@ def cmd_ablation(args: argparse.Namespace) -> int:
         raise C.CLIError(str(exc)) from None
     C.check_output(args.markdown, "--markdown")
     if args.table:
-        problems = C.split_list(args.problems) or None
+        problems = _problem_list(args.problems) or None
         return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
     if args.markdown is not None:
         raise C.CLIError("--markdown writes the table of --table; give --table with it")
@@ -46,7 +46,7 @@ def cmd_ablation(args: argparse.Namespace) -> int:
             f"--simulations must be >= 1, got {args.simulations} (leave it out for the"
             " paper's budget per problem)"
         )
-    problems = C.split_list(args.problems) or [
+    problems = _problem_list(args.problems) or [
         # by default the problems the chosen switches apply to (all without switches)
         p
         for p in A.ABLATION_PROBLEMS
@@ -71,6 +71,12 @@ def cmd_ablation(args: argparse.Namespace) -> int:
     C.check_envs([*tuning, *evaluation], "--problems")
     args.record = None
     return plan_tuned(args, tuning, evaluation)
+
+
+def _problem_list(values: Sequence[str] | None) -> list[str]:
+    """``--problems`` as a list, each problem once (a repeated name would list every run of
+    it twice)."""
+    return list(dict.fromkeys(C.split_list(values)))
 
 
 def register(sub: Subparsers) -> None:

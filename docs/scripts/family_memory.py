@@ -8,7 +8,10 @@ With ``--trim`` the freed heap is first handed back to the system (glibc's
 ``malloc_trim``), so the figure is what the process holds rather than what the allocator
 kept of freed memory (a generated layout's cold path allocates and frees a lot).
 The in-process caches are bounded (docs/environments.md, "Caches"), so the RSS levels off
-once they are full instead of growing with every layout.
+once they are full instead of growing with every layout. One of them is MuJoCo's own
+asset cache (the compiler keeps every mesh it processed, up to 500 MiB by default); its
+size is the last column, and ``--mujoco-cache-mb`` sets its capacity (as
+``$VOOT_MUJOCO_CACHE_MB`` does; ``0`` turns it off).
 
 Run from the repository root (a few minutes per family)::
 
@@ -24,8 +27,10 @@ import os
 import time
 
 import gymnasium as gym
+import mujoco
 
 import voot  # noqa: F401  (registers the ids)
+from voot.envs.core.caches import MUJOCO_CACHE_VAR
 
 IDS = {"kitchen": "voot/GeneratedKitchen-v0", "storage": "voot/GeneratedStorage-v0"}
 
@@ -52,23 +57,35 @@ def main() -> None:
     parser.add_argument("--every", type=int, default=20)
     parser.add_argument("--difficulty", default="easy")
     parser.add_argument("--trim", action="store_true", help="malloc_trim before each reading")
+    parser.add_argument(
+        "--mujoco-cache-mb",
+        help=f"capacity of MuJoCo's asset cache in MB (sets {MUJOCO_CACHE_VAR}; 0: off)",
+    )
     args = parser.parse_args()
+    if args.mujoco_cache_mb is not None:
+        os.environ[MUJOCO_CACHE_VAR] = args.mujoco_cache_mb
+    cache = mujoco.mj_getCache()
     env = gym.make(IDS[args.family], layout_seed=0, difficulty=args.difficulty)
     env.reset(seed=0)
     start = settle(args.trim)
     t0 = time.perf_counter()
     trimmed = ", malloc_trim" if args.trim else ""
+    capacity = mujoco.mj_getCacheCapacity(cache) / 1e6
     print(
-        f"{IDS[args.family]} ({args.difficulty}{trimmed}), VOOT_CACHE={os.environ.get('VOOT_CACHE')}"
+        f"{IDS[args.family]} ({args.difficulty}{trimmed}), VOOT_CACHE={os.environ.get('VOOT_CACHE')},"
+        f" MuJoCo asset cache capacity {capacity:.0f} MB"
     )
-    print(f"{'layouts':>8} {'RSS MB':>8} {'growth MB':>10} {'seconds':>8}")
-    print(f"{1:>8} {start:>8.1f} {0.0:>10.1f} {0.0:>8.1f}", flush=True)
+    print(f"{'layouts':>8} {'RSS MB':>8} {'growth MB':>10} {'seconds':>8} {'mj cache MB':>12}")
+    size = mujoco.mj_getCacheSize(cache) / 1e6
+    print(f"{1:>8} {start:>8.1f} {0.0:>10.1f} {0.0:>8.1f} {size:>12.1f}", flush=True)
     for k in range(1, args.layouts):
         env.reset(seed=0, options={"layout_seed": k})
         if (k + 1) % args.every == 0:
             now = settle(args.trim)
+            size = mujoco.mj_getCacheSize(cache) / 1e6
+            seconds = time.perf_counter() - t0
             print(
-                f"{k + 1:>8} {now:>8.1f} {now - start:>10.1f} {time.perf_counter() - t0:>8.1f}",
+                f"{k + 1:>8} {now:>8.1f} {now - start:>10.1f} {seconds:>8.1f} {size:>12.1f}",
                 flush=True,
             )
 

@@ -44,7 +44,14 @@ from voot.envs.assets.mesh_shapes import (
     built_shape,
 )
 from voot.envs.assets.mjcf import OBJECT_PREFIX, ROBOT_INCLUDE, collision_defaults
-from voot.envs.core.caches import LRUMemo, cache_dir, sha256, warn_rebuilt, write_atomic
+from voot.envs.core.caches import (
+    LRUMemo,
+    bound_mujoco_cache,
+    cache_dir,
+    sha256,
+    warn_rebuilt,
+    write_atomic,
+)
 
 FloatArray = NDArray[np.float64]
 
@@ -371,8 +378,10 @@ def compile_scene(xml: str, specs: Iterable[ShapeSpec]) -> mujoco.MjModel:
     """Compile a scene ``xml`` that includes ``robot.xml`` and uses the meshes of ``specs``.
 
     The assets handed to MuJoCo are ``robot.xml`` from ``voot.models`` and
-    :func:`mesh_assets` of the specs.
+    :func:`mesh_assets` of the specs. MuJoCo's asset cache first gets the capacity of
+    ``$VOOT_MUJOCO_CACHE_MB`` if set (:func:`voot.envs.core.caches.bound_mujoco_cache`).
     """
+    bound_mujoco_cache()
     robot = resources.files("voot.models").joinpath(ROBOT_INCLUDE).read_bytes()
     assets = {ROBOT_INCLUDE: robot, **mesh_assets(specs)}
     return mujoco.MjModel.from_xml_string(xml, assets=assets)

@@ -19,6 +19,12 @@ witnesses), so they are kept on disk under :func:`cache_dir` (``$VOOT_CACHE``, e
   processes can share the cache.
 * **In-process memos are bounded** (:class:`LRUMemo`: the least recently used entry is
   forgotten past its size), so a process that visits many layouts levels off.
+* **MuJoCo's own asset cache** (the compiler keeps every mesh file it has processed, by
+  name, up to a capacity of 500 MiB by default) holds each new layout's meshes: about
+  0.4 MB a storage layout, the creep of a process visiting new layouts until it is full.
+  ``$VOOT_MUJOCO_CACHE_MB`` (:data:`MUJOCO_CACHE_VAR`) sets its capacity for the
+  generated scenes' compiles (:func:`bound_mujoco_cache`; ``0`` turns it off); unset,
+  MuJoCo's default stays (measured: docs/environments.md, "Memory over 200 layouts").
 
 Light (standard library only) so that every cache (:mod:`voot.envs.assets.meshes`, the
 storage rooms' :mod:`voot.envs.conveyor.generated.instance`) can use it.
@@ -35,9 +41,12 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 __all__ = [
+    "MUJOCO_CACHE_VAR",
     "CacheWarning",
     "LRUMemo",
+    "bound_mujoco_cache",
     "cache_dir",
+    "mujoco_cache_bytes",
     "sha256",
     "warn_rebuilt",
     "writable_dir",
@@ -49,6 +58,9 @@ V = TypeVar("V")
 
 #: The environment variable naming the cache folder.
 ENV_VAR = "VOOT_CACHE"
+
+#: The environment variable bounding MuJoCo's asset cache, in MB (module docstring).
+MUJOCO_CACHE_VAR = "VOOT_MUJOCO_CACHE_MB"
 
 #: The folders found unusable in this process, and the cache roots warned about (once each).
 _UNUSABLE: set[Path] = set()
@@ -168,3 +180,44 @@ class LRUMemo(OrderedDict[K, V]):
         self.move_to_end(key)
         while len(self) > self.size:
             self.popitem(last=False)
+
+
+def mujoco_cache_bytes() -> int | None:
+    """The capacity of MuJoCo's asset cache asked by ``$VOOT_MUJOCO_CACHE_MB`` (a number
+    of megabytes >= 0; ``0`` turns the cache off), in bytes; None if it is unset or empty
+    (MuJoCo's default capacity stays).
+
+    Raises:
+        ValueError: The variable is not a finite number >= 0 (the message names it).
+    """
+    text = os.environ.get(MUJOCO_CACHE_VAR, "").strip()
+    if not text:
+        return None
+    try:
+        mb = float(text)
+    except ValueError:
+        mb = -1.0
+    if not 0.0 <= mb < float("inf"):
+        raise ValueError(
+            f"{MUJOCO_CACHE_VAR}={text!r}: the capacity of MuJoCo's asset cache must be a"
+            " number of megabytes >= 0 (0 turns it off), or unset for MuJoCo's default"
+        )
+    return int(mb * 1e6)
+
+
+def bound_mujoco_cache() -> int:
+    """Give MuJoCo's asset cache the capacity of ``$VOOT_MUJOCO_CACHE_MB`` if it is set
+    (:func:`mujoco_cache_bytes`); return the cache's capacity in bytes. Called before
+    every compile of a generated scene (:func:`voot.envs.assets.meshes.compile_scene`):
+    MuJoCo keeps every mesh it has compiled, so new layouts fill its cache.
+
+    Raises:
+        ValueError: The variable is set but not a number of megabytes >= 0.
+    """
+    import mujoco  # here: the rest of this module is standard library only
+
+    cache = mujoco.mj_getCache()
+    wanted = mujoco_cache_bytes()
+    if wanted is not None and wanted != mujoco.mj_getCacheCapacity(cache):
+        mujoco.mj_setCacheCapacity(cache, wanted)
+    return int(mujoco.mj_getCacheCapacity(cache))

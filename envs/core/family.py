@@ -47,6 +47,7 @@ from voot.envs.core.arguments import (
     check_render,
     check_split,
 )
+from voot.envs.core.caches import mujoco_cache_bytes
 from voot.envs.core.names import Difficulty, Split
 from voot.envs.core.rendering import RenderOptions
 from voot.envs.core.scene import model_digest
@@ -125,6 +126,7 @@ class LayoutFamily:
         else:
             seed = self._split_layout(layout_seed)
         mode, camera, size = check_render(render_mode, render_camera, render_size)
+        mujoco_cache_bytes()  # a bad $VOOT_MUJOCO_CACHE_MB, refused before any generation
         self._take_options(options)  # before the (costly, cached) generation
         self._options: dict[str, Any] = options
         self._render = RenderOptions(render_mode=mode, render_camera=camera, render_size=size)

@@ -200,3 +200,32 @@ def test_bad_data_raise() -> None:
         gp.set_data(np.zeros((1, 2)), [np.nan])
     with pytest.raises(ValueError, match="at least one"):
         gp.fit(np.random.default_rng(0))
+
+
+@pytest.mark.parametrize("mean", ["constant", "zero"])
+def test_standardising_huge_values_matches_ordinary_ones_for_either_mean(mean: str) -> None:
+    """Values beyond 1e150 are standardised without overflow (``_standardize_huge``) to
+    what the ordinary standardisation gives them in exact arithmetic, for a constant
+    prior mean (centred, then scaled) and a zero one (only scaled by the root mean
+    square); test_gp_ucb.py checks the constant mean and the optimiser around it."""
+    y = np.array([3.0, -1.0, 2.0, 0.5])
+    gp = GaussianProcess(1, mean=mean)
+    small, m, s = gp._standardize(y)
+    huge, mh, sh = gp._standardize(y * 1e300)
+    np.testing.assert_allclose(huge, small, rtol=1e-12)
+    assert mh == pytest.approx(m * 1e300, rel=1e-12, abs=0.0)
+    assert sh == pytest.approx(s * 1e300, rel=1e-12)
+
+
+def test_huge_values_that_differ_by_a_few_parts_in_1e12_are_not_constant() -> None:
+    """Only a spread below 1e-12 of the largest value counts as constant (the ordinary
+    standardisation's rule, ``scale > 1e-12 max(1, |mean|)``): just above it the values
+    are standardised, not flattened to zeros in units of the largest."""
+    big = 1e300
+    spread = np.array([-1.0, 1.0]) * 1.5e-12
+    gp = GaussianProcess(1)
+    z, mean, scale = gp._standardize(big * (1.0 + spread))
+    np.testing.assert_allclose(z, [-1.0, 1.0], rtol=1e-3)
+    assert mean == pytest.approx(big, rel=1e-12) and scale == pytest.approx(1.5e288, rel=1e-3)
+    flat, _, _ = gp._standardize(big * (1.0 + spread / 3.0))
+    assert np.all(np.abs(flat) < 1e-11)  # below the rule: constant, in units of big

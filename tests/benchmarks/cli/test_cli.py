@@ -441,3 +441,203 @@ def test_fuzz_claims_options(
     argv += data.draw(st.sampled_from([[], ["--heldout"]]))
     argv += data.draw(_outputs(tmp, "--markdown"))
     _check_refused_or_accepted(argv, tmp, capsys, writes=True)
+
+
+# ----- accepted == canonical: a respelled request means what its canonical spelling means --
+
+
+def _spell_int(n: int) -> st.SearchStrategy[str]:
+    """Spellings of the integer ``n`` a user may type (Python's ``int`` takes them all):
+    plain, zero-padded, signed, padded with spaces, with a digit-group underscore."""
+    spellings = [str(n), f"0{n}", f"+{n}", f" {n} "]
+    if n >= 10:
+        spellings.append(f"{str(n)[0]}_{str(n)[1:]}")
+    return st.sampled_from(spellings)
+
+
+def _spell_range(start: int, stop: int) -> st.SearchStrategy[str]:
+    """Spellings of the range ``start .. stop-1`` (``N`` or ``START:STOP``)."""
+    pairs = st.tuples(_spell_int(start), _spell_int(stop)).map(lambda t: f"{t[0]}:{t[1]}")
+    return st.one_of(pairs, _spell_int(stop)) if start == 0 else pairs
+
+
+def _spell_layouts(seeds: list[int]) -> st.SearchStrategy[list[str]]:
+    """Spellings of the layout seeds ``seeds`` (ascending, distinct) as ``--layout-seeds``
+    values: a range when they are consecutive, or a list of two or more items (one item
+    ``N`` means 0 .. N-1) in any order, with repeats, spread over arguments or joined by
+    commas."""
+    options: list[st.SearchStrategy[list[str]]] = []
+    if seeds == list(range(seeds[0], seeds[-1] + 1)):
+        options.append(_spell_range(seeds[0], seeds[-1] + 1).map(lambda s: [s]))
+
+    @st.composite
+    def listed(draw: st.DrawFn) -> list[str]:
+        items = seeds + draw(
+            st.lists(st.sampled_from(seeds), min_size=max(0, 2 - len(seeds)), max_size=2)
+        )
+        items = draw(st.permutations(items))
+        words = [draw(_spell_int(s)).strip() for s in items]
+        cut = draw(st.integers(0, len(words)))
+        head, tail = words[:cut], words[cut:]
+        return head + ([",".join(tail)] if tail else [])
+
+    options.append(listed())
+    return st.one_of(options)
+
+
+#: Spellings of an env keyword's JSON value that are not JSON's own integer (a string, a
+#: float, a bool, a signed or padded number): the families must refuse them, never read
+#: them as the integer they resemble.
+def _spell_json_int(n: int) -> st.SearchStrategy[str]:
+    return st.sampled_from([str(n), f" {n}", f"0{n}", f"+{n}", f"{n}.0", f'"{n}"', f"{n}e0"])
+
+
+def _canonical_layouts(seeds: list[int]) -> list[str]:
+    """The canonical ``--layout-seeds`` of ``seeds``: START:STOP if consecutive, else the
+    seeds in order."""
+    if seeds == list(range(seeds[0], seeds[-1] + 1)):
+        return [f"{seeds[0]}:{seeds[-1] + 1}"]
+    return [str(s) for s in seeds]
+
+
+def _requested(argv: list[str], capsys: Any) -> list[Any] | None:
+    """The runs ``argv`` asks for (sorted), or None if it is refused. The work never
+    starts: ``plan --dry-run`` stops at its summary and ``ablation`` at the tuned run,
+    both replaced by stand-ins that record the specs (see the fixture
+    ``capture_requests``)."""
+    _CAPTURED.clear()
+    try:
+        status = main(argv)
+    except SystemExit as exc:
+        status = exc.code if isinstance(exc.code, int) else 1
+    err = capsys.readouterr().err
+    assert "Traceback" not in err, (argv, err)
+    assert status in (0, 2), (argv, status, err)
+    if status == 2:
+        return None
+    assert len(_CAPTURED) == 1, argv
+    return sorted(_CAPTURED[0], key=repr)
+
+
+_CAPTURED: list[list[Any]] = []
+
+
+@pytest.fixture
+def capture_requests(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``plan --dry-run``'s summary and ``ablation``'s tuned run record their specs
+    instead (the options are all checked and the envs made before either)."""
+    from voot.bench.cli import ablation
+    from voot.bench.sweep import plan
+
+    def summary(specs: Any) -> str:
+        _CAPTURED.append(list(specs))
+        return ""
+
+    def tuned(args: Any, tuning: Any, evaluation: Any) -> int:
+        _CAPTURED.append([("tuning", s) for s in tuning] + [("eval", s) for s in evaluation])
+        return 0
+
+    monkeypatch.setattr(plan, "summarize_plan_specs", summary)
+    monkeypatch.setattr(ablation, "plan_tuned", tuned)
+
+
+_CANON = settings(
+    max_examples=20,
+    deadline=None,
+    derandomize=True,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
+)
+
+
+@_CANON
+@given(data=st.data())
+def test_fuzz_an_accepted_plan_request_is_its_canonical_one(
+    fuzz_dir: Path, capsys: pytest.CaptureFixture[str], capture_requests: None, data: st.DataObject
+) -> None:
+    """Any spelling of a ``plan`` request the command line accepts asks for exactly the
+    runs of its canonical spelling: numbers with padding, signs or underscores, seed and
+    layout ranges as ``N``, ``START:STOP`` or lists in any order with repeats, a single
+    layout as an env keyword, levels quoted or spaced, lists split by commas. An env
+    keyword's non-integer spelling of a layout seed must be refused."""
+    family = data.draw(st.sampled_from(["generated_storage", "generated_kitchen"]))
+    level = data.draw(st.sampled_from(["easy", "medium"]))
+    layouts = sorted(data.draw(st.sets(st.integers(0, 3), min_size=1, max_size=3)))
+    seeds = data.draw(st.tuples(st.integers(0, 2), st.integers(1, 2)))
+    start, stop = seeds[0], seeds[0] + seeds[1]
+    simulations = data.draw(st.integers(1, 12))
+    planners = data.draw(st.sets(st.sampled_from(["voot", "pw_uct"]), min_size=1))
+    out = ["--out", str(fuzz_dir / "canonical")]
+    canonical = ["plan", "--dry-run", "--problems", family, *out]
+    canonical += ["--planners", *sorted(planners), "--simulations", str(simulations)]
+    canonical += ["--seeds", f"{start}:{stop}", "--env-kwargs", f"difficulty={level}"]
+    canonical += ["--layout-seeds", *_canonical_layouts(layouts)]
+    expected = _requested(canonical, capsys)
+    assert expected, canonical  # the canonical request is a valid one
+
+    words = data.draw(st.permutations(sorted(planners) * data.draw(st.integers(1, 2))))
+    spelled = ["plan", "--dry-run", "--problems", family, *out]
+    spelled += ["--planners", *(words if data.draw(st.booleans()) else [",".join(words)])]
+    spelled += ["--simulations", data.draw(_spell_int(simulations))]
+    spelled += ["--seeds", data.draw(_spell_range(start, stop))]
+    kwargs = [data.draw(st.sampled_from([f"difficulty={level}", f'difficulty="{level}"']))]
+    json_seed = None
+    if len(layouts) == 1 and data.draw(st.booleans()):
+        json_seed = data.draw(_spell_json_int(layouts[0]))
+        kwargs.append(f"layout_seed={json_seed}")
+    else:
+        spelled += ["--layout-seeds", *data.draw(_spell_layouts(layouts))]
+    spelled += ["--env-kwargs", *(kwargs if data.draw(st.booleans()) else [",".join(kwargs)])]
+    got = _requested(spelled, capsys)
+    if json_seed is not None and json_seed.strip() != str(layouts[0]):
+        assert got is None, ("a non-integer layout seed was accepted", spelled)
+    else:
+        assert got == expected, (spelled, canonical)
+
+
+@_CANON
+@given(data=st.data())
+def test_fuzz_an_accepted_ablation_request_is_its_canonical_one(
+    fuzz_dir: Path, capsys: pytest.CaptureFixture[str], capture_requests: None, data: st.DataObject
+) -> None:
+    """The same for ``ablation``: budgets, seed ranges, switch and problem lists (in any
+    order, split by commas, with repeats) mean what their canonical spelling means."""
+    problems = sorted(
+        data.draw(st.sets(st.sampled_from(["kitchen_v1", "conveyor_v1"]), min_size=1))
+    )
+    switches = sorted(
+        data.draw(
+            st.sets(st.sampled_from(["commit_10", "kappa_off", "authors_commit_10"]), max_size=2)
+        )
+    )
+    simulations = data.draw(st.integers(1, 12))
+    tuning = data.draw(st.tuples(st.integers(0, 2), st.integers(1, 2)))
+    evaluation = (tuning[0] + tuning[1] + 1, tuning[0] + tuning[1] + 2)
+    out = ["--out", str(fuzz_dir / "ablation-canonical")]
+    canonical = [
+        "ablation",
+        "--dry-run",
+        *out,
+        "--problems",
+        *problems,
+        "--simulations",
+        str(simulations),
+    ]
+    canonical += ["--tuning-seeds", f"{tuning[0]}:{tuning[0] + tuning[1]}"]
+    canonical += ["--seeds", f"{evaluation[0]}:{evaluation[1]}"]
+    canonical += ["--switches", *switches] if switches else []
+    expected = _requested(canonical, capsys)
+
+    def listed(names: list[str]) -> list[str]:
+        words = data.draw(st.permutations(names * data.draw(st.integers(1, 2))))
+        return words if data.draw(st.booleans()) else [",".join(words)]
+
+    spelled = ["ablation", "--dry-run", *out, "--problems", *listed(problems)]
+    spelled += ["--simulations", data.draw(_spell_int(simulations))]
+    spelled += ["--tuning-seeds", data.draw(_spell_range(tuning[0], tuning[0] + tuning[1]))]
+    spelled += ["--seeds", data.draw(_spell_range(*evaluation))]
+    spelled += ["--switches", *listed(switches)] if switches else []
+    got = _requested(spelled, capsys)
+    if expected is None:  # a combination the ablation refuses: refused however spelled
+        assert got is None, (spelled, canonical)
+    else:
+        assert got == expected, (spelled, canonical)

@@ -21,6 +21,16 @@ def test_list_and_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
     assert "tuning: 90 runs" in captured.err and "evaluation: 60 runs" in captured.err
 
 
+def test_a_repeated_problem_lists_its_runs_once(capsys: pytest.CaptureFixture[str]) -> None:
+    """``--problems kitchen_v1 kitchen_v1`` (or ``kitchen_v1,kitchen_v1``) is the kitchen
+    once: it listed every run twice (found by the canonical-request fuzz of test_cli.py)."""
+    args = ["ablation", "--out", "/nonexistent/ablation", "--switches", "kappa_off", "--dry-run"]
+    for problems in (["kitchen_v1"], ["kitchen_v1", "kitchen_v1"], ["kitchen_v1,kitchen_v1"]):
+        assert main([*args, "--problems", *problems]) == 0
+        err = capsys.readouterr().err
+        assert "tuning: 90 runs" in err and "evaluation: 60 runs" in err, (problems, err)
+
+
 def test_unknown_switch_and_claims_without_tuning_seeds_are_errors(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

@@ -146,6 +146,34 @@ def test_cache_writes_are_atomic(mesh_cache: Path) -> None:
     assert [p.name for p in (mesh_cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
 
 
+def test_compile_scene_bounds_mujocos_asset_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+    """MuJoCo keeps every mesh it compiled (the storage rooms' RSS creep, about 0.4 MB a
+    new layout, docs/environments.md); $VOOT_MUJOCO_CACHE_MB sets that cache's capacity
+    before each compile, and unset leaves MuJoCo's."""
+    cache = mujoco.mj_getCache()
+    before = mujoco.mj_getCacheCapacity(cache)
+    specs = [ShapeSpec("mug", SIZES["mug"], 11)]
+    xml = scene_xml(specs, [(0.0, 0.0, 0.5, 0.0)])
+    try:
+        monkeypatch.delenv("VOOT_MUJOCO_CACHE_MB", raising=False)
+        mujoco.mj_setCacheCapacity(cache, 50_000_000)
+        mujoco.mj_clearCache(cache)
+        M.compile_scene(xml, specs)
+        assert mujoco.mj_getCacheCapacity(cache) == 50_000_000
+        assert mujoco.mj_getCacheSize(cache) > 0  # the meshes are kept
+        mujoco.mj_clearCache(cache)
+        monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "0")
+        model = M.compile_scene(xml, specs)
+        assert mujoco.mj_getCacheCapacity(cache) == 0
+        assert mujoco.mj_getCacheSize(cache) == 0  # nothing kept
+        assert model.nmesh > 0
+        monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "-3")
+        with pytest.raises(ValueError, match="VOOT_MUJOCO_CACHE_MB='-3'"):
+            M.compile_scene(xml, specs)
+    finally:
+        mujoco.mj_setCacheCapacity(cache, before)
+
+
 def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("VOOT_CACHE", "/some/where")
     assert M.cache_dir() == Path("/some/where")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import tempfile
 import warnings
+from collections.abc import Iterator
 from pathlib import Path
 
 import gymnasium as gym
@@ -130,3 +131,56 @@ def test_the_cache_folder_follows_voot_cache(monkeypatch: pytest.MonkeyPatch) ->
     monkeypatch.delenv("VOOT_CACHE")
     assert C.cache_dir() == Path.home() / ".cache" / "voot"
     assert os.environ.get("VOOT_CACHE") is None
+
+
+@pytest.fixture
+def mujoco_capacity() -> Iterator[None]:
+    """Restore MuJoCo's asset-cache capacity after the test (a process-wide setting)."""
+    import mujoco
+
+    cache = mujoco.mj_getCache()
+    before = mujoco.mj_getCacheCapacity(cache)
+    yield
+    mujoco.mj_setCacheCapacity(cache, before)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [("", None), ("  ", None), ("0", 0), ("64", 64_000_000), (" 1.5 ", 1_500_000)],
+)
+def test_the_mujoco_cache_capacity_is_read_in_megabytes(
+    monkeypatch: pytest.MonkeyPatch, text: str, expected: int | None
+) -> None:
+    monkeypatch.setenv(C.MUJOCO_CACHE_VAR, text)
+    assert C.mujoco_cache_bytes() == expected
+    monkeypatch.delenv(C.MUJOCO_CACHE_VAR)
+    assert C.mujoco_cache_bytes() is None
+
+
+@pytest.mark.parametrize("text", ["-1", "abc", "nan", "inf", "-0.5", "1e400"])
+def test_a_bad_mujoco_cache_capacity_names_the_variable(
+    monkeypatch: pytest.MonkeyPatch, text: str, mujoco_capacity: None
+) -> None:
+    import mujoco
+
+    monkeypatch.setenv(C.MUJOCO_CACHE_VAR, text)
+    before = mujoco.mj_getCacheCapacity(mujoco.mj_getCache())
+    with pytest.raises(ValueError, match=f"VOOT_MUJOCO_CACHE_MB={text!r}.*megabytes >= 0"):
+        C.bound_mujoco_cache()
+    assert mujoco.mj_getCacheCapacity(mujoco.mj_getCache()) == before
+
+
+def test_bound_mujoco_cache_sets_the_capacity_only_when_asked(
+    monkeypatch: pytest.MonkeyPatch, mujoco_capacity: None
+) -> None:
+    import mujoco
+
+    cache = mujoco.mj_getCache()
+    mujoco.mj_setCacheCapacity(cache, 123_000_000)
+    monkeypatch.delenv(C.MUJOCO_CACHE_VAR, raising=False)
+    assert C.bound_mujoco_cache() == 123_000_000  # unset: left as it is
+    monkeypatch.setenv(C.MUJOCO_CACHE_VAR, "2.5")
+    assert C.bound_mujoco_cache() == 2_500_000
+    assert mujoco.mj_getCacheCapacity(cache) == 2_500_000
+    monkeypatch.setenv(C.MUJOCO_CACHE_VAR, "0")
+    assert C.bound_mujoco_cache() == 0

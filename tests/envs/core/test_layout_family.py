@@ -198,3 +198,25 @@ def test_a_reset_onto_another_layout_changes_the_identity(env_id: str) -> None:
         env.set_state(old)
     env.reset(seed=0, options={"layout_seed": 0, "difficulty": "easy"})
     env.set_state(old)  # the same layout again: the same identity
+
+
+@pytest.mark.parametrize("env_id", ["voot/GeneratedKitchen-v0", "voot/GeneratedStorage-v0"])
+def test_a_bad_mujoco_cache_capacity_is_refused_before_any_generation(
+    env_id: str, tmp_path: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``$VOOT_MUJOCO_CACHE_MB`` (voot.envs.core.caches.bound_mujoco_cache) is checked
+    with the arguments: a bad value is refused naming it, nothing generated or cached."""
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("VOOT_CACHE", str(cache))
+    monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "lots")
+    with pytest.raises(ValueError, match="VOOT_MUJOCO_CACHE_MB='lots'"):
+        gym.make(env_id, layout_seed=987)
+    assert not cache.exists()
+    import mujoco
+
+    before = mujoco.mj_getCacheCapacity(mujoco.mj_getCache())
+    monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "0")
+    try:
+        assert gym.make(env_id, layout_seed=987).unwrapped.layout_seed == 987
+    finally:
+        mujoco.mj_setCacheCapacity(mujoco.mj_getCache(), before)
