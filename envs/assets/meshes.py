@@ -46,8 +46,8 @@ from voot.envs.assets.mesh_shapes import (
 from voot.envs.assets.mjcf import OBJECT_PREFIX, ROBOT_INCLUDE, collision_defaults
 from voot.envs.core.caches import (
     LRUMemo,
-    bound_mujoco_cache,
     cache_dir,
+    generated_compile,
     sha256,
     warn_rebuilt,
     write_atomic,
@@ -378,10 +378,11 @@ def compile_scene(xml: str, specs: Iterable[ShapeSpec]) -> mujoco.MjModel:
     """Compile a scene ``xml`` that includes ``robot.xml`` and uses the meshes of ``specs``.
 
     The assets handed to MuJoCo are ``robot.xml`` from ``voot.models`` and
-    :func:`mesh_assets` of the specs. MuJoCo's asset cache first gets the capacity of
-    ``$VOOT_MUJOCO_CACHE_MB`` if set (:func:`voot.envs.core.caches.bound_mujoco_cache`).
+    :func:`mesh_assets` of the specs. The compile bypasses MuJoCo's asset cache, or gives
+    it the capacity of ``$VOOT_MUJOCO_CACHE_MB`` if set
+    (:func:`voot.envs.core.caches.generated_compile`).
     """
-    bound_mujoco_cache()
     robot = resources.files("voot.models").joinpath(ROBOT_INCLUDE).read_bytes()
     assets = {ROBOT_INCLUDE: robot, **mesh_assets(specs)}
-    return mujoco.MjModel.from_xml_string(xml, assets=assets)
+    with generated_compile():
+        return mujoco.MjModel.from_xml_string(xml, assets=assets)

@@ -20,11 +20,11 @@ witnesses), so they are kept on disk under :func:`cache_dir` (``$VOOT_CACHE``, e
 * **In-process memos are bounded** (:class:`LRUMemo`: the least recently used entry is
   forgotten past its size), so a process that visits many layouts levels off.
 * **MuJoCo's own asset cache** (the compiler keeps every mesh file it has processed, by
-  name, up to a capacity of 500 MiB by default) holds each new layout's meshes: about
-  0.4 MB a storage layout, the creep of a process visiting new layouts until it is full.
-  ``$VOOT_MUJOCO_CACHE_MB`` (:data:`MUJOCO_CACHE_VAR`) sets its capacity for the
-  generated scenes' compiles (:func:`bound_mujoco_cache`; ``0`` turns it off); unset,
-  MuJoCo's default stays (measured: docs/environments.md, "Memory over 200 layouts").
+  name, up to a capacity of 500 MiB by default) would hold each new layout's meshes:
+  about 0.33 MB a storage layout, the creep of a process visiting new layouts until it is
+  full. A generated scene's compile bypasses it (:func:`generated_compile`), unless
+  ``$VOOT_MUJOCO_CACHE_MB`` (:data:`MUJOCO_CACHE_VAR`) sets its capacity (``0``: off);
+  measured in docs/environments.md, "Memory over 200 layouts".
 
 Light (standard library only) so that every cache (:mod:`voot.envs.assets.meshes`, the
 storage rooms' :mod:`voot.envs.conveyor.generated.instance`) can use it.
@@ -32,11 +32,13 @@ storage rooms' :mod:`voot.envs.conveyor.generated.instance`) can use it.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import tempfile
 import warnings
 from collections import OrderedDict
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -44,8 +46,8 @@ __all__ = [
     "MUJOCO_CACHE_VAR",
     "CacheWarning",
     "LRUMemo",
-    "bound_mujoco_cache",
     "cache_dir",
+    "generated_compile",
     "mujoco_cache_bytes",
     "sha256",
     "warn_rebuilt",
@@ -205,11 +207,20 @@ def mujoco_cache_bytes() -> int | None:
     return int(mb * 1e6)
 
 
-def bound_mujoco_cache() -> int:
-    """Give MuJoCo's asset cache the capacity of ``$VOOT_MUJOCO_CACHE_MB`` if it is set
-    (:func:`mujoco_cache_bytes`); return the cache's capacity in bytes. Called before
-    every compile of a generated scene (:func:`voot.envs.assets.meshes.compile_scene`):
-    MuJoCo keeps every mesh it has compiled, so new layouts fill its cache.
+@contextlib.contextmanager
+def generated_compile() -> Iterator[int]:
+    """The setting of MuJoCo's asset cache for one compile of a generated scene
+    (:func:`voot.envs.assets.meshes.compile_scene`); yields the capacity in force, in bytes.
+
+    MuJoCo's compiler keeps every mesh it processed, by name, up to its capacity (500 MiB
+    by default): a generated layout's new meshes would add about 0.33 MB a storage layout
+    to the process for nothing, as each layout is compiled once and then kept as a model
+    (the memos, the storage rooms' ``.mjb.z``). So:
+
+    * ``$VOOT_MUJOCO_CACHE_MB`` unset (the default): the compile bypasses the cache (its
+      capacity is 0 during the compile, which also drops what it held, and the previous
+      capacity is restored after), so a process that visits new layouts levels off;
+    * set: the cache gets that capacity before the compile and keeps it (``0``: off).
 
     Raises:
         ValueError: The variable is set but not a number of megabytes >= 0.
@@ -218,6 +229,14 @@ def bound_mujoco_cache() -> int:
 
     cache = mujoco.mj_getCache()
     wanted = mujoco_cache_bytes()
-    if wanted is not None and wanted != mujoco.mj_getCacheCapacity(cache):
-        mujoco.mj_setCacheCapacity(cache, wanted)
-    return int(mujoco.mj_getCacheCapacity(cache))
+    if wanted is not None:
+        if wanted != mujoco.mj_getCacheCapacity(cache):
+            mujoco.mj_setCacheCapacity(cache, wanted)
+        yield int(wanted)
+        return
+    previous = int(mujoco.mj_getCacheCapacity(cache))
+    mujoco.mj_setCacheCapacity(cache, 0)
+    try:
+        yield 0
+    finally:
+        mujoco.mj_setCacheCapacity(cache, previous)

@@ -146,10 +146,13 @@ def test_cache_writes_are_atomic(mesh_cache: Path) -> None:
     assert [p.name for p in (mesh_cache / "meshes").iterdir()] == [f"{spec.key}.mesh.npz"]
 
 
-def test_compile_scene_bounds_mujocos_asset_cache(monkeypatch: pytest.MonkeyPatch) -> None:
-    """MuJoCo keeps every mesh it compiled (the storage rooms' RSS creep, about 0.4 MB a
-    new layout, docs/environments.md); $VOOT_MUJOCO_CACHE_MB sets that cache's capacity
-    before each compile, and unset leaves MuJoCo's."""
+def test_compile_scene_leaves_no_mesh_in_mujocos_asset_cache(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """MuJoCo keeps every mesh it compiled (the storage rooms' RSS creep, about 0.33 MB a
+    new layout, docs/environments.md): a generated scene's compile bypasses that cache and
+    restores its capacity; $VOOT_MUJOCO_CACHE_MB sets the capacity instead; the same model
+    either way."""
     cache = mujoco.mj_getCache()
     before = mujoco.mj_getCacheCapacity(cache)
     specs = [ShapeSpec("mug", SIZES["mug"], 11)]
@@ -158,15 +161,18 @@ def test_compile_scene_bounds_mujocos_asset_cache(monkeypatch: pytest.MonkeyPatc
         monkeypatch.delenv("VOOT_MUJOCO_CACHE_MB", raising=False)
         mujoco.mj_setCacheCapacity(cache, 50_000_000)
         mujoco.mj_clearCache(cache)
-        M.compile_scene(xml, specs)
-        assert mujoco.mj_getCacheCapacity(cache) == 50_000_000
-        assert mujoco.mj_getCacheSize(cache) > 0  # the meshes are kept
-        mujoco.mj_clearCache(cache)
-        monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "0")
-        model = M.compile_scene(xml, specs)
-        assert mujoco.mj_getCacheCapacity(cache) == 0
+        bypassed = M.compile_scene(xml, specs)
+        assert mujoco.mj_getCacheCapacity(cache) == 50_000_000  # restored
         assert mujoco.mj_getCacheSize(cache) == 0  # nothing kept
-        assert model.nmesh > 0
+        monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "50")
+        cached = M.compile_scene(xml, specs)
+        assert mujoco.mj_getCacheCapacity(cache) == 50_000_000
+        assert mujoco.mj_getCacheSize(cache) > 0  # asked for: the meshes are kept
+        again = M.compile_scene(xml, specs)  # served from the cache
+        for model in (cached, again):
+            assert model.nmesh == bypassed.nmesh > 0
+            assert np.array_equal(model.mesh_vert, bypassed.mesh_vert)
+            assert np.array_equal(model.body_inertia, bypassed.body_inertia)
         monkeypatch.setenv("VOOT_MUJOCO_CACHE_MB", "-3")
         with pytest.raises(ValueError, match="VOOT_MUJOCO_CACHE_MB='-3'"):
             M.compile_scene(xml, specs)

@@ -165,12 +165,15 @@ def test_a_bad_mujoco_cache_capacity_names_the_variable(
 
     monkeypatch.setenv(C.MUJOCO_CACHE_VAR, text)
     before = mujoco.mj_getCacheCapacity(mujoco.mj_getCache())
-    with pytest.raises(ValueError, match=f"VOOT_MUJOCO_CACHE_MB={text!r}.*megabytes >= 0"):
-        C.bound_mujoco_cache()
+    with (
+        pytest.raises(ValueError, match=f"VOOT_MUJOCO_CACHE_MB={text!r}.*megabytes >= 0"),
+        C.generated_compile(),
+    ):
+        pass
     assert mujoco.mj_getCacheCapacity(mujoco.mj_getCache()) == before
 
 
-def test_bound_mujoco_cache_sets_the_capacity_only_when_asked(
+def test_a_generated_compile_bypasses_mujocos_cache_unless_a_capacity_is_asked(
     monkeypatch: pytest.MonkeyPatch, mujoco_capacity: None
 ) -> None:
     import mujoco
@@ -178,9 +181,16 @@ def test_bound_mujoco_cache_sets_the_capacity_only_when_asked(
     cache = mujoco.mj_getCache()
     mujoco.mj_setCacheCapacity(cache, 123_000_000)
     monkeypatch.delenv(C.MUJOCO_CACHE_VAR, raising=False)
-    assert C.bound_mujoco_cache() == 123_000_000  # unset: left as it is
+    with C.generated_compile() as capacity:  # unset: off during the compile only
+        assert capacity == 0 == mujoco.mj_getCacheCapacity(cache)
+    assert mujoco.mj_getCacheCapacity(cache) == 123_000_000  # the user's, restored
+    with pytest.raises(RuntimeError), C.generated_compile():
+        raise RuntimeError("a failed compile")
+    assert mujoco.mj_getCacheCapacity(cache) == 123_000_000  # restored after an error too
     monkeypatch.setenv(C.MUJOCO_CACHE_VAR, "2.5")
-    assert C.bound_mujoco_cache() == 2_500_000
-    assert mujoco.mj_getCacheCapacity(cache) == 2_500_000
+    with C.generated_compile() as capacity:
+        assert capacity == 2_500_000
+    assert mujoco.mj_getCacheCapacity(cache) == 2_500_000  # asked: kept
     monkeypatch.setenv(C.MUJOCO_CACHE_VAR, "0")
-    assert C.bound_mujoco_cache() == 0
+    with C.generated_compile() as capacity:
+        assert capacity == 0

@@ -204,7 +204,7 @@ def test_a_reset_onto_another_layout_changes_the_identity(env_id: str) -> None:
 def test_a_bad_mujoco_cache_capacity_is_refused_before_any_generation(
     env_id: str, tmp_path: Any, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """``$VOOT_MUJOCO_CACHE_MB`` (voot.envs.core.caches.bound_mujoco_cache) is checked
+    """``$VOOT_MUJOCO_CACHE_MB`` (voot.envs.core.caches.generated_compile) is checked
     with the arguments: a bad value is refused naming it, nothing generated or cached."""
     cache = tmp_path / "cache"
     monkeypatch.setenv("VOOT_CACHE", str(cache))
