@@ -8,10 +8,10 @@ With ``--trim`` the freed heap is first handed back to the system (glibc's
 ``malloc_trim``), so the figure is what the process holds rather than what the allocator
 kept of freed memory (a generated layout's cold path allocates and frees a lot).
 The in-process caches are bounded (docs/environments.md, "Caches"), so the RSS levels off
-once they are full instead of growing with every layout. One of them is MuJoCo's own
-asset cache (the compiler keeps every mesh it processed, up to 500 MiB by default); its
-size is the last column, and ``--mujoco-cache-mb`` sets its capacity (as
-``$VOOT_MUJOCO_CACHE_MB`` does; ``0`` turns it off).
+once they are full instead of growing with every layout. MuJoCo's own asset cache (the
+compiler keeps every mesh it processed, up to 500 MiB by default) is bypassed by a
+generated scene's compile unless ``--mujoco-cache-mb`` gives it a capacity (as
+``$VOOT_MUJOCO_CACHE_MB`` does; ``0`` turns it off); its size is the last column.
 
 Run from the repository root (a few minutes per family)::
 
