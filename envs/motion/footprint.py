@@ -36,6 +36,9 @@ BoolArray = NDArray[np.bool_]
 
 __all__ = ["Footprint", "FootprintConfig", "FootprintLattice", "footprint_hits"]
 
+#: The A* loops of FootprintConfig.engine.
+ENGINES = ("compiled", "python")
+
 #: Thickness (metres) of the four obstacles standing for the workspace bounds.
 _BOUND_THICKNESS = 5.0
 
@@ -79,6 +82,11 @@ class FootprintConfig:
         label_after: A* expansions after which the search first proves, by labelling
             the lattice's connected components, that start and goal are connected
             (>= 0; the answer does not depend on it, only the time of "no path").
+        engine: Which A* loop runs (:mod:`.footprint_astar`): ``"compiled"`` (default),
+            the loop compiled with numba (a core dependency; compiled once per machine,
+            then cached on disk), or ``"python"``, the pure-Python reference. Both expand
+            the same poses in the same order and return the same paths, bit for bit
+            (tested); only the time differs.
     """
 
     xy_step: float = 0.025
@@ -89,6 +97,7 @@ class FootprintConfig:
     label_after: int = 20_000
     lazy_tile: int = 32
     coarse_first: bool = False
+    engine: str = "compiled"
 
     def __post_init__(self) -> None:
         step = _finite(self.xy_step, "FootprintConfig.xy_step")
@@ -107,6 +116,10 @@ class FootprintConfig:
         if not isinstance(self.coarse_first, bool):
             raise ValueError(
                 f"FootprintConfig.coarse_first must be True or False, got {self.coarse_first!r}"
+            )
+        if self.engine not in ENGINES:
+            raise ValueError(
+                f"FootprintConfig.engine must be one of {ENGINES}, got {self.engine!r}"
             )
         if self.coarse_first and (self.headings % 2 or self.headings < 16 or step > 0.1):
             raise ValueError(

@@ -38,14 +38,12 @@ test of oriented rectangles). Between two lattice poses the footprint moves by a
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 import time
 from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,25 +57,19 @@ from voot.envs.motion.footprint import (
     bound_boxes,
     footprint_hits,
 )
+from voot.envs.motion.footprint_astar import (
+    AStarSpec,
+    DiscHub,
+    astar_compiled,
+    astar_python,
+    numba_available,
+)
 from voot.envs.motion.footprint_scene import PENDING, LazyScene
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
 
 __all__ = ["DiscHub", "FootprintSearch"]
-
-
-class DiscHub(Protocol):
-    """The disc's free positions reachable from the query's start (see :meth:`FootprintSearch.plan`)."""
-
-    def is_free(self, x: float, y: float) -> bool:
-        """Is the disc centred at ``(x, y)`` free (then every heading is free there)?"""
-
-    def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
-        """The disc's waypoints ``(k, 3)`` from the start to ``pose``, or None."""
-
-
-_SQRT2 = math.sqrt(2.0)
 
 
 class FootprintSearch:
@@ -126,6 +118,16 @@ class FootprintSearch:
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
         self._closed: bytearray | None = None
+        if config.engine == "compiled" and not numba_available():
+            raise ImportError(
+                'FootprintConfig.engine="compiled" needs numba (pip install numba); '
+                'engine="python" runs the same search (the same paths) without it'
+            )
+        lat = self.lattice
+        self._spec = AStarSpec(
+            lat.shape, lat.xs.tolist(), lat.ys.tolist(), lat.pose, config.xy_step,
+            rotation_weight * config.heading_step, config.heuristic_weight, config.label_after,
+        )  # fmt: skip
         #: A* expansions of the last exact query (for the benchmark's statistics).
         self.last_expansions = 0
         #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
@@ -246,7 +248,7 @@ class FootprintSearch:
         movable: tuple[Box2D, ...],
         hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
-        """A* on this lattice (:meth:`_astar`) between the first free of ``starts`` and of ``goals``."""
+        """A* on this lattice (:mod:`.footprint_astar`) between the first free of ``starts`` and of ``goals``."""
         lat = self.lattice
         nx, ny = lat.nx, lat.ny
         free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
@@ -266,8 +268,17 @@ class FootprintSearch:
         def full() -> BoolArray:
             return self._free(footprint, movable)[1]
 
+        def connected() -> bool:
+            return self._connected(gi, si, full())
+
+        if self._closed is None:
+            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
+        engine = astar_compiled if self.config.engine == "compiled" else astar_python
         # search from the goal: to the start, or to the first hub
-        return self._astar(gi, si, free_bytes, resolve, full, hub)
+        found, self.last_expansions = engine(
+            self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub
+        )
+        return found
 
     def _refine(
         self,
@@ -412,147 +423,6 @@ class FootprintSearch:
             if len(self._masks) > self.config.mask_cache_size:
                 self._masks.popitem(last=False)
         return window
-
-    def _astar(
-        self,
-        si: int,
-        gi: int,
-        free_bytes: bytearray,
-        resolve: Callable[[int], int] | None,
-        full: Callable[[], BoolArray],
-        hub: DiscHub | None,
-    ) -> tuple[list[int], FloatArray | None] | None:
-        """Lattice indices from ``si`` to ``gi`` or to a hub (both ends included), or None.
-
-        Returns the cells and, when the search stopped at a hub, the disc's waypoints
-        from the hub's start to the last cell (None when it reached ``gi``).
-        ``free_bytes`` is the scene (a pose :data:`PENDING` is tested by ``resolve``);
-        ``full()`` is the whole free lattice, for the connectivity proof.
-
-        The loop is written for CPython's speed (the profile's hot spot): the closed set
-        is a byte per lattice pose (one buffer, cleared after each search), the neighbours are enumerated inline, the heuristic's
-        two terms are looked up per position and per heading, and the disc's test of a
-        position is asked once per query (it does not depend on the heading). The order
-        of expansions, and so the path, is that of the plain A* it replaces.
-        """
-        lat = self.lattice
-        best: dict[int, float] = {si: 0.0}
-        if self._closed is None:
-            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
-        try:
-            return self._astar_loop(si, gi, free_bytes, resolve, full, hub, best)
-        finally:
-            closed = self._closed
-            for u in best:
-                closed[u] = 0
-
-    def _astar_loop(
-        self,
-        si: int,
-        gi: int,
-        free_bytes: bytearray,
-        resolve: Callable[[int], int] | None,
-        full: Callable[[], BoolArray],
-        hub: DiscHub | None,
-        best: dict[int, float],
-    ) -> tuple[list[int], FloatArray | None] | None:
-        """:meth:`_astar`'s loop; every pose it closes is a key of ``best``."""
-        lat = self.lattice
-        nk, nx, ny = lat.shape
-        step = self.config.xy_step
-        w = self.rotation_weight * self.config.heading_step
-        plane = nx * ny
-        gk, grem = divmod(gi, plane)
-        gx, gy = divmod(grem, ny)
-        eps = self.config.heuristic_weight
-        h_step = eps * step
-        diag = step * _SQRT2
-        # (delta, d_i, d_j, cost) in the order of the plain loop (d_i, then d_j)
-        moves = [
-            (d_i * ny + d_j, d_i, d_j, diag if d_i and d_j else step)
-            for d_i in (-1, 0, 1)
-            for d_j in (-1, 0, 1)
-            if d_i or d_j
-        ]
-        # the heuristic's heading term per heading
-        h_head = [eps * w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
-        parent: dict[int, int] = {si: -1}
-        closed = self._closed
-        assert closed is not None
-        heap: list[tuple[float, int]] = [(0.0, si)]
-        heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
-        inf = math.inf
-        label_after = self.config.label_after
-        hub_failed: set[int] = set()
-        disc_free: dict[int, bool] = {}
-        hub_nbrs = [d_i * ny + d_j for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j]
-        xs, ys = lat.xs.tolist(), lat.ys.tolist()
-        expansions = 0
-        while heap:
-            v = heappop(heap)[1]
-            if closed[v]:
-                continue
-            k, rem = divmod(v, plane)
-            i, j = divmod(rem, ny)
-            head = None
-            if v != gi and hub is not None and rem not in hub_failed:
-                dfree = disc_free.get(rem)
-                if dfree is None:
-                    dfree = disc_free[rem] = hub.is_free(xs[i], ys[j])
-                if dfree:
-                    # a disc position next to one the disc cannot reach from the start is
-                    # (almost always) in the same region: not asked again (skipping a hub
-                    # costs time, never completeness)
-                    near = any(rem + d in hub_failed for d in hub_nbrs)
-                    head = None if near else hub.connect(lat.pose(k, i, j))
-                    if head is None:
-                        hub_failed.add(rem)
-            if v == gi or head is not None:
-                out = []
-                while v >= 0:
-                    out.append(v)
-                    v = parent[v]
-                self.last_expansions = expansions
-                return out[::-1], head
-            closed[v] = 1
-            expansions += 1
-            if expansions == label_after and not self._connected(si, gi, full()):
-                self.last_expansions = expansions
-                return None
-            gv = best[v]
-            hk = h_head[k]
-            inner = 0 < i < nx - 1 and 0 < j < ny - 1
-            for delta, d_i, d_j, cost in moves:
-                u = v + delta
-                if not inner:
-                    ii, jj = i + d_i, j + d_j
-                    if not (0 <= ii < nx and 0 <= jj < ny):
-                        continue
-                f = free_bytes[u]
-                if not f or closed[u]:
-                    continue
-                if f == PENDING and not resolve(u):  # type: ignore[misc]
-                    continue
-                gu = gv + cost
-                if gu < best.get(u, inf):
-                    best[u] = gu
-                    parent[u] = v
-                    heappush(heap, (gu + (h_step * hypot(i + d_i - gx, j + d_j - gy) + hk), u))
-            for dk in (-1, 1):
-                kk = (k + dk) % nk
-                u = kk * plane + rem
-                f = free_bytes[u]
-                if not f or closed[u]:
-                    continue
-                if f == PENDING and not resolve(u):  # type: ignore[misc]
-                    continue
-                gu = gv + w
-                if gu < best.get(u, inf):
-                    best[u] = gu
-                    parent[u] = v
-                    heappush(heap, (gu + (h_step * hypot(i - gx, j - gy) + h_head[kk]), u))
-        self.last_expansions = expansions
-        return None
 
     def _connected(self, si: int, gi: int, free: BoolArray) -> bool:
         """Are the lattice poses ``si`` and ``gi`` in one connected component of ``free``?"""

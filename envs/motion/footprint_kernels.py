@@ -1,0 +1,278 @@
+"""The compiled A* loop of the exact-footprint search (numba), resumable by its caller.
+
+:func:`voot.envs.motion.footprint_astar.astar_compiled` drives it; the reference is the
+pure-Python loop of :func:`voot.envs.motion.footprint_astar.astar_python`, whose order
+of expansions (and so whose path) this loop reproduces bit for bit:
+
+* the open list is a binary heap of ``(f, pose)`` ordered as Python orders the tuples
+  (``f``, then the lattice index). Each pose is pushed again only with a smaller ``f``,
+  so no two entries are equal and every correct heap pops the same sequence;
+* ``f`` is computed by the same float operations in the same order (no fast-math, no
+  fused multiply-add), with ``math.hypot`` of the integer offsets read from a table
+  that CPython's own ``math.hypot`` filled (libm's may differ in the last bit).
+
+What the loop cannot do itself (test a :data:`~.footprint_scene.PENDING` tile, ask the
+disc hub, label the connected components, grow the heap) it asks its caller for: it
+puts the pose it was about to expand back on the heap, returns a status and the pose
+concerned in ``state[2]``, and is called again with the same state once the caller has
+answered. Putting the pose back leaves the heap's set of entries unchanged, so the
+next call pops the same pose; every answer is a function of the scene alone, so the
+expansions are those of the uninterrupted loop.
+
+This module imports numba; nothing else in voot does, and it is imported only when an
+exact-footprint search with ``engine="compiled"`` first runs.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numba
+import numpy as np
+from numba import types
+from numba.typed import Dict
+
+__all__ = [
+    "CONNECT",
+    "DISC",
+    "EXHAUSTED",
+    "FOUND",
+    "GROW",
+    "LABEL",
+    "RESOLVE",
+    "clear_closed",
+    "new_maps",
+    "path_to",
+    "search",
+]
+
+#: Statuses of :func:`search` (the pose concerned is ``state[2]``).
+FOUND, EXHAUSTED, RESOLVE, DISC, CONNECT, LABEL, GROW = range(7)
+
+_PENDING = 2
+
+
+def _jit(func: Any) -> Any:
+    """``numba.njit`` with the on-disk cache where numba has a writable place for it.
+
+    numba refuses ``cache=True`` (RuntimeError) when neither the source's ``__pycache__``
+    nor its user-wide cache directory (``NUMBA_CACHE_DIR``) is writable; then the loop is
+    compiled in each process instead.
+    """
+    try:
+        return numba.njit(cache=True, nogil=True)(func)
+    except RuntimeError:  # pragma: no cover - a read-only install without NUMBA_CACHE_DIR
+        return numba.njit(nogil=True)(func)
+
+
+@_jit
+def _less(fa: float, va: int, fb: float, vb: int) -> bool:
+    """Python's ``(fa, va) < (fb, vb)``."""
+    if fa == fb:
+        return va < vb
+    return fa < fb
+
+
+@_jit
+def _push(keys: Any, vals: Any, n: int, f: float, v: int) -> int:
+    """Push ``(f, v)`` on the heap of ``n`` entries (capacity checked by the caller)."""
+    pos = n
+    while pos > 0:
+        parent = (pos - 1) >> 1
+        if _less(f, v, keys[parent], vals[parent]):
+            keys[pos] = keys[parent]
+            vals[pos] = vals[parent]
+            pos = parent
+        else:
+            break
+    keys[pos] = f
+    vals[pos] = v
+    return n + 1
+
+
+@_jit
+def _pop(keys: Any, vals: Any, n: int) -> int:
+    """Remove the smallest entry (read it at index 0 first); the new size."""
+    n -= 1
+    if n == 0:
+        return 0
+    f = keys[n]
+    v = vals[n]
+    pos = 0
+    while True:
+        child = 2 * pos + 1
+        if child >= n:
+            break
+        if child + 1 < n and _less(keys[child + 1], vals[child + 1], keys[child], vals[child]):
+            child += 1
+        if _less(keys[child], vals[child], f, v):
+            keys[pos] = keys[child]
+            vals[pos] = vals[child]
+            pos = child
+        else:
+            break
+    keys[pos] = f
+    vals[pos] = v
+    return n
+
+
+@_jit
+def new_maps() -> Any:
+    """Empty ``best`` (pose -> g), ``parent`` (pose -> pose), ``disc`` and ``failed`` maps."""
+    best = Dict.empty(types.int64, types.float64)
+    parent = Dict.empty(types.int64, types.int64)
+    disc = Dict.empty(types.int64, types.int64)
+    failed = Dict.empty(types.int64, types.int64)
+    return best, parent, disc, failed
+
+
+@_jit
+def clear_closed(closed: Any, best: Any) -> None:
+    """Reset the closed bytes of every pose the search reached (the keys of ``best``)."""
+    for u in best:
+        closed[u] = 0
+
+
+@_jit
+def path_to(parent: Any, v: int) -> Any:
+    """The poses from the search's start to ``v`` (both included)."""
+    n = 0
+    u = v
+    while u >= 0:
+        n += 1
+        u = parent[u]
+    out = np.empty(n, dtype=np.int64)
+    u = v
+    for a in range(n - 1, -1, -1):
+        out[a] = u
+        u = parent[u]
+    return out
+
+
+@_jit
+def search(
+    free: Any,
+    closed: Any,
+    keys: Any,
+    vals: Any,
+    best: Any,
+    parent: Any,
+    disc: Any,
+    failed: Any,
+    state: Any,
+    dims: Any,
+    costs: Any,
+    h_head: Any,
+    hyp: Any,
+) -> int:
+    """Run A* until it ends or needs its caller; the status (see the module doc).
+
+    ``state``: expansions, connectivity proved (0/1), the pose concerned, heap size.
+    ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after.
+    ``costs``: the straight move, the diagonal move, the turn, the heuristic's step
+    (``heuristic_weight * xy_step``).
+    """
+    nk, nx, ny = dims[0], dims[1], dims[2]
+    gi, has_hub, label_after = dims[4], dims[5], dims[6]
+    plane = nx * ny
+    gx = (gi % plane) // ny
+    gy = gi % ny
+    straight, diag, w, h_step = costs[0], costs[1], costs[2], costs[3]
+    n = state[3]
+    cap = keys.shape[0]
+    while n > 0:
+        fv = keys[0]
+        v = vals[0]
+        n = _pop(keys, vals, n)
+        if closed[v]:
+            continue
+        k = v // plane
+        rem = v % plane
+        i = rem // ny
+        j = rem % ny
+        if v != gi and has_hub and rem not in failed:
+            d = disc.get(rem, -1)
+            if d < 0:
+                n = _push(keys, vals, n, fv, v)
+                state[2] = v
+                state[3] = n
+                return DISC
+            if d == 1:
+                near = False
+                for d_i in range(-1, 2):
+                    for d_j in range(-1, 2):
+                        if (d_i != 0 or d_j != 0) and (rem + d_i * ny + d_j) in failed:
+                            near = True
+                if near:
+                    failed[rem] = 1
+                else:
+                    n = _push(keys, vals, n, fv, v)
+                    state[2] = v
+                    state[3] = n
+                    return CONNECT
+        if v == gi:
+            state[2] = v
+            state[3] = n
+            return FOUND
+        inner = 0 < i < nx - 1 and 0 < j < ny - 1
+        # the caller's answers first: room on the heap, the tiles of pending neighbours,
+        # the connectivity proof (the pose goes back on the heap meanwhile)
+        need = -1
+        if n + 11 > cap:
+            need = GROW
+        if need < 0:
+            for d_i in range(-1, 2):
+                for d_j in range(-1, 2):
+                    if (d_i == 0 and d_j == 0) or need >= 0:
+                        continue
+                    if not inner and not (0 <= i + d_i < nx and 0 <= j + d_j < ny):
+                        continue
+                    u = v + d_i * ny + d_j
+                    if free[u] == _PENDING and not closed[u]:
+                        need = RESOLVE
+                        state[2] = u
+            for dk in (-1, 1):
+                u = ((k + dk) % nk) * plane + rem
+                if need < 0 and free[u] == _PENDING and not closed[u]:
+                    need = RESOLVE
+                    state[2] = u
+        if need < 0 and state[1] == 0 and state[0] + 1 == label_after:
+            need = LABEL
+            state[2] = v
+        if need >= 0:
+            n = _push(keys, vals, n, fv, v)
+            state[3] = n
+            return need
+        closed[v] = 1
+        state[0] += 1
+        gv = best[v]
+        hk = h_head[k]
+        for d_i in range(-1, 2):
+            for d_j in range(-1, 2):
+                if d_i == 0 and d_j == 0:
+                    continue
+                if not inner and not (0 <= i + d_i < nx and 0 <= j + d_j < ny):
+                    continue
+                u = v + d_i * ny + d_j
+                if free[u] == 0 or closed[u]:
+                    continue
+                cost = diag if d_i != 0 and d_j != 0 else straight
+                gu = gv + cost
+                if gu < best.get(u, np.inf):
+                    best[u] = gu
+                    parent[u] = v
+                    h = h_step * hyp[abs(i + d_i - gx), abs(j + d_j - gy)] + hk
+                    n = _push(keys, vals, n, gu + h, u)
+        for dk in (-1, 1):
+            kk = (k + dk) % nk
+            u = kk * plane + rem
+            if free[u] == 0 or closed[u]:
+                continue
+            gu = gv + w
+            if gu < best.get(u, np.inf):
+                best[u] = gu
+                parent[u] = v
+                h = h_step * hyp[abs(i - gx), abs(j - gy)] + h_head[kk]
+                n = _push(keys, vals, n, gu + h, u)
+    state[3] = n
+    return EXHAUSTED
