@@ -82,11 +82,12 @@ class FootprintConfig:
         label_after: A* expansions after which the search first proves, by labelling
             the lattice's connected components, that start and goal are connected
             (>= 0; the answer does not depend on it, only the time of "no path").
-        engine: Which A* loop runs (:mod:`.footprint_astar`): ``"compiled"`` (default),
-            the loop compiled with numba (a core dependency; compiled once per machine,
-            then cached on disk), or ``"python"``, the pure-Python reference. Both expand
-            the same poses in the same order and return the same paths, bit for bit
-            (tested); only the time differs.
+        engine: How the A* loop (:mod:`.footprint_astar`) and the lattice's occupancy
+            test (:meth:`FootprintLattice.blocked_window`) run: ``"compiled"`` (default),
+            compiled with numba (a core dependency; compiled once per machine, then
+            cached on disk, :mod:`.footprint_kernels`), or ``"python"``, the pure-Python
+            and numpy reference. Both mark the same poses, expand them in the same order
+            and return the same paths, bit for bit (tested); only the time differs.
     """
 
     xy_step: float = 0.025
@@ -335,6 +336,15 @@ class FootprintLattice:
             oy = sin_t * part.cx + cos_t * part.cy
             ang = th + part.yaw
             ca, sa = np.cos(ang), np.sin(ang)
+            if self.config.engine == "compiled":
+                from voot.envs.motion.footprint_kernels import part_hits
+
+                part_hits(
+                    hit, a0 - i0, b0 - j0, px.ravel(), py.ravel(), ox.ravel(), oy.ravel(),
+                    ca.ravel(), sa.ravel(), np.array([cb, sb, box.half_x, box.half_y]),
+                    np.array([part.half_x, part.half_y]), tol,
+                )  # fmt: skip
+                continue
             part_hit = np.ones((self.nk, a1 - a0, b1 - b0), dtype=bool)
             axes = ((cb, sb), (-sb, cb), (ca, sa), (-sa, ca))
             for ux, uy in axes:

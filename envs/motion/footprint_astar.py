@@ -33,7 +33,14 @@ from voot.envs.motion.footprint_scene import PENDING
 
 FloatArray = NDArray[np.float64]
 
-__all__ = ["AStarSpec", "DiscHub", "astar_compiled", "astar_python", "numba_available"]
+__all__ = [
+    "AStarSpec",
+    "DiscHub",
+    "astar_compiled",
+    "astar_python",
+    "numba_available",
+    "warm_compiled",
+]
 
 _SQRT2 = math.sqrt(2.0)
 
@@ -49,6 +56,11 @@ class DiscHub(Protocol):
 
     def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
         """The disc's waypoints ``(k, 3)`` from the start to ``pose``, or None."""
+
+
+# A hub may also have ``disc_data() -> (start free, hit radius, (xmin, xmax, ymin, ymax),
+# boxes (7, n))``: :meth:`DiscHub.is_free`'s numbers (``DiscProbe.blocked_data``), so that
+# the compiled loop tests the disc itself instead of asking the hub position by position.
 
 
 @dataclass(frozen=True)
@@ -230,6 +242,24 @@ def _hypot_table(nx: int, ny: int) -> FloatArray:
     return table
 
 
+def warm_compiled() -> None:
+    """Compile (or load from numba's disk cache) the compiled loop now: a search on a tiny lattice.
+
+    The first compiled search of a process otherwise pays it (benchmarks time it apart).
+    """
+    spec = AStarSpec((8, 3, 3), [0.0, 1.0, 2.0], [0.0, 1.0, 2.0], lambda k, i, j: (i, j, k), 1.0,
+                     0.5, 1.0, 0)  # fmt: skip
+    free = bytearray(b"\x01" * 72)
+    free[4] = PENDING
+    closed = bytearray(72)
+
+    def resolve(u: int) -> int:
+        free[u] = 1
+        return 1
+
+    astar_compiled(spec, 0, 71, free, closed, resolve, lambda: True, None)
+
+
 def astar_compiled(
     spec: AStarSpec,
     si: int,
@@ -260,11 +290,22 @@ def astar_compiled(
     costs = np.array([spec.step, spec.step * _SQRT2, spec.w, spec.eps * spec.step])
     h_head = np.array(_h_head(spec, gi // plane), dtype=np.float64)
     hyp = _hypot_table(nx, ny)
+    xs = np.asarray(spec.xs, dtype=np.float64)
+    ys = np.asarray(spec.ys, dtype=np.float64)
+    # the hub's disc test, computed in the loop where the hub gives its numbers
+    disc_data = getattr(hub, "disc_data", None)
+    if disc_data is not None:
+        start_free, r_hit, (xmin, xmax, ymin, ymax), disc_boxes = disc_data()
+        disc_par = np.array([1.0, float(start_free), r_hit, xmin, xmax, ymin, ymax])
+        disc_boxes = np.ascontiguousarray(disc_boxes, dtype=np.float64).reshape(7, -1)
+    else:
+        disc_par = np.zeros(7)
+        disc_boxes = np.zeros((7, 0))
     try:
         while True:
             status = K.search(
                 free, closed_view, keys, vals, best, parent, disc, failed, state, dims, costs,
-                h_head, hyp,
+                h_head, hyp, xs, ys, disc_par, disc_boxes,
             )  # fmt: skip
             v = int(state[2])
             if status == K.FOUND:

@@ -42,6 +42,7 @@ __all__ = [
     "RESOLVE",
     "clear_closed",
     "new_maps",
+    "part_hits",
     "path_to",
     "search",
 ]
@@ -150,6 +151,35 @@ def path_to(parent: Any, v: int) -> Any:
 
 
 @_jit
+def _disc_free(x: float, y: float, par: Any, boxes: Any) -> int:
+    """The hub's ``is_free(x, y)`` (``DiscProbe.blocked_test``'s operations, in order).
+
+    ``par``: compute here (0/1), start free (0/1), hit radius, xmin, xmax, ymin, ymax.
+    """
+    if par[1] == 0.0:
+        return 0
+    r = par[2]
+    if not (par[3] + r <= x <= par[4] - r and par[5] + r <= y <= par[6] - r):
+        return 0
+    r2 = r * r
+    for k in range(boxes.shape[1]):
+        rx = x - boxes[0, k]
+        ry = y - boxes[1, k]
+        far = boxes[6, k] + r + 1e-6
+        if rx * rx + ry * ry > far * far:
+            continue
+        c = boxes[2, k]
+        s = boxes[3, k]
+        lx = rx * c + ry * s
+        ly = -rx * s + ry * c
+        dx = max(abs(lx) - boxes[4, k], 0.0)
+        dy = max(abs(ly) - boxes[5, k], 0.0)
+        if dx * dx + dy * dy < r2:
+            return 0
+    return 1
+
+
+@_jit
 def search(
     free: Any,
     closed: Any,
@@ -164,13 +194,19 @@ def search(
     costs: Any,
     h_head: Any,
     hyp: Any,
+    xs: Any,
+    ys: Any,
+    disc_par: Any,
+    disc_boxes: Any,
 ) -> int:
     """Run A* until it ends or needs its caller; the status (see the module doc).
 
     ``state``: expansions, connectivity proved (0/1), the pose concerned, heap size.
     ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after.
     ``costs``: the straight move, the diagonal move, the turn, the heuristic's step
-    (``heuristic_weight * xy_step``).
+    (``heuristic_weight * xy_step``). ``xs``, ``ys``: the lattice's coordinates;
+    ``disc_par``, ``disc_boxes``: the hub's disc test (:func:`_disc_free`), or ask the
+    caller (status :data:`DISC`) when ``disc_par[0]`` is 0.
     """
     nk, nx, ny = dims[0], dims[1], dims[2]
     gi, has_hub, label_after = dims[4], dims[5], dims[6]
@@ -192,6 +228,9 @@ def search(
         j = rem % ny
         if v != gi and has_hub and rem not in failed:
             d = disc.get(rem, -1)
+            if d < 0 and disc_par[0] != 0.0:
+                d = _disc_free(xs[i], ys[j], disc_par, disc_boxes)
+                disc[rem] = d
             if d < 0:
                 n = _push(keys, vals, n, fv, v)
                 state[2] = v
@@ -276,3 +315,57 @@ def search(
                 n = _push(keys, vals, n, gu + h, u)
     state[3] = n
     return EXHAUSTED
+
+
+@_jit
+def part_hits(
+    hit: Any,
+    di: int,
+    dj: int,
+    px: Any,
+    py: Any,
+    ox: Any,
+    oy: Any,
+    ca: Any,
+    sa: Any,
+    box: Any,
+    part: Any,
+    tol: float,
+) -> None:
+    """Mark in ``hit[:, di:, dj:]`` the poses where a footprint part overlaps a box.
+
+    :meth:`~voot.envs.motion.footprint.FootprintLattice.blocked_window`'s separating-axis
+    test, pose by pose with numpy's operations in numpy's order (its trigonometry, the
+    per-heading ``ox, oy, ca, sa``, is numpy's, passed in). ``px``, ``py``: positions
+    relative to the box centre; ``box``: cos, sin of its yaw and its half sizes;
+    ``part``: the part's half sizes.
+    """
+    cb, sb, bhx, bhy = box[0], box[1], box[2], box[3]
+    phx, phy = part[0], part[1]
+    lim = np.empty(4)
+    axx = np.empty(4)
+    axy = np.empty(4)
+    for k in range(hit.shape[0]):
+        ck, sk = ca[k], sa[k]
+        axx[0], axy[0] = cb, sb
+        axx[1], axy[1] = -sb, cb
+        axx[2], axy[2] = ck, sk
+        axx[3], axy[3] = -sk, ck
+        for a in range(4):
+            ux, uy = axx[a], axy[a]
+            hb = bhx * abs(ux * cb + uy * sb) + bhy * abs(-ux * sb + uy * cb)
+            hp = phx * abs(ux * ck + uy * sk) + phy * abs(-ux * sk + uy * ck)
+            lim[a] = hb + hp - tol
+        for i in range(px.shape[0]):
+            qx = px[i] + ox[k]
+            for j in range(py.shape[0]):
+                if hit[k, di + i, dj + j]:
+                    continue
+                qy = py[j] + oy[k]
+                inside = True
+                for a in range(4):
+                    if not abs(axx[a] * qx + axy[a] * qy) < lim[a]:
+                        inside = False
+                        break
+                if inside:
+                    hit[k, di + i, dj + j] = True

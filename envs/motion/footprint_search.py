@@ -63,6 +63,7 @@ from voot.envs.motion.footprint_astar import (
     astar_compiled,
     astar_python,
     numba_available,
+    warm_compiled,
 )
 from voot.envs.motion.footprint_scene import PENDING, LazyScene
 from voot.envs.motion.planar import Box2D
@@ -399,8 +400,11 @@ class FootprintSearch:
     def warm(self, footprint: Footprint) -> None:
         """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost).
 
-        With ``coarse_first``, the coarse lattice's too.
+        With ``coarse_first``, the coarse lattice's too; with ``engine="compiled"``, the
+        compiled loop is compiled (or loaded from numba's cache) too.
         """
+        if self.config.engine == "compiled":
+            warm_compiled()
         if self._coarse is not None:
             self._coarse.warm(footprint)
         if self.config.lazy_tile > 0:
