@@ -45,6 +45,7 @@ __all__ = [
     "part_hits",
     "path_to",
     "search",
+    "segments_free",
 ]
 
 #: Statuses of :func:`search` (the pose concerned is ``state[2]``).
@@ -369,3 +370,45 @@ def part_hits(
                         break
                 if inside:
                     hit[k, di + i, dj + j] = True
+
+
+@_jit
+def segments_free(
+    free: Any, a: Any, ends: Any, counts: Any, dthetas: Any, grid: Any, dims: Any, first: int
+) -> Any:
+    """From segment ``first`` on: the first segment from ``a`` to ``ends`` that is not free.
+
+    ``FootprintSearch._segments_free``'s samples with numpy's operations: segment ``s``
+    has ``counts[s]`` samples at ``t = m * (1 / (counts[s] - 1))`` (``np.linspace``'s
+    arithmetic, the last one exactly 1), snapped by ``np.rint``. ``grid``: xmin, ymin,
+    xy_step, heading_step; ``dims``: nk, nx, ny. Returns ``(s, pending)``: the segment
+    and -1 when segment ``s`` has a sample off the free lattice (``s`` = the number of
+    segments when all are free), or a :data:`PENDING` pose of segment ``s`` to test
+    first (call again from ``s`` after).
+    """
+    nk, nx, ny = dims[0], dims[1], dims[2]
+    xmin, ymin, step, hstep = grid[0], grid[1], grid[2], grid[3]
+    for s in range(first, ends.shape[0]):
+        n = counts[s]
+        inc = 1.0 / (n - 1)
+        dx = ends[s, 0] - a[0]
+        dy = ends[s, 1] - a[1]
+        pending = -1
+        for m in range(n):
+            t = 1.0 if m == n - 1 else m * inc + 0.0
+            x = a[0] + t * dx
+            y = a[1] + t * dy
+            th = a[2] + t * dthetas[s]
+            i = np.int64(np.rint((x - xmin) / step))
+            j = np.int64(np.rint((y - ymin) / step))
+            if i < 0 or j < 0 or i >= nx or j >= ny:
+                return s, -1
+            k = np.int64(np.rint(th / hstep)) % nk
+            u = (k * nx + i) * ny + j
+            if free[u] == 0:
+                return s, -1
+            if free[u] == _PENDING and pending < 0:
+                pending = u
+        if pending >= 0:
+            return s, pending
+    return ends.shape[0], -1

@@ -470,7 +470,7 @@ class FootprintSearch:
         lat = self.lattice
         step = self.config.xy_step
         half_turn = 0.5 * self.config.heading_step
-        ts, counts, dthetas = [], [], []
+        counts, dthetas = [], []
         for b in ends:
             dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
             n = max(
@@ -478,9 +478,11 @@ class FootprintSearch:
                 math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
                 math.ceil(abs(dtheta) / half_turn),
             )
-            ts.append(np.linspace(0.0, 1.0, n + 1))
             counts.append(n + 1)
             dthetas.append(dtheta)
+        if self.config.engine == "compiled":
+            return self._segments_free_compiled(a, ends, counts, dthetas, free_bytes, scene)
+        ts = [np.linspace(0.0, 1.0, n) for n in counts]
         t = np.concatenate(ts)
         which = np.repeat(np.arange(len(ends)), counts)
         bx = np.array([b[0] for b in ends], dtype=np.float64)[which]
@@ -510,6 +512,35 @@ class FootprintSearch:
                     break
             free += 1
         return free
+
+    def _segments_free_compiled(
+        self,
+        a: tuple[float, float, float],
+        ends: list[tuple[float, float, float]],
+        counts: list[int],
+        dthetas: list[float],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
+    ) -> int:
+        """:meth:`_segments_free` by :func:`.footprint_kernels.segments_free` (the same count)."""
+        from voot.envs.motion.footprint_kernels import segments_free
+
+        lat = self.lattice
+        grid = np.array(
+            [self.workspace[0], self.workspace[2], self.config.xy_step, self.config.heading_step]
+        )
+        args = (
+            np.frombuffer(free_bytes, dtype=np.uint8), np.array(a, dtype=np.float64),
+            np.array(ends, dtype=np.float64).reshape(-1, 3), np.array(counts, dtype=np.int64),
+            np.array(dthetas, dtype=np.float64), grid, np.array(lat.shape, dtype=np.int64),
+        )  # fmt: skip
+        first = 0
+        while True:
+            first, pending = segments_free(*args, first)
+            if pending < 0:
+                return int(first)
+            assert scene is not None
+            scene.resolve(int(pending))
 
     def _tighten(
         self,
