@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 from voot.envs.motion.footprint import Footprint, FootprintConfig
 from voot.envs.motion.footprint_astar import _hypot_table, numba_available
 from voot.envs.motion.footprint_search import FootprintSearch
-from voot.envs.motion.planar import Box2D
-from voot.envs.motion.planner import BasePlanner, BasePlannerConfig
+from voot.envs.motion.planar import Box2D, Pose2D
+from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, _DiscHub
 
 pytestmark = pytest.mark.skipif(not numba_available(), reason="numba is not installed")
 
@@ -100,6 +100,28 @@ def test_the_disc_hub_gives_the_same_paths() -> None:
     compiled = _planner_answers("compiled")
     assert compiled == _planner_answers("python")
     assert any(p is not None for p in compiled)
+
+
+class _AskHub:
+    """A hub without ``disc_data``: the compiled loop asks it position by position."""
+
+    def __init__(self, hub: _DiscHub) -> None:
+        self.is_free = hub.is_free
+        self.connect = hub.connect
+
+
+def test_a_hub_without_disc_data_is_asked_and_gives_the_same_paths() -> None:
+    p = BasePlanner(WS, list(WALLS), BasePlannerConfig(footprint=CFG))
+    compiled, python = _search("compiled"), _search("python")
+    answers = []
+    for boxes in ((), BOXES[:1]):
+        for start, goal in QUERIES:
+            s_hub = _DiscHub(p, Pose2D(*start), RADIUS, boxes)
+            a = compiled.plan(start, goal, BODY, boxes, _AskHub(s_hub))  # type: ignore[arg-type]
+            b = python.plan(start, goal, BODY, boxes, s_hub)
+            assert (a is None) == (b is None) and (a is None or a.tobytes() == b.tobytes())
+            answers.append(a is not None)
+    assert any(answers)
 
 
 @settings(max_examples=25, deadline=None)
