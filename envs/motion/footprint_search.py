@@ -437,7 +437,12 @@ class FootprintSearch:
         wrapped = np.concatenate([free, free[:1]], axis=0)
         labels, _ = ndimage.label(wrapped, structure=structure)
         first, last = labels[0].ravel(), labels[-1].ravel()
-        pairs = np.unique(np.stack([first, last], axis=1)[first > 0], axis=0)
+        # the distinct (first, last) label pairs, sorted as np.unique(..., axis=0) sorts
+        # them, by one 1-D sort of a combined key (the 2-D row sort was a third of the time)
+        joined = first > 0
+        base = np.int64(labels.max()) + 1
+        keys = np.unique(first[joined].astype(np.int64) * base + last[joined])
+        pairs = np.stack([keys // base, keys % base], axis=1)
         # union-find over the labels joined across the wrap
         root: dict[int, int] = {}
 
