@@ -21,6 +21,7 @@ box) (see :mod:`voot.envs.motion.footprint_search`, which searches the lattice).
 
 from __future__ import annotations
 
+import importlib.util
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -233,6 +234,11 @@ class FootprintLattice:
         config: FootprintConfig,
         tolerance: float = 1e-9,
     ) -> None:
+        if config.engine == "compiled" and importlib.util.find_spec("numba") is None:
+            raise ImportError(
+                'FootprintConfig.engine="compiled" needs numba (pip install numba); '
+                'engine="python" runs the same search (the same paths) without it'
+            )
         self.workspace = workspace
         self.config = config
         self.tolerance = tolerance

@@ -21,6 +21,7 @@ and a False answer ends the search (no path).
 from __future__ import annotations
 
 import heapq
+import importlib.util
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -222,11 +223,7 @@ def _h_head(spec: AStarSpec, gk: int) -> list[float]:
 
 def numba_available() -> bool:
     """Can the compiled engine run (is numba importable)?"""
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    return importlib.util.find_spec("numba") is not None
 
 
 _HYPOT: dict[tuple[int, int], FloatArray] = {}

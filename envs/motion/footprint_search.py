@@ -62,7 +62,6 @@ from voot.envs.motion.footprint_astar import (
     DiscHub,
     astar_compiled,
     astar_python,
-    numba_available,
     warm_compiled,
 )
 from voot.envs.motion.footprint_scene import PENDING, LazyScene
@@ -119,11 +118,6 @@ class FootprintSearch:
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
         self._closed: bytearray | None = None
-        if config.engine == "compiled" and not numba_available():
-            raise ImportError(
-                'FootprintConfig.engine="compiled" needs numba (pip install numba); '
-                'engine="python" runs the same search (the same paths) without it'
-            )
         lat = self.lattice
         self._spec = AStarSpec(
             lat.shape, lat.xs.tolist(), lat.ys.tolist(), lat.pose, config.xy_step,
