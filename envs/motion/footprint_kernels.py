@@ -63,7 +63,7 @@ def _jit(func: Any) -> Any:
     """
     try:
         return numba.njit(cache=True, nogil=True)(func)
-    except RuntimeError:  # pragma: no cover - a read-only install without NUMBA_CACHE_DIR
+    except RuntimeError:  # a read-only install without NUMBA_CACHE_DIR (tested)
         return numba.njit(nogil=True)(func)
 
 

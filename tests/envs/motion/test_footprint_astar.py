@@ -172,3 +172,19 @@ def test_compiled_in_a_fresh_process_with_a_cache_dir(tmp_path: Path) -> None:
         )
         assert out.stdout.strip() == repr(_answers("python"))
     assert any(tmp_path.rglob("footprint_kernels*.nbi"))
+
+
+def test_compiled_without_a_cache_location() -> None:
+    """No writable cache (numba finds no locator): compiled in the process, no warning."""
+    here = Path(__file__).resolve()
+    code = (
+        "import warnings; warnings.simplefilter('error');"
+        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[3])!r}];"
+        "from test_footprint_astar import _answers; print(_answers('compiled'))"
+    )
+    # ZipCacheLocator alone finds no place for a module outside a zip file
+    env = {**os.environ, "NUMBA_CACHE_LOCATOR_CLASSES": "ZipCacheLocator"}
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert out.stdout.strip() == repr(_answers("python"))
