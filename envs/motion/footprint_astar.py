@@ -229,7 +229,7 @@ def numba_available() -> bool:
 _HYPOT: dict[tuple[int, int], FloatArray] = {}
 
 
-def _hypot_table(nx: int, ny: int) -> FloatArray:
+def hypot_table(nx: int, ny: int) -> FloatArray:
     """``math.hypot(a, b)`` for ``0 <= a < nx``, ``0 <= b < ny`` (CPython's, once per shape)."""
     table = _HYPOT.get((nx, ny))
     if table is None:
@@ -240,7 +240,7 @@ def _hypot_table(nx: int, ny: int) -> FloatArray:
 
 
 def warm_compiled() -> None:
-    """Compile (or load from numba's disk cache) the compiled loop now: a search on a tiny lattice.
+    """Compile (or load from numba's disk cache) every kernel now, on a tiny lattice.
 
     The first compiled search of a process otherwise pays it (benchmarks time it apart).
     """
@@ -255,6 +255,14 @@ def warm_compiled() -> None:
         return 1
 
     astar_compiled(spec, 0, 71, free, closed, resolve, lambda: True, None)
+    from voot.envs.motion import footprint_kernels as K
+
+    # the lattice's occupancy test and the tightening's segment checks
+    K.part_hits(np.zeros((1, 1, 1), dtype=bool), 0, 0, np.zeros(1), np.zeros(1), np.zeros(1),
+                np.zeros(1), np.ones(1), np.zeros(1), np.ones(4), np.ones(2), 0.0)  # fmt: skip
+    K.segments_free(np.frombuffer(free, dtype=np.uint8), np.zeros(3), np.zeros((1, 3)),
+                    np.array([2], dtype=np.int64), np.zeros(1), np.array([0.0, 0.0, 1.0, 1.0]),
+                    np.array([8, 3, 3], dtype=np.int64), 0)  # fmt: skip
 
 
 def astar_compiled(
@@ -286,7 +294,7 @@ def astar_compiled(
     )  # fmt: skip
     costs = np.array([spec.step, spec.step * _SQRT2, spec.w, spec.eps * spec.step])
     h_head = np.array(_h_head(spec, gi // plane), dtype=np.float64)
-    hyp = _hypot_table(nx, ny)
+    hyp = hypot_table(nx, ny)
     xs = np.asarray(spec.xs, dtype=np.float64)
     ys = np.asarray(spec.ys, dtype=np.float64)
     # the hub's disc test, computed in the loop where the hub gives its numbers

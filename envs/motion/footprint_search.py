@@ -62,6 +62,7 @@ from voot.envs.motion.footprint_astar import (
     DiscHub,
     astar_compiled,
     astar_python,
+    hypot_table,
     warm_compiled,
 )
 from voot.envs.motion.footprint_scene import PENDING, LazyScene
@@ -399,6 +400,7 @@ class FootprintSearch:
         """
         if self.config.engine == "compiled":
             warm_compiled()
+            hypot_table(self.lattice.nx, self.lattice.ny)
         if self._coarse is not None:
             self._coarse.warm(footprint)
         if self.config.lazy_tile > 0:

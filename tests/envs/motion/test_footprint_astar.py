@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from voot.envs.motion.footprint import Footprint, FootprintConfig
-from voot.envs.motion.footprint_astar import _hypot_table, numba_available
+from voot.envs.motion.footprint_astar import hypot_table, numba_available
 from voot.envs.motion.footprint_search import FootprintSearch
 from voot.envs.motion.planar import Box2D, Pose2D
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, _DiscHub
@@ -146,8 +146,8 @@ def test_random_queries_give_the_same_paths(
 _SEARCHES: dict[str, FootprintSearch] = {}
 
 
-def test_the_hypot_table_is_cpythons() -> None:
-    table = _hypot_table(7, 5)
+def test_thehypot_table_is_cpythons() -> None:
+    table = hypot_table(7, 5)
     assert table.shape == (7, 5)
     assert all(table[a, b] == math.hypot(a, b) for a in range(7) for b in range(5))
 
