@@ -282,13 +282,15 @@ def astar_compiled(
     plane = nx * ny
     free = np.frombuffer(free_bytes, dtype=np.uint8)
     closed_view = np.frombuffer(closed, dtype=np.uint8)
-    best, parent, disc, failed = K.new_maps()
-    best[si] = 0.0
-    parent[si] = -1
+    disc, failed = K.new_maps()
+    tkeys = np.full(8192, -1, dtype=np.int64)
+    tg = np.empty(8192, dtype=np.float64)
+    tpar = np.empty(8192, dtype=np.int64)
+    K.table_put(tkeys, tg, tpar, si, 0.0, -1)
     keys = np.empty(1024, dtype=np.float64)
     vals = np.empty(1024, dtype=np.int64)
     keys[0], vals[0] = 0.0, si
-    state = np.array([0, 0, -1, 1], dtype=np.int64)
+    state = np.array([0, 0, -1, 1, 1], dtype=np.int64)
     dims = np.array(
         [nk, nx, ny, si, gi, hub is not None, spec.label_after], dtype=np.int64
     )  # fmt: skip
@@ -309,12 +311,12 @@ def astar_compiled(
     try:
         while True:
             status = K.search(
-                free, closed_view, keys, vals, best, parent, disc, failed, state, dims, costs,
+                free, closed_view, keys, vals, tkeys, tg, tpar, disc, failed, state, dims, costs,
                 h_head, hyp, xs, ys, disc_par, disc_boxes,
             )  # fmt: skip
             v = int(state[2])
             if status == K.FOUND:
-                return (K.path_to(parent, v).tolist(), None), int(state[0])
+                return (K.path_to(tkeys, tpar, v).tolist(), None), int(state[0])
             if status == K.EXHAUSTED:
                 return None, int(state[0])
             if status == K.RESOLVE:
@@ -328,14 +330,17 @@ def astar_compiled(
                 rem = v % plane
                 head = hub.connect(spec.pose(v // plane, rem // ny, rem % ny))
                 if head is not None:
-                    return (K.path_to(parent, v).tolist(), head), int(state[0])
+                    return (K.path_to(tkeys, tpar, v).tolist(), head), int(state[0])
                 failed[rem] = 1
             elif status == K.LABEL:
                 if not connected():
                     return None, spec.label_after
                 state[1] = 1
-            else:  # GROW
-                keys = np.concatenate([keys, np.empty_like(keys)])
-                vals = np.concatenate([vals, np.empty_like(vals)])
+            else:  # GROW: the heap or the table
+                if int(state[3]) + 11 > keys.shape[0]:
+                    keys = np.concatenate([keys, np.empty_like(keys)])
+                    vals = np.concatenate([vals, np.empty_like(vals)])
+                if 2 * (int(state[4]) + 10) > tkeys.shape[0]:
+                    tkeys, tg, tpar = K.rehash(tkeys, tg, tpar)
     finally:
-        K.clear_closed(closed_view, best)
+        K.clear_closed(closed_view, tkeys)

@@ -44,8 +44,10 @@ __all__ = [
     "new_maps",
     "part_hits",
     "path_to",
+    "rehash",
     "search",
     "segments_free",
+    "table_put",
 ]
 
 #: Statuses of :func:`search` (the pose concerned is ``state[2]``).
@@ -120,34 +122,71 @@ def _pop(keys: Any, vals: Any, n: int) -> int:
 
 @_jit
 def new_maps() -> Any:
-    """Empty ``best`` (pose -> g), ``parent`` (pose -> pose), ``disc`` and ``failed`` maps."""
-    best = Dict.empty(types.int64, types.float64)
-    parent = Dict.empty(types.int64, types.int64)
+    """Empty ``disc`` (position -> disc free) and ``failed`` (hub positions refused) maps."""
     disc = Dict.empty(types.int64, types.int64)
     failed = Dict.empty(types.int64, types.int64)
-    return best, parent, disc, failed
+    return disc, failed
 
 
 @_jit
-def clear_closed(closed: Any, best: Any) -> None:
-    """Reset the closed bytes of every pose the search reached (the keys of ``best``)."""
-    for u in best:
-        closed[u] = 0
+def _slot(tkeys: Any, key: int) -> int:
+    """The slot of ``key`` in the open-addressing table ``tkeys`` (-1 empty), or its empty slot."""
+    mask = tkeys.shape[0] - 1
+    h = (key * 2654435761) & mask
+    while True:
+        k = tkeys[h]
+        if k == key or k == -1:
+            return h
+        h = (h + 1) & mask
 
 
 @_jit
-def path_to(parent: Any, v: int) -> Any:
+def table_put(tkeys: Any, tg: Any, tpar: Any, key: int, g: float, par: int) -> int:
+    """Set ``key``'s g and parent; 1 if ``key`` is new (the caller counts the entries)."""
+    h = _slot(tkeys, key)
+    new = 0
+    if tkeys[h] == -1:
+        tkeys[h] = key
+        new = 1
+    tg[h] = g
+    tpar[h] = par
+    return new
+
+
+@_jit
+def rehash(tkeys: Any, tg: Any, tpar: Any) -> Any:
+    """The table with twice the slots and the same entries."""
+    n = 2 * tkeys.shape[0]
+    keys2 = np.full(n, -1, dtype=np.int64)
+    g2 = np.empty(n, dtype=np.float64)
+    par2 = np.empty(n, dtype=np.int64)
+    for h in range(tkeys.shape[0]):
+        if tkeys[h] >= 0:
+            table_put(keys2, g2, par2, tkeys[h], tg[h], tpar[h])
+    return keys2, g2, par2
+
+
+@_jit
+def clear_closed(closed: Any, tkeys: Any) -> None:
+    """Reset the closed bytes of every pose the search reached (the keys of the table)."""
+    for u in tkeys:
+        if u >= 0:
+            closed[u] = 0
+
+
+@_jit
+def path_to(tkeys: Any, tpar: Any, v: int) -> Any:
     """The poses from the search's start to ``v`` (both included)."""
     n = 0
     u = v
     while u >= 0:
         n += 1
-        u = parent[u]
+        u = tpar[_slot(tkeys, u)]
     out = np.empty(n, dtype=np.int64)
     u = v
     for a in range(n - 1, -1, -1):
         out[a] = u
-        u = parent[u]
+        u = tpar[_slot(tkeys, u)]
     return out
 
 
@@ -186,8 +225,9 @@ def search(
     closed: Any,
     keys: Any,
     vals: Any,
-    best: Any,
-    parent: Any,
+    tkeys: Any,
+    tg: Any,
+    tpar: Any,
     disc: Any,
     failed: Any,
     state: Any,
@@ -202,7 +242,10 @@ def search(
 ) -> int:
     """Run A* until it ends or needs its caller; the status (see the module doc).
 
-    ``state``: expansions, connectivity proved (0/1), the pose concerned, heap size.
+    ``state``: expansions, connectivity proved (0/1), the pose concerned, heap size,
+    table entries. ``tkeys``, ``tg``, ``tpar``: the poses reached, their g and parent (an
+    open-addressing table, -1 empty, at most half full: the caller grows it on
+    :data:`GROW`).
     ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after.
     ``costs``: the straight move, the diagonal move, the turn, the heuristic's step
     (``heuristic_weight * xy_step``). ``xs``, ``ys``: the lattice's coordinates;
@@ -258,7 +301,7 @@ def search(
         # the caller's answers first: room on the heap, the tiles of pending neighbours,
         # the connectivity proof (the pose goes back on the heap meanwhile)
         need = -1
-        if n + 11 > cap:
+        if n + 11 > cap or 2 * (state[4] + 10) > tkeys.shape[0]:
             need = GROW
         if need < 0:
             for d_i in range(-1, 2):
@@ -285,7 +328,7 @@ def search(
             return need
         closed[v] = 1
         state[0] += 1
-        gv = best[v]
+        gv = tg[_slot(tkeys, v)]
         hk = h_head[k]
         for d_i in range(-1, 2):
             for d_j in range(-1, 2):
@@ -298,22 +341,30 @@ def search(
                     continue
                 cost = diag if d_i != 0 and d_j != 0 else straight
                 gu = gv + cost
-                if gu < best.get(u, np.inf):
-                    best[u] = gu
-                    parent[u] = v
-                    h = h_step * hyp[abs(i + d_i - gx), abs(j + d_j - gy)] + hk
-                    n = _push(keys, vals, n, gu + h, u)
+                h = _slot(tkeys, u)
+                if tkeys[h] == -1 or gu < tg[h]:
+                    if tkeys[h] == -1:
+                        tkeys[h] = u
+                        state[4] += 1
+                    tg[h] = gu
+                    tpar[h] = v
+                    hu = h_step * hyp[abs(i + d_i - gx), abs(j + d_j - gy)] + hk
+                    n = _push(keys, vals, n, gu + hu, u)
         for dk in (-1, 1):
             kk = (k + dk) % nk
             u = kk * plane + rem
             if free[u] == 0 or closed[u]:
                 continue
             gu = gv + w
-            if gu < best.get(u, np.inf):
-                best[u] = gu
-                parent[u] = v
-                h = h_step * hyp[abs(i - gx), abs(j - gy)] + h_head[kk]
-                n = _push(keys, vals, n, gu + h, u)
+            h = _slot(tkeys, u)
+            if tkeys[h] == -1 or gu < tg[h]:
+                if tkeys[h] == -1:
+                    tkeys[h] = u
+                    state[4] += 1
+                tg[h] = gu
+                tpar[h] = v
+                hu = h_step * hyp[abs(i - gx), abs(j - gy)] + h_head[kk]
+                n = _push(keys, vals, n, gu + hu, u)
     state[3] = n
     return EXHAUSTED
 
