@@ -88,7 +88,7 @@ def cmd_footprint_speed(args: argparse.Namespace) -> int:
 
     if args.rollouts < 1:
         raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
-    print(report(run(args.rollouts, args.seed, args.coarse_first)))
+    print(report(run(args.rollouts, args.seed, args.coarse_first, args.engine)))
     return 0
 
 
@@ -184,6 +184,13 @@ def register(sub: Subparsers) -> None:
         "--coarse-first",
         action="store_true",
         help="FootprintConfig(coarse_first=True): the lattice of twice the step first",
+    )
+    p.add_argument(
+        "--engine",
+        choices=("compiled", "python"),
+        default="compiled",
+        help="FootprintConfig.engine: the A* loop compiled with numba (default) or the"
+        " pure-Python reference (the same paths)",
     )
     p.set_defaults(func=cmd_footprint_speed)
 

@@ -1,8 +1,10 @@
 """What the base planner's exact-footprint option costs on the conveyor (a command, not a test).
 
-``voot-bench measure footprint-speed [--rollouts N] [--seed S] [--coarse-first]`` prints (:func:`run`,
-:func:`report`):
+``voot-bench measure footprint-speed [--rollouts N] [--seed S] [--coarse-first]
+[--engine compiled|python]`` prints (:func:`run`, :func:`report`):
 
+* the one-off time to compile the A* loop (``engine="compiled"``, numba; or to load it
+  from numba's disk cache when an earlier process compiled it);
 * the CPU time of the exact lattice search per query (the queries where the disc finds
   no path, so :meth:`~voot.envs.motion.planner.BasePlanner.plan_footprint` searches the
   lattice): median, 90th percentile and count, with the static occupancy of every
@@ -14,6 +16,8 @@
   box, redrawn up to 50 times until it passes the pre-check, executed, until a step is
   infeasible or every box is placed), measured in the same run, with and without the
   one-off static occupancy;
+* a digest (sha256) of every exact query's answer: the engines give the same paths, so
+  the same digest;
 
 and the rollouts' boxes placed with each model. The issue's goals: a median exact query
 under 10 ms, a simulation at most 3x the disc's CPU cost.
@@ -21,6 +25,7 @@ under 10 ms, a simulation at most 3x the disc's CPU cost.
 
 from __future__ import annotations
 
+import hashlib
 import statistics
 import time
 from typing import Any
@@ -71,30 +76,49 @@ def _replay(env: Any, steps: list[tuple[Any, list[Any], Any]]) -> tuple[float, i
     return total, feasible
 
 
-def run(rollouts: int = 20, seed: int = 0, coarse_first: bool = False) -> dict[str, Any]:
+def run(
+    rollouts: int = 20, seed: int = 0, coarse_first: bool = False, engine: str = "compiled"
+) -> dict[str, Any]:
     """Measure the exact queries and the simulation cost ratio (see the module doc).
 
     ``coarse_first`` sets :attr:`FootprintConfig.coarse_first` (the option answers
-    "a path exists" as the default does, so the rollouts take the same steps).
+    "a path exists" as the default does, so the rollouts take the same steps), ``engine``
+    :attr:`FootprintConfig.engine`.
     """
     from voot.envs.conveyor.env import ConveyorPackingEnv
     from voot.envs.motion.footprint import FootprintConfig
     from voot.envs.motion.planner import BasePlannerConfig
 
-    fcfg = FootprintConfig(static_cache_size=20, coarse_first=coarse_first)
+    # the one-off compile of the A* loop (numba), before any search
+    t0 = time.process_time()
+    if engine == "compiled":
+        from voot.envs.motion.footprint_astar import warm_compiled
+
+        warm_compiled()
+    compile_seconds = time.process_time() - t0
+    fcfg = FootprintConfig(static_cache_size=20, coarse_first=coarse_first, engine=engine)
     option = BasePlannerConfig(footprint=fcfg)
     # the steps of random rollouts with the option (they go deeper than the disc's)
     steps, placed = _record(ConveyorPackingEnv(preset="v1", planner=option), rollouts, seed)
     disc = ConveyorPackingEnv(preset="v1")
     exact = ConveyorPackingEnv(preset="v1", planner=option)
-    # the one-off static occupancy of each box's footprint
-    t0 = time.process_time()
     search = exact.planner.footprint_search()
+    # each box's footprint's static occupancy
+    t0 = time.process_time()
     for i in range(exact.n):
         search.warm(exact.footprint(i))
     static = time.process_time() - t0
     queries: list[float] = []
     search.timings = queries
+    digest = hashlib.sha256()
+    plan = search.plan
+
+    def digested(*args: Any, **kwargs: Any) -> Any:
+        out = plan(*args, **kwargs)
+        digest.update(b"none" if out is None else np.ascontiguousarray(out).tobytes())
+        return out
+
+    search.plan = digested  # type: ignore[method-assign]
     disc_cpu, disc_ok = _replay(disc, steps)
     exact_cpu, exact_ok = _replay(exact, steps)
     return {
@@ -102,6 +126,9 @@ def run(rollouts: int = 20, seed: int = 0, coarse_first: bool = False) -> dict[s
         "seed": seed,
         "lattice": (fcfg.xy_step, fcfg.headings),
         "coarse_first": coarse_first,
+        "engine": engine,
+        "compile_seconds": compile_seconds,
+        "paths_sha256": digest.hexdigest(),
         "static_seconds": static,
         "boxes": exact.n,
         "steps": len(steps),
@@ -121,7 +148,9 @@ def report(r: dict[str, Any]) -> str:
     lines = [
         f"exact-footprint option on ConveyorPacking-v1, lattice {step * 100:g} cm x "
         f"{360 / headings:g} deg{', coarse_first' if r.get('coarse_first') else ''}, "
-        f"{r['rollouts']} random rollouts (seed {r['seed']}), CPU time",
+        f"engine {r['engine']}, {r['rollouts']} random rollouts (seed {r['seed']}), CPU time",
+        f"compiling the A* loop (or loading numba's cache): {r['compile_seconds']:.2f} s "
+        "(once per process)",
         f"static occupancy: {r['static_seconds']:.1f} s for {r['boxes']} footprints "
         f"({r['static_seconds'] / r['boxes'] * 1000:.0f} ms each, once per env)",
     ]
@@ -144,5 +173,6 @@ def report(r: dict[str, Any]) -> str:
         f"({r['exact_cpu'] / n * 1000:.1f} ms a step, {r['exact_feasible']} feasible): "
         f"ratio {ratio:.1f}x, {with_static:.1f}x with the static occupancy (goal: <= 3x)",
         f"boxes placed per rollout with the footprint: mean {np.mean(r['placed']):.2f}",
+        f"exact answers' sha256: {r['paths_sha256'][:16]} (the same for both engines)",
     ]
     return "\n".join(lines)

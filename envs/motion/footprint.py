@@ -21,6 +21,7 @@ box) (see :mod:`voot.envs.motion.footprint_search`, which searches the lattice).
 
 from __future__ import annotations
 
+import importlib.util
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -35,6 +36,9 @@ FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 
 __all__ = ["Footprint", "FootprintConfig", "FootprintLattice", "footprint_hits"]
+
+#: The A* loops of FootprintConfig.engine.
+ENGINES = ("compiled", "python")
 
 #: Thickness (metres) of the four obstacles standing for the workspace bounds.
 _BOUND_THICKNESS = 5.0
@@ -79,6 +83,12 @@ class FootprintConfig:
         label_after: A* expansions after which the search first proves, by labelling
             the lattice's connected components, that start and goal are connected
             (>= 0; the answer does not depend on it, only the time of "no path").
+        engine: How the A* loop (:mod:`.footprint_astar`) and the lattice's occupancy
+            test (:meth:`FootprintLattice.blocked_window`) run: ``"compiled"`` (default),
+            compiled with numba (a core dependency; compiled once per machine, then
+            cached on disk, :mod:`.footprint_kernels`), or ``"python"``, the pure-Python
+            and numpy reference. Both mark the same poses, expand them in the same order
+            and return the same paths, bit for bit (tested); only the time differs.
     """
 
     xy_step: float = 0.025
@@ -89,6 +99,7 @@ class FootprintConfig:
     label_after: int = 20_000
     lazy_tile: int = 32
     coarse_first: bool = False
+    engine: str = "compiled"
 
     def __post_init__(self) -> None:
         step = _finite(self.xy_step, "FootprintConfig.xy_step")
@@ -107,6 +118,10 @@ class FootprintConfig:
         if not isinstance(self.coarse_first, bool):
             raise ValueError(
                 f"FootprintConfig.coarse_first must be True or False, got {self.coarse_first!r}"
+            )
+        if self.engine not in ENGINES:
+            raise ValueError(
+                f"FootprintConfig.engine must be one of {ENGINES}, got {self.engine!r}"
             )
         if self.coarse_first and (self.headings % 2 or self.headings < 16 or step > 0.1):
             raise ValueError(
@@ -219,6 +234,11 @@ class FootprintLattice:
         config: FootprintConfig,
         tolerance: float = 1e-9,
     ) -> None:
+        if config.engine == "compiled" and importlib.util.find_spec("numba") is None:
+            raise ImportError(
+                'FootprintConfig.engine="compiled" needs numba (pip install numba); '
+                'engine="python" runs the same search (the same paths) without it'
+            )
         self.workspace = workspace
         self.config = config
         self.tolerance = tolerance
@@ -322,6 +342,15 @@ class FootprintLattice:
             oy = sin_t * part.cx + cos_t * part.cy
             ang = th + part.yaw
             ca, sa = np.cos(ang), np.sin(ang)
+            if self.config.engine == "compiled":
+                from voot.envs.motion.footprint_kernels import part_hits
+
+                part_hits(
+                    hit, a0 - i0, b0 - j0, px.ravel(), py.ravel(), ox.ravel(), oy.ravel(),
+                    ca.ravel(), sa.ravel(), np.array([cb, sb, box.half_x, box.half_y]),
+                    np.array([part.half_x, part.half_y]), tol,
+                )  # fmt: skip
+                continue
             part_hit = np.ones((self.nk, a1 - a0, b1 - b0), dtype=bool)
             axes = ((cb, sb), (-sb, cb), (ca, sa), (-sa, ca))
             for ux, uy in axes:

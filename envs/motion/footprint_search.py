@@ -38,14 +38,12 @@ test of oriented rectangles). Between two lattice poses the footprint moves by a
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 import time
 from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,25 +57,20 @@ from voot.envs.motion.footprint import (
     bound_boxes,
     footprint_hits,
 )
+from voot.envs.motion.footprint_astar import (
+    AStarSpec,
+    DiscHub,
+    astar_compiled,
+    astar_python,
+    hypot_table,
+    warm_compiled,
+)
 from voot.envs.motion.footprint_scene import PENDING, LazyScene
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
 
 __all__ = ["DiscHub", "FootprintSearch"]
-
-
-class DiscHub(Protocol):
-    """The disc's free positions reachable from the query's start (see :meth:`FootprintSearch.plan`)."""
-
-    def is_free(self, x: float, y: float) -> bool:
-        """Is the disc centred at ``(x, y)`` free (then every heading is free there)?"""
-
-    def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
-        """The disc's waypoints ``(k, 3)`` from the start to ``pose``, or None."""
-
-
-_SQRT2 = math.sqrt(2.0)
 
 
 class FootprintSearch:
@@ -126,6 +119,11 @@ class FootprintSearch:
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
         self._closed: bytearray | None = None
+        lat = self.lattice
+        self._spec = AStarSpec(
+            lat.shape, lat.xs.tolist(), lat.ys.tolist(), lat.pose, config.xy_step,
+            rotation_weight * config.heading_step, config.heuristic_weight, config.label_after,
+        )  # fmt: skip
         #: A* expansions of the last exact query (for the benchmark's statistics).
         self.last_expansions = 0
         #: When a list, :meth:`plan` appends each query's CPU seconds to it (benchmarks).
@@ -246,7 +244,7 @@ class FootprintSearch:
         movable: tuple[Box2D, ...],
         hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
-        """A* on this lattice (:meth:`_astar`) between the first free of ``starts`` and of ``goals``."""
+        """A* on this lattice (:mod:`.footprint_astar`) between the first free of ``starts`` and of ``goals``."""
         lat = self.lattice
         nx, ny = lat.nx, lat.ny
         free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
@@ -266,8 +264,17 @@ class FootprintSearch:
         def full() -> BoolArray:
             return self._free(footprint, movable)[1]
 
+        def connected() -> bool:
+            return self._connected(gi, si, full())
+
+        if self._closed is None:
+            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
+        engine = astar_compiled if self.config.engine == "compiled" else astar_python
         # search from the goal: to the start, or to the first hub
-        return self._astar(gi, si, free_bytes, resolve, full, hub)
+        found, self.last_expansions = engine(
+            self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub
+        )
+        return found
 
     def _refine(
         self,
@@ -388,8 +395,12 @@ class FootprintSearch:
     def warm(self, footprint: Footprint) -> None:
         """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost).
 
-        With ``coarse_first``, the coarse lattice's too.
+        With ``coarse_first``, the coarse lattice's too; with ``engine="compiled"``, the
+        compiled loop is compiled (or loaded from numba's cache) too.
         """
+        if self.config.engine == "compiled":
+            warm_compiled()
+            hypot_table(self.lattice.nx, self.lattice.ny)
         if self._coarse is not None:
             self._coarse.warm(footprint)
         if self.config.lazy_tile > 0:
@@ -413,147 +424,6 @@ class FootprintSearch:
                 self._masks.popitem(last=False)
         return window
 
-    def _astar(
-        self,
-        si: int,
-        gi: int,
-        free_bytes: bytearray,
-        resolve: Callable[[int], int] | None,
-        full: Callable[[], BoolArray],
-        hub: DiscHub | None,
-    ) -> tuple[list[int], FloatArray | None] | None:
-        """Lattice indices from ``si`` to ``gi`` or to a hub (both ends included), or None.
-
-        Returns the cells and, when the search stopped at a hub, the disc's waypoints
-        from the hub's start to the last cell (None when it reached ``gi``).
-        ``free_bytes`` is the scene (a pose :data:`PENDING` is tested by ``resolve``);
-        ``full()`` is the whole free lattice, for the connectivity proof.
-
-        The loop is written for CPython's speed (the profile's hot spot): the closed set
-        is a byte per lattice pose (one buffer, cleared after each search), the neighbours are enumerated inline, the heuristic's
-        two terms are looked up per position and per heading, and the disc's test of a
-        position is asked once per query (it does not depend on the heading). The order
-        of expansions, and so the path, is that of the plain A* it replaces.
-        """
-        lat = self.lattice
-        best: dict[int, float] = {si: 0.0}
-        if self._closed is None:
-            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
-        try:
-            return self._astar_loop(si, gi, free_bytes, resolve, full, hub, best)
-        finally:
-            closed = self._closed
-            for u in best:
-                closed[u] = 0
-
-    def _astar_loop(
-        self,
-        si: int,
-        gi: int,
-        free_bytes: bytearray,
-        resolve: Callable[[int], int] | None,
-        full: Callable[[], BoolArray],
-        hub: DiscHub | None,
-        best: dict[int, float],
-    ) -> tuple[list[int], FloatArray | None] | None:
-        """:meth:`_astar`'s loop; every pose it closes is a key of ``best``."""
-        lat = self.lattice
-        nk, nx, ny = lat.shape
-        step = self.config.xy_step
-        w = self.rotation_weight * self.config.heading_step
-        plane = nx * ny
-        gk, grem = divmod(gi, plane)
-        gx, gy = divmod(grem, ny)
-        eps = self.config.heuristic_weight
-        h_step = eps * step
-        diag = step * _SQRT2
-        # (delta, d_i, d_j, cost) in the order of the plain loop (d_i, then d_j)
-        moves = [
-            (d_i * ny + d_j, d_i, d_j, diag if d_i and d_j else step)
-            for d_i in (-1, 0, 1)
-            for d_j in (-1, 0, 1)
-            if d_i or d_j
-        ]
-        # the heuristic's heading term per heading
-        h_head = [eps * w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
-        parent: dict[int, int] = {si: -1}
-        closed = self._closed
-        assert closed is not None
-        heap: list[tuple[float, int]] = [(0.0, si)]
-        heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
-        inf = math.inf
-        label_after = self.config.label_after
-        hub_failed: set[int] = set()
-        disc_free: dict[int, bool] = {}
-        hub_nbrs = [d_i * ny + d_j for d_i in (-1, 0, 1) for d_j in (-1, 0, 1) if d_i or d_j]
-        xs, ys = lat.xs.tolist(), lat.ys.tolist()
-        expansions = 0
-        while heap:
-            v = heappop(heap)[1]
-            if closed[v]:
-                continue
-            k, rem = divmod(v, plane)
-            i, j = divmod(rem, ny)
-            head = None
-            if v != gi and hub is not None and rem not in hub_failed:
-                dfree = disc_free.get(rem)
-                if dfree is None:
-                    dfree = disc_free[rem] = hub.is_free(xs[i], ys[j])
-                if dfree:
-                    # a disc position next to one the disc cannot reach from the start is
-                    # (almost always) in the same region: not asked again (skipping a hub
-                    # costs time, never completeness)
-                    near = any(rem + d in hub_failed for d in hub_nbrs)
-                    head = None if near else hub.connect(lat.pose(k, i, j))
-                    if head is None:
-                        hub_failed.add(rem)
-            if v == gi or head is not None:
-                out = []
-                while v >= 0:
-                    out.append(v)
-                    v = parent[v]
-                self.last_expansions = expansions
-                return out[::-1], head
-            closed[v] = 1
-            expansions += 1
-            if expansions == label_after and not self._connected(si, gi, full()):
-                self.last_expansions = expansions
-                return None
-            gv = best[v]
-            hk = h_head[k]
-            inner = 0 < i < nx - 1 and 0 < j < ny - 1
-            for delta, d_i, d_j, cost in moves:
-                u = v + delta
-                if not inner:
-                    ii, jj = i + d_i, j + d_j
-                    if not (0 <= ii < nx and 0 <= jj < ny):
-                        continue
-                f = free_bytes[u]
-                if not f or closed[u]:
-                    continue
-                if f == PENDING and not resolve(u):  # type: ignore[misc]
-                    continue
-                gu = gv + cost
-                if gu < best.get(u, inf):
-                    best[u] = gu
-                    parent[u] = v
-                    heappush(heap, (gu + (h_step * hypot(i + d_i - gx, j + d_j - gy) + hk), u))
-            for dk in (-1, 1):
-                kk = (k + dk) % nk
-                u = kk * plane + rem
-                f = free_bytes[u]
-                if not f or closed[u]:
-                    continue
-                if f == PENDING and not resolve(u):  # type: ignore[misc]
-                    continue
-                gu = gv + w
-                if gu < best.get(u, inf):
-                    best[u] = gu
-                    parent[u] = v
-                    heappush(heap, (gu + (h_step * hypot(i - gx, j - gy) + h_head[kk]), u))
-        self.last_expansions = expansions
-        return None
-
     def _connected(self, si: int, gi: int, free: BoolArray) -> bool:
         """Are the lattice poses ``si`` and ``gi`` in one connected component of ``free``?"""
         structure = np.zeros((3, 3, 3), dtype=bool)
@@ -563,7 +433,12 @@ class FootprintSearch:
         wrapped = np.concatenate([free, free[:1]], axis=0)
         labels, _ = ndimage.label(wrapped, structure=structure)
         first, last = labels[0].ravel(), labels[-1].ravel()
-        pairs = np.unique(np.stack([first, last], axis=1)[first > 0], axis=0)
+        # the distinct (first, last) label pairs, sorted as np.unique(..., axis=0) sorts
+        # them, by one 1-D sort of a combined key (the 2-D row sort was a third of the time)
+        joined = first > 0
+        base = np.int64(labels.max()) + 1
+        keys = np.unique(first[joined].astype(np.int64) * base + last[joined])
+        pairs = np.stack([keys // base, keys % base], axis=1)
         # union-find over the labels joined across the wrap
         root: dict[int, int] = {}
 
@@ -596,7 +471,7 @@ class FootprintSearch:
         lat = self.lattice
         step = self.config.xy_step
         half_turn = 0.5 * self.config.heading_step
-        ts, counts, dthetas = [], [], []
+        counts, dthetas = [], []
         for b in ends:
             dtheta = (b[2] - a[2] + math.pi) % (2.0 * math.pi) - math.pi
             n = max(
@@ -604,9 +479,11 @@ class FootprintSearch:
                 math.ceil(math.hypot(b[0] - a[0], b[1] - a[1]) / (0.5 * step)),
                 math.ceil(abs(dtheta) / half_turn),
             )
-            ts.append(np.linspace(0.0, 1.0, n + 1))
             counts.append(n + 1)
             dthetas.append(dtheta)
+        if self.config.engine == "compiled":
+            return self._segments_free_compiled(a, ends, counts, dthetas, free_bytes, scene)
+        ts = [np.linspace(0.0, 1.0, n) for n in counts]
         t = np.concatenate(ts)
         which = np.repeat(np.arange(len(ends)), counts)
         bx = np.array([b[0] for b in ends], dtype=np.float64)[which]
@@ -636,6 +513,35 @@ class FootprintSearch:
                     break
             free += 1
         return free
+
+    def _segments_free_compiled(
+        self,
+        a: tuple[float, float, float],
+        ends: list[tuple[float, float, float]],
+        counts: list[int],
+        dthetas: list[float],
+        free_bytes: bytearray,
+        scene: LazyScene | None,
+    ) -> int:
+        """:meth:`_segments_free` by :func:`.footprint_kernels.segments_free` (the same count)."""
+        from voot.envs.motion.footprint_kernels import segments_free
+
+        lat = self.lattice
+        grid = np.array(
+            [self.workspace[0], self.workspace[2], self.config.xy_step, self.config.heading_step]
+        )
+        args = (
+            np.frombuffer(free_bytes, dtype=np.uint8), np.array(a, dtype=np.float64),
+            np.array(ends, dtype=np.float64).reshape(-1, 3), np.array(counts, dtype=np.int64),
+            np.array(dthetas, dtype=np.float64), grid, np.array(lat.shape, dtype=np.int64),
+        )  # fmt: skip
+        first = 0
+        while True:
+            first, pending = segments_free(*args, first)
+            if pending < 0:
+                return int(first)
+            assert scene is not None
+            scene.resolve(int(pending))
 
     def _tighten(
         self,

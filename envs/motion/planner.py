@@ -232,6 +232,17 @@ class DiscProbe:
             x, y, self._lists, r_hit, self._blocked_hint
         )
 
+    def blocked_data(self, robot_radius: float) -> tuple[float, NDArray[np.float64]]:
+        """:meth:`blocked`'s numbers for one radius: the hit radius and the boxes (7, n).
+
+        The rows are the centres' x and y, cos and sin of the yaw, the half sizes and the
+        reach, as :func:`_point_hits_any` reads them (what a compiled copy of the test
+        needs to give the same answers).
+        """
+        planner = self._planner
+        r_hit = planner._inflated_radius(robot_radius) - planner.config.contact_tolerance
+        return r_hit, np.array(self._lists, dtype=np.float64).reshape(7, -1)
+
     def blocked_test(self, robot_radius: float) -> Callable[[float, float], bool]:
         """:meth:`blocked` for one radius, as a function of ``(x, y)`` (the radius checked once)."""
         planner = self._planner
@@ -290,11 +301,17 @@ class _DiscHub:
         self._start = start
         self._radius = radius
         self._movable = movable
-        self._blocked = planner.disc_probe(movable).blocked_test(radius)
+        self._probe = planner.disc_probe(movable)
+        self._blocked = self._probe.blocked_test(radius)
         self._start_free = not self._blocked(start.x, start.y)
 
     def is_free(self, x: float, y: float) -> bool:
         return self._start_free and not self._blocked(x, y)
+
+    def disc_data(self) -> tuple[bool, float, tuple[float, float, float, float], FloatArray]:
+        """:meth:`is_free`'s numbers: start free, hit radius, workspace, boxes (7, n)."""
+        r_hit, boxes = self._probe.blocked_data(self._radius)
+        return self._start_free, r_hit, self._planner.workspace, boxes
 
     def connect(self, pose: tuple[float, float, float]) -> FloatArray | None:
         path = self._planner.plan(self._start, pose, self._radius, self._movable)

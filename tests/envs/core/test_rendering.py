@@ -78,3 +78,53 @@ def test_new_renderer_makes_a_renderer_of_the_model() -> None:
         pytest.skip(f"no off-screen OpenGL: {exc}")
     with renderer:
         assert (renderer.width, renderer.height) == (16, 8)
+
+
+#: A renderer (EGL) and a numba-compiled function in one process, in the order given by argv.
+NUMBA_AND_GL = """
+import os, sys
+os.environ["MUJOCO_GL"] = "egl"
+import mujoco, numpy as np
+
+def render():
+    model = mujoco.MjModel.from_xml_string(
+        "<mujoco><worldbody><geom type='box' size='.1 .1 .1'/></worldbody></mujoco>")
+    with mujoco.Renderer(model, 32, 32) as renderer:
+        renderer.update_scene(mujoco.MjData(model))
+        return renderer.render().shape
+
+def jit():
+    import numba
+    @numba.njit
+    def total(a):
+        s = 0.0
+        for x in a:
+            s += x
+        return s
+    return total(np.arange(10.0))
+
+order = (render, jit) if sys.argv[1] == "gl-first" else (jit, render)
+out = {f.__name__: f() for f in order}
+print(out["render"], out["jit"])
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the guard is for Linux's Mesa")
+@pytest.mark.parametrize("order", ["gl-first", "numba-first"])
+def test_numba_and_an_egl_renderer_share_a_process_in_either_order(
+    order: str, tmp_path: Path
+) -> None:
+    """numba's LLVM (llvmlite) beside Mesa's: no crash in either order (unlike triton's).
+
+    So voot does not need to load numba before a renderer (the exact-footprint search
+    compiles with numba, :mod:`voot.envs.motion.footprint_kernels`).
+    """
+    pytest.importorskip("numba")
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    out = subprocess.run(
+        [sys.executable, "-c", NUMBA_AND_GL, order], env=env, capture_output=True, text=True
+    )
+    if out.returncode == 1 and "mujoco" in out.stderr and "gl" in out.stderr.lower():
+        pytest.skip(f"no EGL here: {out.stderr[-200:]}")
+    assert out.returncode == 0, out.stderr  # a segmentation fault is -11
+    assert out.stdout.split()[-1] == "45.0"

@@ -110,3 +110,18 @@ def test_nearest_lattice_pose() -> None:
     assert lat.nearest(0.26, 0.04, math.radians(-6.0)) == (35, 3, 0)
     assert lat.nearest(-0.2, 1.0, 0.0) is None
     assert lat.pose(18, 1, 2) == (pytest.approx(0.1), pytest.approx(0.2), pytest.approx(-math.pi))
+
+
+def test_the_compiled_engine_without_numba_says_how_to_do_without(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "numba" else real(name, *a)
+    )
+    ws = (0.0, 2.0, 0.0, 2.0)
+    with pytest.raises(ImportError, match='engine="python" runs the same search'):
+        FootprintLattice(ws, FootprintConfig(xy_step=0.1, headings=16))
+    FootprintLattice(ws, FootprintConfig(xy_step=0.1, headings=16, engine="python"))
