@@ -139,10 +139,14 @@ def search_solution(
 
 
 if __name__ == "__main__":  # pragma: no cover - re-derives AUTHORS_SOLUTION (about 4 CPU min)
-    from voot.envs.conveyor.env import ConveyorPackingEnv as _Env
+    import gymnasium as gym
+
+    import voot  # noqa: F401  (registers the ids; by id, so this module imports no env)
 
     _found = search_solution(
-        _Env(preset="v1", rooms="authors", base_model="footprint", big_box_ban=True)
+        gym.make(
+            "voot/ConveyorPacking-v1", rooms="authors", base_model="footprint", big_box_ban=True
+        ).unwrapped
     )
     print(_found)
     print("matches AUTHORS_SOLUTION:", _found == AUTHORS_SOLUTION)
