@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -143,10 +143,9 @@ if __name__ == "__main__":  # pragma: no cover - re-derives AUTHORS_SOLUTION (ab
 
     import voot  # noqa: F401  (registers the ids; by id, so this module imports no env)
 
-    _found = search_solution(
-        gym.make(
-            "voot/ConveyorPacking-v1", rooms="authors", base_model="footprint", big_box_ban=True
-        ).unwrapped
-    )
+    _env = gym.make(
+        "voot/ConveyorPacking-v1", rooms="authors", base_model="footprint", big_box_ban=True
+    ).unwrapped
+    _found = search_solution(cast("ConveyorPackingEnv", _env))
     print(_found)
     print("matches AUTHORS_SOLUTION:", _found == AUTHORS_SOLUTION)
