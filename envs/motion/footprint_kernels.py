@@ -328,6 +328,8 @@ def search(
             return need
         closed[v] = 1
         state[0] += 1
+        # the relaxation below is written out twice (moves in the plane, turns) on purpose:
+        # a shared helper measured 5-7% slower per query (footprint-speed, this machine)
         gv = tg[_slot(tkeys, v)]
         hk = h_head[k]
         for d_i in range(-1, 2):
