@@ -88,7 +88,9 @@ def cmd_footprint_speed(args: argparse.Namespace) -> int:
 
     if args.rollouts < 1:
         raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
-    print(report(run(args.rollouts, args.seed, args.coarse_first, args.engine)))
+    if args.label_after is not None and args.label_after < 0:
+        raise CLIError(f"--label-after must be >= 0 (0: never), got {args.label_after}")
+    print(report(run(args.rollouts, args.seed, args.coarse_first, args.engine, args.label_after)))
     return 0
 
 
@@ -191,6 +193,13 @@ def register(sub: Subparsers) -> None:
         default="compiled",
         help="FootprintConfig.engine: the A* loop compiled with numba (default) or the"
         " pure-Python reference (the same paths)",
+    )
+    p.add_argument(
+        "--label-after",
+        type=int,
+        default=None,
+        help="FootprintConfig.label_after: expansions before the connectivity proof"
+        " (default: the option's; the answers do not depend on it)",
     )
     p.set_defaults(func=cmd_footprint_speed)
 

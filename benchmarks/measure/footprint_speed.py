@@ -28,6 +28,7 @@ from __future__ import annotations
 import hashlib
 import statistics
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -77,13 +78,18 @@ def _replay(env: Any, steps: list[tuple[Any, list[Any], Any]]) -> tuple[float, i
 
 
 def run(
-    rollouts: int = 20, seed: int = 0, coarse_first: bool = False, engine: str = "compiled"
+    rollouts: int = 20,
+    seed: int = 0,
+    coarse_first: bool = False,
+    engine: str = "compiled",
+    label_after: int | None = None,
 ) -> dict[str, Any]:
     """Measure the exact queries and the simulation cost ratio (see the module doc).
 
     ``coarse_first`` sets :attr:`FootprintConfig.coarse_first` (the option answers
     "a path exists" as the default does, so the rollouts take the same steps), ``engine``
-    :attr:`FootprintConfig.engine`.
+    :attr:`FootprintConfig.engine`, ``label_after`` (None: the default)
+    :attr:`FootprintConfig.label_after` (the answers do not depend on it).
     """
     from voot.envs.conveyor.env import ConveyorPackingEnv
     from voot.envs.motion.footprint import FootprintConfig
@@ -97,6 +103,8 @@ def run(
         warm_compiled()
     compile_seconds = time.process_time() - t0
     fcfg = FootprintConfig(static_cache_size=20, coarse_first=coarse_first, engine=engine)
+    if label_after is not None:
+        fcfg = replace(fcfg, label_after=label_after)
     option = BasePlannerConfig(footprint=fcfg)
     # the steps of random rollouts with the option (they go deeper than the disc's)
     steps, placed = _record(ConveyorPackingEnv(preset="v1", planner=option), rollouts, seed)
@@ -127,6 +135,7 @@ def run(
         "lattice": (fcfg.xy_step, fcfg.headings),
         "coarse_first": coarse_first,
         "engine": engine,
+        "label_after": fcfg.label_after,
         "compile_seconds": compile_seconds,
         "paths_sha256": digest.hexdigest(),
         "static_seconds": static,
@@ -148,7 +157,7 @@ def report(r: dict[str, Any]) -> str:
     lines = [
         f"exact-footprint option on ConveyorPacking-v1, lattice {step * 100:g} cm x "
         f"{360 / headings:g} deg{', coarse_first' if r.get('coarse_first') else ''}, "
-        f"engine {r['engine']}, {r['rollouts']} random rollouts (seed {r['seed']}), CPU time",
+        f"engine {r['engine']}, label_after {r.get('label_after', 20_000)}, {r['rollouts']} random rollouts (seed {r['seed']}), CPU time",
         f"compiling the A* loop (or loading numba's cache): {r['compile_seconds']:.2f} s "
         "(once per process)",
         f"static occupancy: {r['static_seconds']:.1f} s for {r['boxes']} footprints "

@@ -252,6 +252,9 @@ def test_defaults() -> None:
         ("random_shooting", {"horizon": 0}, "horizon must be an integer >= 1"),
         ("random_shooting", {"gamma": 1.5}, "gamma must be"),
         ("random_shooting", {"noise": 0.1}, r"unknown option\(s\) \['noise'\]"),
+        ("random_shooting", {"feasibility_retries": -1}, "feasibility_retries must be"),
+        ("random_shooting", {"feasibility_retries": 2.5}, "feasibility_retries must be"),
+        ("cem", {"feasibility_retries": 50}, r"unknown option\(s\) \['feasibility_retries'\]"),
         ("cmaes", {}, "unknown sampling-based planner 'cmaes'"),
     ],
 )
@@ -287,3 +290,76 @@ def test_planner_seed_and_options_are_checked_by_name() -> None:
     assert ShootingPlanner(Quadratic(), "cem", np.int64(3)).rng.random() == (
         np.random.default_rng(3).random()
     )
+
+
+class PreChecked(Alternating):
+    """:class:`Alternating` with a pre-check that passes even-depth actions with
+    ``a[1] >= passes_above`` (odd depths always pass); counts the checks."""
+
+    def __init__(self, passes_above: float, **kwargs: float) -> None:
+        super().__init__(**kwargs)
+        self.passes_above = passes_above
+        self.checked: list[tuple[int, np.ndarray]] = []
+
+    def is_feasible(self, action: np.ndarray) -> bool:
+        self.checked.append((self.t, action.copy()))
+        return self.t % 2 == 1 or bool(action[1] >= self.passes_above)
+
+
+def test_random_shooting_without_retries_never_pre_checks() -> None:
+    problem = PreChecked(passes_above=0.5)
+    default = plan(problem, "random_shooting", n_simulations=20, seed=4, horizon=4)
+    assert problem.checked == [] and default.n_feasibility_checks == 0
+    # a problem without a pre-check: the retries change nothing, same draws
+    same = plan(
+        Alternating(),
+        "random_shooting",
+        n_simulations=20,
+        seed=4,
+        horizon=4,
+        feasibility_retries=50,
+    )
+    assert np.array_equal(same.best_return_curve, default.best_return_curve)
+    assert same.n_feasibility_checks == 0
+
+
+def test_random_shooting_redraws_each_step_until_the_pre_check_passes() -> None:
+    problem = PreChecked(passes_above=0.9)  # 10% of the even-depth draws pass
+    res = plan(
+        problem, "random_shooting", n_simulations=30, seed=2, horizon=4, feasibility_retries=50
+    )
+    executed = [a for t, a in problem.seen if t % 2 == 0]
+    # every executed even-depth action passed (0.9^50 ~ 0.5%: no step ran out of tries)
+    assert executed and all(a[1] >= 0.9 for a in executed)
+    assert res.n_feasibility_checks == len(problem.checked) > res.n_steps
+    assert len(problem.checked) > 2 * len(executed)  # redraws happened at even depths
+    # each check but the last of a step failed; the executed action is the last checked
+    assert np.array_equal(problem.checked[-1][1], problem.seen[-1][1])
+
+
+def test_random_shooting_executes_the_last_draw_when_every_try_fails() -> None:
+    problem = PreChecked(passes_above=2.0, infeasible_below=2.0)  # nothing passes
+    res = plan(
+        problem, "random_shooting", n_simulations=5, seed=0, horizon=3, feasibility_retries=7
+    )
+    assert res.n_feasibility_checks == 5 * 7  # 7 tries per rollout's first step
+    assert res.n_steps == 5 and res.best_return == -2.0
+    last_tries = [a for _, a in problem.checked[6::7]]
+    assert all(np.array_equal(a, b) for a, (_, b) in zip(last_tries, problem.seen, strict=True))
+
+
+def test_random_shooting_with_retries_is_deterministic_given_the_seed() -> None:
+    runs = [
+        plan(
+            PreChecked(passes_above=0.7),
+            "random_shooting",
+            n_simulations=25,
+            seed=s,
+            horizon=4,
+            feasibility_retries=10,
+        )
+        for s in (3, 3, 5)
+    ]
+    assert np.array_equal(runs[0].best_return_curve, runs[1].best_return_curve)
+    assert runs[0].n_feasibility_checks == runs[1].n_feasibility_checks
+    assert not np.array_equal(runs[0].best_return_curve, runs[2].best_return_curve)

@@ -27,15 +27,22 @@ step's action and value); the rollout it cut short is discarded, and a later ``s
 starts again from the root.
 
 **Infeasible actions** are executed, earn their reward (-2 on the robot domains and the
-chains) and end the rollout, as in the tree search. The problem's optional pre-check
-(``is_feasible``) is not used: a Gaussian over whole sequences has no notion of
-re-drawing one step until it passes, and re-drawing would change the distribution the
-update assumes. ``n_feasibility_checks`` is therefore 0.
+chains) and end the rollout, as in the tree search. CEM, MPPI and predictive sampling
+never use the problem's optional pre-check (``is_feasible``): a Gaussian over whole
+sequences has no notion of re-drawing one step until it passes, and re-drawing would
+change the distribution the update assumes (their ``n_feasibility_checks`` is 0).
+Random shooting keeps no distribution, so it can: with
+``RandomShootingConfig.feasibility_retries`` :math:`= k > 0` each step's action is
+re-drawn uniformly until it passes the pre-check, at most :math:`k` draws in all, and
+the last draw is executed feasible or not: the tree search's two stages
+(:meth:`voot.tree.mcts.MCTS.add_action`, the authors' 50 tries) applied to every step
+of a rollout. The default :math:`k = 0` never pre-checks.
 
 **Methods** (:data:`SHOOTING_PLANNERS`), every constant a named option:
 
 ``random_shooting`` (:class:`RandomShootingConfig`)
-    Every sequence uniform in :math:`[-1, 1]^{H \times W}`; the reference.
+    Every sequence uniform in :math:`[-1, 1]^{H \times W}`; the reference (optionally
+    with the pre-check, ``feasibility_retries``).
 ``cem`` (:class:`CEMConfig`)
     Cross-entropy method (Rubinstein and Kroese, *The Cross-Entropy Method*, 2004), as
     used for MPC by PETS (Chua et al., 2018): a diagonal Gaussian over the sequence;
@@ -83,7 +90,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from voot import validation as V
-from voot.optim.base import FloatArray
+from voot.optim.base import Bounds, FloatArray
 from voot.tree.problem import PlanningProblem, check_problem, problem_bounds, step_values
 from voot.tree.search import PlanResult, Search, check_n_simulations
 
@@ -129,9 +136,22 @@ class ShootingConfig:
 
 @dataclass(frozen=True)
 class RandomShootingConfig(ShootingConfig):
-    """Uniform random shooting: independent uniform sequences (the reference)."""
+    """Uniform random shooting: independent uniform sequences (the reference).
+
+    Attributes:
+        feasibility_retries: :math:`k`, uniform draws per step until one passes the
+            problem's pre-check (``is_feasible``), the last executed in any case; 0 (the
+            default) never pre-checks, 50 is the authors' number of tries for a new
+            action of every tree planner. Ignored by a problem without a pre-check.
+    """
+
+    feasibility_retries: int = 0
 
     name: ClassVar[str] = "random_shooting"
+    _checks: ClassVar[Mapping[str, V.Check]] = {
+        **ShootingConfig._checks,
+        "feasibility_retries": partial(V.integer, low=0),
+    }
 
 
 @dataclass(frozen=True)
@@ -303,6 +323,14 @@ class ShootingPlanner(Search):
         self.config = cfg
         self.rng = np.random.default_rng(seed)
         self._root = problem.snapshot()
+        check = getattr(problem, "is_feasible", None)
+        retries = cfg.feasibility_retries if isinstance(cfg, RandomShootingConfig) else 0
+        #: The problem's pre-check when the planner uses it (random shooting, k > 0).
+        self._check: Callable[[FloatArray], bool] | None = (
+            check if callable(check) and retries > 0 else None
+        )
+        self._retries = retries
+        self.n_feasibility_checks = 0
         H = cfg.horizon
         self._width = problem_bounds(problem).dim
         #: Mean (CEM, MPPI) or nominal (predictive sampling) sequence, ``(H, W)``.
@@ -392,6 +420,8 @@ class ShootingPlanner(Search):
             if d > self._width:
                 z = self._widen(d, z)
             action = bounds.lower + (z[t, :d] + 1.0) * (0.5 * bounds.width)
+            if self._check is not None:
+                action = self._prechecked(action, bounds, z[t, :d])
             res = problem.step(action)
             self.n_steps += 1
             # the tree search's errors: a NaN objective has no order (the elites, the
@@ -409,6 +439,20 @@ class ShootingPlanner(Search):
                 break
             discount *= gamma
         return out, z
+
+    def _prechecked(self, action: FloatArray, bounds: Bounds, row: FloatArray) -> FloatArray:
+        """Stage 1 of the two stages: re-draw ``row`` (a step of the sequence, in place)
+        until its action passes the pre-check, at most ``feasibility_retries`` draws in
+        all; the action to execute."""
+        check = self._check
+        assert check is not None
+        for t in range(self._retries):
+            self.n_feasibility_checks += 1
+            if check(action) or t == self._retries - 1:
+                break
+            row[:] = self.rng.uniform(-1.0, 1.0, size=row.shape)
+            action = bounds.lower + (row + 1.0) * (0.5 * bounds.width)
+        return action
 
     def _simulate(self) -> None:
         rollout, z = self._rollout(self._propose())
@@ -454,7 +498,7 @@ class ShootingPlanner(Search):
             n_simulations=self.n_simulations,
             n_nodes=0,
             n_steps=self.n_steps,
-            n_feasibility_checks=0,
+            n_feasibility_checks=self.n_feasibility_checks,
             n_node_visits=self.n_steps,
             wall_time=self.wall_time,
             mcts=None,
