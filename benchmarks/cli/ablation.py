@@ -57,6 +57,8 @@ def cmd_ablation(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise C.CLIError(str(exc)) from None
 
+    env_kwargs = C.parse_assignments(args.env_kwargs, "--env-kwargs")
+
     def specs_of(seeds: Sequence[int]) -> list[PlanSpec]:
         return A.ablation_specs(
             switches,
@@ -64,6 +66,7 @@ def cmd_ablation(args: argparse.Namespace) -> int:
             problems=problems,
             include_baseline=not args.no_baseline,
             simulations=args.simulations,
+            env_kwargs=env_kwargs,
         )
 
     tuning = specs_of(C.parse_range(args.tuning_seeds, "--tuning-seeds"))
@@ -111,6 +114,14 @@ def register(sub: Subparsers) -> None:
     )
     p.add_argument(
         "--no-baseline", action="store_true", help="do not run the v1 defaults (no variant)"
+    )
+    p.add_argument(
+        "--env-kwargs",
+        nargs="+",
+        metavar="NAME=VALUE",
+        help="keywords of gymnasium.make: every variant on that version of the domain (e.g."
+        " base_model=footprint big_box_ban=true rooms=authors, the domain ablation's"
+        " authors_domain); its runs are tuned and tabled apart",
     )
     p.add_argument("--list", action="store_true", help="print the switches and exit")
     p.add_argument(

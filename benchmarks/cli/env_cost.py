@@ -90,7 +90,9 @@ def cmd_footprint_speed(args: argparse.Namespace) -> int:
         raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
     if args.label_after is not None and args.label_after < 0:
         raise CLIError(f"--label-after must be >= 0 (0: never), got {args.label_after}")
-    print(report(run(args.rollouts, args.seed, args.coarse_first, args.engine, args.label_after)))
+    r = run(args.rollouts, args.seed, args.coarse_first, args.engine, args.label_after,
+            args.heuristic)  # fmt: skip
+    print(report(r))
     return 0
 
 
@@ -200,6 +202,13 @@ def register(sub: Subparsers) -> None:
         default=None,
         help="FootprintConfig.label_after: expansions before the connectivity proof"
         " (default: the option's; the answers do not depend on it)",
+    )
+    p.add_argument(
+        "--heuristic",
+        choices=("euclidean", "geodesic"),
+        default="euclidean",
+        help="FootprintConfig.heuristic: A*'s position term (the same 'a path exists'"
+        " answers, other paths)",
     )
     p.set_defaults(func=cmd_footprint_speed)
 

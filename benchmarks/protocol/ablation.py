@@ -262,9 +262,15 @@ def ablation_specs(
     problems: Sequence[str] = ABLATION_PROBLEMS,
     include_baseline: bool = True,
     simulations: int | None = None,
+    env_kwargs: Mapping[str, Any] | None = None,
 ) -> list[PlanSpec]:
     """Every run of the ablation on ``seeds``: the v1 defaults (no variant) and each
-    switch's variant, for VOOT and PW-UCT, every setting of their grids."""
+    switch's variant, for VOOT and PW-UCT, every setting of their grids.
+
+    ``env_kwargs`` (keywords of ``gymnasium.make``, e.g. a domain switch of
+    :mod:`voot.bench.protocol.domain_ablation`) run every variant on that version of the
+    domain: the runs are its own (their problem label names the keywords), tuned and
+    tabled apart from the plain domain's."""
     if simulations is not None and (
         isinstance(simulations, bool) or not isinstance(simulations, int) or simulations < 1
     ):
@@ -273,6 +279,7 @@ def ablation_specs(
         )
     seed_list = list(dict.fromkeys(int(s) for s in seeds))
     names = [P.normalize_problem(p) for p in problems]
+    kwargs = tuple(sorted(P.check_env_kwargs(env_kwargs).items()))
     variants: list[Switch | None] = [None] if include_baseline else []
     variants += list(switches)
     out = []
@@ -290,7 +297,7 @@ def ablation_specs(
                             PlanSpec(
                                 problem,
                                 None,
-                                (),
+                                kwargs,
                                 planner,
                                 items,
                                 n_sims,

@@ -20,7 +20,7 @@ from voot.envs.conveyor.problems import HORIZON
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
 from voot.envs.core.state import replace
-from voot.envs.motion.footprint import FootprintConfig
+from voot.envs.motion.footprint import HEURISTICS, FootprintConfig
 from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 
@@ -70,6 +70,13 @@ class ConveyorConfig:
             finds no path: sets ``planner.footprint`` to a default
             :class:`~voot.envs.motion.footprint.FootprintConfig` when it is None; a
             keyword ``gymnasium.make`` and ``voot-bench plan --env-kwargs`` can pass).
+        footprint_heuristic: The ``heuristic`` of the
+            :class:`~voot.envs.motion.footprint.FootprintConfig` that
+            ``base_model="footprint"`` sets: ``"euclidean"`` (default) or ``"geodesic"``
+            (the same "a path exists" answers, other paths of about the same length,
+            4-6 times less CPU per VOOT simulation: docs/motion-planning.md). A keyword
+            ``--env-kwargs`` can pass; another value than the default needs
+            ``base_model="footprint"`` and no ``planner.footprint`` of the caller's.
         big_box_ban: The authors' explicit rule at execution (``problem_environments/
             conveyor_belt_env.py`` in beomjoonkim/voot): the big boxes may not be placed in
             the big rooms. False (v0, v1): voot lets the base planner's disc and the door
@@ -104,6 +111,7 @@ class ConveyorConfig:
     precheck: Precheck = Precheck.FULL_STEP
     rooms: str = "voot"
     base_model: str = "disc"
+    footprint_heuristic: str = "euclidean"
     big_box_ban: bool = False
     big_boxes: int = 2
     first_room: tuple[float, float, float, float] = (-4.0, -0.7, -1.0, 3.0)
@@ -121,11 +129,26 @@ class ConveyorConfig:
                 f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
                 f"got {self.base_model!r}"
             )
-        if self.base_model == "footprint" and isinstance(self.planner, BasePlannerConfig):
-            if self.planner.footprint is None:
-                object.__setattr__(
-                    self, "planner", replace(self.planner, footprint=FootprintConfig())
-                )
+        if self.footprint_heuristic not in HEURISTICS:
+            raise ValueError(
+                f"ConveyorConfig.footprint_heuristic must be one of {', '.join(HEURISTICS)}, "
+                f"got {self.footprint_heuristic!r}"
+            )
+        sets_footprint = (
+            self.base_model == "footprint"
+            and isinstance(self.planner, BasePlannerConfig)
+            and self.planner.footprint is None
+        )
+        if self.footprint_heuristic != "euclidean" and not sets_footprint:
+            raise ValueError(
+                "ConveyorConfig.footprint_heuristic sets the heuristic of the footprint"
+                ' option that base_model="footprint" sets; it needs base_model="footprint"'
+                " and no planner.footprint of the caller's (set FootprintConfig.heuristic"
+                " there instead)"
+            )
+        if sets_footprint:
+            footprint = FootprintConfig(heuristic=self.footprint_heuristic)
+            object.__setattr__(self, "planner", replace(self.planner, footprint=footprint))
         if type(self.big_box_ban) is not bool:
             raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
         V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)

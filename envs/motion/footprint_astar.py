@@ -16,6 +16,15 @@ hypot(di, dj) + w * dk)``; the open list a heap of ``(f, index)`` (ties by index
 hub (:class:`DiscHub`), it also stops at the first pose whose position the disc reaches
 from the query's start. After ``label_after`` expansions, ``connected()`` is asked once
 and a False answer ends the search (no path).
+
+With a position table ``hpos`` (``FootprintConfig.heuristic="geodesic"``), the
+heuristic's position term is ``eps * xy_step * hpos[i, j]`` instead of the straight
+line: :func:`~.geodesic.geodesic_steps`, the 8-connected lattice distance (in steps) from the
+target's position through the positions where the footprint is free at some heading
+among the static obstacles. Every lattice path projects to such a walk (and a turn costs
+nothing there), so the term is still a lower bound, and much tighter where walls and
+doors bend the way. A position it cannot reach (infinite) is not entered: no lattice
+path from there reaches the target.
 """
 
 from __future__ import annotations
@@ -31,6 +40,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from voot.envs.motion.footprint_scene import PENDING
+from voot.envs.motion.geodesic import geodesic_steps
 
 FloatArray = NDArray[np.float64]
 
@@ -39,6 +49,7 @@ __all__ = [
     "DiscHub",
     "astar_compiled",
     "astar_python",
+    "geodesic_steps",
     "numba_available",
     "warm_compiled",
 ]
@@ -98,6 +109,7 @@ def astar_python(
     resolve: Callable[[int], int] | None,
     connected: Callable[[], bool],
     hub: DiscHub | None,
+    hpos: FloatArray | None = None,
 ) -> tuple[Found, int]:
     """The reference loop: the path (see :data:`Found`) and the expansions.
 
@@ -108,7 +120,7 @@ def astar_python(
     """
     best: dict[int, float] = {si: 0.0}
     try:
-        return _python_loop(spec, si, gi, free_bytes, closed, resolve, connected, hub, best)
+        return _python_loop(spec, si, gi, free_bytes, closed, resolve, connected, hub, best, hpos)
     finally:
         for u in best:
             closed[u] = 0
@@ -124,6 +136,7 @@ def _python_loop(
     connected: Callable[[], bool],
     hub: DiscHub | None,
     best: dict[int, float],
+    hpos: FloatArray | None,
 ) -> tuple[Found, int]:
     """:func:`astar_python`'s loop; every pose it closes is a key of ``best``."""
     nk, nx, ny = spec.shape
@@ -141,6 +154,8 @@ def _python_loop(
         if d_i or d_j
     ]
     h_head = _h_head(spec, gk)
+    # the position term per position (rem): the geodesic table's, else None (the line's)
+    geo: list[float] | None = None if hpos is None else hpos.ravel().tolist()
     parent: dict[int, int] = {si: -1}
     heap: list[tuple[float, int]] = [(0.0, si)]
     heappop, heappush, hypot = heapq.heappop, heapq.heappush, math.hypot
@@ -195,10 +210,17 @@ def _python_loop(
             if f == PENDING and not resolve(u):  # type: ignore[misc]
                 continue
             gu = gv + cost
+            if geo is not None:
+                hp = geo[rem + delta]
+                if hp == inf:
+                    continue
             if gu < best.get(u, inf):
                 best[u] = gu
                 parent[u] = v
-                heappush(heap, (gu + (h_step * hypot(i + d_i - gx, j + d_j - gy) + hk), u))
+                if geo is not None:
+                    heappush(heap, (gu + (h_step * hp + hk), u))
+                else:
+                    heappush(heap, (gu + (h_step * hypot(i + d_i - gx, j + d_j - gy) + hk), u))
         for dk in (-1, 1):
             kk = (k + dk) % nk
             u = kk * plane + rem
@@ -211,7 +233,10 @@ def _python_loop(
             if gu < best.get(u, inf):
                 best[u] = gu
                 parent[u] = v
-                heappush(heap, (gu + (h_step * hypot(i - gx, j - gy) + h_head[kk]), u))
+                if geo is not None:
+                    heappush(heap, (gu + (h_step * geo[rem] + h_head[kk]), u))
+                else:
+                    heappush(heap, (gu + (h_step * hypot(i - gx, j - gy) + h_head[kk]), u))
     return None, expansions
 
 
@@ -257,6 +282,7 @@ def warm_compiled() -> None:
     astar_compiled(spec, 0, 71, free, closed, resolve, lambda: True, None)
     from voot.envs.motion import footprint_kernels as K
 
+    K.geodesic(np.ones((3, 3), dtype=np.bool_), 1, 1)
     # the lattice's occupancy test and the tightening's segment checks
     K.part_hits(np.zeros((1, 1, 1), dtype=bool), 0, 0, np.zeros(1), np.zeros(1), np.zeros(1),
                 np.zeros(1), np.ones(1), np.zeros(1), np.ones(4), np.ones(2), 0.0)  # fmt: skip
@@ -274,6 +300,7 @@ def astar_compiled(
     resolve: Callable[[int], int] | None,
     connected: Callable[[], bool],
     hub: DiscHub | None,
+    hpos: FloatArray | None = None,
 ) -> tuple[Found, int]:
     """:func:`astar_python`'s result, by the compiled loop of :mod:`.footprint_kernels`."""
     from voot.envs.motion import footprint_kernels as K
@@ -292,8 +319,10 @@ def astar_compiled(
     keys[0], vals[0] = 0.0, si
     state = np.array([0, 0, -1, 1, 1], dtype=np.int64)
     dims = np.array(
-        [nk, nx, ny, si, gi, hub is not None, spec.label_after], dtype=np.int64
+        [nk, nx, ny, si, gi, hub is not None, spec.label_after, hpos is not None],
+        dtype=np.int64,
     )  # fmt: skip
+    geo = np.zeros(1) if hpos is None else np.ascontiguousarray(hpos, dtype=np.float64).ravel()
     costs = np.array([spec.step, spec.step * _SQRT2, spec.w, spec.eps * spec.step])
     h_head = np.array(_h_head(spec, gi // plane), dtype=np.float64)
     hyp = hypot_table(nx, ny)
@@ -312,7 +341,7 @@ def astar_compiled(
         while True:
             status = K.search(
                 free, closed_view, keys, vals, tkeys, tg, tpar, disc, failed, state, dims, costs,
-                h_head, hyp, xs, ys, disc_par, disc_boxes,
+                h_head, hyp, geo, xs, ys, disc_par, disc_boxes,
             )  # fmt: skip
             v = int(state[2])
             if status == K.FOUND:

@@ -32,6 +32,8 @@ import numpy as np
 from numba import types
 from numba.typed import Dict
 
+from voot.envs.motion.geodesic import geodesic_steps
+
 __all__ = [
     "CONNECT",
     "DISC",
@@ -41,6 +43,7 @@ __all__ = [
     "LABEL",
     "RESOLVE",
     "clear_closed",
+    "geodesic",
     "new_maps",
     "part_hits",
     "path_to",
@@ -235,6 +238,7 @@ def search(
     costs: Any,
     h_head: Any,
     hyp: Any,
+    geo: Any,
     xs: Any,
     ys: Any,
     disc_par: Any,
@@ -246,14 +250,16 @@ def search(
     table entries. ``tkeys``, ``tg``, ``tpar``: the poses reached, their g and parent (an
     open-addressing table, -1 empty, at most half full: the caller grows it on
     :data:`GROW`).
-    ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after.
+    ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after, geodesic (0/1).
+    ``geo``: the geodesic position term per position when ``dims[7]`` is 1
+    (:func:`~.geodesic.geodesic_steps`; an infinite entry is not entered).
     ``costs``: the straight move, the diagonal move, the turn, the heuristic's step
     (``heuristic_weight * xy_step``). ``xs``, ``ys``: the lattice's coordinates;
     ``disc_par``, ``disc_boxes``: the hub's disc test (:func:`_disc_free`), or ask the
     caller (status :data:`DISC`) when ``disc_par[0]`` is 0.
     """
     nk, nx, ny = dims[0], dims[1], dims[2]
-    gi, has_hub, label_after = dims[4], dims[5], dims[6]
+    gi, has_hub, label_after, use_geo = dims[4], dims[5], dims[6], dims[7]
     plane = nx * ny
     gx = (gi % plane) // ny
     gy = gi % ny
@@ -343,6 +349,11 @@ def search(
                     continue
                 cost = diag if d_i != 0 and d_j != 0 else straight
                 gu = gv + cost
+                hp = 0.0
+                if use_geo:
+                    hp = geo[rem + d_i * ny + d_j]
+                    if hp == np.inf:
+                        continue
                 h = _slot(tkeys, u)
                 if tkeys[h] == -1 or gu < tg[h]:
                     if tkeys[h] == -1:
@@ -350,7 +361,10 @@ def search(
                         state[4] += 1
                     tg[h] = gu
                     tpar[h] = v
-                    hu = h_step * hyp[abs(i + d_i - gx), abs(j + d_j - gy)] + hk
+                    if use_geo:
+                        hu = h_step * hp + hk
+                    else:
+                        hu = h_step * hyp[abs(i + d_i - gx), abs(j + d_j - gy)] + hk
                     n = _push(keys, vals, n, gu + hu, u)
         for dk in (-1, 1):
             kk = (k + dk) % nk
@@ -365,7 +379,10 @@ def search(
                     state[4] += 1
                 tg[h] = gu
                 tpar[h] = v
-                hu = h_step * hyp[abs(i - gx), abs(j - gy)] + h_head[kk]
+                if use_geo:
+                    hu = h_step * geo[rem] + h_head[kk]
+                else:
+                    hu = h_step * hyp[abs(i - gx), abs(j - gy)] + h_head[kk]
                 n = _push(keys, vals, n, gu + hu, u)
     state[3] = n
     return EXHAUSTED
@@ -465,3 +482,8 @@ def segments_free(
         if pending >= 0:
             return s, pending
     return ends.shape[0], -1
+
+
+#: :func:`voot.envs.motion.geodesic.geodesic_steps`, compiled (the same function,
+#: so the same table bit for bit).
+geodesic = _jit(geodesic_steps)

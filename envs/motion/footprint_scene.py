@@ -29,10 +29,33 @@ from numpy.typing import NDArray
 from voot.envs.motion.footprint import Footprint, FootprintLattice
 from voot.envs.motion.planar import Box2D
 
-__all__ = ["PENDING", "LazyScene"]
+__all__ = ["PENDING", "LazyScene", "pack_static", "unpack_static"]
 
 #: Byte of a pose the static obstacles leave free and the movable boxes are yet to be tested at.
 PENDING = 2
+
+
+def pack_static(free: NDArray[np.bool_]) -> NDArray[np.uint8]:
+    """A free lattice ``(headings, nx, ny)`` kept at one bit per pose (packed along y).
+
+    The static occupancy of a footprint is built once (about 60 ms on the conveyor) and
+    kept for every carried object; at a bit per pose (1.35 MB on the conveyor instead of
+    10.8) a search keeps every object's.
+    """
+    return np.packbits(free, axis=-1)
+
+
+def unpack_static(
+    packed: NDArray[np.uint8], ny: int, window: tuple[int, int, int, int] | None = None
+) -> NDArray[np.uint8]:
+    """The bytes (1 free, 0 blocked) of :func:`pack_static`'s lattice with ``ny`` columns,
+    or of its ``(i0, i1, j0, j1)`` window (every heading)."""
+    if window is None:
+        return np.unpackbits(packed, axis=-1, count=ny)
+    i0, i1, j0, j1 = window
+    b0 = j0 // 8
+    bits = np.unpackbits(packed[:, i0:i1, b0 : (j1 + 7) // 8], axis=-1)
+    return bits[:, :, j0 - 8 * b0 : j1 - 8 * b0]
 
 
 class LazyScene:
@@ -41,22 +64,26 @@ class LazyScene:
     Args:
         lattice: The lattice.
         footprint: The footprint the scene is of.
-        static: The static obstacles' free lattice of ``footprint`` (one byte per pose,
-            1 free, 0 blocked, in ``lattice.shape`` order).
+        static: The static obstacles' free lattice of ``footprint``, packed
+            (:func:`pack_static`).
         tile: Side of a tile, in lattice positions (>= 1).
     """
 
     def __init__(
-        self, lattice: FootprintLattice, footprint: Footprint, static: bytes, tile: int
+        self,
+        lattice: FootprintLattice,
+        footprint: Footprint,
+        static: NDArray[np.uint8],
+        tile: int,
     ) -> None:
         if tile < 1:
             raise ValueError(f"tile must be >= 1, got {tile}")
         self.lattice = lattice
         self.footprint = footprint
         self.tile = tile
-        self._static = np.frombuffer(static, dtype=np.uint8).reshape(lattice.shape)
+        self._static = static
         #: The scene, one byte per lattice pose (what the search indexes).
-        self.buffer = bytearray(static)
+        self.buffer = bytearray(unpack_static(static, lattice.ny).tobytes())
         self._view: NDArray[np.uint8] = np.frombuffer(self.buffer, dtype=np.uint8).reshape(
             lattice.shape
         )
@@ -81,7 +108,8 @@ class LazyScene:
             bounds = self._window(box)
             if bounds is not None:
                 i0, i1, j0, j1 = bounds
-                self._view[:, i0:i1, j0:j1] = self._static[:, i0:i1, j0:j1] * np.uint8(PENDING)
+                static = unpack_static(self._static, self.lattice.ny, bounds)
+                self._view[:, i0:i1, j0:j1] = static * np.uint8(PENDING)
         self.movable = movable
         active = []
         for box in movable:

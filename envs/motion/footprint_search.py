@@ -62,10 +62,11 @@ from voot.envs.motion.footprint_astar import (
     DiscHub,
     astar_compiled,
     astar_python,
+    geodesic_steps,
     hypot_table,
     warm_compiled,
 )
-from voot.envs.motion.footprint_scene import PENDING, LazyScene
+from voot.envs.motion.footprint_scene import PENDING, LazyScene, pack_static, unpack_static
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
@@ -99,7 +100,7 @@ class FootprintSearch:
         self.static_obstacles = tuple(static_obstacles)
         self.lattice = FootprintLattice(workspace, config, tolerance)
         self._static_boxes = self.static_obstacles + bound_boxes(workspace)
-        self._static: OrderedDict[Footprint, bytes] = OrderedDict()
+        self._static: OrderedDict[Footprint, NDArray[np.uint8]] = OrderedDict()
         self._masks: OrderedDict[
             tuple[Footprint, Box2D], tuple[int, int, int, int, BoolArray] | None
         ] = OrderedDict()
@@ -115,6 +116,10 @@ class FootprintSearch:
                 workspace, static_obstacles, coarse, rotation_weight, tolerance
             )
         self._lazy: OrderedDict[Footprint, LazyScene] = OrderedDict()
+        # the geodesic heuristic: per footprint, the positions free at some heading; per
+        # (footprint, target position), the distances
+        self._passable: OrderedDict[Footprint, NDArray[np.bool_]] = OrderedDict()
+        self._geo: OrderedDict[tuple[Footprint, int], FloatArray] = OrderedDict()
         # A*'s closed set, one byte per lattice pose: allocated once (10.8 MB on the
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
@@ -267,14 +272,46 @@ class FootprintSearch:
         def connected() -> bool:
             return self._connected(gi, si, full())
 
+        hpos = None
+        if self.config.heuristic == "geodesic":
+            plane = nx * ny
+            hpos = self._geodesic(footprint, si % plane)
+            if hpos.flat[gi % plane] == np.inf:
+                return None  # not joined even where any heading may pass
         if self._closed is None:
             self._closed = bytearray(lat.nk * lat.nx * lat.ny)
         engine = astar_compiled if self.config.engine == "compiled" else astar_python
         # search from the goal: to the start, or to the first hub
         found, self.last_expansions = engine(
-            self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub
+            self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub, hpos
         )
         return found
+
+    def _geodesic(self, footprint: Footprint, target: int) -> FloatArray:
+        """The geodesic position term to the position ``target`` (cached, LRU)."""
+        key = (footprint, target)
+        table = self._geo.get(key)
+        if table is not None:
+            self._geo.move_to_end(key)
+            return table
+        passable = self._passable.get(footprint)
+        if passable is None:
+            static = unpack_static(self._static_packed(footprint), self.lattice.ny)
+            passable = np.asarray(static.any(axis=0), dtype=np.bool_)
+            self._passable[footprint] = passable
+            if len(self._passable) > self.config.static_cache_size:
+                self._passable.popitem(last=False)
+        gx, gy = divmod(target, self.lattice.ny)
+        if self.config.engine == "compiled":
+            from voot.envs.motion.footprint_kernels import geodesic
+
+            table = geodesic(passable, gx, gy)
+        else:
+            table = geodesic_steps(passable, gx, gy)
+        self._geo[key] = table
+        if len(self._geo) > self.config.static_cache_size:
+            self._geo.popitem(last=False)
+        return table
 
     def _refine(
         self,
@@ -355,7 +392,8 @@ class FootprintSearch:
         key = (footprint, movable)
         if self._scene is not None and self._scene[0] == key:
             return self._scene[1], self._scene[2]
-        buffer = bytearray(self._static_bytes(footprint))
+        packed = self._static_packed(footprint)
+        buffer = bytearray(unpack_static(packed, self.lattice.ny).tobytes())
         free = np.frombuffer(buffer, dtype=bool).reshape(self.lattice.shape)
         for box in movable:
             window = self._mask(footprint, box)
@@ -365,11 +403,11 @@ class FootprintSearch:
         self._scene = (key, buffer, free)
         return buffer, free
 
-    def _static_bytes(self, footprint: Footprint) -> bytes:
-        """The static obstacles' free lattice of ``footprint`` (cached, LRU)."""
+    def _static_packed(self, footprint: Footprint) -> NDArray[np.uint8]:
+        """The static obstacles' free lattice of ``footprint``, packed (cached, LRU)."""
         static = self._static.get(footprint)
         if static is None:
-            static = (~self.lattice.occupancy(footprint, self._static_boxes)).tobytes()
+            static = pack_static(~self.lattice.occupancy(footprint, self._static_boxes))
             self._static[footprint] = static
             if len(self._static) > self.config.static_cache_size:
                 self._static.popitem(last=False)
@@ -382,10 +420,10 @@ class FootprintSearch:
         scene = self._lazy.get(footprint)
         if scene is None:
             scene = LazyScene(
-                self.lattice, footprint, self._static_bytes(footprint), self.config.lazy_tile
+                self.lattice, footprint, self._static_packed(footprint), self.config.lazy_tile
             )
             self._lazy[footprint] = scene
-            if len(self._lazy) > self.config.static_cache_size:
+            if len(self._lazy) > self.config.scene_cache_size:
                 self._lazy.popitem(last=False)
         else:
             self._lazy.move_to_end(footprint)
@@ -406,7 +444,7 @@ class FootprintSearch:
         if self.config.lazy_tile > 0:
             self._lazy_scene(footprint, ())
         else:
-            self._static_bytes(footprint)
+            self._static_packed(footprint)
         if self._closed is None:
             self._closed = bytearray(self.lattice.nk * self.lattice.nx * self.lattice.ny)
 

@@ -21,6 +21,18 @@ def test_list_and_dry_run(capsys: pytest.CaptureFixture[str]) -> None:
     assert "tuning: 90 runs" in captured.err and "evaluation: 60 runs" in captured.err
 
 
+def test_env_kwargs_list_the_runs_on_that_domain(capsys: pytest.CaptureFixture[str]) -> None:
+    args = ["ablation", "--out", "/nonexistent/ablation", "--problems", "conveyor_v1"]
+    kwargs = ["--env-kwargs", "base_model=footprint", "rooms=authors"]
+    assert main([*args, "--switches", "pw_authors", "--dry-run", *kwargs]) == 0
+    captured = capsys.readouterr()
+    # voot 6 and pw_uct 6 + pw_uct[pw_authors] 6 settings x 5 seeds; 3 x 20 evaluation runs
+    assert "tuning: 90 runs" in captured.err and "evaluation: 60 runs" in captured.err
+    assert "conveyor_v1(base_model=footprint, rooms=authors)" in captured.out
+    assert main([*args, "--dry-run", "--env-kwargs", "rooms"]) != 0  # not NAME=VALUE
+    assert "--env-kwargs: 'rooms' is not NAME=VALUE" in capsys.readouterr().err
+
+
 def test_a_repeated_problem_lists_its_runs_once(capsys: pytest.CaptureFixture[str]) -> None:
     """``--problems kitchen_v1 kitchen_v1`` (or ``kitchen_v1,kitchen_v1``) is the kitchen
     once: it listed every run twice (found by the canonical-request fuzz of test_cli.py)."""

@@ -111,3 +111,21 @@ def test_ablation_specs_refuse_a_budget_that_is_not_a_positive_integer(simulatio
 
     with pytest.raises(ValueError, match="simulations must be an integer >= 1"):
         ablation_specs([SWITCHES["kappa_off"]], [0], simulations=simulations)  # type: ignore[arg-type]
+
+
+def test_env_kwargs_make_the_runs_of_that_version_of_the_domain() -> None:
+    """A domain switch (here the authors' domain) runs every variant apart: the same
+    planners and settings, other run ids, its keywords in the problem label."""
+    kwargs = {"base_model": "footprint", "big_box_ban": True, "rooms": "authors"}
+    plain = ablation_specs([SWITCHES["pw_authors"]], [0], problems=["conveyor_v1"])
+    domain = ablation_specs(
+        [SWITCHES["pw_authors"]], [0], problems=["conveyor_v1"], env_kwargs=kwargs
+    )
+    assert [(s.planner, s.params, s.variant) for s in domain] == [
+        (s.planner, s.params, s.variant) for s in plain
+    ]
+    assert all(s.env_kwargs_dict == kwargs for s in domain)
+    assert not {s.run_id for s in domain} & {s.run_id for s in plain}
+    assert all("rooms=authors" in s.label for s in domain)
+    with pytest.raises(ValueError, match="plain JSON values"):
+        ablation_specs([], [0], problems=["conveyor_v1"], env_kwargs={"rooms": object()})

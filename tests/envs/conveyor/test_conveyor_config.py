@@ -12,6 +12,8 @@ from voot.envs.conveyor.config import (
     conveyor_config,
 )
 from voot.envs.core.names import Precheck
+from voot.envs.motion.footprint import FootprintConfig
+from voot.envs.motion.planner import BasePlannerConfig
 
 
 def test_the_versions_differ_only_in_the_precheck() -> None:
@@ -32,3 +34,16 @@ def test_the_authors_options_are_off_by_default_and_named() -> None:
         ConveyorConfig(base_model="square")
     with pytest.raises(ValueError, match="unknown"):
         conveyor_config("v9")
+
+
+def test_footprint_heuristic_sets_the_footprint_options_heuristic() -> None:
+    assert ConveyorConfig(base_model="footprint").planner.footprint == FootprintConfig()
+    geodesic = ConveyorConfig(base_model="footprint", footprint_heuristic="geodesic")
+    assert geodesic.planner.footprint == FootprintConfig(heuristic="geodesic")
+    with pytest.raises(ValueError, match="footprint_heuristic must be one of euclidean, geodesic"):
+        ConveyorConfig(base_model="footprint", footprint_heuristic="straight")
+    with pytest.raises(ValueError, match='needs base_model="footprint"'):
+        ConveyorConfig(footprint_heuristic="geodesic")  # the disc: nothing to set
+    own = BasePlannerConfig(footprint=FootprintConfig(xy_step=0.05))
+    with pytest.raises(ValueError, match=r"FootprintConfig\.heuristic there"):
+        ConveyorConfig(base_model="footprint", footprint_heuristic="geodesic", planner=own)

@@ -67,6 +67,9 @@ def _answers(engine: str, **kwargs: object) -> list[tuple[str | None, int]]:
         {"label_after": 40},
         {"heuristic_weight": 1.0},
         {"coarse_first": True},
+        {"heuristic": "geodesic"},
+        {"heuristic": "geodesic", "label_after": 40},
+        {"heuristic": "geodesic", "coarse_first": True},
     ],
 )
 def test_compiled_and_python_give_the_same_paths_and_expansions(kwargs: dict[str, object]) -> None:
@@ -85,9 +88,10 @@ def test_no_path_is_proved_by_labelling() -> None:
         assert s.last_expansions == 25
 
 
-def _planner_answers(engine: str) -> list[str | None]:
+def _planner_answers(engine: str, heuristic: str = "euclidean") -> list[str | None]:
     """Queries through BasePlanner (the disc hub stops the search early)."""
-    p = BasePlanner(WS, list(WALLS), BasePlannerConfig(footprint=replace(CFG, engine=engine)))
+    footprint = replace(CFG, engine=engine, heuristic=heuristic)
+    p = BasePlanner(WS, list(WALLS), BasePlannerConfig(footprint=footprint))
     out = []
     for boxes in ((), BOXES[:1], BOXES[:2]):
         for start, goal in QUERIES:
@@ -96,9 +100,10 @@ def _planner_answers(engine: str) -> list[str | None]:
     return out
 
 
-def test_the_disc_hub_gives_the_same_paths() -> None:
-    compiled = _planner_answers("compiled")
-    assert compiled == _planner_answers("python")
+@pytest.mark.parametrize("heuristic", ["euclidean", "geodesic"])
+def test_the_disc_hub_gives_the_same_paths(heuristic: str) -> None:
+    compiled = _planner_answers("compiled", heuristic)
+    assert compiled == _planner_answers("python", heuristic)
     assert any(p is not None for p in compiled)
 
 
@@ -135,15 +140,39 @@ def test_random_queries_give_the_same_paths(
     xs: list[float], ys: list[float], ths: list[float], n: int
 ) -> None:
     start, goal = (xs[0], ys[0], ths[0]), (xs[1], ys[1], ths[1])
-    paths = []
+    answers: dict[tuple[str, str], tuple[bytes | None, int]] = {}
+    for heuristic in ("euclidean", "geodesic"):
+        for engine in ("compiled", "python"):
+            key = (engine, heuristic)
+            s = _SEARCHES.setdefault(key, _search(engine, heuristic=heuristic))
+            path = s.plan(start, goal, BODY, BOXES[:n])
+            answers[key] = (None if path is None else path.tobytes(), s.last_expansions)
+    assert answers["compiled", "euclidean"] == answers["python", "euclidean"]
+    assert answers["compiled", "geodesic"] == answers["python", "geodesic"]
+    # the heuristics change the path, never whether there is one
+    assert (answers["compiled", "euclidean"][0] is None) == (
+        answers["compiled", "geodesic"][0] is None
+    )
+
+
+_SEARCHES: dict[tuple[str, str], FootprintSearch] = {}
+
+
+def test_geodesic_answers_a_walled_off_goal_without_searching() -> None:
+    """A static wall shuts the east half: no path, found before any expansion; the
+    straight-line heuristic proves it only by labelling."""
+    shut = (*WALLS, Box2D(3.0, 1.9, 0.05, 0.6, 0.0, "door"))
+    start, goal = QUERIES[0]
     for engine in ("compiled", "python"):
-        s = _SEARCHES.setdefault(engine, _search(engine))
-        path = s.plan(start, goal, BODY, BOXES[:n])
-        paths.append((None if path is None else path.tobytes(), s.last_expansions))
-    assert paths[0] == paths[1]
+        geo = FootprintSearch(WS, shut, replace(CFG, engine=engine, heuristic="geodesic"))
+        assert geo.plan(start, goal, BODY, ()) is None and geo.last_expansions == 0
+        line = FootprintSearch(WS, shut, replace(CFG, engine=engine, label_after=30))
+        assert line.plan(start, goal, BODY, ()) is None and line.last_expansions == 30
 
 
-_SEARCHES: dict[str, FootprintSearch] = {}
+def test_heuristic_is_validated() -> None:
+    with pytest.raises(ValueError, match=r"heuristic must be one of \('euclidean', 'geodesic'\)"):
+        FootprintConfig(heuristic="manhattan")
 
 
 def test_thehypot_table_is_cpythons() -> None:

@@ -11,7 +11,7 @@ from voot.envs.motion.footprint import (
     FootprintLattice,
     bound_boxes,
 )
-from voot.envs.motion.footprint_scene import PENDING, LazyScene
+from voot.envs.motion.footprint_scene import PENDING, LazyScene, pack_static, unpack_static
 from voot.envs.motion.footprint_search import FootprintSearch
 from voot.envs.motion.planar import Box2D
 
@@ -51,8 +51,9 @@ def test_the_lazy_scene_is_the_eager_free_lattice_through_updates(tile: int) -> 
     """Boxes added, removed, restored: every pose, once resolved, is the eager answer."""
     search = FootprintSearch(WS, STATIC, CFG)
     lat = search.lattice
-    static = (~lat.occupancy(ROBOT, STATIC + bound_boxes(WS))).tobytes()
-    scene = LazyScene(lat, ROBOT, static, tile)
+    free = ~lat.occupancy(ROBOT, STATIC + bound_boxes(WS))
+    static = free.tobytes()
+    scene = LazyScene(lat, ROBOT, pack_static(free), tile)
     a, b = boxes(1, 3), boxes(2, 2)
     for movable in (a, a + b, b, (), a[:1] + b, a + b):
         scene.update(movable)
@@ -93,4 +94,17 @@ def test_lazy_tile_is_validated() -> None:
     with pytest.raises(ValueError, match="lazy_tile"):
         FootprintConfig(lazy_tile=257)
     with pytest.raises(ValueError, match="tile"):
-        LazyScene(FootprintLattice(WS, CFG), ROBOT, bytes(24 * 41 * 31), 0)
+        LazyScene(FootprintLattice(WS, CFG), ROBOT, pack_static(np.zeros((24, 41, 31), bool)), 0)
+
+
+@pytest.mark.parametrize(
+    "window", [None, (0, 5, 0, 31), (3, 9, 7, 8), (2, 40, 5, 29), (0, 1, 8, 16)]
+)
+def test_packed_static_unpacks_to_the_same_bytes(window: tuple[int, int, int, int] | None) -> None:
+    """One bit per pose, whole or by window (any column offset), gives back the bytes."""
+    free = np.random.default_rng(3).random((4, 41, 31)) < 0.6
+    packed = pack_static(free)
+    assert packed.nbytes == 4 * 41 * 4  # 31 columns in 4 bytes
+    out = unpack_static(packed, 31, window)
+    expected = free if window is None else free[:, window[0] : window[1], window[2] : window[3]]
+    assert out.dtype == np.uint8 and np.array_equal(out, expected.astype(np.uint8))

@@ -1,0 +1,112 @@
+"""Where a tree planner's CPU goes with the exact footprint: one search, every exact query timed.
+
+Runs one ``voot-bench plan`` search (VOOT by default) on ``voot/ConveyorPacking-v1`` with
+``base_model="footprint"`` (and any other env keywords), with the exact-footprint
+option's settings given here (:class:`~voot.envs.motion.footprint.FootprintConfig`:
+``--static-cache``, ``--scene-cache``, ``--label-after``, ``--heuristic``; unset: the
+option's defaults), and prints the process's CPU seconds, the exact queries' count,
+total and median CPU time, how many found a path and how many reached the connectivity
+proof (``label_after``) with its total time, and the slowest queries. Random rollouts
+(``voot-bench measure footprint-speed``) meet other queries than a tree search, which
+samples near its best actions and revisits every depth; this measures the latter.
+
+The options other than ``--heuristic`` change the time, never an answer, so the search
+takes the same steps and makes the same queries under each (the query count says so).
+
+Run from the repository root (a minute or two per run)::
+
+    python docs/scripts/footprint_planner_cost.py --simulations 40
+    python docs/scripts/footprint_planner_cost.py --simulations 150 --heuristic geodesic \\
+        --env-kwargs big_box_ban=true rooms=authors
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import tempfile
+import time
+from dataclasses import fields
+from typing import Any
+
+from voot.envs.motion import footprint_search as FS
+from voot.envs.motion.footprint import FootprintConfig
+
+
+def _set_defaults(overrides: dict[str, Any]) -> None:
+    """Make ``FootprintConfig()`` (what ``base_model="footprint"`` builds) take ``overrides``."""
+    defaults = list(FootprintConfig.__init__.__defaults__ or ())
+    names = [f.name for f in fields(FootprintConfig)]
+    for name, value in overrides.items():
+        defaults[names.index(name)] = value
+    FootprintConfig.__init__.__defaults__ = tuple(defaults)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--planner", default="voot")
+    parser.add_argument("--simulations", type=int, default=40)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--env-kwargs", nargs="*", default=[], metavar="KEY=VALUE")
+    parser.add_argument("--static-cache", type=int, default=None)
+    parser.add_argument("--scene-cache", type=int, default=None)
+    parser.add_argument("--label-after", type=int, default=None)
+    parser.add_argument("--heuristic", choices=("euclidean", "geodesic"), default=None)
+    args = parser.parse_args()
+    overrides = {
+        name: value
+        for name, value in (
+            ("static_cache_size", args.static_cache),
+            ("scene_cache_size", args.scene_cache),
+            ("label_after", args.label_after),
+            ("heuristic", args.heuristic),
+        )
+        if value is not None
+    }
+    _set_defaults(overrides)
+    print(FootprintConfig())
+
+    rows: list[dict[str, Any]] = []
+    plan, connected = FS.FootprintSearch._plan, FS.FootprintSearch._connected
+    label: dict[str, float] = {}
+
+    def timed_connected(self: Any, *a: Any) -> bool:
+        t0 = time.process_time()
+        out = connected(self, *a)
+        label["t"] = time.process_time() - t0
+        return out
+
+    def timed_plan(self: Any, *a: Any) -> Any:
+        label.clear()
+        t0 = time.process_time()
+        out = plan(self, *a)
+        rows.append({"t": time.process_time() - t0, "found": out is not None,
+                     "expansions": self.last_expansions, "label": label.get("t")})  # fmt: skip
+        return out
+
+    FS.FootprintSearch._plan = timed_plan  # type: ignore[method-assign]
+    FS.FootprintSearch._connected = timed_connected  # type: ignore[method-assign]
+    from voot.bench.cli.main import main as bench
+
+    t0 = time.process_time()
+    with tempfile.TemporaryDirectory() as out:
+        bench(["plan", "--out", out, "--problems", "conveyor_v1", "--planners", args.planner,
+               "--seeds", f"{args.seed}:{args.seed + 1}", "--simulations", str(args.simulations),
+               "--grid", "default", "--env-kwargs", "base_model=footprint", *args.env_kwargs,
+               "--workers", "1", "--backend", "serial", "--no-progress"])  # fmt: skip
+    total = time.process_time() - t0
+    times = sorted(r["t"] for r in rows)
+    labelled = [r["label"] for r in rows if r["label"] is not None]
+    print(
+        f"{args.planner}, {args.simulations} simulations: process CPU {total:.1f} s; "
+        f"{len(rows)} exact queries, {sum(times):.2f} s, median "
+        f"{statistics.median(times) * 1000 if times else float('nan'):.1f} ms, "
+        f"{sum(r['found'] for r in rows)} found a path; {len(labelled)} reached the "
+        f"connectivity proof ({sum(labelled):.2f} s in it)"
+    )
+    for r in sorted(rows, key=lambda r: -r["t"])[:5]:
+        print(f"  {r['t'] * 1000:.0f} ms, {r['expansions']} expansions, found {r['found']}")
+
+
+if __name__ == "__main__":
+    main()
