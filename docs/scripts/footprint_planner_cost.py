@@ -3,9 +3,9 @@
 Runs one ``voot-bench plan`` search (VOOT by default) on ``voot/ConveyorPacking-v1`` with
 ``base_model="footprint"`` (and any other env keywords), with the exact-footprint
 option's settings given here (:class:`~voot.envs.motion.footprint.FootprintConfig`:
-``--static-cache``, ``--scene-cache``, ``--label-after``, ``--heuristic``; unset: the
-option's defaults), and prints the process's CPU seconds, the exact queries' count,
-total and median CPU time, how many found a path and how many reached the connectivity
+``--static-cache``, ``--scene-cache``, ``--label-after``; unset: the option's defaults;
+``--heuristic``: the env keyword ``footprint_heuristic``), and prints the process's CPU
+seconds, the exact queries' count, total and median CPU time, how many found a path and how many reached the connectivity
 proof (``label_after``) with its total time, and the slowest queries. Random rollouts
 (``voot-bench measure footprint-speed``) meet other queries than a tree search, which
 samples near its best actions and revisits every depth; this measures the latter.
@@ -16,7 +16,7 @@ takes the same steps and makes the same queries under each (the query count says
 Run from the repository root (a minute or two per run)::
 
     python docs/scripts/footprint_planner_cost.py --simulations 40
-    python docs/scripts/footprint_planner_cost.py --simulations 150 --heuristic geodesic \\
+    python docs/scripts/footprint_planner_cost.py --simulations 150 --compare-geodesic \\
         --env-kwargs big_box_ban=true rooms=authors
 """
 
@@ -26,7 +26,7 @@ import argparse
 import statistics
 import tempfile
 import time
-from dataclasses import fields
+from dataclasses import fields, replace
 from typing import Any
 
 from voot.envs.motion import footprint_search as FS
@@ -52,6 +52,11 @@ def main() -> None:
     parser.add_argument("--scene-cache", type=int, default=None)
     parser.add_argument("--label-after", type=int, default=None)
     parser.add_argument("--heuristic", choices=("euclidean", "geodesic"), default=None)
+    parser.add_argument(
+        "--compare-geodesic",
+        action="store_true",
+        help="ask every query again of a twin search with heuristic='geodesic' and time it",
+    )
     args = parser.parse_args()
     overrides = {
         name: value
@@ -59,11 +64,12 @@ def main() -> None:
             ("static_cache_size", args.static_cache),
             ("scene_cache_size", args.scene_cache),
             ("label_after", args.label_after),
-            ("heuristic", args.heuristic),
         )
         if value is not None
     }
     _set_defaults(overrides)
+    # the heuristic as the env sets it (ConveyorConfig.footprint_heuristic)
+    heuristic = [f"footprint_heuristic={args.heuristic}"] if args.heuristic else []
     print(FootprintConfig())
 
     rows: list[dict[str, Any]] = []
@@ -76,12 +82,28 @@ def main() -> None:
         label["t"] = time.process_time() - t0
         return out
 
+    twins: dict[int, Any] = {}
+
     def timed_plan(self: Any, *a: Any) -> Any:
+        if getattr(self, "is_twin", False):
+            return plan(self, *a)
         label.clear()
         t0 = time.process_time()
         out = plan(self, *a)
-        rows.append({"t": time.process_time() - t0, "found": out is not None,
-                     "expansions": self.last_expansions, "label": label.get("t")})  # fmt: skip
+        row = {"t": time.process_time() - t0, "found": out is not None,
+               "expansions": self.last_expansions, "label": label.get("t")}  # fmt: skip
+        if args.compare_geodesic:
+            twin = twins.get(id(self))
+            if twin is None:
+                config = replace(self.config, heuristic="geodesic")
+                twin = FS.FootprintSearch(self.workspace, self.static_obstacles, config,
+                                          self.rotation_weight, self.tolerance)  # fmt: skip
+                twin.is_twin = True
+                twins[id(self)] = twin
+            t0 = time.process_time()
+            row["twin_found"] = plan(twin, *a) is not None
+            row["twin_t"] = time.process_time() - t0
+        rows.append(row)
         return out
 
     FS.FootprintSearch._plan = timed_plan  # type: ignore[method-assign]
@@ -92,7 +114,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as out:
         bench(["plan", "--out", out, "--problems", "conveyor_v1", "--planners", args.planner,
                "--seeds", f"{args.seed}:{args.seed + 1}", "--simulations", str(args.simulations),
-               "--grid", "default", "--env-kwargs", "base_model=footprint", *args.env_kwargs,
+               "--grid", "default", "--env-kwargs", "base_model=footprint", *heuristic,
+               *args.env_kwargs,
                "--workers", "1", "--backend", "serial", "--no-progress"])  # fmt: skip
     total = time.process_time() - t0
     times = sorted(r["t"] for r in rows)
@@ -104,6 +127,13 @@ def main() -> None:
         f"{sum(r['found'] for r in rows)} found a path; {len(labelled)} reached the "
         f"connectivity proof ({sum(labelled):.2f} s in it)"
     )
+    if args.compare_geodesic:
+        twin_times = [r["twin_t"] for r in rows]
+        print(
+            f"the same queries with heuristic='geodesic': {sum(twin_times):.2f} s, median "
+            f"{statistics.median(twin_times) * 1000 if rows else float('nan'):.1f} ms; "
+            f"'a path exists' differs in {sum(r['found'] != r['twin_found'] for r in rows)}"
+        )
     for r in sorted(rows, key=lambda r: -r["t"])[:5]:
         print(f"  {r['t'] * 1000:.0f} ms, {r['expansions']} expansions, found {r['found']}")
 

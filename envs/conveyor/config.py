@@ -74,7 +74,8 @@ class ConveyorConfig:
             :class:`~voot.envs.motion.footprint.FootprintConfig` that
             ``base_model="footprint"`` sets: ``"euclidean"`` (default) or ``"geodesic"``
             (the same "a path exists" answers, other paths of about the same length,
-            4-6 times less CPU per VOOT simulation: docs/motion-planning.md). A keyword
+            6 times less CPU on a VOOT search's exact queries in the authors' rooms:
+            docs/motion-planning.md). A keyword
             ``--env-kwargs`` can pass; another value than the default needs
             ``base_model="footprint"`` and no ``planner.footprint`` of the caller's.
         big_box_ban: The authors' explicit rule at execution (``problem_environments/
