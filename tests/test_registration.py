@@ -37,7 +37,7 @@ RENAMED = {r.id: r.renamed_to for r in problem_records() if r.renamed_to is not 
 
 
 def test_every_id_is_registered_with_its_entry_point_kwargs_and_metadata() -> None:
-    assert len(IDS) == 9
+    assert len(IDS) == 10
     assert RENAMED == {
         "voot/KitchenClearing-v2": "voot/GeneratedKitchen-v0",
         "voot/ConveyorPacking-v2": "voot/GeneratedStorage-v0",

@@ -90,6 +90,9 @@ class ProblemRecord:
             where no return separates success from failure (docs/environments.md).
         renamed_to: for an old id kept as an alias, the id it was renamed to: making the
             old id warns once, naming the new one, and gives the new id's env.
+        authors_domain: whether it is the paper's scene with the authors' domain options
+            on (the storage rooms' exact footprint, their rooms and their rules:
+            ``voot/ConveyorPacking-v3``), not the published protocol's v1 domain.
     """
 
     id: str
@@ -111,6 +114,7 @@ class ProblemRecord:
     max_episode_steps: int | None = None
     reward_threshold: float | None = None
     renamed_to: str | None = None
+    authors_domain: bool = False
 
     def __post_init__(self) -> None:
         if not _ID.match(self.id):

@@ -113,17 +113,21 @@ def cmd_domain_ablation(args: argparse.Namespace) -> int:
     for name in ("draws", "executions", "rollouts"):
         if getattr(args, name) < 1:
             raise CLIError(f"--{name} must be >= 1, got {getattr(args, name)}")
-    switches = tuple(args.switches or D.SWITCHES)
-    unknown = [s for s in switches if s not in D.SWITCHES]
+    known = D.switches_of(args.domain)
+    switches = tuple(args.switches or known)
+    unknown = [s for s in switches if s not in known]
     if unknown:
-        raise CLIError(f"unknown switch {unknown[0]!r}; valid switches: {', '.join(D.SWITCHES)}")
+        raise CLIError(
+            f"unknown switch {unknown[0]!r} of the {args.domain}; valid switches:"
+            f" {', '.join(known)}"
+        )
     bounds: dict[str, int] = {}
     for item in args.executions_for or ():
         name, _, value = item.partition("=")
-        if name not in D.SWITCHES:
+        if name not in known:
             raise CLIError(
                 f"--executions-for {item!r}: unknown switch {name!r}; valid switches:"
-                f" {', '.join(D.SWITCHES)}"
+                f" {', '.join(known)}"
             )
         try:
             bounds[name] = int(value)
@@ -133,7 +137,13 @@ def cmd_domain_ablation(args: argparse.Namespace) -> int:
             raise CLIError(f"--executions-for {item!r}: give SWITCH=N with N >= 1")
     check_output(args.out, "--out")
     store = D.run(
-        switches, args.draws, args.executions, args.rollouts, args.seed, executions_for=bounds
+        switches,
+        args.draws,
+        args.executions,
+        args.rollouts,
+        args.seed,
+        executions_for=bounds,
+        domain=args.domain,
     )
     if args.out is not None:
         Path(args.out).write_text(json.dumps(store, indent=1) + "\n")
@@ -214,9 +224,16 @@ def register(sub: Subparsers) -> None:
 
     p = sub.add_parser(
         "domain-ablation",
-        help="the conveyor's domain departures switched one at a time: planner-agnostic statistics",
+        help="the domains' departures switched one at a time: planner-agnostic statistics",
         description="Pre-check and execution rates by node, random-rollout success and the"
-        " scripted solution, on ConveyorPacking-v1 with each domain switch.",
+        " scripted solution, on ConveyorPacking-v1 (or KitchenClearing-v1) with each"
+        " domain switch.",
+    )
+    p.add_argument(
+        "--domain",
+        choices=("conveyor", "kitchen"),
+        default="conveyor",
+        help="ConveyorPacking-v1 (default) or KitchenClearing-v1",
     )
     p.add_argument("--switches", nargs="*", default=None, help="default: every switch")
     p.add_argument("--draws", type=int, default=2000, help="uniform draws per node")

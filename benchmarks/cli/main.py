@@ -21,7 +21,7 @@ The measurements (``voot-bench measure --help`` lists them)::
     voot-bench measure speed              cost per ask of VOO, CMA-ES and GP-UCB
     voot-bench measure mesh-speed         cost of the trimesh object meshes and grasp lookups
     voot-bench measure footprint-speed    cost of the base planner's exact-footprint option
-    voot-bench measure domain-ablation    the conveyor's domain departures, one at a time
+    voot-bench measure domain-ablation    the domains' departures, one at a time
     voot-bench measure speedup            tree search on the robot domains: 6af33b5 vs now
 
 A measurement's old spelling without ``measure`` (``voot-bench speed``) still works; it is

@@ -33,6 +33,13 @@ start is no departure: in the authors' code every placement's base path starts a
 ``problem_environments/conveyor_belt_env.py``: each box is picked, the robot set back to
 ``init_base_conf``, then its path planned), so there is no switch for it.
 
+The kitchen (``domain="kitchen"``, :data:`KITCHEN_SWITCHES` on ``KitchenClearing-v1``)
+has one switch, ``footprint`` (``base_model="footprint"``: the place step's base path
+for the exact footprint of base square and held object where the carry disc finds none;
+the disc also sizes the kitchen's 0.9 m door). The same statistics, with obstacles
+cleared in place of boxes placed; a node is reached when the scripted actions before it
+all execute.
+
 The authors' rooms with the exact footprint are slow to execute in (about 10 s of CPU per
 exact query deep in the west room): ``executions_for`` bounds the executions per node of
 named switches (the store records it, the table shows every rate's denominator).
@@ -60,36 +67,73 @@ SWITCHES: Mapping[str, Mapping[str, Any]] = MappingProxyType(
         ),
     }
 )
+#: The kitchen's domain switches: KitchenConfig overrides (on v1).
+KITCHEN_SWITCHES: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {"v1": MappingProxyType({}), "footprint": MappingProxyType({"base_model": "footprint"})}
+)
+#: The domains: their problem and switches.
+DOMAINS: Mapping[str, tuple[str, Mapping[str, Mapping[str, Any]]]] = MappingProxyType(
+    {
+        "conveyor": ("voot/ConveyorPacking-v1", SWITCHES),
+        "kitchen": ("voot/KitchenClearing-v1", KITCHEN_SWITCHES),
+    }
+)
 #: The nodes: scripted actions taken before the statistics.
 NODES = (0, 1, 3)
 #: Draws of an action in a rollout before the last one is executed (the authors' 50).
 RETRIES = 50
 
 
-def make_env(switch: str) -> Any:
-    """``ConveyorPacking-v1`` with the overrides of ``switch``."""
+def switches_of(domain: str) -> Mapping[str, Mapping[str, Any]]:
+    """The switches of ``domain`` (``"conveyor"`` or ``"kitchen"``)."""
+    if domain not in DOMAINS:
+        raise ValueError(f"unknown domain {domain!r}; choose from {', '.join(DOMAINS)}")
+    return DOMAINS[domain][1]
+
+
+def make_env(switch: str, domain: str = "conveyor") -> Any:
+    """The v1 env of ``domain`` with the overrides of ``switch``."""
+    switches = switches_of(domain)
+    if switch not in switches:
+        raise ValueError(f"unknown switch {switch!r}; choose from {', '.join(switches)}")
+    if domain == "kitchen":
+        from voot.envs.kitchen.env import KitchenClearingEnv
+
+        return KitchenClearingEnv(preset="v1", **switches[switch])
     from voot.envs.conveyor.env import ConveyorPackingEnv
 
-    if switch not in SWITCHES:
-        raise ValueError(f"unknown switch {switch!r}; choose from {', '.join(SWITCHES)}")
-    return ConveyorPackingEnv(preset="v1", **SWITCHES[switch])
+    return ConveyorPackingEnv(preset="v1", **switches[switch])
+
+
+def _reached(env: Any, depth: int, feasible: bool) -> bool:
+    """Did the ``depth`` scripted actions reach their node? The conveyor's: its boxes are
+    placed (three an action); the kitchen's: every action executed."""
+    if hasattr(env.task, "placed"):
+        return bool(env.task.placed == min(env.n, 3 * depth))
+    return feasible
 
 
 def measure(
-    switch: str, draws: int = 2000, executions: int = 40, rollouts: int = 5, seed: int = 0
+    switch: str,
+    draws: int = 2000,
+    executions: int = 40,
+    rollouts: int = 5,
+    seed: int = 0,
+    domain: str = "conveyor",
 ) -> dict[str, Any]:
     """The planner-agnostic statistics of one switch (see the module doc); the row records
     ``executions``, the most executions per node."""
-    env = make_env(switch)
+    env = make_env(switch, domain)
     t0 = time.process_time()
     env.reset(seed=seed)
     script = env.solution_actions()
     nodes = []
     for depth in NODES:
         env.reset(seed=seed)
+        scripted_ok = True
         for a in script[:depth]:
-            env.transition(a)
-        if env.task.placed != min(env.n, 3 * depth):
+            scripted_ok &= bool(env.transition(a)[3]["feasible"])
+        if not _reached(env, depth, scripted_ok):
             # the scripted actions do not fit this domain: the node is not reached
             nodes.append({"depth": depth, "reached": False})
             continue
@@ -115,6 +159,7 @@ def measure(
     rng = np.random.default_rng([seed, 99])
     for _ in range(rollouts):
         env.reset(seed=seed)
+        initial = env.objects_left
         while True:
             for _ in range(RETRIES):
                 a = rng.uniform(-1.0, 1.0, env.action_dim)
@@ -123,7 +168,7 @@ def measure(
             _, terminated, truncated, info = env.transition(a)
             if not info["feasible"] or terminated or truncated:
                 break
-        placed.append(env.task.placed)
+        placed.append(initial - env.objects_left)
     env.reset(seed=seed)
     ret = 0.0
     solved = True
@@ -159,7 +204,9 @@ def table(store: Mapping[str, Any]) -> str:
     head = ["switch"]
     for depth in NODES:
         head += [f"pre-check, {depth} actions", f"executes, {depth} actions"]
-    head += ["random rollouts: boxes placed", "scripted solution"]
+    kitchen = store.get("problem") == DOMAINS["kitchen"][0]
+    handled = "obstacles cleared" if kitchen else "boxes placed"
+    head += [f"random rollouts: {handled}", "scripted solution"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for row in store["rows"]:
         cells = [f"`{row['switch']}`"]
@@ -185,23 +232,27 @@ def run(
     rollouts: int,
     seed: int,
     executions_for: Mapping[str, int] | None = None,
+    domain: str = "conveyor",
 ) -> dict[str, Any]:
-    """:func:`measure` every switch; the store. ``executions_for`` maps a switch to its
-    own bound on the executions per node (default: ``executions`` for every switch).
+    """:func:`measure` every switch of ``domain``; the store. ``executions_for`` maps a
+    switch to its own bound on the executions per node (default: ``executions`` for
+    every switch).
 
     Raises:
-        ValueError: If ``executions_for`` names an unknown switch or a bound below 1.
+        ValueError: If ``domain`` is unknown, or ``executions_for`` names an unknown
+            switch or a bound below 1.
     """
+    known = switches_of(domain)
     bounds = dict(executions_for or {})
     for name, n in bounds.items():
-        if name not in SWITCHES:
-            raise ValueError(f"unknown switch {name!r}; choose from {', '.join(SWITCHES)}")
+        if name not in known:
+            raise ValueError(f"unknown switch {name!r}; choose from {', '.join(known)}")
         if type(n) is not int or n < 1:
             raise ValueError(f"the executions of {name} must be an int >= 1, got {n!r}")
     return {
-        "problem": "voot/ConveyorPacking-v1",
+        "problem": DOMAINS[domain][0],
         "settings": {"draws": draws, "executions": executions, "rollouts": rollouts,
                      "seed": seed, "executions_for": bounds},
-        "rows": [measure(s, draws, bounds.get(s, executions), rollouts, seed)
+        "rows": [measure(s, draws, bounds.get(s, executions), rollouts, seed, domain)
                  for s in switches],
     }  # fmt: skip

@@ -107,6 +107,8 @@ def aliases() -> dict[str, str]:
 #: What a recorded name means, by kind, in the order the help texts list them.
 NAME_MEANINGS: Mapping[str, str] = {
     "protocol": "the paper's protocol (v1 rules)",
+    "authors": "the paper's scene on the authors' domain (the exact footprint, their rooms and"
+    " big-box ban), on the v1 rules",
     "generated": "generated from layout_seed and difficulty, on the v1 rules",
     "v0": "the first release's rules (v0)",
     "chain": "synthetic chains as gymnasium envs",
@@ -115,11 +117,14 @@ NAME_MEANINGS: Mapping[str, str] = {
 
 def name_kind(record: ProblemRecord) -> str:
     """Which of :data:`NAME_MEANINGS` a record is: ``protocol`` (the v1 rules on the
-    paper's scene), ``generated`` (a family generated from layouts), ``v0`` or ``chain``."""
+    paper's scene), ``authors`` (the same on the authors' domain), ``generated`` (a
+    family generated from layouts), ``v0`` or ``chain``."""
     if record.chain is not None:
         return "chain"
     if record.layouts:
         return "generated"
+    if record.authors_domain:
+        return "authors"
     return "protocol" if record.v1_rules else "v0"
 
 

@@ -2,8 +2,8 @@
 
 Every constant of the conveyor domain (regions, belt, boxes, costs, the base-motion model
 and the authors' geometry options) as a validated field at the paper's value, and the
-presets ``v0`` and ``v1`` (:data:`CONVEYOR_PRESETS`) that ``voot/ConveyorPacking-v0`` and
-``-v1`` pass. Kept apart from the env (:mod:`voot.envs.conveyor.env`) as the kitchen's
+presets ``v0``, ``v1`` and ``v3`` (:data:`CONVEYOR_PRESETS`) that ``voot/ConveyorPacking-v0``,
+``-v1`` and ``-v3`` (the authors' domain) pass. Kept apart from the env (:mod:`voot.envs.conveyor.env`) as the kitchen's
 settings are (:mod:`voot.envs.kitchen.config`): one concept per module.
 """
 
@@ -19,15 +19,11 @@ from voot import validation as V
 from voot.envs.conveyor.problems import HORIZON
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
-from voot.envs.core.state import replace
-from voot.envs.motion.footprint import HEURISTICS, FootprintConfig
-from voot.envs.motion.planner import BasePlannerConfig
+from voot.envs.motion.planner import BasePlannerConfig, base_model_planner
 from voot.envs.robot.arm_ik import IKConfig
 
 #: The choices of :attr:`ConveyorConfig.rooms`.
 ROOMS = ("voot", "authors")
-#: The choices of :attr:`ConveyorConfig.base_model`.
-BASE_MODELS = ("disc", "footprint")
 
 
 @dataclass(frozen=True)
@@ -125,31 +121,10 @@ class ConveyorConfig:
             raise ValueError(
                 f"ConveyorConfig.rooms must be one of {', '.join(ROOMS)}, got {self.rooms!r}"
             )
-        if self.base_model not in BASE_MODELS:
-            raise ValueError(
-                f"ConveyorConfig.base_model must be one of {', '.join(BASE_MODELS)}, "
-                f"got {self.base_model!r}"
-            )
-        if self.footprint_heuristic not in HEURISTICS:
-            raise ValueError(
-                f"ConveyorConfig.footprint_heuristic must be one of {', '.join(HEURISTICS)}, "
-                f"got {self.footprint_heuristic!r}"
-            )
-        sets_footprint = (
-            self.base_model == "footprint"
-            and isinstance(self.planner, BasePlannerConfig)
-            and self.planner.footprint is None
+        planner = base_model_planner(
+            "ConveyorConfig", self.base_model, self.footprint_heuristic, self.planner
         )
-        if self.footprint_heuristic != "euclidean" and not sets_footprint:
-            raise ValueError(
-                "ConveyorConfig.footprint_heuristic sets the heuristic of the footprint"
-                ' option that base_model="footprint" sets; it needs base_model="footprint"'
-                " and no planner.footprint of the caller's (set FootprintConfig.heuristic"
-                " there instead)"
-            )
-        if sets_footprint:
-            footprint = FootprintConfig(heuristic=self.footprint_heuristic)
-            object.__setattr__(self, "planner", replace(self.planner, footprint=footprint))
+        object.__setattr__(self, "planner", planner)
         if type(self.big_box_ban) is not bool:
             raise ValueError(f"ConveyorConfig.big_box_ban must be a bool, got {self.big_box_ban!r}")
         V.integer(self.big_boxes, "ConveyorConfig.big_boxes", 0, 20)
@@ -177,8 +152,22 @@ class ConveyorConfig:
 
 #: Named versions of the domain: :class:`ConveyorConfig` overrides (see
 #: :data:`voot.envs.kitchen.config.KITCHEN_PRESETS`).
+#: ``v3`` is v1 on the authors' domain: the exact footprint (with the geodesic
+#: heuristic), their rooms and their big-box ban (``voot/ConveyorPacking-v3``).
 CONVEYOR_PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
-    {"v0": MappingProxyType({}), "v1": MappingProxyType({"precheck": Precheck.KINEMATIC})}
+    {
+        "v0": MappingProxyType({}),
+        "v1": MappingProxyType({"precheck": Precheck.KINEMATIC}),
+        "v3": MappingProxyType(
+            {
+                "precheck": Precheck.KINEMATIC,
+                "base_model": "footprint",
+                "footprint_heuristic": "geodesic",
+                "big_box_ban": True,
+                "rooms": "authors",
+            }
+        ),
+    }
 )
 
 

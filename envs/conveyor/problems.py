@@ -12,6 +12,10 @@
   conveyor's settings and the protocol's training / held-out layouts;
 * ``voot/ConveyorPacking-v2`` (``conveyor_v2``): the generated storage rooms' first name,
   kept as an alias that warns once (the committed results name it).
+* ``voot/ConveyorPacking-v3`` (``conveyor_v3``): v1 on the authors' domain (preset
+  ``v3``): the exact footprint where the disc finds no path (geodesic heuristic), the
+  walls of their ``convbelt_env_diffcult_shapes_two_rooms.xml`` and their big-box ban;
+  the same tree rules as v1. v1 stays the published protocol's conveyor.
 
 Every version truncates at :data:`HORIZON` steps (``ConveyorConfig.horizon``'s default,
 registered as ``max_episode_steps``). The paper's budget (Figure 4): 3,000 simulations,
@@ -19,6 +23,8 @@ registered as ``max_episode_steps``). The paper's budget (Figure 4): 3,000 simul
 """
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 from voot.problems import ROBOT_PLANNERS, PaperSetup, ProblemRecord, robot_versions
 
@@ -33,8 +39,8 @@ HORIZON = 20
 
 #: The conveyor's gymnasium ids: v0 (with the progressive-widening planners' 200
 #: retries), then v1 and the generated storage rooms on the authors' rules (commitment
-#: 1), and the storage rooms' first name.
-RECORDS: tuple[ProblemRecord, ...] = robot_versions(
+#: 1), the storage rooms' first name, and v3 (the authors' domain).
+_VERSIONS: tuple[ProblemRecord, ...] = robot_versions(
     ProblemRecord(
         id="voot/ConveyorPacking-v0",
         family=FAMILY,
@@ -50,3 +56,12 @@ RECORDS: tuple[ProblemRecord, ...] = robot_versions(
     generated=("GeneratedStorage", "generated_storage"),
     max_episode_steps=HORIZON,
 )
+#: The authors' domain: v1's record at the ``v3`` preset.
+AUTHORS_DOMAIN = replace(
+    _VERSIONS[1],
+    id="voot/ConveyorPacking-v3",
+    kwargs={"preset": "v3"},
+    aliases=("conveyor_v3",),
+    authors_domain=True,
+)
+RECORDS: tuple[ProblemRecord, ...] = (*_VERSIONS, AUTHORS_DOMAIN)

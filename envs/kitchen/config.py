@@ -24,7 +24,7 @@ from voot import validation as V
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
 from voot.envs.kitchen.problems import HORIZON
-from voot.envs.motion.planner import BasePlannerConfig
+from voot.envs.motion.planner import BasePlannerConfig, base_model_planner
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.model import BASE_HALF, ROBOT_RADIUS
 
@@ -103,6 +103,18 @@ class KitchenConfig:
             it where the real base does not (with the enclosing disc the scripted
             solution has no path to its fifth pick).
             False (v0): the robot reaches every pick pose that passes the checks.
+        base_model: ``"disc"`` (default: the place step plans the base path for the
+            carry disc, :meth:`KitchenClearingEnv.carry_disc_for`) or ``"footprint"``
+            (where the disc finds no path, the exact oriented footprint of what that disc
+            encloses, the base square and the held object at its grasp,
+            :meth:`KitchenClearingEnv.carry_footprint_for`: sets ``planner.footprint`` to a
+            default :class:`~voot.envs.motion.footprint.FootprintConfig` when it is None).
+            The fixed path's swept volume (which objects are obstacles) and the pick's
+            base path keep their discs: the first defines the task, the second is already
+            narrower than the base. Needs ``pick_requires_free_carry=False`` (v1's), since
+            that rule tests the disc.
+        footprint_heuristic: The ``heuristic`` of the footprint option that
+            ``base_model="footprint"`` sets: ``"euclidean"`` (default) or ``"geodesic"``.
         ik: IK settings.
         planner: Base planner settings.
     """
@@ -132,6 +144,8 @@ class KitchenConfig:
     nonclearing_penalty_infeasible: bool = False
     pick_base_path: bool = False
     pick_path_radius: float = BASE_HALF
+    base_model: str = "disc"
+    footprint_heuristic: str = "euclidean"
     ik: IKConfig = field(default_factory=IKConfig)
     planner: BasePlannerConfig = field(default_factory=BasePlannerConfig)
 
@@ -168,6 +182,15 @@ class KitchenConfig:
             "pick_base_path",
         ):
             V.flag(getattr(self, name), f"KitchenConfig.{name}")
+        planner = base_model_planner(
+            "KitchenConfig", self.base_model, self.footprint_heuristic, self.planner
+        )
+        object.__setattr__(self, "planner", planner)
+        if self.base_model == "footprint" and self.pick_requires_free_carry:
+            raise ValueError(
+                'KitchenConfig.base_model="footprint" needs pick_requires_free_carry=False'
+                " (v1's): that rule tests the carry disc, which the footprint replaces"
+            )
         check_step_rules(self)
 
     @property

@@ -397,12 +397,13 @@ class KitchenClearingEnv(KitchenChecks):
         x, y, theta = placement
         t0 = time.perf_counter()
         disc = self.held_disc()
-        path = self.planner.plan(
-            disc.center(self.robot.base_pose(self.data)),
-            disc.center(base),
-            disc.radius,
-            self.object_boxes(exclude=(obj,)),
-        )
+        start, goal = disc.center(self.robot.base_pose(self.data)), disc.center(base)
+        movable = self.object_boxes(exclude=(obj,))
+        if cfg.planner.footprint is None:
+            path = self.planner.plan(start, goal, disc.radius, movable)
+        else:
+            footprint = self.carry_footprint_for(obj, t.held_rel)
+            path = self.planner.plan_footprint(start, goal, disc.radius, footprint, movable)
         plan_time = time.perf_counter() - t0
         self.last_timing = StepTiming(collision=col_time, planning=plan_time)
         if path is None:

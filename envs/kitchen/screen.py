@@ -36,6 +36,7 @@ from voot.envs.core.units import denormalize_floats
 from voot.envs.kitchen.config import KitchenConfig
 from voot.envs.kitchen.poses import relative_pose_floats
 from voot.envs.kitchen.task import KitchenTask
+from voot.envs.motion.footprint import Footprint
 from voot.envs.motion.planner import Box2D, DiscProbe
 from voot.envs.motion.rects import rect_fields_inside, rect_fields_overlap
 from voot.envs.robot.model import (
@@ -133,6 +134,32 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
                 self._disc_cache.clear()
             self._disc_cache[key] = disc
         return disc
+
+    def carry_footprint_for(self, obj: int, held_rel: tuple[float, float, float]) -> Footprint:
+        """The exact footprint of what :meth:`carry_disc_for` encloses, in its centre's frame.
+
+        Two rectangles: the base square and the object's footprint at ``held_rel`` (the
+        arm between them is not in the kitchen's carry disc either), in the frame of the
+        carry disc's centre, so the disc encloses the footprint and a disc path is a
+        footprint path. The place step searches it where the disc finds no path
+        (``KitchenConfig.base_model="footprint"``).
+        """
+        cache = self.__dict__.setdefault("_footprint_cache", {})
+        key = (obj, held_rel)
+        hit: Footprint | None = cache.get(key)
+        if hit is None:
+            ox, oy = self.carry_disc_for(obj, held_rel).offset
+            box = object_footprint(self.objects[obj], *held_rel)
+            hit = Footprint(
+                (
+                    Box2D(-ox, -oy, BASE_HALF, BASE_HALF, 0.0, "base"),
+                    Box2D(box.cx - ox, box.cy - oy, box.half_x, box.half_y, box.yaw, box.name),
+                )
+            )
+            if len(cache) > 4096:
+                cache.clear()
+            cache[key] = hit
+        return hit
 
     def _carry_blocked(
         self, obj: int, held_rel: tuple[float, float, float], base: ArrayLike
@@ -297,7 +324,8 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         assert disc is not None and ctx.start is not None
         goal = disc.center(np.array([bx, by, bt]))
         gx, gy, _ = goal.tolist()
-        if ctx.probe.blocked(gx, gy, disc.radius):
+        exact = cfg.planner.footprint is not None  # a blocked disc can leave a footprint path
+        if not exact and ctx.probe.blocked(gx, gy, disc.radius):
             return True
         z = float(ctx.pose[2])
         if self.collision.collides(
@@ -309,6 +337,10 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         ):
             return True
         # the step's base path (the planner remembers it for the step that follows)
+        if exact:
+            footprint = self.carry_footprint_for(ctx.obj, t.held_rel)
+            path = self.planner.plan_footprint(ctx.start, goal, disc.radius, footprint, ctx.movable)
+            return path is None
         return self.planner.plan(ctx.start, goal, disc.radius, ctx.movable) is None
 
     def _pick_screened(self, ctx: ScreenContext, a: list[float]) -> bool:

@@ -63,3 +63,29 @@ def test_shipped_store_redraws_the_docs_table() -> None:
     store = json.loads(STORE.read_text())
     assert [r["switch"] for r in store["rows"]] == list(D.SWITCHES)
     assert D.table(store) in (ROOT / "docs" / "results-planning.md").read_text()
+
+
+def test_the_kitchen_switch() -> None:
+    """The kitchen's footprint switch: same pre-check passes (the pre-check tests no base
+    path), every rate within its counts, the scripted solution still solving."""
+    assert list(D.KITCHEN_SWITCHES) == ["v1", "footprint"]
+    assert D.make_env("footprint", "kitchen").config.planner.footprint is not None
+    with pytest.raises(ValueError, match="unknown domain 'garage'; choose from conveyor, kitchen"):
+        D.make_env("v1", "garage")
+    with pytest.raises(ValueError, match="unknown switch 'big_box_ban'; choose from v1, footprint"):
+        D.make_env("big_box_ban", "kitchen")
+    store = D.run(("v1", "footprint"), 60, 3, 1, 0, domain="kitchen")
+    assert store["problem"] == "voot/KitchenClearing-v1"
+    v1, fp = store["rows"]
+    assert [n["passed"] for n in v1["nodes"]] == [n["passed"] for n in fp["nodes"]]
+    for row in (v1, fp):
+        assert row["scripted_solves"]
+        for n in row["nodes"]:
+            assert n["reached"] and 0 <= n["feasible"] <= n["executed"] <= 3
+    assert "obstacles cleared" in D.table(store)
+
+
+def test_shipped_kitchen_store_redraws_the_docs_table() -> None:
+    store = json.loads((ROOT / "docs" / "data" / "domain-ablation-kitchen-v1.json").read_text())
+    assert [r["switch"] for r in store["rows"]] == list(D.KITCHEN_SWITCHES)
+    assert D.table(store) in (ROOT / "docs" / "results-planning.md").read_text()

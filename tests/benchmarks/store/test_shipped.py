@@ -15,6 +15,7 @@ from typing import Any
 
 import pytest
 
+from voot.bench.report import docs_pages
 from voot.bench.store import shipped
 from voot.bench.store.compact import CompactConfig
 from voot.bench.store.format import Row, StoreError, make_row
@@ -219,6 +220,34 @@ def test_the_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
     page = (root / "docs" / "results-planning.md").read_text()
     for name, body in blocks.items():
         assert docs.marked(page, name) == body, f"run python docs/scripts/ablation_docs.py ({name})"
+
+
+def test_the_domain_planner_store_holds_only_its_documented_runs() -> None:
+    """Every committed run of ``domain-planners-v1`` is one of the runs its script plans
+    (``python docs/scripts/domain_planners.py run`` resumes the rest, running none of
+    these again)."""
+    docs = docs_script("domain_planners")
+    planned = {spec.run_id for spec in docs.specs()}
+    rows = ResultStore(DATA / "domain-planners-v1", create=False).load(kind="plan")
+    assert rows and {row["run_id"] for row in rows} <= planned
+    assert (
+        len(docs.commands())
+        == len(docs.RUNS["conveyor_v1"][0]) * 3 + len(docs.RUNS["kitchen_v1"][0]) * 3
+    )
+
+
+def test_the_domain_planner_tables_in_the_docs_are_what_the_store_redraws() -> None:
+    root = DATA.parents[1]
+    docs = docs_script("domain_planners")
+    with shipped.store_copy(DATA / "domain-planners-v1") as copy:
+        blocks = docs.render(copy)
+    page = (root / "docs" / "results-planning.md").read_text()
+    for name, body in blocks.items():
+        assert docs_pages.marked(page, name) == body, "run python docs/scripts/domain_planners.py"
+    assert (
+        "| authors_domain | VOOT (omega 0.3, reevaluations 2) | 5 of 5 |"
+        in blocks["domain-planners-v1:conveyor"]
+    )
 
 
 @pytest.mark.parametrize("name", sorted(documented_sweeps()))

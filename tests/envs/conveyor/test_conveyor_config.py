@@ -5,7 +5,6 @@ from __future__ import annotations
 import pytest
 
 from voot.envs.conveyor.config import (
-    BASE_MODELS,
     CONVEYOR_PRESETS,
     ROOMS,
     ConveyorConfig,
@@ -13,14 +12,25 @@ from voot.envs.conveyor.config import (
 )
 from voot.envs.core.names import Precheck
 from voot.envs.motion.footprint import FootprintConfig
-from voot.envs.motion.planner import BasePlannerConfig
+from voot.envs.motion.planner import BASE_MODELS, BasePlannerConfig
 
 
 def test_the_versions_differ_only_in_the_precheck() -> None:
-    assert set(CONVEYOR_PRESETS) == {"v0", "v1"}
+    assert set(CONVEYOR_PRESETS) == {"v0", "v1", "v3"}
     v0, v1 = conveyor_config("v0"), conveyor_config("v1")
     assert v1.precheck == Precheck.KINEMATIC
     assert conveyor_config("v1", precheck=v0.precheck) == v0
+
+
+def test_v3_is_v1_on_the_authors_domain() -> None:
+    v3 = conveyor_config("v3")
+    assert (v3.rooms, v3.base_model, v3.big_box_ban) == ("authors", "footprint", True)
+    assert v3.planner.footprint is not None and v3.planner.footprint.heuristic == "geodesic"
+    same = conveyor_config(
+        "v1", rooms="authors", base_model="footprint", footprint_heuristic="geodesic",
+        big_box_ban=True,
+    )  # fmt: skip
+    assert v3 == same
 
 
 def test_the_authors_options_are_off_by_default_and_named() -> None:

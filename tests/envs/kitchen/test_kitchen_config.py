@@ -56,3 +56,21 @@ def test_parameter_ranges_are_in_action_order() -> None:
     )
     assert cfg.pick_ranges[0] == pytest.approx((math.radians(45.0), math.pi))
     assert cfg.place_ranges == ((-2.0, 6.0), (-4.0, 4.0), (0.0, 2.0 * math.pi))
+
+
+def test_the_base_model_option() -> None:
+    """``base_model="footprint"`` sets the planner's footprint option (with the chosen
+    heuristic); bad names and the disc's carry rule are refused by name."""
+    from voot.envs.motion.planner import BASE_MODELS
+
+    cfg = kitchen_config("v1", base_model="footprint", footprint_heuristic="geodesic")
+    assert cfg.planner.footprint is not None and cfg.planner.footprint.heuristic == "geodesic"
+    assert kitchen_config("v1").planner.footprint is None
+    with pytest.raises(ValueError, match=", ".join(BASE_MODELS)):
+        kitchen_config("v1", base_model="sphere")
+    with pytest.raises(ValueError, match="footprint_heuristic must be one of euclidean"):
+        kitchen_config("v1", base_model="footprint", footprint_heuristic="manhattan")
+    with pytest.raises(ValueError, match='needs base_model="footprint"'):
+        kitchen_config("v1", footprint_heuristic="geodesic")
+    with pytest.raises(ValueError, match="needs pick_requires_free_carry=False"):
+        kitchen_config("v0", base_model="footprint")

@@ -96,3 +96,33 @@ def test_carry_discs_are_remembered_and_enclose_the_robot(env: KitchenClearingEn
     assert disc is env.carry_disc_for(t.held, t.held_rel)  # the same object: remembered
     assert disc.radius >= env.config.robot_radius
     env.reset(seed=0)
+
+
+def test_certainly_infeasible_is_exact_with_the_footprint() -> None:
+    """With ``base_model="footprint"`` the screen asks the exact search where the disc
+    fails, so it still never rejects a place the step executes."""
+    env = KitchenClearingEnv(
+        config=KitchenConfig(pick_requires_free_carry=False, base_model="footprint")
+    )
+    env.reset(seed=0)
+    rng = np.random.default_rng(12)
+    good = kitchen_actions(env)
+    env.transition(good[0])  # holding the first obstacle: a place node
+    props = np.zeros((80, 6))
+    props[:, :3] = rng.uniform(-1, 1, (80, 3))
+    c = _screen_against_the_step(env, props)
+    assert c["feasible"] > 0 and c["infeasible"] > 0 and c["screened"] > 0, c
+
+
+def test_the_carry_footprint_is_inside_the_carry_disc(env: KitchenClearingEnv) -> None:
+    """The footprint's rectangles (base square, held object) lie in the carry disc, so a
+    disc path is a footprint path; remembered per object and grasp."""
+    env.reset(seed=0)
+    env.step(kitchen_actions(env)[0])
+    t = env.task
+    disc = env.carry_disc_for(t.held, t.held_rel)
+    footprint = env.carry_footprint_for(t.held, t.held_rel)
+    assert footprint is env.carry_footprint_for(t.held, t.held_rel)
+    assert [p.name for p in footprint.parts] == ["base", env.objects[t.held].name]
+    assert footprint.reach <= disc.radius + 1e-9
+    env.reset(seed=0)

@@ -184,3 +184,18 @@ def test_picks_grasp_the_mesh_and_a_miss_is_an_infeasible_pick() -> None:
     assert mesh is not None and side is not None
     assert np.allclose(mesh.position, side.position, rtol=0.0, atol=1e-6)
     assert np.array_equal(mesh.rotation, side.rotation)
+
+
+def test_the_exact_footprint_option_reaches_the_generated_kitchens() -> None:
+    """``base_model="footprint"`` passes through to a generated kitchen's config, and its
+    witness still clears the path (its disc paths are footprint paths)."""
+    env = gym.make("voot/GeneratedKitchen-v0", layout_seed=0, difficulty="medium",
+                   base_model="footprint")  # fmt: skip
+    u = env.unwrapped
+    assert u.config.planner.footprint is not None
+    env.reset(seed=0)
+    terminated = False
+    for a in u.witness_actions():
+        _, _, terminated, _, info = env.step(a)
+        assert info["feasible"], info["reason"]
+    assert terminated

@@ -1,0 +1,236 @@
+"""Redraw the tables of VOOT and PW-UCT on the domain switches.
+
+Reads the committed store ``docs/data/domain-planners-v1``: VOOT and PW-UCT with both
+widening tests, each at the setting the ablation selected on the plain v1 domain
+(tuning seeds 1000-1004, ``docs/data/ablation-v1``), on ConveyorPacking-v1 with the disc,
+with the exact footprint in voot's rooms, and with the authors' domain (footprint, rooms
+and big-box ban), and on KitchenClearing-v1 with the disc and with the footprint. Writes
+a table per domain between the ``<!-- domain-planners-v1:conveyor -->`` and
+``<!-- domain-planners-v1:kitchen -->`` markers of ``docs/results-planning.md``:
+
+    python docs/scripts/domain_planners.py          # the tables
+    python docs/scripts/domain_planners.py run      # run (or resume) the store's runs
+
+Objects handled (boxes placed, obstacles cleared), not returns, are compared: the
+authors' rooms put the returns on another scale (their small boxes travel 16-22 m to
+the west room).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from voot.bench.cli.main import main as bench
+from voot.bench.report import docs_pages
+from voot.bench.report.plan_runs import first_reach
+from voot.bench.store.frame import store_frame
+
+STORE = Path("docs/data/domain-planners-v1")
+PAGE = Path("docs/results-planning.md")
+
+#: Per table (its marker's suffix): the problem, its domains by their ``env_kwargs``
+#: (JSON) in the table's order, and the budgets at which objects handled are reported.
+TABLES: dict[str, tuple[str, dict[str, str], tuple[int, ...]]] = {
+    "conveyor": (
+        "voot/ConveyorPacking-v1",
+        {
+            "{}": "v1 (disc)",
+            '{"base_model":"footprint"}': "footprint",
+            '{"base_model":"footprint","big_box_ban":true,"footprint_heuristic":"geodesic",'
+            '"rooms":"authors"}': "authors_domain",
+        },
+        (100, 300, 1000),
+    ),
+    "kitchen": (
+        "voot/KitchenClearing-v1",
+        {"{}": "v1 (disc)", '{"base_model":"footprint"}': "footprint"},
+        (100, 500, 2000),
+    ),
+}
+
+
+#: The conveyor's and the kitchen's domains (``env_kwargs``).
+CONVEYOR_DOMAINS: tuple[dict[str, Any], ...] = (
+    {},
+    {"base_model": "footprint"},
+    {
+        "base_model": "footprint",
+        "footprint_heuristic": "geodesic",
+        "big_box_ban": True,
+        "rooms": "authors",
+    },
+)
+KITCHEN_DOMAINS: tuple[dict[str, Any], ...] = ({}, {"base_model": "footprint"})
+
+#: Per problem: its domains, seeds, simulations, and each planner's setting as the
+#: ablation selected it on the plain v1 domain (tuning seeds 1000-1004,
+#: ``docs/data/ablation-v1``; on the conveyor every PW-UCT setting tied there, and the
+#: tie goes to the first of the grid).
+RUNS: dict[str, tuple[tuple[dict[str, Any], ...], range, int, list[tuple[str, dict[str, Any]]]]] = {
+    "conveyor_v1": (
+        CONVEYOR_DOMAINS,
+        range(5),
+        1000,
+        [
+            ("pw_uct", {"pw_k": 0.8, "ucb_c": 0.1, "widening": "authors"}),
+            ("pw_uct", {"pw_k": 1.0, "ucb_c": 0.1}),
+            ("voot", {"omega": 0.3, "reevaluations": 2}),
+        ],
+    ),
+    "kitchen_v1": (
+        KITCHEN_DOMAINS,
+        range(10),
+        2000,
+        [
+            ("pw_uct", {"pw_k": 0.8, "ucb_c": 0.1, "widening": "authors"}),
+            ("pw_uct", {"pw_k": 1.0, "ucb_c": 1.0}),
+            ("voot", {"omega": 0.3, "reevaluations": 5}),
+        ],
+    ),
+}
+
+
+def value_text(value: Any) -> str:
+    """A setting's value as ``--set`` and ``--env-kwargs`` read it."""
+    return str(value).lower() if isinstance(value, bool) else str(value)
+
+
+def commands(store: str | Path = STORE) -> list[list[str]]:
+    """The ``voot-bench plan`` command lines of the store's runs (cheapest first)."""
+    out = []
+    for problem, (domains, seeds, simulations, settings) in RUNS.items():
+        for env_kwargs in domains:
+            for planner, fixed in settings:
+                argv = ["plan", "--out", str(store), "--compact", "--problems", problem]
+                argv += ["--grid", "default", "--seeds", f"{seeds.start}:{seeds.stop}"]
+                argv += ["--simulations", str(simulations), "--planners", planner, "--set"]
+                argv += [f"{k}={value_text(v)}" for k, v in fixed.items()]
+                if env_kwargs:
+                    argv += ["--env-kwargs"]
+                    argv += [f"{k}={value_text(v)}" for k, v in env_kwargs.items()]
+                out.append(argv)
+    return out
+
+
+def specs() -> list[Any]:
+    """The store's runs as sweep specs (what :func:`commands` runs)."""
+    from voot.bench.sweep.plan import build_plan_specs
+
+    return [
+        spec
+        for problem, (domains, seeds, simulations, settings) in RUNS.items()
+        for env_kwargs in domains
+        for planner, fixed in settings
+        for spec in build_plan_specs(
+            [problem],
+            planners=[planner],
+            seeds=seeds,
+            simulations=simulations,
+            grid="default",
+            env_kwargs=env_kwargs,
+            fixed=fixed,
+        )
+    ]
+
+
+def handled(objects_left: Sequence[float], initial: float, budget: int) -> float:
+    """Objects the best plan (highest return) handles after ``budget`` simulations."""
+    return float(initial - objects_left[min(budget, len(objects_left)) - 1])
+
+
+def kwargs_key(env_kwargs: str | None) -> str:
+    """A run's ``env_kwargs`` column (JSON) in the form of :data:`TABLES`' keys."""
+    return json.dumps(json.loads(env_kwargs or "{}"), sort_keys=True, separators=(",", ":"))
+
+
+def mean_range(values: Sequence[float]) -> str:
+    """``mean [min, max]`` of ``values``."""
+    return f"{np.mean(values):.1f} [{min(values):g}, {max(values):g}]"
+
+
+def planner_label(planner: str, fixed: dict[str, Any]) -> str:
+    """``VOOT (omega 0.3, reevaluations 2)``: the planner and its setting, for the table."""
+    name = {"voot": "VOOT", "pw_uct": "PW-UCT"}[planner]
+    if fixed.get("widening") == "authors":
+        name += " (authors' widening)"
+    setting = ", ".join(f"{k} {v}" for k, v in fixed.items() if k != "widening")
+    return f"{name} ({setting})"
+
+
+def table(frame: Any, name: str) -> str:
+    """The Markdown table of the store's runs on table ``name``'s problem, a row per
+    domain and planner of :data:`RUNS` (``not run yet`` where the store has none)."""
+    problem, domains, budgets = TABLES[name]
+    _, seeds, _, settings = RUNS[f"{name}_v1"]
+    what = "boxes placed" if name == "conveyor" else "obstacles cleared"
+    head = [
+        "domain",
+        "planner (setting)",
+        "seeds",
+        *(f"{what} at {b:,}" for b in budgets),
+        f"seeds handling all by {budgets[-1]:,}",
+        "median simulations to all",
+        "median CPU s per run",
+    ]
+    lines = ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
+    frame = frame[frame["problem"] == problem]
+    frame = frame.assign(
+        key=frame["env_kwargs"].map(kwargs_key),
+        setting=frame["params"].map(lambda s: json.dumps(json.loads(s), sort_keys=True)),
+    )
+    for key, domain in domains.items():
+        for planner, fixed in settings:
+            runs = frame[
+                (frame["key"] == key)
+                & (frame["planner"] == planner)
+                & (frame["setting"] == json.dumps(fixed, sort_keys=True))
+            ]
+            label = planner_label(planner, fixed)
+            if runs.empty:
+                lines.append(f"| {domain} | {label} | 0 of {len(seeds)} |" + " not run yet |" * 6)
+                continue
+            curves = list(zip(runs["objects_left"], runs["objects_initial"], strict=True))
+            firsts = first_reach(np.array([left for left, _ in curves], dtype=float))
+            reached = firsts[np.isfinite(firsts)]
+            cells = [
+                domain,
+                label,
+                f"{len(runs)} of {len(seeds)}",
+                *(mean_range([handled(left, n, b) for left, n in curves]) for b in budgets),
+                f"{len(reached)}/{len(runs)}",
+                f"{np.median(reached):.0f}" if len(reached) else "—",
+                f"{np.median([c[-1] for c in runs['cpu_elapsed']]):.0f}",
+            ]
+            lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def render(store: str | Path) -> dict[str, str]:
+    """The page's blocks (marker -> body): a table per domain, from ``store``."""
+    frame = store_frame(store, kind="plan", status="ok")
+    return {f"{STORE.name}:{name}": "\n" + table(frame, name) + "\n" for name in TABLES}
+
+
+def main(argv: Sequence[str] = ()) -> None:
+    if list(argv) == ["run"]:
+        for command in commands():
+            print("voot-bench " + " ".join(command), flush=True)
+            code = bench([*command, "--workers", "1", "--no-progress"])
+            if code != 0:
+                raise SystemExit(code)
+        return
+    if argv:
+        raise SystemExit(f"usage: {Path(__file__).name} [run]; got {' '.join(argv)}")
+    docs_pages.rewrite_page(PAGE, render(STORE))
+    print(f"{STORE.name}: tables redrawn into {PAGE}")
+
+
+if __name__ == "__main__":
+    import sys
+
+    main(sys.argv[1:])
