@@ -105,12 +105,12 @@ def make_env(switch: str, domain: str = "conveyor") -> Any:
     return ConveyorPackingEnv(preset="v1", **switches[switch])
 
 
-def _reached(env: Any, depth: int, feasible: bool) -> bool:
-    """Did the ``depth`` scripted actions reach their node? The conveyor's: its boxes are
-    placed (three an action); the kitchen's: every action executed."""
-    if hasattr(env.task, "placed"):
+def _reached(env: Any, domain: str, depth: int, executed: bool) -> bool:
+    """Did the ``depth`` scripted actions reach their node? On the conveyor: their boxes
+    are placed (three an action); on the kitchen: every one ``executed``."""
+    if domain == "conveyor":
         return bool(env.task.placed == min(env.n, 3 * depth))
-    return feasible
+    return executed
 
 
 def measure(
@@ -133,7 +133,7 @@ def measure(
         scripted_ok = True
         for a in script[:depth]:
             scripted_ok &= bool(env.transition(a)[3]["feasible"])
-        if not _reached(env, depth, scripted_ok):
+        if not _reached(env, domain, depth, scripted_ok):
             # the scripted actions do not fit this domain: the node is not reached
             nodes.append({"depth": depth, "reached": False})
             continue

@@ -100,20 +100,28 @@ def value_text(value: Any) -> str:
     return str(value).lower() if isinstance(value, bool) else str(value)
 
 
+def planned() -> list[tuple[str, dict[str, Any], range, int, str, dict[str, Any]]]:
+    """The store's planned runs, one entry per command: (problem, env_kwargs, seeds,
+    simulations, planner, setting), cheapest first."""
+    return [
+        (problem, env_kwargs, seeds, simulations, planner, fixed)
+        for problem, (domains, seeds, simulations, settings) in RUNS.items()
+        for env_kwargs in domains
+        for planner, fixed in settings
+    ]
+
+
 def commands(store: str | Path = STORE) -> list[list[str]]:
-    """The ``voot-bench plan`` command lines of the store's runs (cheapest first)."""
+    """The ``voot-bench plan`` command lines of :func:`planned`."""
     out = []
-    for problem, (domains, seeds, simulations, settings) in RUNS.items():
-        for env_kwargs in domains:
-            for planner, fixed in settings:
-                argv = ["plan", "--out", str(store), "--compact", "--problems", problem]
-                argv += ["--grid", "default", "--seeds", f"{seeds.start}:{seeds.stop}"]
-                argv += ["--simulations", str(simulations), "--planners", planner, "--set"]
-                argv += [f"{k}={value_text(v)}" for k, v in fixed.items()]
-                if env_kwargs:
-                    argv += ["--env-kwargs"]
-                    argv += [f"{k}={value_text(v)}" for k, v in env_kwargs.items()]
-                out.append(argv)
+    for problem, env_kwargs, seeds, simulations, planner, fixed in planned():
+        argv = ["plan", "--out", str(store), "--compact", "--problems", problem]
+        argv += ["--grid", "default", "--seeds", f"{seeds.start}:{seeds.stop}"]
+        argv += ["--simulations", str(simulations), "--planners", planner, "--set"]
+        argv += [f"{k}={value_text(v)}" for k, v in fixed.items()]
+        if env_kwargs:
+            argv += ["--env-kwargs", *(f"{k}={value_text(v)}" for k, v in env_kwargs.items())]
+        out.append(argv)
     return out
 
 
@@ -123,9 +131,7 @@ def specs() -> list[Any]:
 
     return [
         spec
-        for problem, (domains, seeds, simulations, settings) in RUNS.items()
-        for env_kwargs in domains
-        for planner, fixed in settings
+        for problem, env_kwargs, seeds, simulations, planner, fixed in planned()
         for spec in build_plan_specs(
             [problem],
             planners=[planner],

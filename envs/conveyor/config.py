@@ -2,9 +2,10 @@
 
 Every constant of the conveyor domain (regions, belt, boxes, costs, the base-motion model
 and the authors' geometry options) as a validated field at the paper's value, and the
-presets ``v0``, ``v1`` and ``v3`` (:data:`CONVEYOR_PRESETS`) that ``voot/ConveyorPacking-v0``,
-``-v1`` and ``-v3`` (the authors' domain) pass. Kept apart from the env (:mod:`voot.envs.conveyor.env`) as the kitchen's
-settings are (:mod:`voot.envs.kitchen.config`): one concept per module.
+presets ``v0``, ``v1`` and ``v3`` (:data:`CONVEYOR_PRESETS`) that
+``voot/ConveyorPacking-v0``, ``-v1`` and ``-v3`` (the authors' domain) pass. Kept apart
+from the env (:mod:`voot.envs.conveyor.env`) as the kitchen's settings are
+(:mod:`voot.envs.kitchen.config`): one concept per module.
 """
 
 from __future__ import annotations
@@ -19,7 +20,8 @@ from voot import validation as V
 from voot.envs.conveyor.problems import HORIZON
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
-from voot.envs.motion.planner import BasePlannerConfig, base_model_planner
+from voot.envs.motion.base_model import base_model_planner
+from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 
 #: The choices of :attr:`ConveyorConfig.rooms`.

@@ -24,7 +24,8 @@ from voot import validation as V
 from voot.envs.core.names import Precheck
 from voot.envs.core.presets import check_step_rules, preset_config
 from voot.envs.kitchen.problems import HORIZON
-from voot.envs.motion.planner import BasePlannerConfig, base_model_planner
+from voot.envs.motion.base_model import base_model_planner
+from voot.envs.motion.planner import BasePlannerConfig
 from voot.envs.robot.arm_ik import IKConfig
 from voot.envs.robot.model import BASE_HALF, ROBOT_RADIUS
 

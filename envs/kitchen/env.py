@@ -125,6 +125,7 @@ class KitchenClearingEnv(KitchenChecks):
         # the fixed path and handling order are needed by _initial_task (called by super)
         self._clearing: ClearingPath | None = None
         self._disc_cache = {}
+        self._footprint_cache = {}
         self._screen = None
         self._last_carry = None
         super().__init__(

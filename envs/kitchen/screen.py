@@ -104,6 +104,8 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
     config: KitchenConfig
     #: Carry discs by object and grasp (:meth:`carry_disc_for`).
     _disc_cache: dict[tuple[int, tuple[float, float, float]], CarryDisc]
+    #: Carry footprints by object and grasp (:meth:`carry_footprint_for`).
+    _footprint_cache: dict[tuple[int, tuple[float, float, float]], Footprint]
     #: The pre-screen's numbers of the last state (:meth:`_screen_context`).
     _screen: ScreenContext | None
     #: The last carry test and its answer (:meth:`_carry_blocked`).
@@ -144,9 +146,9 @@ class KitchenScreen(ManipulationEnv[KitchenTask]):
         footprint path. The place step searches it where the disc finds no path
         (``KitchenConfig.base_model="footprint"``).
         """
-        cache = self.__dict__.setdefault("_footprint_cache", {})
+        cache = self._footprint_cache
         key = (obj, held_rel)
-        hit: Footprint | None = cache.get(key)
+        hit = cache.get(key)
         if hit is None:
             ox, oy = self.carry_disc_for(obj, held_rel).offset
             box = object_footprint(self.objects[obj], *held_rel)

@@ -67,7 +67,6 @@ length is a property of the state, not of a random seed) and needs only numpy.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 import struct
@@ -105,7 +104,6 @@ from voot.envs.motion.visibility_graph import VisibilityGraphs, _box_lists, _Sce
 FloatArray = NDArray[np.float64]
 
 __all__ = [
-    "BASE_MODELS",
     "BasePath",
     "BasePlanner",
     "BasePlannerConfig",
@@ -114,7 +112,6 @@ __all__ = [
     "Footprint",
     "FootprintConfig",
     "Pose2D",
-    "base_model_planner",
     "path_length",
     "se2_distance",
     "wrap_angle",
@@ -203,52 +200,6 @@ class BasePlannerConfig:
                 "BasePlannerConfig.footprint must be None or a FootprintConfig, got "
                 f"{type(self.footprint).__name__}"
             )
-
-
-#: The choices of a domain's ``base_model``: the enclosing disc, or the exact footprint
-#: where the disc finds no path (:func:`base_model_planner`).
-BASE_MODELS = ("disc", "footprint")
-
-
-def base_model_planner(
-    owner: str, base_model: str, heuristic: str, planner: BasePlannerConfig
-) -> BasePlannerConfig:
-    """The planner settings a domain's ``base_model`` and ``footprint_heuristic`` give.
-
-    ``"footprint"`` sets ``planner.footprint`` to a default :class:`FootprintConfig` with
-    ``heuristic`` when the caller set none; ``"disc"`` leaves ``planner`` as it is. The
-    domains' configs (``ConveyorConfig``, ``KitchenConfig``: ``owner``) share this rule.
-
-    Raises:
-        ValueError: an unknown base model or heuristic, or a heuristic other than
-            ``"euclidean"`` that would not be used (no ``"footprint"``, or a
-            ``planner.footprint`` of the caller's); the message names the valid choices.
-    """
-    from voot.envs.motion.footprint import HEURISTICS
-
-    if base_model not in BASE_MODELS:
-        raise ValueError(
-            f"{owner}.base_model must be one of {', '.join(BASE_MODELS)}, got {base_model!r}"
-        )
-    if heuristic not in HEURISTICS:
-        raise ValueError(
-            f"{owner}.footprint_heuristic must be one of {', '.join(HEURISTICS)}, got {heuristic!r}"
-        )
-    sets_footprint = (
-        base_model == "footprint"
-        and isinstance(planner, BasePlannerConfig)
-        and planner.footprint is None
-    )
-    if heuristic != "euclidean" and not sets_footprint:
-        raise ValueError(
-            f"{owner}.footprint_heuristic sets the heuristic of the footprint"
-            ' option that base_model="footprint" sets; it needs base_model="footprint"'
-            " and no planner.footprint of the caller's (set FootprintConfig.heuristic"
-            " there instead)"
-        )
-    if not sets_footprint:
-        return planner
-    return dataclasses.replace(planner, footprint=FootprintConfig(heuristic=heuristic))
 
 
 class DiscProbe:

@@ -11,8 +11,9 @@ from voot.envs.conveyor.config import (
     conveyor_config,
 )
 from voot.envs.core.names import Precheck
+from voot.envs.motion.base_model import BASE_MODELS
 from voot.envs.motion.footprint import FootprintConfig
-from voot.envs.motion.planner import BASE_MODELS, BasePlannerConfig
+from voot.envs.motion.planner import BasePlannerConfig
 
 
 def test_the_versions_differ_only_in_the_precheck() -> None:

@@ -61,7 +61,7 @@ def test_parameter_ranges_are_in_action_order() -> None:
 def test_the_base_model_option() -> None:
     """``base_model="footprint"`` sets the planner's footprint option (with the chosen
     heuristic); bad names and the disc's carry rule are refused by name."""
-    from voot.envs.motion.planner import BASE_MODELS
+    from voot.envs.motion.base_model import BASE_MODELS
 
     cfg = kitchen_config("v1", base_model="footprint", footprint_heuristic="geodesic")
     assert cfg.planner.footprint is not None and cfg.planner.footprint.heuristic == "geodesic"
