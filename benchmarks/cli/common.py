@@ -95,7 +95,8 @@ def parse_range(text: str, what: str) -> list[int]:
 
 def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, object]:
     """``["omega=0.3", "depth_limit=5,gamma=0.99"]`` -> a dict; values are JSON
-    (``0.3``, ``true``, ``null``, ``"text"``) or else plain strings."""
+    (``0.3``, ``true``, ``null``, ``"text"``) or else plain strings. A name given twice is
+    refused (the last would silently win over a value the user also typed)."""
     out: dict[str, object] = {}
     for item in split_list(values):
         name, sep, text = item.partition("=")
@@ -110,6 +111,11 @@ def parse_assignments(values: Sequence[str] | None, what: str) -> dict[str, obje
                 value = json.loads(text)
             except ValueError:
                 value = text
+        if name in out:
+            raise CLIError(
+                f"{what}: {name} is given twice ({name}={out[name]!r} and {name}={value!r});"
+                " give each name once"
+            )
         out[name] = value
     return out
 

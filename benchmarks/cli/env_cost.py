@@ -90,8 +90,10 @@ def cmd_footprint_speed(args: argparse.Namespace) -> int:
         raise CLIError(f"--rollouts must be >= 1, got {args.rollouts}")
     if args.label_after is not None and args.label_after < 0:
         raise CLIError(f"--label-after must be >= 0 (0: never), got {args.label_after}")
+    if args.repeats < 1:
+        raise CLIError(f"--repeats must be >= 1, got {args.repeats}")
     r = run(args.rollouts, args.seed, args.coarse_first, args.engine, args.label_after,
-            args.heuristic)  # fmt: skip
+            args.heuristic, args.repeats)  # fmt: skip
     print(report(r))
     return 0
 
@@ -219,6 +221,13 @@ def register(sub: Subparsers) -> None:
         default="euclidean",
         help="FootprintConfig.heuristic: A*'s position term (the same 'a path exists'"
         " answers, other paths)",
+    )
+    p.add_argument(
+        "--repeats",
+        type=int,
+        default=1,
+        help="replay the steps this many times with fresh environments and keep the least"
+        " times (on a shared machine: the least disturbed; default 1)",
     )
     p.set_defaults(func=cmd_footprint_speed)
 

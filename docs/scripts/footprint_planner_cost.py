@@ -48,6 +48,13 @@ def main() -> None:
     parser.add_argument("--simulations", type=int, default=40)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--env-kwargs", nargs="*", default=[], metavar="KEY=VALUE")
+    parser.add_argument(
+        "--set",
+        nargs="*",
+        default=[],
+        metavar="NAME=VALUE",
+        help="planner parameters (voot-bench plan --set)",
+    )
     parser.add_argument("--static-cache", type=int, default=None)
     parser.add_argument("--scene-cache", type=int, default=None)
     parser.add_argument("--label-after", type=int, default=None)
@@ -114,6 +121,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as out:
         bench(["plan", "--out", out, "--problems", "conveyor_v1", "--planners", args.planner,
                "--seeds", f"{args.seed}:{args.seed + 1}", "--simulations", str(args.simulations),
+               *(["--set", *args.set] if args.set else []),
                "--grid", "default", "--env-kwargs", "base_model=footprint", *heuristic,
                *args.env_kwargs,
                "--workers", "1", "--backend", "serial", "--no-progress"])  # fmt: skip
@@ -124,6 +132,8 @@ def main() -> None:
         f"{args.planner}, {args.simulations} simulations: process CPU {total:.1f} s; "
         f"{len(rows)} exact queries, {sum(times):.2f} s, median "
         f"{statistics.median(times) * 1000 if times else float('nan'):.1f} ms, "
+        f"expansions: median {statistics.median(r['expansions'] for r in rows) if rows else 0:.0f}, "
+        f"total {sum(r['expansions'] for r in rows)}; "
         f"{sum(r['found'] for r in rows)} found a path; {len(labelled)} reached the "
         f"connectivity proof ({sum(labelled):.2f} s in it)"
     )

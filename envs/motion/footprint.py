@@ -62,10 +62,11 @@ class FootprintConfig:
             rebuilds an evicted occupancy, about 60 ms, again and again).
         mask_cache_size: ``(footprint, movable box)`` occupancy windows kept (>= 0).
         lazy_tile: Side (lattice positions) of the tiles in which a query's movable
-            boxes are tested on demand, in [0, 256]. 32 (default): each footprint keeps
-            its free lattice for the last set of movable boxes, re-marks only the
-            windows of boxes added or removed since, and tests a tile (all headings)
-            the first time the search looks at it (:mod:`.footprint_scene`). 0: every
+            boxes are tested on demand, in [0, 256]. > 0 (32, default): each footprint
+            keeps its free lattice for the last set of movable boxes, re-marks only the
+            windows of boxes added or removed since, and tests a pose the first time the
+            search looks at it (:mod:`.footprint_scene`): with ``engine="compiled"`` that
+            pose alone, with ``engine="python"`` its tile (all headings). 0: every
             box's whole window is tested before the search, on a fresh copy of the
             static lattice (the first version). The answers are the same bit for bit;
             only the time differs. Each footprint's scene takes one more byte per
@@ -109,8 +110,7 @@ class FootprintConfig:
             so their lengths, differ.
         scene_cache_size: Footprints whose lazy scene (``lazy_tile`` > 0) is kept
             (>= 1), each one byte per lattice pose (10.8 MB on the conveyor). An evicted
-            scene is rebuilt from its static occupancy, and its tiles tested again as the
-            search reaches them.
+            scene starts again with every pose untested.
     """
 
     xy_step: float = 0.025
@@ -319,6 +319,44 @@ class FootprintLattice:
             return None
         return (i0, i1, j0, j1)
 
+    def part_windows(
+        self, footprint: Footprint, box: Box2D
+    ) -> tuple[tuple[int, int, int, int], list[tuple[int, int, int, int] | None]] | None:
+        """The window of :meth:`box_window` and, per part, the part's own window in it.
+
+        A part's window is grown by the part's reach (not the footprint's): every pose
+        outside it keeps the part clear of ``box``. None where the part's window is empty;
+        None in all when the footprint's is.
+        """
+        bounds = self.box_window(footprint, box)
+        if bounds is None:
+            return None
+        i0, i1, j0, j1 = bounds
+        step = self.config.xy_step
+        xmin, _, ymin, _ = self.workspace
+        cb, sb = math.cos(box.yaw), math.sin(box.yaw)
+        ext_x = box.half_x * abs(cb) + box.half_y * abs(sb)
+        ext_y = box.half_x * abs(sb) + box.half_y * abs(cb)
+        parts: list[tuple[int, int, int, int] | None] = []
+        for part in footprint.parts:
+            p_grow = max(math.hypot(cx, cy) for cx, cy in part.corners().tolist()) + step
+            a0 = max(i0, math.floor((box.cx - ext_x - p_grow - xmin) / step))
+            a1 = min(i1, math.ceil((box.cx + ext_x + p_grow - xmin) / step) + 1)
+            b0 = max(j0, math.floor((box.cy - ext_y - p_grow - ymin) / step))
+            b1 = min(j1, math.ceil((box.cy + ext_y + p_grow - ymin) / step) + 1)
+            parts.append(None if a0 >= a1 or b0 >= b1 else (a0, a1, b0, b1))
+        return bounds, parts
+
+    def part_trig(self, part: Box2D) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """Per heading: the part's centre offset ``(ox, oy)`` rotated with the heading and
+        the cosine and sine of its axis (numpy's trigonometry, the one every test reads)."""
+        th = self.thetas[:, None, None]
+        cos_t, sin_t = self._cos, self._sin
+        ox = cos_t * part.cx - sin_t * part.cy
+        oy = sin_t * part.cx + cos_t * part.cy
+        ang = th + part.yaw
+        return ox.ravel(), oy.ravel(), np.cos(ang).ravel(), np.sin(ang).ravel()
+
     def blocked_window(
         self,
         footprint: Footprint,
@@ -332,54 +370,44 @@ class FootprintLattice:
         tolerance (every pose outside the window is clear of it). ``within`` (positions
         ``(i0, i1, j0, j1)``) clips the window: each pose's test is computed by the same
         arithmetic whatever the window, so a clipped mask is the full one's crop, bit for
-        bit (what the lazy scenes of :mod:`voot.envs.motion.footprint_scene` rely on).
+        bit (what the lazy scenes of :mod:`voot.envs.motion.footprint_scene` rely on, and
+        the pose-by-pose test :func:`~.footprint_kernels.pose_free`).
         """
-        step = self.config.xy_step
-        xmin, _, ymin, _ = self.workspace
-        cb, sb = math.cos(box.yaw), math.sin(box.yaw)
-        ext_x = box.half_x * abs(cb) + box.half_y * abs(sb)
-        ext_y = box.half_x * abs(sb) + box.half_y * abs(cb)
-        bounds = self.box_window(footprint, box)
-        if bounds is None:
+        windows = self.part_windows(footprint, box)
+        if windows is None:
             return None
-        i0, i1, j0, j1 = bounds
+        (i0, i1, j0, j1), part_windows = windows
         if within is not None:
             i0, i1 = max(i0, within[0]), min(i1, within[1])
             j0, j1 = max(j0, within[2]), min(j1, within[3])
             if i0 >= i1 or j0 >= j1:
                 return None
+        cb, sb = math.cos(box.yaw), math.sin(box.yaw)
         hit = np.zeros((self.nk, i1 - i0, j1 - j0), dtype=bool)
         tol = self.tolerance
-        cos_t, sin_t = self._cos, self._sin
-        th = self.thetas[:, None, None]
-        for part in footprint.parts:
-            # the part's own window (its reach, not the footprint's): every pose outside
-            # it keeps the part clear of the box, so the test runs on fewer poses and
-            # each pose's arithmetic is that of the whole window's
-            p_grow = max(math.hypot(cx, cy) for cx, cy in part.corners().tolist()) + step
-            a0 = max(i0, math.floor((box.cx - ext_x - p_grow - xmin) / step))
-            a1 = min(i1, math.ceil((box.cx + ext_x + p_grow - xmin) / step) + 1)
-            b0 = max(j0, math.floor((box.cy - ext_y - p_grow - ymin) / step))
-            b1 = min(j1, math.ceil((box.cy + ext_y + p_grow - ymin) / step) + 1)
+        for part, part_window in zip(footprint.parts, part_windows, strict=True):
+            if part_window is None:
+                continue
+            a0, a1 = max(i0, part_window[0]), min(i1, part_window[1])
+            b0, b1 = max(j0, part_window[2]), min(j1, part_window[3])
             if a0 >= a1 or b0 >= b1:
                 continue
             # positions relative to the box centre, (1, ni, 1) and (1, 1, nj)
             px = (self.xs[a0:a1] - box.cx)[None, :, None]
             py = (self.ys[b0:b1] - box.cy)[None, None, :]
             # the part's centre offset (rotated with the heading) and its axes
-            ox = cos_t * part.cx - sin_t * part.cy
-            oy = sin_t * part.cx + cos_t * part.cy
-            ang = th + part.yaw
-            ca, sa = np.cos(ang), np.sin(ang)
+            ox, oy, ca, sa = self.part_trig(part)
             if self.config.engine == "compiled":
                 from voot.envs.motion.footprint_kernels import part_hits
 
                 part_hits(
-                    hit, a0 - i0, b0 - j0, px.ravel(), py.ravel(), ox.ravel(), oy.ravel(),
-                    ca.ravel(), sa.ravel(), np.array([cb, sb, box.half_x, box.half_y]),
+                    hit, a0 - i0, b0 - j0, px.ravel(), py.ravel(), ox, oy, ca, sa,
+                    np.array([cb, sb, box.half_x, box.half_y]),
                     np.array([part.half_x, part.half_y]), tol,
                 )  # fmt: skip
                 continue
+            ox, oy = ox[:, None, None], oy[:, None, None]
+            ca, sa = ca[:, None, None], sa[:, None, None]
             part_hit = np.ones((self.nk, a1 - a0, b1 - b0), dtype=bool)
             axes = ((cb, sb), (-sb, cb), (ca, sa), (-sa, ca))
             for ux, uy in axes:

@@ -39,7 +39,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.motion.footprint_scene import PENDING
+from voot.envs.motion.footprint_scene import PENDING, KernelData
 from voot.envs.motion.geodesic import geodesic_steps
 
 FloatArray = NDArray[np.float64]
@@ -49,12 +49,19 @@ __all__ = [
     "DiscHub",
     "astar_compiled",
     "astar_python",
+    "dense_tables",
     "geodesic_steps",
     "numba_available",
     "warm_compiled",
 ]
 
 _SQRT2 = math.sqrt(2.0)
+
+#: A lazy scene's arrays for the compiled loop (:attr:`.footprint_scene.LazyScene.kernel_data`).
+SceneData = KernelData
+
+#: The compiled loop's per-pose g (float64) and move (uint8) tables (:func:`dense_tables`).
+DenseTables = tuple[NDArray[np.float64], NDArray[np.uint8]]
 
 #: (path from si to the last pose, the disc's head or None), or None when there is no path.
 Found = tuple[list[int], FloatArray | None] | None
@@ -246,6 +253,12 @@ def _h_head(spec: AStarSpec, gk: int) -> list[float]:
     return [spec.eps * spec.w * min(abs(kk - gk), nk - abs(kk - gk)) for kk in range(nk)]
 
 
+def dense_tables(n: int) -> DenseTables:
+    """Uninitialised g and move tables for a lattice of ``n`` poses (9 bytes a pose, of
+    which the memory holds only the pages a search has touched)."""
+    return np.empty(n, dtype=np.float64), np.empty(n, dtype=np.uint8)
+
+
 def numba_available() -> bool:
     """Can the compiled engine run (is numba importable)?"""
     return importlib.util.find_spec("numba") is not None
@@ -288,7 +301,17 @@ def warm_compiled() -> None:
                 np.zeros(1), np.ones(1), np.zeros(1), np.ones(4), np.ones(2), 0.0)  # fmt: skip
     K.segments_free(np.frombuffer(free, dtype=np.uint8), np.zeros(3), np.zeros((1, 3)),
                     np.array([2], dtype=np.int64), np.zeros(1), np.array([0.0, 0.0, 1.0, 1.0]),
-                    np.array([8, 3, 3], dtype=np.int64), 0)  # fmt: skip
+                    np.array([8, 3, 3, 0], dtype=np.int64), 0, np.zeros(3), np.zeros(3),
+                    np.zeros((0, 6)), np.zeros((0, 1, 4), dtype=np.int64), np.zeros((0, 4, 8)),
+                    np.zeros((0, 0, 8, 4)), np.zeros(0, dtype=np.int64),
+                    np.zeros(0, dtype=np.uint8))  # fmt: skip
+    # the pose-by-pose test of a lazy scene (inside the loops above too)
+    K.resolve_poses(np.frombuffer(free, dtype=np.uint8), np.array([4], dtype=np.int64),
+                    np.array([8, 3, 3], dtype=np.int64), np.zeros(3), np.zeros(3),
+                    np.zeros((1, 6)), np.zeros((1, 2, 4), dtype=np.int64), np.zeros((1, 4, 8)),
+                    K.part_limits(np.zeros(6), np.zeros((1, 4, 8)), np.ones((1, 2)), 0.0)[None],
+                    K.tile_lists(np.zeros((1, 2, 4), dtype=np.int64), 3, 3),
+                    np.ones(1, dtype=np.uint8))  # fmt: skip
 
 
 def astar_compiled(
@@ -301,28 +324,41 @@ def astar_compiled(
     connected: Callable[[], bool],
     hub: DiscHub | None,
     hpos: FloatArray | None = None,
+    scene: SceneData | None = None,
+    dense: DenseTables | None = None,
 ) -> tuple[Found, int]:
-    """:func:`astar_python`'s result, by the compiled loop of :mod:`.footprint_kernels`."""
+    """:func:`astar_python`'s result, by the compiled loop of :mod:`.footprint_kernels`.
+
+    With ``scene`` (:attr:`.footprint_scene.LazyScene.kernel_data`),
+    the loop tests pending poses itself and ``resolve`` is not called. ``dense``: the
+    per-pose g and move tables (:func:`dense_tables`, kept by the caller across searches:
+    only the poses a search reaches are read or written), or None to allocate them.
+    """
     from voot.envs.motion import footprint_kernels as K
 
     nk, nx, ny = spec.shape
     plane = nx * ny
     free = np.frombuffer(free_bytes, dtype=np.uint8)
     closed_view = np.frombuffer(closed, dtype=np.uint8)
-    disc, failed = K.new_maps()
-    tkeys = np.full(8192, -1, dtype=np.int64)
-    tg = np.empty(8192, dtype=np.float64)
-    tpar = np.empty(8192, dtype=np.int64)
-    K.table_put(tkeys, tg, tpar, si, 0.0, -1)
+    disc, failed = K.new_maps(plane)
+    gval, move = dense_tables(nk * plane) if dense is None else dense
+    touched = np.empty(8192, dtype=np.int64)
     keys = np.empty(1024, dtype=np.float64)
     vals = np.empty(1024, dtype=np.int64)
     keys[0], vals[0] = 0.0, si
     state = np.array([0, 0, -1, 1, 1], dtype=np.int64)
     dims = np.array(
-        [nk, nx, ny, si, gi, hub is not None, spec.label_after, hpos is not None],
+        [nk, nx, ny, si, gi, hub is not None, spec.label_after, hpos is not None,
+         scene is not None],
         dtype=np.int64,
     )  # fmt: skip
     geo = np.zeros(1) if hpos is None else np.ascontiguousarray(hpos, dtype=np.float64).ravel()
+    if scene is None:
+        sboxes, swins = np.zeros((0, 6)), np.zeros((0, 1, 4), dtype=np.int64)
+        strig, slims, stiles = np.zeros((0, 4, nk)), np.zeros((0, 0, nk, 4)), np.zeros(0, np.int64)
+        sdirty = np.zeros(0, dtype=np.uint8)
+    else:
+        sboxes, swins, strig, slims, stiles, sdirty = scene
     costs = np.array([spec.step, spec.step * _SQRT2, spec.w, spec.eps * spec.step])
     h_head = np.array(_h_head(spec, gi // plane), dtype=np.float64)
     hyp = hypot_table(nx, ny)
@@ -337,15 +373,21 @@ def astar_compiled(
     else:
         disc_par = np.zeros(7)
         disc_boxes = np.zeros((7, 0))
+    # the start, reached (the finally below resets every pose reached, this one too)
+    touched[0] = si
+    closed_view[si] = 2
+    gval[si] = 0.0
+    move[si] = 255
     try:
         while True:
             status = K.search(
-                free, closed_view, keys, vals, tkeys, tg, tpar, disc, failed, state, dims, costs,
-                h_head, hyp, geo, xs, ys, disc_par, disc_boxes,
+                free, closed_view, keys, vals, gval, move, touched, disc, failed, state, dims, costs,
+                h_head, hyp, geo, xs, ys, disc_par, disc_boxes, sboxes, swins, strig, slims,
+                stiles, sdirty,
             )  # fmt: skip
             v = int(state[2])
             if status == K.FOUND:
-                return (K.path_to(tkeys, tpar, v).tolist(), None), int(state[0])
+                return (K.path_to(move, dims, v).tolist(), None), int(state[0])
             if status == K.EXHAUSTED:
                 return None, int(state[0])
             if status == K.RESOLVE:
@@ -359,17 +401,17 @@ def astar_compiled(
                 rem = v % plane
                 head = hub.connect(spec.pose(v // plane, rem // ny, rem % ny))
                 if head is not None:
-                    return (K.path_to(tkeys, tpar, v).tolist(), head), int(state[0])
+                    return (K.path_to(move, dims, v).tolist(), head), int(state[0])
                 failed[rem] = 1
             elif status == K.LABEL:
                 if not connected():
                     return None, spec.label_after
                 state[1] = 1
-            else:  # GROW: the heap or the table
+            else:  # GROW: the heap or the list of poses reached
                 if int(state[3]) + 11 > keys.shape[0]:
                     keys = np.concatenate([keys, np.empty_like(keys)])
                     vals = np.concatenate([vals, np.empty_like(vals)])
-                if 2 * (int(state[4]) + 10) > tkeys.shape[0]:
-                    tkeys, tg, tpar = K.rehash(tkeys, tg, tpar)
+                if int(state[4]) + 11 > touched.shape[0]:
+                    touched = np.concatenate([touched, np.empty_like(touched)])
     finally:
-        K.clear_closed(closed_view, tkeys)
+        K.clear_closed(closed_view, touched, int(state[4]))

@@ -11,8 +11,15 @@ of expansions (and so whose path) this loop reproduces bit for bit:
   fused multiply-add), with ``math.hypot`` of the integer offsets read from a table
   that CPython's own ``math.hypot`` filled (libm's may differ in the last bit).
 
-What the loop cannot do itself (test a :data:`~.footprint_scene.PENDING` tile, ask the
-disc hub, label the connected components, grow the heap) it asks its caller for: it
+The loop's tables are dense (one entry per lattice pose, allocated once per search
+object and read only where the search has been): each pose's g and the move that
+reached it, and per position the hub's disc answers. A pending pose of a lazy scene
+(:data:`~.footprint_scene.PENDING`) is tested in the loop itself, pose by pose
+(:func:`pose_free`, the same bit as the lattice's window test).
+
+What the loop cannot do itself (ask the disc hub to connect, label the connected
+components, grow the heap; test a pending pose when it runs without a lazy scene's
+arrays) it asks its caller for: it
 puts the pose it was about to expand back on the heap, returns a status and the pose
 concerned in ``state[2]``, and is called again with the same state once the caller has
 answered. Putting the pose back leaves the heap's set of entries unchanged, so the
@@ -29,8 +36,6 @@ from typing import Any
 
 import numba
 import numpy as np
-from numba import types
-from numba.typed import Dict
 
 from voot.envs.motion.geodesic import geodesic_steps
 
@@ -43,14 +48,18 @@ __all__ = [
     "LABEL",
     "RESOLVE",
     "clear_closed",
+    "ensure_tile",
     "geodesic",
+    "geodesic_reference",
     "new_maps",
     "part_hits",
+    "part_limits",
     "path_to",
-    "rehash",
+    "pose_free",
+    "resolve_poses",
     "search",
     "segments_free",
-    "table_put",
+    "tile_lists",
 ]
 
 #: Statuses of :func:`search` (the pose concerned is ``state[2]``).
@@ -123,74 +132,51 @@ def _pop(keys: Any, vals: Any, n: int) -> int:
     return n
 
 
-@_jit
-def new_maps() -> Any:
-    """Empty ``disc`` (position -> disc free) and ``failed`` (hub positions refused) maps."""
-    disc = Dict.empty(types.int64, types.int64)
-    failed = Dict.empty(types.int64, types.int64)
-    return disc, failed
+def new_maps(plane: int) -> tuple[Any, Any]:
+    """Per position (``plane`` of them): ``disc`` (-1 not asked, else whether the hub's disc
+    is free there) and ``failed`` (1 where the hub refused to connect)."""
+    return np.full(plane, -1, dtype=np.int8), np.zeros(plane, dtype=np.uint8)
 
 
 @_jit
-def _slot(tkeys: Any, key: int) -> int:
-    """The slot of ``key`` in the open-addressing table ``tkeys`` (-1 empty), or its empty slot."""
-    mask = tkeys.shape[0] - 1
-    h = (key * 2654435761) & mask
-    while True:
-        k = tkeys[h]
-        if k == key or k == -1:
-            return h
-        h = (h + 1) & mask
+def clear_closed(closed: Any, touched: Any, count: int) -> None:
+    """Reset the bytes of every pose the search reached (the first ``count`` of ``touched``)."""
+    for a in range(count):
+        closed[touched[a]] = 0
 
 
 @_jit
-def table_put(tkeys: Any, tg: Any, tpar: Any, key: int, g: float, par: int) -> int:
-    """Set ``key``'s g and parent; 1 if ``key`` is new (the caller counts the entries)."""
-    h = _slot(tkeys, key)
-    new = 0
-    if tkeys[h] == -1:
-        tkeys[h] = key
-        new = 1
-    tg[h] = g
-    tpar[h] = par
-    return new
+def path_to(move: Any, dims: Any, v: int) -> Any:
+    """The poses from the search's start to ``v`` (both included), by the moves that reached them.
 
-
-@_jit
-def rehash(tkeys: Any, tg: Any, tpar: Any) -> Any:
-    """The table with twice the slots and the same entries."""
-    n = 2 * tkeys.shape[0]
-    keys2 = np.full(n, -1, dtype=np.int64)
-    g2 = np.empty(n, dtype=np.float64)
-    par2 = np.empty(n, dtype=np.int64)
-    for h in range(tkeys.shape[0]):
-        if tkeys[h] >= 0:
-            table_put(keys2, g2, par2, tkeys[h], tg[h], tpar[h])
-    return keys2, g2, par2
-
-
-@_jit
-def clear_closed(closed: Any, tkeys: Any) -> None:
-    """Reset the closed bytes of every pose the search reached (the keys of the table)."""
-    for u in tkeys:
-        if u >= 0:
-            closed[u] = 0
-
-
-@_jit
-def path_to(tkeys: Any, tpar: Any, v: int) -> Any:
-    """The poses from the search's start to ``v`` (both included)."""
-    n = 0
+    ``move[u]``: the index in :func:`search`'s order of the move into ``u`` (0-7 in the
+    plane, 8 and 9 the turns by -1 and +1 heading), 255 at the start.
+    """
+    nk, nx, ny = dims[0], dims[1], dims[2]
+    plane = nx * ny
+    n = 1
     u = v
-    while u >= 0:
+    while move[u] != 255:
+        u = _parent(u, move[u], nk, ny, plane)
         n += 1
-        u = tpar[_slot(tkeys, u)]
     out = np.empty(n, dtype=np.int64)
     u = v
     for a in range(n - 1, -1, -1):
         out[a] = u
-        u = tpar[_slot(tkeys, u)]
+        if a > 0:
+            u = _parent(u, move[u], nk, ny, plane)
     return out
+
+
+@_jit
+def _parent(u: int, m: int, nk: int, ny: int, plane: int) -> int:
+    """The pose from which move ``m`` (see :func:`path_to`) reached ``u``."""
+    if m < 8:
+        c = m if m < 4 else m + 1  # the 3 x 3 offsets without the centre
+        return u - ((c // 3 - 1) * ny + (c % 3 - 1))
+    dk = -1 if m == 8 else 1
+    k = u // plane
+    return ((k - dk) % nk) * plane + u % plane
 
 
 @_jit
@@ -223,14 +209,186 @@ def _disc_free(x: float, y: float, par: Any, boxes: Any) -> int:
 
 
 @_jit
+def pose_free(
+    u: int,
+    nx: int,
+    ny: int,
+    xs: Any,
+    ys: Any,
+    boxes: Any,
+    wins: Any,
+    trig: Any,
+    lims: Any,
+    tiles: Any,
+) -> int:
+    """1 if the footprint at lattice pose ``u`` clears every box, else 0.
+
+    :meth:`~voot.envs.motion.footprint.FootprintLattice.blocked_window`'s answer at one
+    pose, by :func:`part_hits`' operations in its order (so the same bit). ``boxes``
+    ``(B, 6)``: centre, cos and sin of the yaw, half sizes; ``wins`` ``(B, 1 + P, 4)``:
+    the box's window and each part's (``i0, i1, j0, j1``; empty when ``i0 >= i1``);
+    ``trig`` ``(P, 4, nk)``: per part and heading ``ox, oy, cos, sin``
+    (:meth:`~voot.envs.motion.footprint.FootprintLattice.part_trig`); ``lims``
+    ``(B, P, nk, 4)``: the separating-axis limits (:func:`part_limits`);
+    ``tiles``: the boxes whose window meets each tile of positions (:func:`tile_lists`),
+    the only ones tested (the answer is an "or" over boxes: their order does not matter).
+    """
+    plane = nx * ny
+    k = u // plane
+    rem = u % plane
+    i = rem // ny
+    j = rem % ny
+    t = (i >> TILE_SHIFT) * tiles[0] + (j >> TILE_SHIFT)
+    for a_b in range(tiles[2 + t], tiles[3 + t]):
+        b = tiles[a_b]
+        if i < wins[b, 0, 0] or i >= wins[b, 0, 1] or j < wins[b, 0, 2] or j >= wins[b, 0, 3]:
+            continue
+        cb, sb = boxes[b, 2], boxes[b, 3]
+        px = xs[i] - boxes[b, 0]
+        py = ys[j] - boxes[b, 1]
+        for p in range(wins.shape[1] - 1):
+            w = wins[b, 1 + p]
+            if i < w[0] or i >= w[1] or j < w[2] or j >= w[3]:
+                continue
+            ck, sk = trig[p, 2, k], trig[p, 3, k]
+            qx = px + trig[p, 0, k]
+            qy = py + trig[p, 1, k]
+            lim = lims[b, p, k]
+            if (
+                abs(cb * qx + sb * qy) < lim[0]
+                and abs(-sb * qx + cb * qy) < lim[1]
+                and abs(ck * qx + sk * qy) < lim[2]
+                and abs(-sk * qx + ck * qy) < lim[3]
+            ):
+                return 0
+    return 1
+
+
+@_jit
+def part_limits(row: Any, trig: Any, half: Any, tol: float) -> Any:
+    """Per part, heading and axis, :func:`part_hits`' limit ``hb + hp - tol`` for the box
+    ``row`` (centre, cos and sin of its yaw, half sizes), by its operations."""
+    cb, sb, bhx, bhy = row[2], row[3], row[4], row[5]
+    nparts, nk = trig.shape[0], trig.shape[2]
+    out = np.empty((nparts, nk, 4))
+    for p in range(nparts):
+        phx, phy = half[p, 0], half[p, 1]
+        for k in range(nk):
+            ck, sk = trig[p, 2, k], trig[p, 3, k]
+            for a in range(4):
+                if a == 0:
+                    ux, uy = cb, sb
+                elif a == 1:
+                    ux, uy = -sb, cb
+                elif a == 2:
+                    ux, uy = ck, sk
+                else:
+                    ux, uy = -sk, ck
+                hb = bhx * abs(ux * cb + uy * sb) + bhy * abs(-ux * sb + uy * cb)
+                hp = phx * abs(ux * ck + uy * sk) + phy * abs(-ux * sk + uy * ck)
+                out[p, k, a] = hb + hp - tol
+    return out
+
+
+#: Tiles of :func:`tile_lists`: 2 ** TILE_SHIFT positions a side.
+TILE_SHIFT = 4
+
+
+@_jit
+def ensure_tile(free: Any, dirty: Any, nty: int, i: int, j: int, nk: int, nx: int, ny: int) -> None:
+    """Mark every pose of position ``(i, j)``'s tile pending if the tile is ``dirty``.
+
+    A lazy scene marks a tile dirty where a box moved instead of marking its poses there
+    (:class:`~.footprint_scene.LazyScene`): a tile's bytes are read only after this.
+    """
+    t = (i >> TILE_SHIFT) * nty + (j >> TILE_SHIFT)
+    if dirty[t] == 0:
+        return
+    side = 1 << TILE_SHIFT
+    i0 = (i >> TILE_SHIFT) << TILE_SHIFT
+    j0 = (j >> TILE_SHIFT) << TILE_SHIFT
+    i1 = min(nx, i0 + side)
+    j1 = min(ny, j0 + side)
+    for k in range(nk):
+        for a in range(i0, i1):
+            base = (k * nx + a) * ny
+            for b in range(j0, j1):
+                free[base + b] = _PENDING
+    dirty[t] = 0
+
+
+@_jit
+def tile_lists(wins: Any, nx: int, ny: int) -> Any:
+    """Per tile of positions, the boxes whose window (``wins[:, 0]``) meets it, as one array.
+
+    ``[tiles in y, tiles, start of tile 0, ..., start of tile T (the end), boxes...]``:
+    tile ``t``'s boxes are ``out[out[2 + t] : out[3 + t]]``, ``t = (i >> TILE_SHIFT) *
+    out[0] + (j >> TILE_SHIFT)``.
+    """
+    ntx = (nx + (1 << TILE_SHIFT) - 1) >> TILE_SHIFT
+    nty = (ny + (1 << TILE_SHIFT) - 1) >> TILE_SHIFT
+    count = np.zeros(ntx * nty, dtype=np.int64)
+    for b in range(wins.shape[0]):
+        i0, i1, j0, j1 = wins[b, 0, 0], wins[b, 0, 1], wins[b, 0, 2], wins[b, 0, 3]
+        if i0 >= i1 or j0 >= j1:
+            continue
+        for ti in range(i0 >> TILE_SHIFT, ((i1 - 1) >> TILE_SHIFT) + 1):
+            for tj in range(j0 >> TILE_SHIFT, ((j1 - 1) >> TILE_SHIFT) + 1):
+                count[ti * nty + tj] += 1
+    head = 3 + ntx * nty
+    out = np.empty(head + count.sum(), dtype=np.int64)
+    out[0] = nty
+    out[1] = ntx * nty
+    out[2] = head
+    for t in range(ntx * nty):
+        out[3 + t] = out[2 + t] + count[t]
+    fill = out[2 : 2 + ntx * nty].copy()
+    for b in range(wins.shape[0]):
+        i0, i1, j0, j1 = wins[b, 0, 0], wins[b, 0, 1], wins[b, 0, 2], wins[b, 0, 3]
+        if i0 >= i1 or j0 >= j1:
+            continue
+        for ti in range(i0 >> TILE_SHIFT, ((i1 - 1) >> TILE_SHIFT) + 1):
+            for tj in range(j0 >> TILE_SHIFT, ((j1 - 1) >> TILE_SHIFT) + 1):
+                t = ti * nty + tj
+                out[fill[t]] = b
+                fill[t] += 1
+    return out
+
+
+@_jit
+def resolve_poses(
+    free: Any,
+    indices: Any,
+    dims: Any,
+    xs: Any,
+    ys: Any,
+    boxes: Any,
+    wins: Any,
+    trig: Any,
+    lims: Any,
+    tiles: Any,
+    dirty: Any,
+) -> None:
+    """Test every pending pose among ``indices`` (:func:`pose_free`, after
+    :func:`ensure_tile`); ``dims``: nk, nx, ny."""
+    nk, nx, ny = dims[0], dims[1], dims[2]
+    plane = nx * ny
+    for u in indices:
+        rem = u % plane
+        ensure_tile(free, dirty, tiles[0], rem // ny, rem % ny, nk, nx, ny)
+        if free[u] == _PENDING:
+            free[u] = pose_free(u, dims[1], dims[2], xs, ys, boxes, wins, trig, lims, tiles)
+
+
+@_jit
 def search(
     free: Any,
     closed: Any,
     keys: Any,
     vals: Any,
-    tkeys: Any,
-    tg: Any,
-    tpar: Any,
+    gval: Any,
+    move: Any,
+    touched: Any,
     disc: Any,
     failed: Any,
     state: Any,
@@ -243,23 +401,34 @@ def search(
     ys: Any,
     disc_par: Any,
     disc_boxes: Any,
+    sboxes: Any,
+    swins: Any,
+    strig: Any,
+    slims: Any,
+    stiles: Any,
+    sdirty: Any,
 ) -> int:
     """Run A* until it ends or needs its caller; the status (see the module doc).
 
     ``state``: expansions, connectivity proved (0/1), the pose concerned, heap size,
-    table entries. ``tkeys``, ``tg``, ``tpar``: the poses reached, their g and parent (an
-    open-addressing table, -1 empty, at most half full: the caller grows it on
-    :data:`GROW`).
+    poses reached. ``closed``: per pose 0 not reached, 1 closed, 2 open; ``gval``, ``move``
+    (one per lattice pose, read where ``closed`` is not 0): its g and the move that reached
+    it (:func:`path_to`); ``touched``: the poses reached, in order (the caller grows it
+    on :data:`GROW` and resets their ``closed`` after).
     ``dims``: nk, nx, ny, start, goal, has a hub (0/1), label_after, geodesic (0/1).
     ``geo``: the geodesic position term per position when ``dims[7]`` is 1
     (:func:`~.geodesic.geodesic_steps`; an infinite entry is not entered).
     ``costs``: the straight move, the diagonal move, the turn, the heuristic's step
     (``heuristic_weight * xy_step``). ``xs``, ``ys``: the lattice's coordinates;
     ``disc_par``, ``disc_boxes``: the hub's disc test (:func:`_disc_free`), or ask the
-    caller (status :data:`DISC`) when ``disc_par[0]`` is 0.
+    caller (status :data:`DISC`) when ``disc_par[0]`` is 0. When ``dims[8]`` is 1, a
+    :data:`_PENDING` pose is tested here (:func:`pose_free` with ``sboxes``, ``swins``,
+    ``strig``, ``slims``, ``stiles``, after :func:`ensure_tile` with ``sdirty``), else by the caller (status
+    :data:`RESOLVE`).
     """
     nk, nx, ny = dims[0], dims[1], dims[2]
     gi, has_hub, label_after, use_geo = dims[4], dims[5], dims[6], dims[7]
+    here = dims[8] == 1
     plane = nx * ny
     gx = (gi % plane) // ny
     gy = gi % ny
@@ -270,14 +439,14 @@ def search(
         fv = keys[0]
         v = vals[0]
         n = _pop(keys, vals, n)
-        if closed[v]:
+        if closed[v] == 1:
             continue
         k = v // plane
         rem = v % plane
         i = rem // ny
         j = rem % ny
-        if v != gi and has_hub and rem not in failed:
-            d = disc.get(rem, -1)
+        if v != gi and has_hub and failed[rem] == 0:
+            d = disc[rem]
             if d < 0 and disc_par[0] != 0.0:
                 d = _disc_free(xs[i], ys[j], disc_par, disc_boxes)
                 disc[rem] = d
@@ -290,7 +459,8 @@ def search(
                 near = False
                 for d_i in range(-1, 2):
                     for d_j in range(-1, 2):
-                        if (d_i != 0 or d_j != 0) and (rem + d_i * ny + d_j) in failed:
+                        other = rem + d_i * ny + d_j
+                        if (d_i != 0 or d_j != 0) and 0 <= other < plane and failed[other]:
                             near = True
                 if near:
                     failed[rem] = 1
@@ -307,7 +477,7 @@ def search(
         # the caller's answers first: room on the heap, the tiles of pending neighbours,
         # the connectivity proof (the pose goes back on the heap meanwhile)
         need = -1
-        if n + 11 > cap or 2 * (state[4] + 10) > tkeys.shape[0]:
+        if n + 11 > cap or state[4] + 11 > touched.shape[0]:
             need = GROW
         if need < 0:
             for d_i in range(-1, 2):
@@ -317,14 +487,24 @@ def search(
                     if not inner and not (0 <= i + d_i < nx and 0 <= j + d_j < ny):
                         continue
                     u = v + d_i * ny + d_j
-                    if free[u] == _PENDING and not closed[u]:
-                        need = RESOLVE
-                        state[2] = u
+                    if here:  # (the turns stay in v's tile, read already)
+                        ensure_tile(free, sdirty, stiles[0], i + d_i, j + d_j, nk, nx, ny)
+                    if free[u] == _PENDING and closed[u] != 1:
+                        if here:
+                            free[u] = pose_free(
+                                u, nx, ny, xs, ys, sboxes, swins, strig, slims, stiles
+                            )
+                        else:
+                            need = RESOLVE
+                            state[2] = u
             for dk in (-1, 1):
                 u = ((k + dk) % nk) * plane + rem
-                if need < 0 and free[u] == _PENDING and not closed[u]:
-                    need = RESOLVE
-                    state[2] = u
+                if need < 0 and free[u] == _PENDING and closed[u] != 1:
+                    if here:
+                        free[u] = pose_free(u, nx, ny, xs, ys, sboxes, swins, strig, slims, stiles)
+                    else:
+                        need = RESOLVE
+                        state[2] = u
         if need < 0 and state[1] == 0 and state[0] + 1 == label_after:
             need = LABEL
             state[2] = v
@@ -336,16 +516,18 @@ def search(
         state[0] += 1
         # the relaxation below is written out twice (moves in the plane, turns) on purpose:
         # a shared helper measured 5-7% slower per query (footprint-speed, this machine)
-        gv = tg[_slot(tkeys, v)]
+        gv = gval[v]
         hk = h_head[k]
+        m = -1
         for d_i in range(-1, 2):
             for d_j in range(-1, 2):
                 if d_i == 0 and d_j == 0:
                     continue
+                m += 1
                 if not inner and not (0 <= i + d_i < nx and 0 <= j + d_j < ny):
                     continue
                 u = v + d_i * ny + d_j
-                if free[u] == 0 or closed[u]:
+                if free[u] == 0 or closed[u] == 1:
                     continue
                 cost = diag if d_i != 0 and d_j != 0 else straight
                 gu = gv + cost
@@ -354,13 +536,13 @@ def search(
                     hp = geo[rem + d_i * ny + d_j]
                     if hp == np.inf:
                         continue
-                h = _slot(tkeys, u)
-                if tkeys[h] == -1 or gu < tg[h]:
-                    if tkeys[h] == -1:
-                        tkeys[h] = u
+                if closed[u] == 0 or gu < gval[u]:
+                    if closed[u] == 0:
+                        closed[u] = 2
+                        touched[state[4]] = u
                         state[4] += 1
-                    tg[h] = gu
-                    tpar[h] = v
+                    gval[u] = gu
+                    move[u] = m
                     if use_geo:
                         hu = h_step * hp + hk
                     else:
@@ -369,16 +551,16 @@ def search(
         for dk in (-1, 1):
             kk = (k + dk) % nk
             u = kk * plane + rem
-            if free[u] == 0 or closed[u]:
+            if free[u] == 0 or closed[u] == 1:
                 continue
             gu = gv + w
-            h = _slot(tkeys, u)
-            if tkeys[h] == -1 or gu < tg[h]:
-                if tkeys[h] == -1:
-                    tkeys[h] = u
+            if closed[u] == 0 or gu < gval[u]:
+                if closed[u] == 0:
+                    closed[u] = 2
+                    touched[state[4]] = u
                     state[4] += 1
-                tg[h] = gu
-                tpar[h] = v
+                gval[u] = gu
+                move[u] = 8 if dk == -1 else 9
                 if use_geo:
                     hu = h_step * geo[rem] + h_head[kk]
                 else:
@@ -444,7 +626,22 @@ def part_hits(
 
 @_jit
 def segments_free(
-    free: Any, a: Any, ends: Any, counts: Any, dthetas: Any, grid: Any, dims: Any, first: int
+    free: Any,
+    a: Any,
+    ends: Any,
+    counts: Any,
+    dthetas: Any,
+    grid: Any,
+    dims: Any,
+    first: int,
+    xs: Any,
+    ys: Any,
+    sboxes: Any,
+    swins: Any,
+    strig: Any,
+    slims: Any,
+    stiles: Any,
+    sdirty: Any,
 ) -> Any:
     """From segment ``first`` on: the first segment from ``a`` to ``ends`` that is not free.
 
@@ -454,7 +651,8 @@ def segments_free(
     xy_step, heading_step; ``dims``: nk, nx, ny. Returns ``(s, pending)``: the segment
     and -1 when segment ``s`` has a sample off the free lattice (``s`` = the number of
     segments when all are free), or a :data:`PENDING` pose of segment ``s`` to test
-    first (call again from ``s`` after).
+    first (call again from ``s`` after). When ``dims[3]`` is 1 a pending pose is tested
+    here instead (:func:`pose_free`, as in :func:`search`) and never returned.
     """
     nk, nx, ny = dims[0], dims[1], dims[2]
     xmin, ymin, step, hstep = grid[0], grid[1], grid[2], grid[3]
@@ -475,15 +673,93 @@ def segments_free(
                 return s, -1
             k = np.int64(np.rint(th / hstep)) % nk
             u = (k * nx + i) * ny + j
+            if dims[3] == 1:
+                ensure_tile(free, sdirty, stiles[0], i, j, nk, nx, ny)
             if free[u] == 0:
                 return s, -1
-            if free[u] == _PENDING and pending < 0:
+            if free[u] == _PENDING and dims[3] == 1:
+                free[u] = pose_free(u, nx, ny, xs, ys, sboxes, swins, strig, slims, stiles)
+                if free[u] == 0:
+                    return s, -1
+            elif free[u] == _PENDING and pending < 0:
                 pending = u
         if pending >= 0:
             return s, pending
     return ends.shape[0], -1
 
 
-#: :func:`voot.envs.motion.geodesic.geodesic_steps`, compiled (the same function,
-#: so the same table bit for bit).
-geodesic = _jit(geodesic_steps)
+#: :func:`voot.envs.motion.geodesic.geodesic_steps`, compiled as it is (the reference of
+#: :func:`geodesic`).
+geodesic_reference = _jit(geodesic_steps)
+
+
+@_jit
+def geodesic(passable: Any, gx: int, gy: int) -> Any:
+    """:func:`~voot.envs.motion.geodesic.geodesic_steps`' table, bit for bit, faster.
+
+    The same Dijkstra with the open list in two flat arrays ordered by distance alone
+    (ties in any order) instead of a heap of tuples: 1.6x faster on the conveyor's
+    lattice. The table does not depend on the order in which equal distances leave the
+    heap: a position's distance is the least of ``d(v) + step`` over its neighbours ``v``
+    of smaller distance, each final when it leaves (steps are >= 1), and a neighbour of
+    equal or larger distance never lowers it.
+    """
+    nx, ny = passable.shape
+    dist = np.full(nx * ny, np.inf)
+    if not passable[gx, gy]:
+        return dist.reshape(nx, ny)
+    diag = np.sqrt(2.0)
+    start = gx * ny + gy
+    dist[start] = 0.0
+    # a push lowers a distance: at most one per (position, neighbour), so never full
+    # (untouched pages of np.empty cost nothing; growing the arrays in the loop costs 2x)
+    cap = 8 * nx * ny + 1
+    keys = np.empty(cap, dtype=np.float64)
+    vals = np.empty(cap, dtype=np.int64)
+    keys[0], vals[0] = 0.0, start
+    n = 1
+    while n > 0:
+        d = keys[0]
+        v = vals[0]
+        n -= 1
+        if n > 0:  # the last entry sifts down from the root
+            f, w, pos = keys[n], vals[n], 0
+            while True:
+                c = 2 * pos + 1
+                if c >= n:
+                    break
+                if c + 1 < n and keys[c + 1] < keys[c]:
+                    c += 1
+                if keys[c] < f:
+                    keys[pos], vals[pos] = keys[c], vals[c]
+                    pos = c
+                else:
+                    break
+            keys[pos], vals[pos] = f, w
+        if d > dist[v]:
+            continue
+        i = v // ny
+        j = v % ny
+        for d_i in range(-1, 2):
+            ii = i + d_i
+            if ii < 0 or ii >= nx:
+                continue
+            for d_j in range(-1, 2):
+                jj = j + d_j
+                if (d_i == 0 and d_j == 0) or jj < 0 or jj >= ny or not passable[ii, jj]:
+                    continue
+                nd = d + (diag if d_i != 0 and d_j != 0 else 1.0)
+                u = ii * ny + jj
+                if nd < dist[u]:
+                    dist[u] = nd
+                    pos = n  # sift up
+                    n += 1
+                    while pos > 0:
+                        parent = (pos - 1) >> 1
+                        if nd < keys[parent]:
+                            keys[pos], vals[pos] = keys[parent], vals[parent]
+                            pos = parent
+                        else:
+                            break
+                    keys[pos], vals[pos] = nd, u
+    return dist.reshape(nx, ny)

@@ -2,26 +2,31 @@
 
 The exact-footprint search (:mod:`voot.envs.motion.footprint_search`) asks, pose by pose,
 whether a footprint is free on the lattice of :class:`~.footprint.FootprintLattice`. The
-first version built that answer for the whole lattice before every query: a fresh copy
-of the static occupancy (10.8 million bytes on the conveyor) and the full occupancy
-window of every movable box (about 10 ms per new ``(footprint, box)`` pair), most of
-which the search never looked at. A :class:`LazyScene` gives the same answers, bit for
-bit, at a fraction of that cost:
+first version built that answer for the whole lattice before every query: a copy of the
+static occupancy (10.8 million bytes on the conveyor, itself 60-130 ms to compute per
+footprint) and the full occupancy window of every movable box (about 10 ms per new
+``(footprint, box)`` pair), most of which the search never looked at. A
+:class:`LazyScene` gives the same answers, bit for bit, at a fraction of that cost:
 
 * it is kept per footprint and holds the free lattice for the *last* set of movable
-  boxes; a new set re-marks only the windows of the boxes added or removed (a tree
-  search moves a few boxes per step; restoring a snapshot changes a few more);
-* a re-marked pose that the static obstacles leave free holds :data:`PENDING` until the
-  search looks at it; then its whole tile (``tile x tile`` positions, every heading) is
-  tested against every movable box whose window meets the tile
-  (:meth:`FootprintLattice.blocked_window` clipped to the tile, which computes each pose
-  exactly as the full window does).
+  boxes; a new set marks only the windows of the boxes added or removed as
+  :data:`PENDING` (a tree search moves a few boxes per step; restoring a snapshot
+  changes a few more); a new scene starts with every pose pending;
+* a pending pose is tested when the search first looks at it, against every obstacle,
+  static or movable, whose window holds it: with ``engine="compiled"`` that one pose
+  (:func:`~.footprint_kernels.pose_free`, inside the compiled A* loop and the path's
+  tightening), with ``engine="python"`` its whole tile (``tile x tile`` positions, every
+  heading; :meth:`FootprintLattice.blocked_window` clipped to the tile). Both compute
+  each pose as the full window does.
 
 So a pose's value is always a function of the footprint, the static obstacles and the
-current movable set alone: restoring an earlier set restores the earlier answers.
+current movable set alone: restoring an earlier set restores the earlier answers, and
+no query needs the footprint's static occupancy of the whole lattice.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,7 +36,18 @@ from voot.envs.motion.planar import Box2D
 
 __all__ = ["PENDING", "LazyScene", "pack_static", "unpack_static"]
 
-#: Byte of a pose the static obstacles leave free and the movable boxes are yet to be tested at.
+#: A box's row of :func:`~.footprint_kernels.pose_free`'s ``boxes``, its ``wins`` and ``lims``.
+Entry = tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]
+
+#: :func:`~.footprint_kernels.pose_free`'s arrays: boxes, windows, the parts' trigonometry,
+#: the separating-axis limits and the boxes per tile (:func:`~.footprint_kernels.tile_lists`),
+#: and the scene's dirty tiles (:func:`~.footprint_kernels.ensure_tile`).
+KernelData = tuple[
+    NDArray[np.float64], NDArray[np.int64], NDArray[np.float64], NDArray[np.float64],
+    NDArray[np.int64], NDArray[np.uint8],
+]  # fmt: skip
+
+#: Byte of a pose not yet tested (against the static obstacles and the movable boxes).
 PENDING = 2
 
 
@@ -64,62 +80,137 @@ class LazyScene:
     Args:
         lattice: The lattice.
         footprint: The footprint the scene is of.
-        static: The static obstacles' free lattice of ``footprint``, packed
-            (:func:`pack_static`).
-        tile: Side of a tile, in lattice positions (>= 1).
+        static: The static obstacles (with the workspace's bounds,
+            :func:`~.footprint.bound_boxes`).
+        tile: Side of a tile, in lattice positions (>= 1): what ``engine="python"``
+            tests at once.
+        engine: ``"compiled"``: pending poses are tested one by one by
+            :func:`~.footprint_kernels.pose_free` (also inside the compiled loops, which
+            take :attr:`kernel_data`); ``"python"``: tile by tile with numpy.
+        entries: The boxes' windows for ``footprint`` on ``lattice``, kept by the caller
+            across scenes of the same footprint (a dict this scene fills), or None.
     """
 
     def __init__(
         self,
         lattice: FootprintLattice,
         footprint: Footprint,
-        static: NDArray[np.uint8],
+        static: tuple[Box2D, ...],
         tile: int,
+        engine: str = "compiled",
+        entries: dict[Box2D, Entry | None] | None = None,
     ) -> None:
         if tile < 1:
             raise ValueError(f"tile must be >= 1, got {tile}")
         self.lattice = lattice
         self.footprint = footprint
         self.tile = tile
-        self._static = static
-        #: The scene, one byte per lattice pose (what the search indexes).
-        self.buffer = bytearray(unpack_static(static, lattice.ny).tobytes())
-        self._view: NDArray[np.uint8] = np.frombuffer(self.buffer, dtype=np.uint8).reshape(
-            lattice.shape
-        )
+        self.compiled = engine == "compiled"
+        self.static = tuple(static)
+        n = lattice.nk * lattice.nx * lattice.ny
+        #: The scene, one byte per lattice pose (what the search indexes). With the
+        #: compiled engine a tile's bytes are stale while it is marked dirty (read them
+        #: through :meth:`value`); every tile starts dirty, the buffer untouched.
+        self.buffer = bytearray(n) if self.compiled else bytearray(bytes([PENDING])) * n
+        self._dirty = np.zeros(0, dtype=np.uint8)
+        if self.compiled:
+            from voot.envs.motion.footprint_kernels import TILE_SHIFT
+
+            side = 1 << TILE_SHIFT
+            self._tile_shape = (-(-lattice.nx // side), -(-lattice.ny // side))
+            self._dirty = np.ones(self._tile_shape[0] * self._tile_shape[1], dtype=np.uint8)
+        self._flat: NDArray[np.uint8] = np.frombuffer(self.buffer, dtype=np.uint8)
+        self._view = self._flat.reshape(lattice.shape)
         #: The movable boxes the scene is of.
         self.movable: tuple[Box2D, ...] = ()
-        self._windows: dict[Box2D, tuple[int, int, int, int] | None] = {}
-        self._active: list[tuple[Box2D, tuple[int, int, int, int]]] = []
+        self._entries: dict[Box2D, Entry | None] = {} if entries is None else entries
+        trig = [np.stack(lattice.part_trig(part)) for part in footprint.parts]
+        self._trig = np.ascontiguousarray(np.stack(trig))
+        self._half = np.array([[p.half_x, p.half_y] for p in footprint.parts], dtype=np.float64)
+        self._dims = np.array(lattice.shape, dtype=np.int64)
+        self._static_entries = [e for e in map(self._entry, self.static) if e is not None]
+        self._active: list[Box2D] = []
+        self.kernel_data = self._data([])
 
-    def _window(self, box: Box2D) -> tuple[int, int, int, int] | None:
-        if box not in self._windows:
-            if len(self._windows) > 4096:
-                self._windows.clear()
-            self._windows[box] = self.lattice.box_window(self.footprint, box)
-        return self._windows[box]
+    def _entry(self, box: Box2D) -> Entry | None:
+        """The box's row for :func:`~.footprint_kernels.pose_free` and its windows (cached)."""
+        if box not in self._entries:
+            if len(self._entries) > 4096:
+                self._entries.clear()
+            windows = self.lattice.part_windows(self.footprint, box)
+            if windows is None:
+                self._entries[box] = None
+            else:
+                bounds, parts = windows
+                wins = np.array(
+                    [bounds, *(w if w is not None else (0, 0, 0, 0) for w in parts)],
+                    dtype=np.int64,
+                )
+                row = np.array(
+                    [box.cx, box.cy, math.cos(box.yaw), math.sin(box.yaw), box.half_x,
+                     box.half_y], dtype=np.float64,
+                )  # fmt: skip
+                lims = np.zeros((len(self.footprint.parts), self.lattice.nk, 4))
+                if self.compiled:
+                    from voot.envs.motion.footprint_kernels import part_limits
+
+                    lims = part_limits(row, self._trig, self._half, self.lattice.tolerance)
+                self._entries[box] = (row, wins, lims)
+        return self._entries[box]
+
+    def _data(self, movable: list[Entry]) -> KernelData:
+        """:attr:`kernel_data` for the static obstacles and ``movable``'s entries."""
+        entries = self._static_entries + movable
+        p = len(self.footprint.parts)
+        if entries:
+            boxes = np.stack([e[0] for e in entries])
+            wins = np.stack([e[1] for e in entries])
+            lims = np.stack([e[2] for e in entries])
+        else:
+            boxes, wins = np.zeros((0, 6)), np.zeros((0, 1 + p, 4), dtype=np.int64)
+            lims = np.zeros((0, p, self.lattice.nk, 4))
+        tiles = np.zeros(0, dtype=np.int64)
+        if self.compiled:
+            from voot.envs.motion.footprint_kernels import tile_lists
+
+            tiles = tile_lists(wins, self.lattice.nx, self.lattice.ny)
+        return boxes, wins, self._trig, lims, tiles, self._dirty
 
     def update(self, movable: tuple[Box2D, ...]) -> None:
-        """Make the scene that of ``movable``: re-mark the windows of the boxes that changed."""
+        """Make the scene that of ``movable``: mark the windows of the boxes that changed."""
         if movable == self.movable:
             return
         old, new = set(self.movable), set(movable)
-        for box in sorted(old ^ new, key=repr):
-            bounds = self._window(box)
-            if bounds is not None:
-                i0, i1, j0, j1 = bounds
-                static = unpack_static(self._static, self.lattice.ny, bounds)
-                self._view[:, i0:i1, j0:j1] = static * np.uint8(PENDING)
+        if self.compiled:
+            from voot.envs.motion.footprint_kernels import TILE_SHIFT
+
+            dirty = self._dirty.reshape(self._tile_shape)
+        for box in old ^ new:
+            entry = self._entry(box)
+            if entry is not None:
+                i0, i1, j0, j1 = entry[1][0].tolist()
+                if self.compiled:  # the tiles, marked when a search first reads them
+                    dirty[i0 >> TILE_SHIFT : ((i1 - 1) >> TILE_SHIFT) + 1,
+                          j0 >> TILE_SHIFT : ((j1 - 1) >> TILE_SHIFT) + 1] = 1  # fmt: skip
+                else:
+                    self._view[:, i0:i1, j0:j1] = PENDING
         self.movable = movable
-        active = []
-        for box in movable:
-            bounds = self._window(box)
-            if bounds is not None:
-                active.append((box, bounds))
-        self._active = active
+        self._active = [box for box in movable if self._entry(box) is not None]
+        entries = [e for e in map(self._entry, self._active) if e is not None]
+        self.kernel_data = self._data(entries)
+
+    def value(self, index: int) -> int:
+        """The pose's byte, tested first if need be: 1 free, 0 blocked."""
+        if self.compiled or self.buffer[index] == PENDING:
+            return self.resolve(index)
+        return self.buffer[index]
 
     def resolve(self, index: int) -> int:
-        """Test the tile of the flat lattice index ``index``; its byte after (0 or 1)."""
+        """Test the pose of the flat lattice index ``index`` (its tile with the python
+        engine); its byte after (0 or 1)."""
+        if self.compiled:
+            self.resolve_all(np.array([index], dtype=np.intp))
+            return self.buffer[index]
         lat = self.lattice
         plane = lat.nx * lat.ny
         i, j = divmod(index % plane, lat.ny)
@@ -129,9 +220,7 @@ class LazyScene:
         sub = self._view[:, a0:a1, b0:b1]
         pending = sub == PENDING
         blocked = np.zeros(sub.shape, dtype=bool)
-        for box, (i0, i1, j0, j1) in self._active:
-            if i0 >= a1 or i1 <= a0 or j0 >= b1 or j1 <= b0:
-                continue
+        for box in self.static + tuple(self._active):
             window = lat.blocked_window(self.footprint, box, (a0, a1, b0, b1))
             if window is not None:
                 c0, c1, d0, d1, mask = window
@@ -140,8 +229,18 @@ class LazyScene:
         return self.buffer[index]
 
     def resolve_all(self, indices: NDArray[np.intp]) -> None:
-        """Test the tiles of every pending pose among the flat ``indices``."""
-        flat = np.frombuffer(self.buffer, dtype=np.uint8)
+        """Test every pending pose among the flat ``indices`` (and, compiled, every
+        pose of a dirty tile among them)."""
+        if self.compiled:
+            from voot.envs.motion.footprint_kernels import resolve_poses
+
+            lat = self.lattice
+            resolve_poses(
+                self._flat, np.asarray(indices, dtype=np.int64), self._dims, lat.xs, lat.ys,
+                *self.kernel_data,
+            )  # fmt: skip
+            return
+        flat = self._flat
         for index in indices[flat[indices] == PENDING].tolist():
             if self.buffer[index] == PENDING:
                 self.resolve(index)

@@ -6,10 +6,11 @@ sufficient test). It is deterministic and complete at its resolution:
 
 1. The exact start and goal poses must be free (:func:`footprint_hits`), and so must
    their nearest lattice poses.
-2. The lattice's free poses are those whose footprint clears the static obstacles (computed
-   once per footprint) and the movable boxes, exactly at each lattice pose; the boxes
-   are tested where the search looks, tile by tile (:mod:`.footprint_scene`,
-   ``lazy_tile``; 0 tests every box's whole window first, with the same answers).
+2. The lattice's free poses are those whose footprint clears the static obstacles and
+   the movable boxes, exactly at each lattice pose, tested where the search looks
+   (:mod:`.footprint_scene`: pose by pose with the compiled engine, tile by tile with
+   the Python one; ``lazy_tile`` 0 tests every box's whole window first, on the static
+   occupancy computed once per footprint, with the same answers).
 3. A* from the start's lattice pose to the goal's over the free poses, each joined to
    its 8 neighbours in (x, y) at the same heading and to the two neighbouring headings
    at the same position; a move costs its SE(2) length (``|dp| + w |dtheta|``), the
@@ -59,14 +60,22 @@ from voot.envs.motion.footprint import (
 )
 from voot.envs.motion.footprint_astar import (
     AStarSpec,
+    DenseTables,
     DiscHub,
     astar_compiled,
     astar_python,
+    dense_tables,
     geodesic_steps,
     hypot_table,
     warm_compiled,
 )
-from voot.envs.motion.footprint_scene import PENDING, LazyScene, pack_static, unpack_static
+from voot.envs.motion.footprint_scene import (
+    PENDING,
+    Entry,
+    LazyScene,
+    pack_static,
+    unpack_static,
+)
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
@@ -116,6 +125,8 @@ class FootprintSearch:
                 workspace, static_obstacles, coarse, rotation_weight, tolerance
             )
         self._lazy: OrderedDict[Footprint, LazyScene] = OrderedDict()
+        # per footprint, the boxes' windows its lazy scenes test (kept like the static)
+        self._entries: OrderedDict[Footprint, dict[Box2D, Entry | None]] = OrderedDict()
         # the geodesic heuristic: per footprint, the positions free at some heading; per
         # (footprint, target position), the distances
         self._passable: OrderedDict[Footprint, NDArray[np.bool_]] = OrderedDict()
@@ -124,6 +135,8 @@ class FootprintSearch:
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
         self._closed: bytearray | None = None
+        # the compiled loop's g and move per pose (9 bytes a pose, untouched pages free)
+        self._dense: DenseTables | None = None
         lat = self.lattice
         self._spec = AStarSpec(
             lat.shape, lat.xs.tolist(), lat.ys.tolist(), lat.pose, config.xy_step,
@@ -252,13 +265,13 @@ class FootprintSearch:
         """A* on this lattice (:mod:`.footprint_astar`) between the first free of ``starts`` and of ``goals``."""
         lat = self.lattice
         nx, ny = lat.nx, lat.ny
-        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+        free_bytes, resolve, scene = self._scene_bytes(footprint, movable)
         ends = []
         for candidates in (starts, goals):
             for k, i, j in candidates:
                 index = (k * nx + i) * ny + j
-                if free_bytes[index] == PENDING and resolve is not None:
-                    resolve(index)
+                if scene is not None:
+                    scene.value(index)
                 if free_bytes[index]:
                     ends.append(index)
                     break
@@ -280,11 +293,19 @@ class FootprintSearch:
                 return None  # not joined even where any heading may pass
         if self._closed is None:
             self._closed = bytearray(lat.nk * lat.nx * lat.ny)
-        engine = astar_compiled if self.config.engine == "compiled" else astar_python
         # search from the goal: to the start, or to the first hub
-        found, self.last_expansions = engine(
-            self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub, hpos
-        )
+        if self.config.engine == "compiled":
+            data = None if scene is None else scene.kernel_data
+            if self._dense is None:
+                self._dense = dense_tables(len(self._closed))
+            found, self.last_expansions = astar_compiled(
+                self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub, hpos, data,
+                self._dense,
+            )  # fmt: skip
+        else:
+            found, self.last_expansions = astar_python(
+                self._spec, gi, si, free_bytes, self._closed, resolve, connected, hub, hpos
+            )
         return found
 
     def _geodesic(self, footprint: Footprint, target: int) -> FloatArray:
@@ -346,14 +367,11 @@ class FootprintSearch:
             poses.append((2 * k, 2 * i, 2 * j))
         if to_start:
             poses.append(s)
-        free_bytes, resolve, _ = self._scene_bytes(footprint, movable)
+        free_bytes, _, scene = self._scene_bytes(footprint, movable)
 
         def free(k: int, i: int, j: int) -> bool:
             u = (k * nx + i) * ny + j
-            value = free_bytes[u]
-            if value == PENDING and resolve is not None:
-                value = resolve(u)
-            return bool(value)
+            return bool(free_bytes[u] if scene is None else scene.value(u))
 
         if not free(*poses[0]):
             return None
@@ -419,9 +437,17 @@ class FootprintSearch:
         """``footprint``'s :class:`LazyScene`, updated to ``movable`` (cached like the static)."""
         scene = self._lazy.get(footprint)
         if scene is None:
+            entries = self._entries.get(footprint)
+            if entries is None:
+                entries = self._entries[footprint] = {}
+                if len(self._entries) > self.config.static_cache_size:
+                    self._entries.popitem(last=False)
+            else:
+                self._entries.move_to_end(footprint)
             scene = LazyScene(
-                self.lattice, footprint, self._static_packed(footprint), self.config.lazy_tile
-            )
+                self.lattice, footprint, self._static_boxes, self.config.lazy_tile,
+                self.config.engine, entries,
+            )  # fmt: skip
             self._lazy[footprint] = scene
             if len(self._lazy) > self.config.scene_cache_size:
                 self._lazy.popitem(last=False)
@@ -431,10 +457,13 @@ class FootprintSearch:
         return scene
 
     def warm(self, footprint: Footprint) -> None:
-        """Build ``footprint``'s static occupancy and scene now (benchmarks: the one-off cost).
+        """Build what a first query with ``footprint`` would (benchmarks: the one-off cost).
 
-        With ``coarse_first``, the coarse lattice's too; with ``engine="compiled"``, the
-        compiled loop is compiled (or loaded from numba's cache) too.
+        Its scene; its static occupancy of the whole lattice where a query reads it
+        (``lazy_tile`` 0 or the geodesic heuristic; a lazy scene tests the static
+        obstacles pose by pose); with ``coarse_first``, the coarse lattice's too; with
+        ``engine="compiled"``, the compiled loops are compiled (or loaded from numba's
+        cache) too.
         """
         if self.config.engine == "compiled":
             warm_compiled()
@@ -443,7 +472,7 @@ class FootprintSearch:
             self._coarse.warm(footprint)
         if self.config.lazy_tile > 0:
             self._lazy_scene(footprint, ())
-        else:
+        if self.config.lazy_tile == 0 or self.config.heuristic == "geodesic":
             self._static_packed(footprint)
         if self._closed is None:
             self._closed = bytearray(self.lattice.nk * self.lattice.nx * self.lattice.ny)
@@ -568,14 +597,21 @@ class FootprintSearch:
         grid = np.array(
             [self.workspace[0], self.workspace[2], self.config.xy_step, self.config.heading_step]
         )
+        if scene is None:  # the eager scene: nothing pending
+            data = (np.zeros((0, 6)), np.zeros((0, 1, 4), dtype=np.int64),
+                    np.zeros((0, 4, lat.nk)), np.zeros((0, 0, lat.nk, 4)),
+                    np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.uint8))  # fmt: skip
+        else:
+            data = scene.kernel_data
         args = (
             np.frombuffer(free_bytes, dtype=np.uint8), np.array(a, dtype=np.float64),
             np.array(ends, dtype=np.float64).reshape(-1, 3), np.array(counts, dtype=np.int64),
-            np.array(dthetas, dtype=np.float64), grid, np.array(lat.shape, dtype=np.int64),
+            np.array(dthetas, dtype=np.float64), grid,
+            np.array([*lat.shape, scene is not None], dtype=np.int64),
         )  # fmt: skip
         first = 0
         while True:
-            first, pending = segments_free(*args, first)
+            first, pending = segments_free(*args, first, lat.xs, lat.ys, *data)
             if pending < 0:
                 return int(first)
             assert scene is not None

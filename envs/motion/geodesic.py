@@ -1,8 +1,8 @@
 """Lattice distances around obstacles: the geodesic heuristic of the exact-footprint search.
 
 :func:`geodesic_steps` is the position term of ``FootprintConfig.heuristic="geodesic"``
-(:mod:`.footprint_astar`): plain Python and numpy, so that the compiled engine compiles
-this very function (:data:`.footprint_kernels.geodesic`) and both engines read the same
+(:mod:`.footprint_astar`): plain Python and numpy, the reference of the compiled engine's
+faster Dijkstra (:func:`.footprint_kernels.geodesic`, tested equal), so both engines read the same
 table, bit for bit. It imports nothing of voot, so both engines' modules can import it.
 """
 
@@ -22,7 +22,7 @@ def geodesic_steps(passable: NDArray[np.bool_], gx: int, gy: int) -> NDArray[np.
     over the ``passable`` positions ``(nx, ny)``, 8-connected; infinite where unreachable.
 
     Dijkstra with a heap of ``(distance, index)`` (Python's tuple order): the compiled
-    engine runs this same function compiled (:data:`.footprint_kernels.geodesic`), so
+    engine runs a faster Dijkstra with the same answer (:func:`.footprint_kernels.geodesic`), so
     both engines read the same table, bit for bit.
     """
     nx, ny = passable.shape

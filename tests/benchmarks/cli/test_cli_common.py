@@ -51,6 +51,11 @@ def test_parse_assignments() -> None:
     for bad in ("omega", "=3"):
         with pytest.raises(CLIError, match="is not NAME=VALUE"):
             parse_assignments([bad], "--set")
+    # a name given twice: refused, naming both values (the last would silently win)
+    with pytest.raises(CLIError, match=r"layout_seed is given twice \(layout_seed=1\.5 and"):
+        parse_assignments(["layout_seed=1.5", "layout_seed=0"], "--env-kwargs")
+    with pytest.raises(CLIError, match="given twice"):
+        parse_assignments(["omega=0.3,omega=0.3"], "--set")
 
 
 def test_stores_open_and_the_stored_note(tmp_path: Path) -> None:

@@ -42,6 +42,7 @@ def test_mesh_speed_rejects_bad_arguments(capsys: pytest.CaptureFixture[str]) ->
         (["measure", "domain-ablation", "--out", "{file}/x.json"], "is a file, not a folder"),
         (["measure", "domain-ablation", "--table", "{file}"], "not a readable domain-ablation"),
         (["measure", "footprint-speed", "--rollouts", "0"], "--rollouts must be >= 1"),
+        (["measure", "footprint-speed", "--repeats", "0"], "--repeats must be >= 1"),
         (["leaderboard", "run", "--out", "{file}/store", "--estimate-only"], "is a file"),
     ],
 )

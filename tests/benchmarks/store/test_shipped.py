@@ -245,7 +245,7 @@ def test_the_domain_planner_tables_in_the_docs_are_what_the_store_redraws() -> N
     for name, body in blocks.items():
         assert docs_pages.marked(page, name) == body, "run python docs/scripts/domain_planners.py"
     assert (
-        "| authors_domain | VOOT (omega 0.3, reevaluations 2) | 5 of 5 |"
+        "| authors_domain | VOOT (omega 0.3, reevaluations 2) | 20 of 20 |"
         in blocks["domain-planners-v1:conveyor"]
     )
 

@@ -84,3 +84,47 @@ def test_the_disc_test_is_the_planners() -> None:
     assert 0 < sum(answers) < len(answers)
     par[1] = 0.0  # the start is not free: no position is
     assert K._disc_free(1.0, 1.0, par, boxes) == 0
+
+
+def test_tile_lists_name_exactly_the_boxes_whose_window_meets_each_tile() -> None:
+    from voot.envs.motion import footprint_kernels as K
+
+    rng = np.random.default_rng(5)
+    nx, ny, side = 70, 53, 1 << K.TILE_SHIFT
+    wins = np.zeros((12, 2, 4), dtype=np.int64)
+    for b in range(12):
+        i0, j0 = int(rng.integers(0, nx)), int(rng.integers(0, ny))
+        wins[b, 0] = (i0, min(nx, i0 + int(rng.integers(0, 40))), j0,
+                      min(ny, j0 + int(rng.integers(1, 40))))  # fmt: skip
+    out = K.tile_lists(wins, nx, ny)
+    nty = out[0]
+    for t in range(out[1]):
+        ti, tj = divmod(t, nty)
+        listed = sorted(out[out[2 + t] : out[3 + t]].tolist())
+        meets = [
+            b for b in range(12)
+            if wins[b, 0, 0] < wins[b, 0, 1] and wins[b, 0, 2] < wins[b, 0, 3]
+            and wins[b, 0, 0] < (ti + 1) * side and wins[b, 0, 1] > ti * side
+            and wins[b, 0, 2] < (tj + 1) * side and wins[b, 0, 3] > tj * side
+        ]  # fmt: skip
+        assert listed == meets
+    assert any(wins[b, 0, 0] >= wins[b, 0, 1] for b in range(12))  # an empty window too
+
+
+def test_dense_tables_give_the_same_paths_after_many_searches() -> None:
+    """Searches that share the g and move tables (never cleared) answer as fresh ones."""
+    from voot.envs.motion.footprint_search import FootprintSearch
+
+    cfg = FootprintConfig(xy_step=0.1, headings=24)
+    walls = (Box2D(2.0, 0.8, 0.05, 0.8, 0.0, "wall"),)
+    shared = FootprintSearch(WS, walls, cfg)
+    goals = [(3.0, 0.9, 1.57), (3.0, 2.2, 0.0), (2.5, 2.0, -1.57), (3.2, 0.5, 0.3)]
+    found = 0
+    for goal in goals * 2:
+        a = shared.plan((1.0, 2.0, 0.0), goal, FP, ())
+        b = FootprintSearch(WS, walls, cfg).plan((1.0, 2.0, 0.0), goal, FP, ())
+        assert (a is None and b is None) or (
+            a is not None and b is not None and np.array_equal(a, b)
+        )
+        found += a is not None
+    assert found == 4  # two goals reached, each twice; two refused

@@ -46,26 +46,60 @@ def test_a_clipped_window_is_the_full_windows_crop() -> None:
     assert lat.blocked_window(ROBOT, box, (0, 1, 0, 1)) is None  # far from the box
 
 
+def known(scene: LazyScene) -> np.ndarray:
+    """The poses whose byte is current: tested, and (compiled) in a tile not marked dirty."""
+    view = np.frombuffer(scene.buffer, dtype=np.uint8).reshape(scene.lattice.shape)
+    out = view != PENDING
+    if scene.compiled:
+        from voot.envs.motion.footprint_kernels import TILE_SHIFT
+
+        _, nx, ny = scene.lattice.shape
+        dirty = scene.kernel_data[-1]
+        nty = -(-ny // (1 << TILE_SHIFT))
+        ti = np.arange(nx)[:, None] >> TILE_SHIFT
+        tj = np.arange(ny)[None, :] >> TILE_SHIFT
+        out &= (dirty[ti * nty + tj] == 0)[None]
+    return out.ravel()
+
+
+@pytest.mark.parametrize("engine", ["compiled", "python"])
 @pytest.mark.parametrize("tile", [1, 5, 32])
-def test_the_lazy_scene_is_the_eager_free_lattice_through_updates(tile: int) -> None:
+def test_the_lazy_scene_is_the_eager_free_lattice_through_updates(tile: int, engine: str) -> None:
     """Boxes added, removed, restored: every pose, once resolved, is the eager answer."""
     search = FootprintSearch(WS, STATIC, CFG)
-    lat = search.lattice
-    free = ~lat.occupancy(ROBOT, STATIC + bound_boxes(WS))
-    static = free.tobytes()
-    scene = LazyScene(lat, ROBOT, pack_static(free), tile)
+    lat = FootprintLattice(WS, FootprintConfig(**{**CFG.__dict__, "engine": engine}))
+    scene = LazyScene(lat, ROBOT, STATIC + bound_boxes(WS), tile, engine)
+    view = np.frombuffer(scene.buffer, dtype=np.uint8)
+    assert not known(scene).any()  # nothing tested yet
     a, b = boxes(1, 3), boxes(2, 2)
+    rng = np.random.default_rng(0)
     for movable in (a, a + b, b, (), a[:1] + b, a + b):
         scene.update(movable)
         eager = search.free_grid(ROBOT, movable).astype(np.uint8).ravel()
-        view = np.frombuffer(scene.buffer, dtype=np.uint8)
-        # pending poses are free statically; known poses already agree
-        known = view != PENDING
-        assert np.array_equal(view[known], eager[known])
-        assert np.all(np.frombuffer(static, dtype=np.uint8)[~known] == 1)
+        # the poses known after the update already agree
+        current = known(scene)
+        assert np.array_equal(view[current], eager[current])
+        some = rng.choice(view.size, 50, replace=False)
+        for index in some.tolist():
+            assert scene.value(index) == eager[index]
+        assert known(scene)[some].all()
         scene.resolve_all(np.arange(view.size, dtype=np.intp))
-        assert np.array_equal(view, eager)
+        assert np.array_equal(view, eager) and known(scene).all()
         assert 0 < eager.mean() < 1
+
+
+def test_the_pose_test_is_the_windows_answer_at_sampled_poses() -> None:
+    """pose_free (the compiled loops' test) against blocked_window, pose by pose."""
+    from voot.envs.motion.footprint_kernels import pose_free
+
+    lat = FootprintLattice(WS, CFG)
+    scene = LazyScene(lat, ROBOT, STATIC + bound_boxes(WS), 8)
+    movable = boxes(3, 6)
+    scene.update(movable)
+    blocked = lat.occupancy(ROBOT, STATIC + bound_boxes(WS) + movable).ravel()
+    _, nx, ny = lat.shape
+    for u in np.random.default_rng(1).choice(blocked.size, 3000, replace=False).tolist():
+        assert pose_free(u, nx, ny, lat.xs, lat.ys, *scene.kernel_data[:5]) == (not blocked[u])
 
 
 def test_tile_size_changes_no_path() -> None:
@@ -94,7 +128,7 @@ def test_lazy_tile_is_validated() -> None:
     with pytest.raises(ValueError, match="lazy_tile"):
         FootprintConfig(lazy_tile=257)
     with pytest.raises(ValueError, match="tile"):
-        LazyScene(FootprintLattice(WS, CFG), ROBOT, pack_static(np.zeros((24, 41, 31), bool)), 0)
+        LazyScene(FootprintLattice(WS, CFG), ROBOT, STATIC, 0)
 
 
 @pytest.mark.parametrize(

@@ -34,10 +34,19 @@ def test_geodesic_steps_is_a_lower_bound_of_no_less_than_the_straight_line() -> 
 
 
 @pytest.mark.skipif(not numba_available(), reason="numba is not installed")
-def test_the_compiled_function_gives_the_same_table_bit_for_bit() -> None:
-    from voot.envs.motion.footprint_kernels import geodesic
+@pytest.mark.parametrize("seed", [4, 5, 6])
+@pytest.mark.parametrize("density", [0.7, 0.95, 1.0])
+def test_the_compiled_function_gives_the_same_table_bit_for_bit(seed: int, density: float) -> None:
+    """The compiled Dijkstra (flat-array heap) and the reference compiled as it is."""
+    from voot.envs.motion.footprint_kernels import geodesic, geodesic_reference
 
-    grid = np.random.default_rng(4).random((40, 30)) < 0.7
+    grid = np.random.default_rng(seed).random((60, 45)) < density
     grid[7, 9] = True
     a, b = geodesic(grid, 7, 9), geodesic_steps(grid, 7, 9)
-    assert a.tobytes() == b.tobytes() and np.isinf(a).any() and np.isfinite(a).sum() > 100
+    assert a.tobytes() == b.tobytes() and np.isfinite(a).sum() > 100
+    assert geodesic_reference(grid, 7, 9).tobytes() == b.tobytes()
+    if density < 1.0:
+        assert np.isinf(a).any()
+    blocked = grid.copy()
+    blocked[7, 9] = False
+    assert np.isinf(geodesic(blocked, 7, 9)).all()
