@@ -112,7 +112,7 @@ def run(
     # the one-off compile of the A* loop (numba), before any search
     t0 = time.process_time()
     if engine == "compiled":
-        from voot.envs.motion.footprint_astar import warm_compiled
+        from voot.envs.motion.footprint.astar import warm_compiled
 
         warm_compiled()
     compile_seconds = time.process_time() - t0

@@ -29,8 +29,8 @@ import time
 from dataclasses import fields, replace
 from typing import Any
 
-from voot.envs.motion import footprint_search as FS
 from voot.envs.motion.footprint import FootprintConfig
+from voot.envs.motion.footprint import search as FS
 
 
 def _set_defaults(overrides: dict[str, Any]) -> None:

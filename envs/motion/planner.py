@@ -88,7 +88,7 @@ from voot.envs.motion.disc_geometry import (
     segments_hit_any,
 )
 from voot.envs.motion.footprint import Footprint, FootprintConfig
-from voot.envs.motion.footprint_search import FootprintSearch
+from voot.envs.motion.footprint.search import FootprintSearch
 from voot.envs.motion.graph_search import no_path, search
 from voot.envs.motion.planar import (
     BasePath,
@@ -147,7 +147,7 @@ class BasePlannerConfig:
             :meth:`BasePlanner.plan`. A :class:`FootprintConfig`: where the disc finds no
             path, :meth:`BasePlanner.plan_footprint` searches the exact oriented
             footprint of robot and load on an (x, y, theta) lattice at that resolution
-            (:mod:`voot.envs.motion.footprint_search`).
+            (:mod:`voot.envs.motion.footprint.search`).
     """
 
     rotation_weight: float = 1.0
@@ -419,7 +419,7 @@ class BasePlanner:
         planned point, turning with its heading), so a disc path is a footprint path and
         is returned as is. Where the disc finds none and
         :attr:`BasePlannerConfig.footprint` is set, the lattice search of
-        :class:`~voot.envs.motion.footprint_search.FootprintSearch` decides (deterministic,
+        :class:`~voot.envs.motion.footprint.search.FootprintSearch` decides (deterministic,
         complete at its resolution); with the option unset this is :meth:`plan`.
         """
         path = self.plan(start, goal, robot_radius, movable)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from voot.bench.measure import footprint_speed as F
-from voot.envs.motion.footprint_astar import numba_available
+from voot.envs.motion.footprint.astar import numba_available
 
 
 @pytest.mark.skipif(not numba_available(), reason="numba is not installed")

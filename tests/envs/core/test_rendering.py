@@ -117,7 +117,7 @@ def test_numba_and_an_egl_renderer_share_a_process_in_either_order(
     """numba's LLVM (llvmlite) beside Mesa's: no crash in either order (unlike triton's).
 
     So voot does not need to load numba before a renderer (the exact-footprint search
-    compiles with numba, :mod:`voot.envs.motion.footprint_kernels`).
+    compiles with numba, :mod:`voot.envs.motion.footprint.kernels`).
     """
     pytest.importorskip("numba")
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}

@@ -1,18 +1,18 @@
-"""Tests of voot.envs.motion.footprint_scene: the lazy scene is the eager one, bit for bit."""
+"""Tests of voot.envs.motion.footprint.scene: the lazy scene is the eager one, bit for bit."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from voot.envs.motion.footprint import (
+from voot.envs.motion.footprint.scene import PENDING, LazyScene, pack_static, unpack_static
+from voot.envs.motion.footprint.search import FootprintSearch
+from voot.envs.motion.footprint.shape import (
     Footprint,
     FootprintConfig,
     FootprintLattice,
     bound_boxes,
 )
-from voot.envs.motion.footprint_scene import PENDING, LazyScene, pack_static, unpack_static
-from voot.envs.motion.footprint_search import FootprintSearch
 from voot.envs.motion.planar import Box2D
 
 WS = (0.0, 4.0, 0.0, 3.0)
@@ -51,7 +51,7 @@ def known(scene: LazyScene) -> np.ndarray:
     view = np.frombuffer(scene.buffer, dtype=np.uint8).reshape(scene.lattice.shape)
     out = view != PENDING
     if scene.compiled:
-        from voot.envs.motion.footprint_kernels import TILE_SHIFT
+        from voot.envs.motion.footprint.kernels import TILE_SHIFT
 
         _, nx, ny = scene.lattice.shape
         dirty = scene.kernel_data[-1]
@@ -90,7 +90,7 @@ def test_the_lazy_scene_is_the_eager_free_lattice_through_updates(tile: int, eng
 
 def test_the_pose_test_is_the_windows_answer_at_sampled_poses() -> None:
     """pose_free (the compiled loops' test) against blocked_window, pose by pose."""
-    from voot.envs.motion.footprint_kernels import pose_free
+    from voot.envs.motion.footprint.kernels import pose_free
 
     lat = FootprintLattice(WS, CFG)
     scene = LazyScene(lat, ROBOT, STATIC + bound_boxes(WS), 8)

@@ -1,4 +1,4 @@
-"""Tests of voot.envs.motion.footprint: the oriented footprint and its lattice occupancy."""
+"""Tests of voot.envs.motion.footprint.shape: the oriented footprint and its lattice occupancy."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from voot.envs.motion.footprint import (
+from voot.envs.motion.footprint.shape import (
     Footprint,
     FootprintConfig,
     FootprintLattice,

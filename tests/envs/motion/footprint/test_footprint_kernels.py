@@ -1,4 +1,4 @@
-"""Tests of voot.envs.motion.footprint_kernels: each kernel against the Python it copies."""
+"""Tests of voot.envs.motion.footprint.kernels: each kernel against the Python it copies."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from voot.envs.motion.footprint import Footprint, FootprintConfig, FootprintLattice
-from voot.envs.motion.footprint_astar import numba_available
+from voot.envs.motion.footprint.astar import numba_available
+from voot.envs.motion.footprint.shape import Footprint, FootprintConfig, FootprintLattice
 from voot.envs.motion.planar import Box2D
 from voot.envs.motion.planner import BasePlanner
 
@@ -29,7 +29,7 @@ FP = Footprint(
 
 
 def test_the_heap_pops_as_heapq_with_ties() -> None:
-    from voot.envs.motion import footprint_kernels as K
+    from voot.envs.motion.footprint import kernels as K
 
     rng = np.random.default_rng(3)
     entries = [(float(f), int(v)) for f, v in zip(rng.integers(0, 20, 400) / 4.0,
@@ -70,7 +70,7 @@ def test_blocked_window_compiled_is_numpys(
 
 
 def test_the_disc_test_is_the_planners() -> None:
-    from voot.envs.motion import footprint_kernels as K
+    from voot.envs.motion.footprint import kernels as K
 
     walls = [Box2D(2.0, 1.0, 0.05, 1.0, 0.3, "wall"), Box2D(1.0, 2.4, 0.4, 0.2, 1.0, "table")]
     probe = BasePlanner(WS, walls).disc_probe([Box2D(3.0, 2.0, 0.2, 0.3, 0.0, "box")])
@@ -87,7 +87,7 @@ def test_the_disc_test_is_the_planners() -> None:
 
 
 def test_tile_lists_name_exactly_the_boxes_whose_window_meets_each_tile() -> None:
-    from voot.envs.motion import footprint_kernels as K
+    from voot.envs.motion.footprint import kernels as K
 
     rng = np.random.default_rng(5)
     nx, ny, side = 70, 53, 1 << K.TILE_SHIFT
@@ -113,7 +113,7 @@ def test_tile_lists_name_exactly_the_boxes_whose_window_meets_each_tile() -> Non
 
 def test_dense_tables_give_the_same_paths_after_many_searches() -> None:
     """Searches that share the g and move tables (never cleared) answer as fresh ones."""
-    from voot.envs.motion.footprint_search import FootprintSearch
+    from voot.envs.motion.footprint.search import FootprintSearch
 
     cfg = FootprintConfig(xy_step=0.1, headings=24)
     walls = (Box2D(2.0, 0.8, 0.05, 0.8, 0.0, "wall"),)

@@ -50,15 +50,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
 
-from voot.envs.motion.footprint import (
-    BoolArray,
-    Footprint,
-    FootprintConfig,
-    FootprintLattice,
-    bound_boxes,
-    footprint_hits,
-)
-from voot.envs.motion.footprint_astar import (
+from voot.envs.motion.footprint.astar import (
     AStarSpec,
     DenseTables,
     DiscHub,
@@ -69,14 +61,22 @@ from voot.envs.motion.footprint_astar import (
     hypot_table,
     warm_compiled,
 )
-from voot.envs.motion.footprint_scene import (
+from voot.envs.motion.footprint.moves import Pose, join_locally, step_between
+from voot.envs.motion.footprint.scene import (
     PENDING,
     Entry,
     LazyScene,
     pack_static,
     unpack_static,
 )
-from voot.envs.motion.lattice_moves import Pose, join_locally, step_between
+from voot.envs.motion.footprint.shape import (
+    BoolArray,
+    Footprint,
+    FootprintConfig,
+    FootprintLattice,
+    bound_boxes,
+    footprint_hits,
+)
 from voot.envs.motion.planar import Box2D
 
 FloatArray = NDArray[np.float64]
@@ -325,7 +325,7 @@ class FootprintSearch:
                 self._passable.popitem(last=False)
         gx, gy = divmod(target, self.lattice.ny)
         if self.config.engine == "compiled":
-            from voot.envs.motion.footprint_kernels import geodesic
+            from voot.envs.motion.footprint.kernels import geodesic
 
             table = geodesic(passable, gx, gy)
         else:
@@ -592,7 +592,7 @@ class FootprintSearch:
         scene: LazyScene | None,
     ) -> int:
         """:meth:`_segments_free` by :func:`.footprint_kernels.segments_free` (the same count)."""
-        from voot.envs.motion.footprint_kernels import segments_free
+        from voot.envs.motion.footprint.kernels import segments_free
 
         lat = self.lattice
         grid = np.array(

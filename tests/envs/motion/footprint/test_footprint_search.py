@@ -1,4 +1,4 @@
-"""Tests of voot.envs.motion.footprint_search (through BasePlanner.plan_footprint)."""
+"""Tests of voot.envs.motion.footprint.search (through BasePlanner.plan_footprint)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from voot.envs.motion.footprint import Footprint, FootprintConfig, footprint_hits
+from voot.envs.motion.footprint.shape import Footprint, FootprintConfig, footprint_hits
 from voot.envs.motion.planar import Box2D, path_length, wrap_angle
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig
 
@@ -128,7 +128,7 @@ def _answer() -> str:
 def test_same_path_in_another_process_and_with_warm_caches() -> None:
     here = Path(__file__).resolve()
     code = (
-        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[2])!r}];"
+        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[3])!r}];"
         "from test_footprint_search import _answer; print(_answer())"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -184,7 +184,7 @@ def test_coarse_first_needs_a_lattice_to_halve() -> None:
 
 def test_coarse_first_without_a_hub_reaches_the_start() -> None:
     """The lattice search alone (no disc hub): the coarse path is joined to both ends."""
-    from voot.envs.motion.footprint_search import FootprintSearch
+    from voot.envs.motion.footprint.search import FootprintSearch
 
     walls = tuple(door_wall(1.0))
     fine = FootprintSearch(WS, walls, CFG)

@@ -1,7 +1,7 @@
 """The compiled A* loop of the exact-footprint search (numba), resumable by its caller.
 
-:func:`voot.envs.motion.footprint_astar.astar_compiled` drives it; the reference is the
-pure-Python loop of :func:`voot.envs.motion.footprint_astar.astar_python`, whose order
+:func:`voot.envs.motion.footprint.astar.astar_compiled` drives it; the reference is the
+pure-Python loop of :func:`voot.envs.motion.footprint.astar.astar_python`, whose order
 of expansions (and so whose path) this loop reproduces bit for bit:
 
 * the open list is a binary heap of ``(f, pose)`` ordered as Python orders the tuples
@@ -36,7 +36,8 @@ from typing import Any
 
 import numpy as np
 
-from voot.envs.motion.footprint_pose_kernels import (
+from voot.envs.motion.footprint.geodesic import geodesic_steps
+from voot.envs.motion.footprint.pose_kernels import (
     _PENDING,
     TILE_SHIFT,
     _jit,
@@ -47,7 +48,6 @@ from voot.envs.motion.footprint_pose_kernels import (
     resolve_poses,
     tile_lists,
 )
-from voot.envs.motion.geodesic import geodesic_steps
 
 __all__ = [
     "CONNECT",
@@ -458,14 +458,14 @@ def segments_free(
     return ends.shape[0], -1
 
 
-#: :func:`voot.envs.motion.geodesic.geodesic_steps`, compiled as it is (the reference of
+#: :func:`voot.envs.motion.footprint.geodesic.geodesic_steps`, compiled as it is (the reference of
 #: :func:`geodesic`).
 geodesic_reference = _jit(geodesic_steps)
 
 
 @_jit
 def geodesic(passable: Any, gx: int, gy: int) -> Any:
-    """:func:`~voot.envs.motion.geodesic.geodesic_steps`' table, bit for bit, faster.
+    """:func:`~voot.envs.motion.footprint.geodesic.geodesic_steps`' table, bit for bit, faster.
 
     The same Dijkstra with the open list in two flat arrays ordered by distance alone
     (ties in any order) instead of a heap of tuples: 1.6x faster on the conveyor's

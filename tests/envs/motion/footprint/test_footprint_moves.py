@@ -1,8 +1,8 @@
-"""Tests of voot.envs.motion.lattice_moves: joining lattice poses by a few moves."""
+"""Tests of voot.envs.motion.footprint.moves: joining lattice poses by a few moves."""
 
 from __future__ import annotations
 
-from voot.envs.motion.lattice_moves import join_locally, step_between
+from voot.envs.motion.footprint.moves import join_locally, step_between
 
 
 def test_step_between_moves_position_first_then_heading() -> None:

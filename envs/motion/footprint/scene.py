@@ -1,6 +1,6 @@
 """One footprint's free lattice among the static obstacles and a changing set of movable boxes.
 
-The exact-footprint search (:mod:`voot.envs.motion.footprint_search`) asks, pose by pose,
+The exact-footprint search (:mod:`voot.envs.motion.footprint.search`) asks, pose by pose,
 whether a footprint is free on the lattice of :class:`~.footprint.FootprintLattice`. The
 first version built that answer for the whole lattice before every query: a copy of the
 static occupancy (10.8 million bytes on the conveyor, itself 60-130 ms to compute per
@@ -31,7 +31,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.motion.footprint import Footprint, FootprintLattice
+from voot.envs.motion.footprint.shape import Footprint, FootprintLattice
 from voot.envs.motion.planar import Box2D
 
 __all__ = ["PENDING", "LazyScene", "pack_static", "unpack_static"]
@@ -114,7 +114,7 @@ class LazyScene:
         self.buffer = bytearray(n) if self.compiled else bytearray(bytes([PENDING])) * n
         self._dirty = np.zeros(0, dtype=np.uint8)
         if self.compiled:
-            from voot.envs.motion.footprint_kernels import TILE_SHIFT
+            from voot.envs.motion.footprint.kernels import TILE_SHIFT
 
             side = 1 << TILE_SHIFT
             self._tile_shape = (-(-lattice.nx // side), -(-lattice.ny // side))
@@ -152,7 +152,7 @@ class LazyScene:
                 )  # fmt: skip
                 lims = np.zeros((len(self.footprint.parts), self.lattice.nk, 4))
                 if self.compiled:
-                    from voot.envs.motion.footprint_kernels import part_limits
+                    from voot.envs.motion.footprint.kernels import part_limits
 
                     lims = part_limits(row, self._trig, self._half, self.lattice.tolerance)
                 self._entries[box] = (row, wins, lims)
@@ -171,7 +171,7 @@ class LazyScene:
             lims = np.zeros((0, p, self.lattice.nk, 4))
         tiles = np.zeros(0, dtype=np.int64)
         if self.compiled:
-            from voot.envs.motion.footprint_kernels import tile_lists
+            from voot.envs.motion.footprint.kernels import tile_lists
 
             tiles = tile_lists(wins, self.lattice.nx, self.lattice.ny)
         return boxes, wins, self._trig, lims, tiles, self._dirty
@@ -182,7 +182,7 @@ class LazyScene:
             return
         old, new = set(self.movable), set(movable)
         if self.compiled:
-            from voot.envs.motion.footprint_kernels import TILE_SHIFT
+            from voot.envs.motion.footprint.kernels import TILE_SHIFT
 
             dirty = self._dirty.reshape(self._tile_shape)
         for box in old ^ new:
@@ -232,7 +232,7 @@ class LazyScene:
         """Test every pending pose among the flat ``indices`` (and, compiled, every
         pose of a dirty tile among them)."""
         if self.compiled:
-            from voot.envs.motion.footprint_kernels import resolve_poses
+            from voot.envs.motion.footprint.kernels import resolve_poses
 
             lat = self.lattice
             resolve_poses(

@@ -16,7 +16,7 @@ a footprint overlaps a given obstacle at (:meth:`FootprintLattice.blocked_window
 The workspace bounds are four obstacles outside it, so a pose is free iff every
 rectangle stays inside the workspace and clear of every obstacle. Occupancy of the static
 obstacles is computed once per footprint; that of a movable box once per (footprint,
-box) (see :mod:`voot.envs.motion.footprint_search`, which searches the lattice).
+box) (see :mod:`voot.envs.motion.footprint.search`, which searches the lattice).
 """
 
 from __future__ import annotations
@@ -370,7 +370,7 @@ class FootprintLattice:
         tolerance (every pose outside the window is clear of it). ``within`` (positions
         ``(i0, i1, j0, j1)``) clips the window: each pose's test is computed by the same
         arithmetic whatever the window, so a clipped mask is the full one's crop, bit for
-        bit (what the lazy scenes of :mod:`voot.envs.motion.footprint_scene` rely on, and
+        bit (what the lazy scenes of :mod:`voot.envs.motion.footprint.scene` rely on, and
         the pose-by-pose test :func:`~.footprint_kernels.pose_free`).
         """
         windows = self.part_windows(footprint, box)
@@ -398,7 +398,7 @@ class FootprintLattice:
             # the part's centre offset (rotated with the heading) and its axes
             ox, oy, ca, sa = self.part_trig(part)
             if self.config.engine == "compiled":
-                from voot.envs.motion.footprint_kernels import part_hits
+                from voot.envs.motion.footprint.kernels import part_hits
 
                 part_hits(
                     hit, a0 - i0, b0 - j0, px.ravel(), py.ravel(), ox, oy, ca, sa,

@@ -1,4 +1,4 @@
-"""Tests of voot.envs.motion.footprint_astar: the compiled A* returns the reference's paths."""
+"""Tests of voot.envs.motion.footprint.astar: the compiled A* returns the reference's paths."""
 
 from __future__ import annotations
 
@@ -13,9 +13,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from voot.envs.motion.footprint import Footprint, FootprintConfig
-from voot.envs.motion.footprint_astar import hypot_table, numba_available
-from voot.envs.motion.footprint_search import FootprintSearch
+from voot.envs.motion.footprint.astar import hypot_table, numba_available
+from voot.envs.motion.footprint.search import FootprintSearch
+from voot.envs.motion.footprint.shape import Footprint, FootprintConfig
 from voot.envs.motion.planar import Box2D, Pose2D
 from voot.envs.motion.planner import BasePlanner, BasePlannerConfig, _DiscHub
 
@@ -191,7 +191,7 @@ def test_compiled_in_a_fresh_process_with_a_cache_dir(tmp_path: Path) -> None:
     here = Path(__file__).resolve()
     code = (
         "import warnings; warnings.simplefilter('error');"
-        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[3])!r}];"
+        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[4])!r}];"
         "from test_footprint_astar import _answers; print(_answers('compiled'))"
     )
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
@@ -200,7 +200,7 @@ def test_compiled_in_a_fresh_process_with_a_cache_dir(tmp_path: Path) -> None:
             [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
         )
         assert out.stdout.strip() == repr(_answers("python"))
-    assert any(tmp_path.rglob("footprint_kernels*.nbi"))
+    assert any(tmp_path.rglob("kernels.*.nbi"))
 
 
 def test_compiled_without_a_cache_location() -> None:
@@ -208,7 +208,7 @@ def test_compiled_without_a_cache_location() -> None:
     here = Path(__file__).resolve()
     code = (
         "import warnings; warnings.simplefilter('error');"
-        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[3])!r}];"
+        f"import sys; sys.path[:0] = [{str(here.parent)!r}, {str(here.parents[4])!r}];"
         "from test_footprint_astar import _answers; print(_answers('compiled'))"
     )
     # ZipCacheLocator alone finds no place for a module outside a zip file

@@ -1,4 +1,4 @@
-"""Tests of voot.envs.motion.geodesic: lattice distances around obstacles."""
+"""Tests of voot.envs.motion.footprint.geodesic: lattice distances around obstacles."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from voot.envs.motion.footprint_astar import numba_available
-from voot.envs.motion.geodesic import geodesic_steps
+from voot.envs.motion.footprint.astar import numba_available
+from voot.envs.motion.footprint.geodesic import geodesic_steps
 
 
 def test_geodesic_steps_follow_the_walls() -> None:
@@ -38,7 +38,7 @@ def test_geodesic_steps_is_a_lower_bound_of_no_less_than_the_straight_line() -> 
 @pytest.mark.parametrize("density", [0.7, 0.95, 1.0])
 def test_the_compiled_function_gives_the_same_table_bit_for_bit(seed: int, density: float) -> None:
     """The compiled Dijkstra (flat-array heap) and the reference compiled as it is."""
-    from voot.envs.motion.footprint_kernels import geodesic, geodesic_reference
+    from voot.envs.motion.footprint.kernels import geodesic, geodesic_reference
 
     grid = np.random.default_rng(seed).random((60, 45)) < density
     grid[7, 9] = True

@@ -1,6 +1,6 @@
 """Joining two poses of the (heading, x, y) lattice by a few lattice moves.
 
-What :class:`~voot.envs.motion.footprint_search.FootprintSearch` uses to refine a coarse
+What :class:`~voot.envs.motion.footprint.search.FootprintSearch` uses to refine a coarse
 lattice's path (``coarse_first``) on the fine lattice: straight moves where the poses
 between are free (:func:`step_between`), else the fewest moves around within one pose
 (:func:`join_locally`). ``free(k, i, j)`` answers for a pose; both are deterministic.

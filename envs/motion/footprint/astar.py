@@ -1,6 +1,6 @@
 """A* over the exact-footprint lattice: the reference Python loop and the compiled one.
 
-:class:`voot.envs.motion.footprint_search.FootprintSearch` runs one of two engines
+:class:`voot.envs.motion.footprint.search.FootprintSearch` runs one of two engines
 (``FootprintConfig.engine``) that expand the same poses in the same order and return the
 same path, bit for bit:
 
@@ -39,8 +39,8 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from voot.envs.motion.footprint_scene import PENDING, KernelData
-from voot.envs.motion.geodesic import geodesic_steps
+from voot.envs.motion.footprint.geodesic import geodesic_steps
+from voot.envs.motion.footprint.scene import PENDING, KernelData
 
 FloatArray = NDArray[np.float64]
 
@@ -293,7 +293,7 @@ def warm_compiled() -> None:
         return 1
 
     astar_compiled(spec, 0, 71, free, closed, resolve, lambda: True, None)
-    from voot.envs.motion import footprint_kernels as K
+    from voot.envs.motion.footprint import kernels as K
 
     K.geodesic(np.ones((3, 3), dtype=np.bool_), 1, 1)
     # the lattice's occupancy test and the tightening's segment checks
@@ -334,7 +334,7 @@ def astar_compiled(
     per-pose g and move tables (:func:`dense_tables`, kept by the caller across searches:
     only the poses a search reaches are read or written), or None to allocate them.
     """
-    from voot.envs.motion import footprint_kernels as K
+    from voot.envs.motion.footprint import kernels as K
 
     nk, nx, ny = spec.shape
     plane = nx * ny
