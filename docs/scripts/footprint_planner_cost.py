@@ -90,6 +90,9 @@ def main() -> None:
         return out
 
     twins: dict[int, Any] = {}
+    # the queries asked before in this process (the same search, ends, footprint, boxes
+    # and disc radius: the same answer, as every answer is a function of these)
+    asked: set[tuple[Any, ...]] = set()
 
     def timed_plan(self: Any, *a: Any) -> Any:
         if getattr(self, "is_twin", False):
@@ -97,8 +100,12 @@ def main() -> None:
         label.clear()
         t0 = time.process_time()
         out = plan(self, *a)
+        hub = a[4] if len(a) > 4 else None
+        key = (id(self), *a[:4], getattr(hub, "_radius", None))
         row = {"t": time.process_time() - t0, "found": out is not None,
-               "expansions": self.last_expansions, "label": label.get("t")}  # fmt: skip
+               "expansions": self.last_expansions, "label": label.get("t"),
+               "repeat": key in asked}  # fmt: skip
+        asked.add(key)
         if args.compare_geodesic:
             twin = twins.get(id(self))
             if twin is None:
@@ -135,7 +142,9 @@ def main() -> None:
         f"expansions: median {statistics.median(r['expansions'] for r in rows) if rows else 0:.0f}, "
         f"total {sum(r['expansions'] for r in rows)}; "
         f"{sum(r['found'] for r in rows)} found a path; {len(labelled)} reached the "
-        f"connectivity proof ({sum(labelled):.2f} s in it)"
+        f"connectivity proof ({sum(labelled):.2f} s in it); "
+        f"{sum(r['repeat'] for r in rows)} asked before in this process "
+        f"({sum(r['t'] for r in rows if r['repeat']):.2f} s in them)"
     )
     if args.compare_geodesic:
         twin_times = [r["twin_t"] for r in rows]
