@@ -6,7 +6,7 @@ same path, bit for bit:
 
 * ``"python"`` (:func:`astar_python`): the reference, plain CPython (7-10 us an expansion);
 * ``"compiled"`` (:func:`astar_compiled`): the same loop compiled with numba
-  (:mod:`.footprint_kernels`), which stops to let Python test a pending tile of the lazy
+  (:mod:`.kernels`), which stops to let Python test a pending tile of the lazy
   scene, ask the disc hub, or prove connectivity, and resumes where it stopped.
 
 The search: from ``si`` to ``gi`` over the free lattice poses, each joined to its 8
@@ -57,7 +57,7 @@ __all__ = [
 
 _SQRT2 = math.sqrt(2.0)
 
-#: A lazy scene's arrays for the compiled loop (:attr:`.footprint_scene.LazyScene.kernel_data`).
+#: A lazy scene's arrays for the compiled loop (:attr:`.scene.LazyScene.kernel_data`).
 SceneData = KernelData
 
 #: The compiled loop's per-pose g (float64) and move (uint8) tables (:func:`dense_tables`).
@@ -327,9 +327,9 @@ def astar_compiled(
     scene: SceneData | None = None,
     dense: DenseTables | None = None,
 ) -> tuple[Found, int]:
-    """:func:`astar_python`'s result, by the compiled loop of :mod:`.footprint_kernels`.
+    """:func:`astar_python`'s result, by the compiled loop of :mod:`.kernels`.
 
-    With ``scene`` (:attr:`.footprint_scene.LazyScene.kernel_data`),
+    With ``scene`` (:attr:`.scene.LazyScene.kernel_data`),
     the loop tests pending poses itself and ``resolve`` is not called. ``dense``: the
     per-pose g and move tables (:func:`dense_tables`, kept by the caller across searches:
     only the poses a search reaches are read or written), or None to allocate them.

@@ -1,8 +1,8 @@
 """Lattice distances around obstacles: the geodesic heuristic of the exact-footprint search.
 
 :func:`geodesic_steps` is the position term of ``FootprintConfig.heuristic="geodesic"``
-(:mod:`.footprint_astar`): plain Python and numpy, the reference of the compiled engine's
-faster Dijkstra (:func:`.footprint_kernels.geodesic`, tested equal), so both engines read the same
+(:mod:`.astar`): plain Python and numpy, the reference of the compiled engine's
+faster Dijkstra (:func:`.kernels.geodesic`, tested equal), so both engines read the same
 table, bit for bit. It imports nothing of voot, so both engines' modules can import it.
 """
 
@@ -22,7 +22,7 @@ def geodesic_steps(passable: NDArray[np.bool_], gx: int, gy: int) -> NDArray[np.
     over the ``passable`` positions ``(nx, ny)``, 8-connected; infinite where unreachable.
 
     Dijkstra with a heap of ``(distance, index)`` (Python's tuple order): the compiled
-    engine runs a faster Dijkstra with the same answer (:func:`.footprint_kernels.geodesic`), so
+    engine runs a faster Dijkstra with the same answer (:func:`.kernels.geodesic`), so
     both engines read the same table, bit for bit.
     """
     nx, ny = passable.shape

@@ -14,7 +14,7 @@ of expansions (and so whose path) this loop reproduces bit for bit:
 The loop's tables are dense (one entry per lattice pose, allocated once per search
 object and read only where the search has been): each pose's g and the move that
 reached it, and per position the hub's disc answers. A pending pose of a lazy scene
-(:data:`~.footprint_scene.PENDING`) is tested in the loop itself, pose by pose
+(:data:`~.scene.PENDING`) is tested in the loop itself, pose by pose
 (:func:`pose_free`, the same bit as the lattice's window test).
 
 What the loop cannot do itself (ask the disc hub to connect, label the connected

@@ -7,7 +7,7 @@ window of positions at every heading (:func:`part_hits`), or at one pose
 per tile), and the lazy scene's pending and dirty bookkeeping (:func:`ensure_tile`,
 :func:`resolve_poses`). Every pose is computed by the same operations in the same order,
 so each answer is the window's, bit for bit. The A* loop that calls them is
-:mod:`.footprint_kernels`; this module imports numba and is imported only with it.
+:mod:`.kernels`; this module imports numba and is imported only with it.
 """
 
 from __future__ import annotations
@@ -134,7 +134,7 @@ def ensure_tile(free: Any, dirty: Any, nty: int, i: int, j: int, nk: int, nx: in
     """Mark every pose of position ``(i, j)``'s tile pending if the tile is ``dirty``.
 
     A lazy scene marks a tile dirty where a box moved instead of marking its poses there
-    (:class:`~.footprint_scene.LazyScene`): a tile's bytes are read only after this.
+    (:class:`~.scene.LazyScene`): a tile's bytes are read only after this.
     """
     t = (i >> TILE_SHIFT) * nty + (j >> TILE_SHIFT)
     if dirty[t] == 0:

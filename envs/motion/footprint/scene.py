@@ -1,7 +1,7 @@
 """One footprint's free lattice among the static obstacles and a changing set of movable boxes.
 
 The exact-footprint search (:mod:`voot.envs.motion.footprint.search`) asks, pose by pose,
-whether a footprint is free on the lattice of :class:`~.footprint.FootprintLattice`. The
+whether a footprint is free on the lattice of :class:`~.shape.FootprintLattice`. The
 first version built that answer for the whole lattice before every query: a copy of the
 static occupancy (10.8 million bytes on the conveyor, itself 60-130 ms to compute per
 footprint) and the full occupancy window of every movable box (about 10 ms per new
@@ -14,7 +14,7 @@ footprint) and the full occupancy window of every movable box (about 10 ms per n
   changes a few more); a new scene starts with every pose pending;
 * a pending pose is tested when the search first looks at it, against every obstacle,
   static or movable, whose window holds it: with ``engine="compiled"`` that one pose
-  (:func:`~.footprint_kernels.pose_free`, inside the compiled A* loop and the path's
+  (:func:`~.kernels.pose_free`, inside the compiled A* loop and the path's
   tightening), with ``engine="python"`` its whole tile (``tile x tile`` positions, every
   heading; :meth:`FootprintLattice.blocked_window` clipped to the tile). Both compute
   each pose as the full window does.
@@ -36,12 +36,12 @@ from voot.envs.motion.planar import Box2D
 
 __all__ = ["PENDING", "LazyScene", "pack_static", "unpack_static"]
 
-#: A box's row of :func:`~.footprint_kernels.pose_free`'s ``boxes``, its ``wins`` and ``lims``.
+#: A box's row of :func:`~.kernels.pose_free`'s ``boxes``, its ``wins`` and ``lims``.
 Entry = tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]
 
-#: :func:`~.footprint_kernels.pose_free`'s arrays: boxes, windows, the parts' trigonometry,
-#: the separating-axis limits and the boxes per tile (:func:`~.footprint_kernels.tile_lists`),
-#: and the scene's dirty tiles (:func:`~.footprint_kernels.ensure_tile`).
+#: :func:`~.kernels.pose_free`'s arrays: boxes, windows, the parts' trigonometry,
+#: the separating-axis limits and the boxes per tile (:func:`~.kernels.tile_lists`),
+#: and the scene's dirty tiles (:func:`~.kernels.ensure_tile`).
 KernelData = tuple[
     NDArray[np.float64], NDArray[np.int64], NDArray[np.float64], NDArray[np.float64],
     NDArray[np.int64], NDArray[np.uint8],
@@ -81,11 +81,11 @@ class LazyScene:
         lattice: The lattice.
         footprint: The footprint the scene is of.
         static: The static obstacles (with the workspace's bounds,
-            :func:`~.footprint.bound_boxes`).
+            :func:`~.shape.bound_boxes`).
         tile: Side of a tile, in lattice positions (>= 1): what ``engine="python"``
             tests at once.
         engine: ``"compiled"``: pending poses are tested one by one by
-            :func:`~.footprint_kernels.pose_free` (also inside the compiled loops, which
+            :func:`~.kernels.pose_free` (also inside the compiled loops, which
             take :attr:`kernel_data`); ``"python"``: tile by tile with numpy.
         entries: The boxes' windows for ``footprint`` on ``lattice``, kept by the caller
             across scenes of the same footprint (a dict this scene fills), or None.
@@ -133,7 +133,7 @@ class LazyScene:
         self.kernel_data = self._data([])
 
     def _entry(self, box: Box2D) -> Entry | None:
-        """The box's row for :func:`~.footprint_kernels.pose_free` and its windows (cached)."""
+        """The box's row for :func:`~.kernels.pose_free` and its windows (cached)."""
         if box not in self._entries:
             if len(self._entries) > 4096:
                 self._entries.clear()

@@ -1,4 +1,4 @@
-"""Exact-footprint base paths: A* over the (x, y, theta) lattice of :mod:`.footprint`.
+"""Exact-footprint base paths: A* over the (x, y, theta) lattice of :mod:`.shape`.
 
 The search behind :meth:`voot.envs.motion.planner.BasePlanner.plan_footprint`, run when
 the disc finds no path (a disc path is a footprint path, so the disc stays the fast
@@ -8,7 +8,7 @@ sufficient test). It is deterministic and complete at its resolution:
    their nearest lattice poses.
 2. The lattice's free poses are those whose footprint clears the static obstacles and
    the movable boxes, exactly at each lattice pose, tested where the search looks
-   (:mod:`.footprint_scene`: pose by pose with the compiled engine, tile by tile with
+   (:mod:`.scene`: pose by pose with the compiled engine, tile by tile with
    the Python one; ``lazy_tile`` 0 tests every box's whole window first, on the static
    occupancy computed once per footprint, with the same answers).
 3. A* from the start's lattice pose to the goal's over the free poses, each joined to
@@ -263,7 +263,7 @@ class FootprintSearch:
         movable: tuple[Box2D, ...],
         hub: DiscHub | None,
     ) -> tuple[list[int], FloatArray | None] | None:
-        """A* on this lattice (:mod:`.footprint_astar`) between the first free of ``starts`` and of ``goals``."""
+        """A* on this lattice (:mod:`.astar`) between the first free of ``starts`` and of ``goals``."""
         lat = self.lattice
         nx, ny = lat.nx, lat.ny
         free_bytes, resolve, scene = self._scene_bytes(footprint, movable)
@@ -591,7 +591,7 @@ class FootprintSearch:
         free_bytes: bytearray,
         scene: LazyScene | None,
     ) -> int:
-        """:meth:`_segments_free` by :func:`.footprint_kernels.segments_free` (the same count)."""
+        """:meth:`_segments_free` by :func:`.kernels.segments_free` (the same count)."""
         from voot.envs.motion.footprint.kernels import segments_free
 
         lat = self.lattice

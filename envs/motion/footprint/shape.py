@@ -65,7 +65,7 @@ class FootprintConfig:
             boxes are tested on demand, in [0, 256]. > 0 (32, default): each footprint
             keeps its free lattice for the last set of movable boxes, re-marks only the
             windows of boxes added or removed since, and tests a pose the first time the
-            search looks at it (:mod:`.footprint_scene`): with ``engine="compiled"`` that
+            search looks at it (:mod:`.scene`): with ``engine="compiled"`` that
             pose alone, with ``engine="python"`` its tile (all headings). 0: every
             box's whole window is tested before the search, on a fresh copy of the
             static lattice (the first version). The answers are the same bit for bit;
@@ -93,10 +93,10 @@ class FootprintConfig:
             their path after all; measured, 20,000 -> 200,000 took VOOT's 40 simulations
             on the conveyor from 18.8 to 13.9 CPU s and the 183 exact queries of 20
             random rollouts from 12.1 to 7.5 s.
-        engine: How the A* loop (:mod:`.footprint_astar`) and the lattice's occupancy
+        engine: How the A* loop (:mod:`.astar`) and the lattice's occupancy
             test (:meth:`FootprintLattice.blocked_window`) run: ``"compiled"`` (default),
             compiled with numba (a core dependency; compiled once per machine, then
-            cached on disk, :mod:`.footprint_kernels`), or ``"python"``, the pure-Python
+            cached on disk, :mod:`.kernels`), or ``"python"``, the pure-Python
             and numpy reference. Both mark the same poses, expand them in the same order
             and return the same paths, bit for bit (tested); only the time differs.
         heuristic: The position term of A*'s heuristic: ``"euclidean"`` (default), the
@@ -371,7 +371,7 @@ class FootprintLattice:
         ``(i0, i1, j0, j1)``) clips the window: each pose's test is computed by the same
         arithmetic whatever the window, so a clipped mask is the full one's crop, bit for
         bit (what the lazy scenes of :mod:`voot.envs.motion.footprint.scene` rely on, and
-        the pose-by-pose test :func:`~.footprint_kernels.pose_free`).
+        the pose-by-pose test :func:`~.kernels.pose_free`).
         """
         windows = self.part_windows(footprint, box)
         if windows is None:
