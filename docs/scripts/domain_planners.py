@@ -187,6 +187,33 @@ def planner_label(planner: str, fixed: dict[str, Any]) -> str:
     return f"{name} ({setting})"
 
 
+def keyed(frame: Any) -> Any:
+    """``frame`` with its runs' ``env_kwargs`` and setting as comparable keys."""
+    return frame.assign(
+        key=frame["env_kwargs"].map(kwargs_key),
+        setting=frame["params"].map(lambda s: json.dumps(json.loads(s), sort_keys=True)),
+    )
+
+
+def header(head: Sequence[str]) -> list[str]:
+    """A Markdown table's header lines: two text columns, the rest right-aligned."""
+    return ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
+
+
+def outcome_cells(runs: Any, budgets: Sequence[int]) -> tuple[list[str], list[str], str]:
+    """The runs' objects handled at each budget, (seeds handling all, median simulations
+    to all), and their median CPU seconds, as table cells."""
+    curves = list(zip(runs["objects_left"], runs["objects_initial"], strict=True))
+    firsts = first_reach(np.array([left for left, _ in curves], dtype=float))
+    reached = firsts[np.isfinite(firsts)]
+    at_budgets = [mean_range([handled(left, n, b) for left, n in curves]) for b in budgets]
+    to_all = [
+        f"{len(reached)}/{len(runs)}",
+        f"{np.median(reached):.0f}" if len(reached) else "—",
+    ]
+    return at_budgets, to_all, f"{np.median([c[-1] for c in runs['cpu_elapsed']]):.0f}"
+
+
 def table(frame: Any, name: str) -> str:
     """The Markdown table of the store's runs on table ``name``'s problem, a row per
     domain and planner of :data:`RUNS` (``not run yet`` where the store has none)."""
@@ -203,12 +230,8 @@ def table(frame: Any, name: str) -> str:
         "median simulations to all",
         "median CPU s per run",
     ]
-    lines = ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
-    frame = frame[frame["problem"] == problem]
-    frame = frame.assign(
-        key=frame["env_kwargs"].map(kwargs_key),
-        setting=frame["params"].map(lambda s: json.dumps(json.loads(s), sort_keys=True)),
-    )
+    lines = header(head)
+    frame = keyed(frame[frame["problem"] == problem])
     for key, domain in domains.items():
         seeds = seeds_of[key]
         for planner, fixed in settings:
@@ -222,18 +245,8 @@ def table(frame: Any, name: str) -> str:
             if runs.empty:
                 lines.append(f"| {domain} | {label} | 0 of {len(seeds)} |" + " not run yet |" * 6)
                 continue
-            curves = list(zip(runs["objects_left"], runs["objects_initial"], strict=True))
-            firsts = first_reach(np.array([left for left, _ in curves], dtype=float))
-            reached = firsts[np.isfinite(firsts)]
-            cells = [
-                domain,
-                label,
-                f"{len(runs)} of {len(seeds)}",
-                *(mean_range([handled(left, n, b) for left, n in curves]) for b in budgets),
-                f"{len(reached)}/{len(runs)}",
-                f"{np.median(reached):.0f}" if len(reached) else "—",
-                f"{np.median([c[-1] for c in runs['cpu_elapsed']]):.0f}",
-            ]
+            at_budgets, to_all, cpu = outcome_cells(runs, budgets)
+            cells = [domain, label, f"{len(runs)} of {len(seeds)}", *at_budgets, *to_all, cpu]
             lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
@@ -253,12 +266,9 @@ def long_table(frame: Any) -> str:
         "first 1,000 as the 1,000 run's",
         "median CPU s per run",
     ]
-    lines = ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
+    lines = header(head)
     labels = {k: v for _, domains, _ in TABLES.values() for k, v in domains.items()}
-    frame = frame.assign(
-        key=frame["env_kwargs"].map(kwargs_key),
-        setting=frame["params"].map(lambda s: json.dumps(json.loads(s), sort_keys=True)),
-    )
+    frame = keyed(frame)
     for problem, env_kwargs, seeds, simulations, planner, fixed in LONG_RUNS:
         key = kwargs_key(json.dumps(env_kwargs))
         same = frame[
@@ -278,22 +288,14 @@ def long_table(frame: Any) -> str:
             for seed, left in zip(same["seed"], same["objects_left"], strict=True)
             if len(left) == LONG_BUDGETS[0]
         }
-        curves = list(zip(runs["objects_left"], runs["objects_initial"], strict=True))
-        firsts = first_reach(np.array([left for left, _ in curves], dtype=float))
-        reached = firsts[np.isfinite(firsts)]
         matched = sum(
             seed in short
             and np.array_equal(np.asarray(left, dtype=float)[: LONG_BUDGETS[0]], short[seed])
             for seed, left in zip(runs["seed"], runs["objects_left"], strict=True)
         )
         compared = sum(seed in short for seed in runs["seed"])
-        cells += [
-            *(mean_range([handled(left, n, b) for left, n in curves]) for b in LONG_BUDGETS),
-            f"{len(reached)}/{len(runs)}",
-            f"{np.median(reached):.0f}" if len(reached) else "—",
-            f"{matched} of {compared}",
-            f"{np.median([c[-1] for c in runs['cpu_elapsed']]):.0f}",
-        ]
+        at_budgets, to_all, cpu = outcome_cells(runs, LONG_BUDGETS)
+        cells += [*at_budgets, *to_all, f"{matched} of {compared}", cpu]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
