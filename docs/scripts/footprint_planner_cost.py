@@ -4,7 +4,8 @@ Runs one ``voot-bench plan`` search (VOOT by default) on ``voot/ConveyorPacking-
 ``base_model="footprint"`` (and any other env keywords), with the exact-footprint
 option's settings given here (:class:`~voot.envs.motion.footprint.FootprintConfig`:
 ``--static-cache``, ``--scene-cache``, ``--label-after``; unset: the option's defaults;
-``--heuristic``: the env keyword ``footprint_heuristic``), and prints the process's CPU
+``--heuristic``: the env keyword ``footprint_heuristic``; ``--labelled-proof``: the
+connectivity proof by scipy's labelling, the reference of the compiled runs), and prints the process's CPU
 seconds, the exact queries' count, total and median CPU time, how many found a path and how many reached the connectivity
 proof (``label_after``) with its total time, and the slowest queries. Random rollouts
 (``voot-bench measure footprint-speed``) meet other queries than a tree search, which
@@ -31,6 +32,7 @@ from typing import Any
 
 from voot.envs.motion.footprint import FootprintConfig
 from voot.envs.motion.footprint import search as FS
+from voot.envs.motion.footprint.components import connected_labelled
 
 
 def _set_defaults(overrides: dict[str, Any]) -> None:
@@ -60,6 +62,12 @@ def main() -> None:
     parser.add_argument("--label-after", type=int, default=None)
     parser.add_argument("--heuristic", choices=("euclidean", "geodesic"), default=None)
     parser.add_argument(
+        "--labelled-proof",
+        action="store_true",
+        help="prove connectivity by labelling (scipy) instead of the compiled runs "
+        "(components.connected_labelled: the same answers, the reference's time)",
+    )
+    parser.add_argument(
         "--compare-geodesic",
         action="store_true",
         help="ask every query again of a twin search with heuristic='geodesic' and time it",
@@ -81,6 +89,11 @@ def main() -> None:
 
     rows: list[dict[str, Any]] = []
     plan, connected = FS.FootprintSearch._plan, FS.FootprintSearch._connected
+    if args.labelled_proof:
+
+        def connected(self: Any, si: int, gi: int, free: Any) -> bool:
+            return connected_labelled(free, si, gi)
+
     label: dict[str, float] = {}
 
     def timed_connected(self: Any, *a: Any) -> bool:

@@ -296,6 +296,7 @@ def warm_compiled() -> None:
     from voot.envs.motion.footprint import kernels as K
 
     K.geodesic(np.ones((3, 3), dtype=np.bool_), 1, 1)
+    K.same_component(np.ones(72, dtype=np.bool_), 8, 3, 3, 0, 71)  # the connectivity proof
     # the lattice's occupancy test and the tightening's segment checks
     K.part_hits(np.zeros((1, 1, 1), dtype=bool), 0, 0, np.zeros(1), np.zeros(1), np.zeros(1),
                 np.zeros(1), np.ones(1), np.zeros(1), np.ones(4), np.ones(2), 0.0)  # fmt: skip

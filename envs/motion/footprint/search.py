@@ -15,9 +15,9 @@ sufficient test). It is deterministic and complete at its resolution:
    its 8 neighbours in (x, y) at the same heading and to the two neighbouring headings
    at the same position; a move costs its SE(2) length (``|dp| + w |dtheta|``), the
    heuristic is the straight-line SE(2) distance (admissible), ties are broken by the
-   lattice index. After ``label_after`` expansions the lattice's connected components
-   are labelled once (scipy), so that "no path" is proved without expanding a whole
-   room pose by pose.
+   lattice index. After ``label_after`` expansions the search asks once whether start
+   and goal are in one connected component of the free lattice (:mod:`.components`),
+   so that "no path" is proved without expanding a whole room pose by pose.
 4. The lattice path is pulled tight: from each kept waypoint the next kept one is the
    farthest along the path joined to it by a straight SE(2) segment whose samples (at
    most ``xy_step`` / 2 and a half heading step apart) all snap to free lattice poses;
@@ -48,7 +48,6 @@ from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import ndimage
 
 from voot.envs.motion.footprint.astar import (
     AStarSpec,
@@ -61,6 +60,7 @@ from voot.envs.motion.footprint.astar import (
     hypot_table,
     warm_compiled,
 )
+from voot.envs.motion.footprint.components import connected_labelled
 from voot.envs.motion.footprint.moves import Pose, join_locally, step_between
 from voot.envs.motion.footprint.scene import (
     PENDING,
@@ -493,34 +493,15 @@ class FootprintSearch:
         return window
 
     def _connected(self, si: int, gi: int, free: BoolArray) -> bool:
-        """Are the lattice poses ``si`` and ``gi`` in one connected component of ``free``?"""
-        structure = np.zeros((3, 3, 3), dtype=bool)
-        structure[1] = True  # 8 neighbours in (x, y) at one heading
-        structure[0, 1, 1] = structure[2, 1, 1] = True  # the neighbouring headings
-        # the heading wraps: label with the first heading repeated after the last one
-        wrapped = np.concatenate([free, free[:1]], axis=0)
-        labels, _ = ndimage.label(wrapped, structure=structure)
-        first, last = labels[0].ravel(), labels[-1].ravel()
-        # the distinct (first, last) label pairs, sorted as np.unique(..., axis=0) sorts
-        # them, by one 1-D sort of a combined key (the 2-D row sort was a third of the time)
-        joined = first > 0
-        base = np.int64(labels.max()) + 1
-        keys = np.unique(first[joined].astype(np.int64) * base + last[joined])
-        pairs = np.stack([keys // base, keys % base], axis=1)
-        # union-find over the labels joined across the wrap
-        root: dict[int, int] = {}
+        """Are the lattice poses ``si`` and ``gi`` in one connected component of ``free``?
 
-        def find(a: int) -> int:
-            while root.get(a, a) != a:
-                a = root[a]
-            return a
+        (:mod:`.components`: by joining runs, compiled, with ``engine="compiled"``; by
+        labelling otherwise. The same answer.)"""
+        if self.config.engine == "compiled":
+            from voot.envs.motion.footprint.kernels import same_component
 
-        for a, b in pairs.tolist():
-            ra, rb = find(a), find(b)
-            if ra != rb:
-                root[max(ra, rb)] = min(ra, rb)
-        flat = labels[:-1].ravel()
-        return find(int(flat[si])) == find(int(flat[gi]))
+            return bool(same_component(free.reshape(-1), *free.shape, si, gi))
+        return connected_labelled(free, si, gi)
 
     def _segments_free(
         self,
