@@ -42,12 +42,14 @@ from voot.envs.motion.footprint.pose_kernels import (
     _PENDING,
     TILE_SHIFT,
     _jit,
+    _jit_inline,
     ensure_tile,
     part_hits,
     part_limits,
     pose_free,
     resolve_poses,
     tile_lists,
+    tile_of,
 )
 
 __all__ = [
@@ -79,7 +81,7 @@ __all__ = [
 FOUND, EXHAUSTED, RESOLVE, DISC, CONNECT, LABEL, GROW = range(7)
 
 
-@_jit
+@_jit_inline
 def _less(fa: float, va: int, fb: float, vb: int) -> bool:
     """Python's ``(fa, va) < (fb, vb)``."""
     if fa == fb:
@@ -87,7 +89,7 @@ def _less(fa: float, va: int, fb: float, vb: int) -> bool:
     return fa < fb
 
 
-@_jit
+@_jit_inline
 def _push(keys: Any, vals: Any, n: int, f: float, v: int) -> int:
     """Push ``(f, v)`` on the heap of ``n`` entries (capacity checked by the caller)."""
     pos = n
@@ -104,7 +106,7 @@ def _push(keys: Any, vals: Any, n: int, f: float, v: int) -> int:
     return n + 1
 
 
-@_jit
+@_jit_inline
 def _pop(keys: Any, vals: Any, n: int) -> int:
     """Remove the smallest entry (read it at index 0 first); the new size."""
     n -= 1
@@ -166,7 +168,7 @@ def path_to(move: Any, dims: Any, v: int) -> Any:
     return out
 
 
-@_jit
+@_jit_inline
 def _parent(u: int, m: int, nk: int, ny: int, plane: int) -> int:
     """The pose from which move ``m`` (see :func:`path_to`) reached ``u``."""
     if m < 8:
@@ -177,7 +179,7 @@ def _parent(u: int, m: int, nk: int, ny: int, plane: int) -> int:
     return ((k - dk) % nk) * plane + u % plane
 
 
-@_jit
+@_jit_inline
 def _disc_free(x: float, y: float, par: Any, boxes: Any) -> int:
     """The hub's ``is_free(x, y)`` (``DiscProbe.blocked_test``'s operations, in order).
 
@@ -314,7 +316,8 @@ def search(
                         continue
                     u = v + d_i * ny + d_j
                     if here:  # (the turns stay in v's tile, read already)
-                        ensure_tile(free, sdirty, stiles[0], i + d_i, j + d_j, nk, nx, ny)
+                        if sdirty[tile_of(stiles[0], i + d_i, j + d_j)]:
+                            ensure_tile(free, sdirty, stiles[0], i + d_i, j + d_j, nk, nx, ny)
                     if free[u] == _PENDING and closed[u] != 1:
                         if here:
                             free[u] = pose_free(
@@ -446,7 +449,8 @@ def segments_free(
             k = np.int64(np.rint(th / hstep)) % nk
             u = (k * nx + i) * ny + j
             if dims[3] == 1:
-                ensure_tile(free, sdirty, stiles[0], i, j, nk, nx, ny)
+                if sdirty[tile_of(stiles[0], i, j)]:
+                    ensure_tile(free, sdirty, stiles[0], i, j, nk, nx, ny)
             if free[u] == 0:
                 return s, -1
             if free[u] == _PENDING and dims[3] == 1:
