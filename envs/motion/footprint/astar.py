@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from voot.envs.motion.footprint.geodesic import geodesic_steps
-from voot.envs.motion.footprint.scene import PENDING, KernelData
+from voot.envs.motion.footprint.scene import PENDING, KernelData, LatticeBytes
 
 FloatArray = NDArray[np.float64]
 
@@ -111,8 +111,8 @@ def astar_python(
     spec: AStarSpec,
     si: int,
     gi: int,
-    free_bytes: bytearray,
-    closed: bytearray,
+    free_bytes: LatticeBytes,
+    closed: LatticeBytes,
     resolve: Callable[[int], int] | None,
     connected: Callable[[], bool],
     hub: DiscHub | None,
@@ -137,8 +137,8 @@ def _python_loop(
     spec: AStarSpec,
     si: int,
     gi: int,
-    free_bytes: bytearray,
-    closed: bytearray,
+    free_bytes: LatticeBytes,
+    closed: LatticeBytes,
     resolve: Callable[[int], int] | None,
     connected: Callable[[], bool],
     hub: DiscHub | None,
@@ -319,8 +319,8 @@ def astar_compiled(
     spec: AStarSpec,
     si: int,
     gi: int,
-    free_bytes: bytearray,
-    closed: bytearray,
+    free_bytes: LatticeBytes,
+    closed: LatticeBytes,
     resolve: Callable[[int], int] | None,
     connected: Callable[[], bool],
     hub: DiscHub | None,

@@ -65,7 +65,9 @@ from voot.envs.motion.footprint.moves import Pose, join_locally, step_between
 from voot.envs.motion.footprint.scene import (
     PENDING,
     Entry,
+    LatticeBytes,
     LazyScene,
+    lattice_bytes,
     pack_static,
     unpack_static,
 )
@@ -135,7 +137,7 @@ class FootprintSearch:
         # A*'s closed set, one byte per lattice pose: allocated once (10.8 MB on the
         # conveyor, whose first touch costs more than most searches) and cleared after
         # each search at the poses it closed
-        self._closed: bytearray | None = None
+        self._closed: LatticeBytes | None = None
         # the compiled loop's g and move per pose (9 bytes a pose, untouched pages free)
         self._dense: DenseTables | None = None
         lat = self.lattice
@@ -248,7 +250,7 @@ class FootprintSearch:
 
     def _scene_bytes(
         self, footprint: Footprint, movable: tuple[Box2D, ...]
-    ) -> tuple[bytearray, Callable[[int], int] | None, LazyScene | None]:
+    ) -> tuple[LatticeBytes, Callable[[int], int] | None, LazyScene | None]:
         """The scene's bytes, the test of a :data:`PENDING` pose, and the lazy scene (or None)."""
         if self.config.lazy_tile > 0:
             scene = self._lazy_scene(footprint, movable)
@@ -293,7 +295,7 @@ class FootprintSearch:
             if hpos.flat[gi % plane] == np.inf:
                 return None  # not joined even where any heading may pass
         if self._closed is None:
-            self._closed = bytearray(lat.nk * lat.nx * lat.ny)
+            self._closed = self._new_closed()
         # search from the goal: to the start, or to the first hub
         if self.config.engine == "compiled":
             data = None if scene is None else scene.kernel_data
@@ -476,7 +478,12 @@ class FootprintSearch:
         if self.config.lazy_tile == 0 or self.config.heuristic == "geodesic":
             self._static_packed(footprint)
         if self._closed is None:
-            self._closed = bytearray(self.lattice.nk * self.lattice.nx * self.lattice.ny)
+            self._closed = self._new_closed()
+
+    def _new_closed(self) -> LatticeBytes:
+        """The search's per-pose state table (:func:`~.astar.astar_compiled`'s ``closed``)."""
+        n = self.lattice.nk * self.lattice.nx * self.lattice.ny
+        return lattice_bytes(n) if self.config.engine == "compiled" else bytearray(n)
 
     def _mask(
         self, footprint: Footprint, box: Box2D
@@ -507,7 +514,7 @@ class FootprintSearch:
         self,
         a: tuple[float, float, float],
         ends: list[tuple[float, float, float]],
-        free_bytes: bytearray,
+        free_bytes: LatticeBytes,
         scene: LazyScene | None,
     ) -> int:
         """How many of the straight SE(2) segments from ``a`` to ``ends`` are free, in order.
@@ -569,7 +576,7 @@ class FootprintSearch:
         ends: list[tuple[float, float, float]],
         counts: list[int],
         dthetas: list[float],
-        free_bytes: bytearray,
+        free_bytes: LatticeBytes,
         scene: LazyScene | None,
     ) -> int:
         """:meth:`_segments_free` by :func:`.kernels.segments_free` (the same count)."""
@@ -602,7 +609,7 @@ class FootprintSearch:
     def _tighten(
         self,
         path: list[tuple[float, float, float]],
-        free_bytes: bytearray,
+        free_bytes: LatticeBytes,
         scene: LazyScene | None,
     ) -> FloatArray:
         """Pull the lattice path tight (see the module doc); the ends stay exact.
