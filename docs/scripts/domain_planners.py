@@ -6,9 +6,10 @@ widening tests, each at the setting the ablation selected on the plain v1 domain
 with the exact footprint in voot's rooms, and with the authors' domain (footprint, rooms
 and big-box ban), and on KitchenClearing-v1 with the disc and with the footprint. Writes
 a table per domain between the ``<!-- domain-planners-v1:conveyor -->`` and
-``<!-- domain-planners-v1:kitchen -->`` markers of ``docs/results-planning.md``:
+``<!-- domain-planners-v1:kitchen -->`` markers of ``docs/results-planning.md``, and
+draws their curves (:data:`FIGURE`, objects handled against simulations per domain):
 
-    python docs/scripts/domain_planners.py          # the tables
+    python docs/scripts/domain_planners.py          # the tables and the figure
     python docs/scripts/domain_planners.py run      # run (or resume) the store's runs
 
 Objects handled (boxes placed, obstacles cleared), not returns, are compared: the
@@ -32,6 +33,7 @@ from voot.bench.store.frame import store_frame
 
 STORE = Path("docs/data/domain-planners-v1")
 PAGE = Path("docs/results-planning.md")
+FIGURE = Path("docs/figures/domain-planners/planners.png")
 
 #: Per table (its marker's suffix): the problem, its domains by their ``env_kwargs``
 #: (JSON) in the table's order, and the budgets at which objects handled are reported.
@@ -300,6 +302,59 @@ def long_table(frame: Any) -> str:
     return "\n".join(lines) + "\n"
 
 
+def figure(frame: Any, path: str | Path = FIGURE) -> None:
+    """Objects handled against simulations, a panel per problem and domain of
+    :data:`TABLES` (its planned runs of :data:`RUNS`): the seeds' mean, and the band
+    between their 25th and 75th percentiles, per planner and setting."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    # a panel per domain, and a last column for each row's legend
+    width = max(len(domains) for _, domains, _ in TABLES.values()) + 1
+    fig, axes = plt.subplots(len(TABLES), width, figsize=(4.0 * width, 3.3 * len(TABLES)))
+    frame = keyed(frame)
+    for row, (name, (problem, domains, _)) in enumerate(TABLES.items()):
+        _, simulations, settings = RUNS[f"{name}_v1"]
+        what = "boxes placed" if name == "conveyor" else "obstacles cleared"
+        for col in range(len(domains), width):
+            axes[row, col].axis("off")
+        for col, (key, domain) in enumerate(domains.items()):
+            ax = axes[row, col]
+            for planner, fixed in settings:
+                runs = frame[
+                    (frame["problem"] == problem)
+                    & (frame["key"] == key)
+                    & (frame["planner"] == planner)
+                    & (frame["setting"] == json.dumps(fixed, sort_keys=True))
+                    & (frame["simulations"] == simulations)
+                ]
+                if runs.empty:
+                    continue
+                curves = np.array(
+                    [n - np.asarray(left, dtype=float) for left, n in
+                     zip(runs["objects_left"], runs["objects_initial"], strict=True)]
+                )  # fmt: skip
+                x = np.arange(1, curves.shape[1] + 1)
+                (line,) = ax.plot(x, curves.mean(axis=0), label=planner_label(planner, fixed))
+                low, high = np.quantile(curves, [0.25, 0.75], axis=0)
+                ax.fill_between(x, low, high, color=line.get_color(), alpha=0.15)
+            ax.set_xscale("log")
+            ax.set_title(f"{name}: {domain}", fontsize=10)
+            ax.set_xlabel("simulations")
+            ax.set_ylabel(what)
+        handles, labels = axes[row, 0].get_legend_handles_labels()
+        axes[row, -1].legend(
+            handles, labels, loc="center left", fontsize=8,
+            title=f"{name}: seeds' mean, 25-75% band", title_fontsize=8,
+        )  # fmt: skip
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def render(store: str | Path) -> dict[str, str]:
     """The page's blocks (marker -> body): a table per domain and the 3,000-simulation
     table, from ``store``."""
@@ -320,7 +375,8 @@ def main(argv: Sequence[str] = ()) -> None:
     if argv:
         raise SystemExit(f"usage: {Path(__file__).name} [run]; got {' '.join(argv)}")
     docs_pages.rewrite_page(PAGE, render(STORE))
-    print(f"{STORE.name}: tables redrawn into {PAGE}")
+    figure(store_frame(STORE, kind="plan", status="ok"))
+    print(f"{STORE.name}: tables redrawn into {PAGE}, curves drawn into {FIGURE}")
 
 
 if __name__ == "__main__":
