@@ -18,16 +18,16 @@ reached it, and per position the hub's disc answers. A pending pose of a lazy sc
 (:func:`pose_free`, the same bit as the lattice's window test).
 
 What the loop cannot do itself (ask the disc hub to connect, prove connectivity
-(:func:`same_component`, also compiled here), grow the heap; test a pending pose when it runs without a lazy scene's
-arrays) it asks its caller for: it
-puts the pose it was about to expand back on the heap, returns a status and the pose
-concerned in ``state[2]``, and is called again with the same state once the caller has
-answered. Putting the pose back leaves the heap's set of entries unchanged, so the
-next call pops the same pose; every answer is a function of the scene alone, so the
-expansions are those of the uninterrupted loop.
+(:func:`same_component`, also compiled here), grow the heap; test a pending pose when
+it runs without a lazy scene's arrays) it asks its caller for: it puts the pose it was
+about to expand back on the heap, returns a status and the pose concerned in
+``state[2]``, and is called again with the same state once the caller has answered.
+Putting the pose back leaves the heap's set of entries unchanged, so the next call pops
+the same pose; every answer is a function of the scene alone, so the expansions are
+those of the uninterrupted loop.
 
-This module imports numba; nothing else in voot does, and it is imported only when an
-exact-footprint search with ``engine="compiled"`` first runs.
+This module and :mod:`.pose_kernels` import numba; nothing else in voot does, and they
+are imported only when an exact-footprint search with ``engine="compiled"`` first runs.
 """
 
 from __future__ import annotations
