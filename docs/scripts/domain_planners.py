@@ -197,6 +197,17 @@ def keyed(frame: Any) -> Any:
     )
 
 
+def setting_runs(frame: Any, problem: str, key: str, planner: str, fixed: dict[str, Any]) -> Any:
+    """The runs of :func:`keyed` ``frame`` on ``problem`` in domain ``key`` by ``planner``
+    at setting ``fixed`` (every simulation budget)."""
+    return frame[
+        (frame["problem"] == problem)
+        & (frame["key"] == key)
+        & (frame["planner"] == planner)
+        & (frame["setting"] == json.dumps(fixed, sort_keys=True))
+    ]
+
+
 def header(head: Sequence[str]) -> list[str]:
     """A Markdown table's header lines: two text columns, the rest right-aligned."""
     return ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
@@ -237,12 +248,8 @@ def table(frame: Any, name: str) -> str:
     for key, domain in domains.items():
         seeds = seeds_of[key]
         for planner, fixed in settings:
-            runs = frame[
-                (frame["key"] == key)
-                & (frame["planner"] == planner)
-                & (frame["setting"] == json.dumps(fixed, sort_keys=True))
-                & (frame["simulations"] == simulations)
-            ]
+            runs = setting_runs(frame, problem, key, planner, fixed)
+            runs = runs[runs["simulations"] == simulations]
             label = planner_label(planner, fixed)
             if runs.empty:
                 lines.append(f"| {domain} | {label} | 0 of {len(seeds)} |" + " not run yet |" * 6)
@@ -273,12 +280,7 @@ def long_table(frame: Any) -> str:
     frame = keyed(frame)
     for problem, env_kwargs, seeds, simulations, planner, fixed in LONG_RUNS:
         key = kwargs_key(json.dumps(env_kwargs))
-        same = frame[
-            (frame["problem"] == TABLES[problem.removesuffix("_v1")][0])
-            & (frame["key"] == key)
-            & (frame["planner"] == planner)
-            & (frame["setting"] == json.dumps(fixed, sort_keys=True))
-        ]
+        same = setting_runs(frame, TABLES[problem.removesuffix("_v1")][0], key, planner, fixed)
         runs = same[same["simulations"] == simulations].sort_values("seed")
         label = planner_label(planner, fixed)
         cells = [labels[key], label, f"{simulations:,}", f"{len(runs)} of {len(seeds)}"]
@@ -323,13 +325,8 @@ def figure(frame: Any, path: str | Path = FIGURE) -> None:
         for col, (key, domain) in enumerate(domains.items()):
             ax = axes[row, col]
             for planner, fixed in settings:
-                runs = frame[
-                    (frame["problem"] == problem)
-                    & (frame["key"] == key)
-                    & (frame["planner"] == planner)
-                    & (frame["setting"] == json.dumps(fixed, sort_keys=True))
-                    & (frame["simulations"] == simulations)
-                ]
+                runs = setting_runs(frame, problem, key, planner, fixed)
+                runs = runs[runs["simulations"] == simulations]
                 if runs.empty:
                     continue
                 curves = np.array(
@@ -358,7 +355,11 @@ def figure(frame: Any, path: str | Path = FIGURE) -> None:
 def render(store: str | Path) -> dict[str, str]:
     """The page's blocks (marker -> body): a table per domain and the 3,000-simulation
     table, from ``store``."""
-    frame = store_frame(store, kind="plan", status="ok")
+    return blocks_of(store_frame(store, kind="plan", status="ok"))
+
+
+def blocks_of(frame: Any) -> dict[str, str]:
+    """:func:`render`'s blocks from the store's frame of finished plan runs."""
     blocks = {f"{STORE.name}:{name}": "\n" + table(frame, name) + "\n" for name in TABLES}
     blocks[f"{STORE.name}:conveyor-3000"] = "\n" + long_table(frame) + "\n"
     return blocks
@@ -374,8 +375,9 @@ def main(argv: Sequence[str] = ()) -> None:
         return
     if argv:
         raise SystemExit(f"usage: {Path(__file__).name} [run]; got {' '.join(argv)}")
-    docs_pages.rewrite_page(PAGE, render(STORE))
-    figure(store_frame(STORE, kind="plan", status="ok"))
+    frame = store_frame(STORE, kind="plan", status="ok")
+    docs_pages.rewrite_page(PAGE, blocks_of(frame))
+    figure(frame)
     print(f"{STORE.name}: tables redrawn into {PAGE}, curves drawn into {FIGURE}")
 
 
