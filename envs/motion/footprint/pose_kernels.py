@@ -12,7 +12,7 @@ so each answer is the window's, bit for bit. The A* loop that calls them is
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 import numba
 import numpy as np
@@ -31,17 +31,17 @@ __all__ = [
 _PENDING = 2
 
 
-def _jit(func: Any) -> Any:
+def _jit(func: Any, inline: Literal["never", "always"] = "never") -> Any:
     """``numba.njit`` with the on-disk cache where numba has a writable place for it.
 
     numba refuses ``cache=True`` (RuntimeError) when neither the source's ``__pycache__``
     nor its user-wide cache directory (``NUMBA_CACHE_DIR``) is writable; then the loop is
-    compiled in each process instead.
+    compiled in each process instead. ``inline``: numba's option (:func:`_jit_inline`).
     """
     try:
-        return numba.njit(cache=True, nogil=True)(func)
+        return numba.njit(cache=True, nogil=True, inline=inline)(func)
     except RuntimeError:  # a read-only install without NUMBA_CACHE_DIR (tested)
-        return numba.njit(nogil=True)(func)
+        return numba.njit(nogil=True, inline=inline)(func)
 
 
 def _jit_inline(func: Any) -> Any:
@@ -54,10 +54,7 @@ def _jit_inline(func: Any) -> Any:
     ``perf``, the counts were 27% of ``footprint-speed``'s CPU samples before; after
     both changes they no longer appear. The same operations run in the same order.
     """
-    try:
-        return numba.njit(cache=True, nogil=True, inline="always")(func)
-    except RuntimeError:  # as in _jit
-        return numba.njit(nogil=True, inline="always")(func)
+    return _jit(func, inline="always")
 
 
 @_jit_inline
