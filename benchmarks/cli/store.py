@@ -26,11 +26,14 @@ def cmd_compact(args: argparse.Namespace) -> int:
     check_output(args.dst, "DST", folder=True)
     out = compact_store(args.src, args.dst, compact_config(args))
     mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
-    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if out["dst_bytes"] else ""
+    # the size ratio compares like with like only when DST holds SRC's rows alone (a
+    # conversion); merged into a store with other runs, DST's size is not SRC's compacted
+    same_rows = out["dst_rows"] == out["rows"] and out["dst_bytes"]
+    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if same_rows else ""
     print(
         f"{out['rows']} rows in {args.src} ({mb_src:.2f} MB of rows); {out['copied']} copied"
-        f" now, {out['rows'] - out['copied']} already there; {args.dst}: {mb_dst:.2f} MB of"
-        f" rows{ratio}"
+        f" now, {out['rows'] - out['copied']} already there; {args.dst}: {out['dst_rows']}"
+        f" rows, {mb_dst:.2f} MB{ratio}"
     )
     return 0
 

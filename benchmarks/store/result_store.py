@@ -348,8 +348,9 @@ def compact_store(
     Run ids are unchanged, so a sweep resumed on ``dst`` skips every copied run.
 
     Returns:
-        ``{"rows": rows in src, "copied": rows written now, "src_bytes": size of src's row
-        files, "dst_bytes": size of dst's}``.
+        ``{"rows": rows in src, "copied": rows written now, "dst_rows": rows in dst after
+        (more than ``rows`` when src was merged into a store with other runs),
+        "src_bytes": size of src's row files, "dst_bytes": size of dst's}``.
 
     Raises:
         StoreError: ``src`` is not a store or has a corrupt row; ``dst`` is not a compact
@@ -366,7 +367,13 @@ def compact_store(
     def size(store: ResultStore) -> int:
         return sum(p.stat().st_size for p in store.row_files())
 
-    return {"rows": rows, "copied": copied, "src_bytes": size(source), "dst_bytes": size(target)}
+    return {
+        "rows": rows,
+        "copied": copied,
+        "dst_rows": len(target),
+        "src_bytes": size(source),
+        "dst_bytes": size(target),
+    }
 
 
 def _copy_rows(source: ResultStore, target: ResultStore, config: CompactConfig) -> tuple[int, int]:

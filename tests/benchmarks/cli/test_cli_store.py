@@ -31,7 +31,15 @@ def test_plan_compact_and_compact_commands(
     assert main([*base, "--out", str(tmp_path / "f")]) == 0
     assert main(["compact", str(tmp_path / "f"), str(tmp_path / "f2"), "--points", "5"]) == 0
     out = capsys.readouterr().out
-    assert "2 rows in" in out and "2 copied now" in out
+    assert "2 rows in" in out and "2 copied now" in out and "x smaller" in out
+    # merged into a store with other runs: DST's rows counted, no size ratio (not like
+    # with like)
+    other_seeds = [a if a != "2" else "2:4" for a in base]
+    assert main([*other_seeds, "--out", str(tmp_path / "g")]) == 0
+    capsys.readouterr()
+    assert main(["compact", str(tmp_path / "g"), str(tmp_path / "f2"), "--points", "5"]) == 0
+    out = capsys.readouterr().out
+    assert "2 copied now" in out and "f2: 4 rows" in out and "smaller" not in out
     assert ResultStore(tmp_path / "f2").compact == CompactConfig(points=5)
     with pytest.raises(SystemExit):  # argparse lists the valid spacings
         main(["compact", str(tmp_path / "f"), str(tmp_path / "f3"), "--spacing", "cubic"])
