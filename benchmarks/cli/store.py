@@ -28,8 +28,8 @@ def cmd_compact(args: argparse.Namespace) -> int:
     mb_src, mb_dst = out["src_bytes"] / 1e6, out["dst_bytes"] / 1e6
     # the size ratio compares like with like only when DST holds SRC's rows alone (a
     # conversion); merged into a store with other runs, DST's size is not SRC's compacted
-    same_rows = out["dst_rows"] == out["rows"] and out["dst_bytes"]
-    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if same_rows else ""
+    conversion = out["dst_rows"] == out["rows"] and out["dst_bytes"] > 0
+    ratio = f", {out['src_bytes'] / out['dst_bytes']:.1f}x smaller" if conversion else ""
     print(
         f"{out['rows']} rows in {args.src} ({mb_src:.2f} MB of rows); {out['copied']} copied"
         f" now, {out['rows'] - out['copied']} already there; {args.dst}: {out['dst_rows']}"

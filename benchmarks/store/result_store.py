@@ -364,15 +364,16 @@ def compact_store(
     with target.writing():
         rows, copied = _copy_rows(source, target, config)
 
-    def size(store: ResultStore) -> int:
-        return sum(p.stat().st_size for p in store.row_files())
+    def size(files: list[Path]) -> int:
+        return sum(p.stat().st_size for p in files)
 
+    dst_files = target.row_files()
     return {
         "rows": rows,
         "copied": copied,
-        "dst_rows": len(target),
-        "src_bytes": size(source),
-        "dst_bytes": size(target),
+        "dst_rows": len(dst_files),
+        "src_bytes": size(source.row_files()),
+        "dst_bytes": size(dst_files),
     }
 
 
