@@ -248,6 +248,38 @@ def test_the_domain_planner_tables_in_the_docs_are_what_the_store_redraws() -> N
     )
 
 
+def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are_the_same() -> None:
+    """``ablation-authors-domain-v1`` holds only runs of its ablation (every setting on the
+    tuning seeds 1000-1004 and on the evaluation seeds 0-19), and its runs that
+    ``domain-planners-v1`` also holds (v1's settings on seeds 0-19, copied rather than
+    re-run) have the same curves bit for bit."""
+    docs = docs_script("ablation_docs")
+    tuning, candidates = docs.authors_domain_specs()
+    rows = ResultStore(DATA / "ablation-authors-domain-v1", create=False).load(kind="plan")
+    assert rows and {r["run_id"] for r in rows} <= {s.run_id for s in [*tuning, *candidates]}
+    domain_planners = {
+        r["run_id"]: r
+        for r in ResultStore(DATA / "domain-planners-v1", create=False).load(kind="plan")
+    }
+    shared = [r for r in rows if r["run_id"] in domain_planners]
+    assert len(shared) == 40  # VOOT and PW-UCT (UCB test) at v1's settings, seeds 0-19
+    for r in shared:
+        old = domain_planners[r["run_id"]]
+        for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):
+            assert r.get(key) == old.get(key), (r["run_id"], key)
+
+
+def test_copy_shared_rows_copies_the_ablations_runs_of_the_domain_planner_store_once(
+    tmp_path: Path,
+) -> None:
+    docs = docs_script("ablation_docs")
+    store = tmp_path / "ablation"
+    assert docs.copy_shared_rows(store, DATA / "domain-planners-v1") == 40
+    assert docs.copy_shared_rows(store, DATA / "domain-planners-v1") == 0
+    copied = {p.stem for p in ResultStore(store, create=False).row_files()}
+    assert copied <= {s.run_id for s in docs.authors_domain_specs()[1]}
+
+
 @pytest.mark.parametrize("name", sorted(documented_sweeps()))
 def test_the_documented_sweep_resumes_from_the_committed_store_running_nothing(
     name: str, tmp_path: Path
