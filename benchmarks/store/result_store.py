@@ -58,7 +58,7 @@ import contextlib
 import datetime as _dt
 import json
 import os
-from collections.abc import Iterator
+from collections.abc import Collection, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -337,8 +337,11 @@ def compact_store(
     src: str | os.PathLike[str],
     dst: str | os.PathLike[str],
     config: CompactConfig | None = None,
+    *,
+    run_ids: Collection[str] | None = None,
 ) -> dict[str, int]:
-    """Copy every row of the store ``src`` into the compact store ``dst``.
+    """Copy every row of the store ``src`` (only those of ``run_ids``, if given) into the
+    compact store ``dst``.
 
     ``dst`` is created compact with ``config`` (default :class:`CompactConfig()`) or, if it
     exists, must be a compact store of that config (an interrupted conversion resumes:
@@ -348,7 +351,7 @@ def compact_store(
     Run ids are unchanged, so a sweep resumed on ``dst`` skips every copied run.
 
     Returns:
-        ``{"rows": rows in src, "copied": rows written now, "dst_rows": rows in dst after
+        ``{"rows": rows in src (of ``run_ids``), "copied": rows written now, "dst_rows": rows in dst after
         (more than ``rows`` when src was merged into a store with other runs),
         "src_bytes": size of src's row files, "dst_bytes": size of dst's}``.
 
@@ -362,7 +365,7 @@ def compact_store(
         raise StoreError(f"{dst}: the compact copy must go to another directory than {src}")
     target = ResultStore(dst, compact=config)
     with target.writing():
-        rows, copied = _copy_rows(source, target, config)
+        rows, copied = _copy_rows(source, target, config, run_ids)
 
     def size(files: list[Path]) -> int:
         return sum(p.stat().st_size for p in files)
@@ -377,12 +380,19 @@ def compact_store(
     }
 
 
-def _copy_rows(source: ResultStore, target: ResultStore, config: CompactConfig) -> tuple[int, int]:
-    """Copy the rows of ``source`` not yet in ``target`` compact (see :func:`compact_store`);
-    ``(rows in source, rows copied)``."""
+def _copy_rows(
+    source: ResultStore,
+    target: ResultStore,
+    config: CompactConfig,
+    run_ids: Collection[str] | None = None,
+) -> tuple[int, int]:
+    """Copy the rows of ``source`` (of ``run_ids``, if given) not yet in ``target`` compact
+    (see :func:`compact_store`); ``(rows in source of run_ids, rows copied)``."""
     done = {p.stem for p in target.row_files()}
     rows = copied = 0
     for row in source.iter_rows(expand=False):
+        if run_ids is not None and row["run_id"] not in run_ids:
+            continue
         rows += 1
         if row["run_id"] in done:
             continue

@@ -29,6 +29,7 @@ from typing import Any
 
 from voot.bench.cli.main import main as bench
 from voot.bench.report import docs_pages
+from voot.envs.conveyor.config import CONVEYOR_PRESETS
 
 STORE = "docs/data/ablation-v1"
 PAGE = Path("docs/results-planning.md")
@@ -37,15 +38,13 @@ TUNING = "1000:1005"
 PROBLEMS = ("kitchen_v1", "conveyor_v1")
 
 #: The ablation in the authors' domain: its store, the store whose rows it shares, its
-#: switches (v1's defaults and PW-UCT's widening as the authors coded it) and domain.
+#: switches (v1's defaults and PW-UCT's widening as the authors coded it) and domain (the
+#: keywords that make ``voot/ConveyorPacking-v3`` of v1).
 AUTHORS_STORE = Path("docs/data/ablation-authors-domain-v1")
 SHARED_STORE = Path("docs/data/domain-planners-v1")
 AUTHORS_SWITCHES = ("v1", "pw_authors")
 AUTHORS_DOMAIN: dict[str, Any] = {
-    "base_model": "footprint",
-    "footprint_heuristic": "geodesic",
-    "big_box_ban": True,
-    "rooms": "authors",
+    k: v for k, v in CONVEYOR_PRESETS["v3"].items() if k not in CONVEYOR_PRESETS["v1"]
 }
 
 
@@ -90,21 +89,12 @@ def authors_domain_specs() -> tuple[list[Any], list[Any]]:
 
 
 def copy_shared_rows(store: str | Path = AUTHORS_STORE, shared: str | Path = SHARED_STORE) -> int:
-    """Copy into ``store`` (a compact store, made if missing) the finished rows of ``shared``
-    that are evaluation runs of the ablation in the authors' domain; the number copied now."""
-    from voot.bench.store.compact import CompactConfig
-    from voot.bench.store.result_store import ResultStore
+    """Copy into ``store`` (a compact store, made if missing) the rows of ``shared`` that
+    are evaluation runs of the ablation in the authors' domain; the number copied now."""
+    from voot.bench.store.result_store import compact_store
 
     wanted = {spec.run_id for spec in authors_domain_specs()[1]}
-    target = ResultStore(store, compact=CompactConfig())
-    done = {p.stem for p in target.row_files()}
-    copied = 0
-    with target.writing():
-        for row in ResultStore(shared, create=False).iter_rows(expand=False):
-            if row["run_id"] in wanted and row["run_id"] not in done and row["status"] == "ok":
-                target.write(row)
-                copied += 1
-    return copied
+    return compact_store(shared, store, run_ids=wanted)["copied"]
 
 
 def main(argv: Sequence[str] = ()) -> None:

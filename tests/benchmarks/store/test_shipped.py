@@ -197,6 +197,14 @@ def ablation_sweep() -> list[Any]:
     return [*tuning, *evaluation]
 
 
+def assert_same_runs(rows: Sequence[Row], reference: dict[str, Row]) -> None:
+    """Each of ``rows`` has the curves and counts of the row of its run id in ``reference``."""
+    for r in rows:
+        old = reference[r["run_id"]]
+        for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):
+            assert r.get(key) == old.get(key), (r["run_id"], key)
+
+
 def test_the_ablations_v1_rows_are_the_protocol_stores_rows() -> None:
     """v1 defaults unchanged: the ablation re-ran the protocol's VOOT and PW-UCT runs (same
     run ids) and got the same curves bit for bit."""
@@ -206,10 +214,7 @@ def test_the_ablations_v1_rows_are_the_protocol_stores_rows() -> None:
     rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan", status="ok")
     shared = [r for r in rows if "variant" not in r["config"]]
     assert len(shared) == 200  # both domains' 120 tuning and 80 evaluation runs
-    for r in shared:
-        old = protocol[r["run_id"]]
-        for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):
-            assert r.get(key) == old.get(key), (r["run_id"], key)
+    assert_same_runs(shared, protocol)
 
 
 def test_the_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
@@ -263,10 +268,7 @@ def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are
     }
     shared = [r for r in rows if r["run_id"] in domain_planners]
     assert len(shared) == 40  # VOOT and PW-UCT (UCB test) at v1's settings, seeds 0-19
-    for r in shared:
-        old = domain_planners[r["run_id"]]
-        for key in ("best_so_far", "objects_left", "n_steps", "n_feasibility_checks", "n_nodes"):
-            assert r.get(key) == old.get(key), (r["run_id"], key)
+    assert_same_runs(shared, domain_planners)
 
 
 def test_copy_shared_rows_copies_the_ablations_runs_of_the_domain_planner_store_once(

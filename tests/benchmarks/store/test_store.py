@@ -316,6 +316,18 @@ def test_compact_store_converts_resumes_and_keeps_the_source(tmp_path: Path) -> 
         compact_store(tmp_path / "missing", tmp_path / "dst4")
 
 
+def test_compact_store_copies_only_the_given_run_ids(tmp_path: Path) -> None:
+    src = ResultStore(tmp_path / "src")
+    rows = plan_rows(3)
+    for r in rows:
+        src.write(r)
+    wanted = {rows[0]["run_id"], rows[2]["run_id"], "not-in-src"}
+    out = compact_store(tmp_path / "src", tmp_path / "dst", run_ids=wanted)
+    assert out["rows"] == out["copied"] == out["dst_rows"] == 2
+    assert {p.stem for p in ResultStore(tmp_path / "dst").row_files()} == wanted - {"not-in-src"}
+    assert compact_store(tmp_path / "src", tmp_path / "dst", run_ids=wanted)["copied"] == 0
+
+
 def test_a_store_is_created_with_its_missing_parent_folders(tmp_path: Path) -> None:
     store = ResultStore(tmp_path / "results" / "kitchen" / "v1")
     assert store.header_path.is_file() and store.runs_path.is_dir() and len(store) == 0
