@@ -36,7 +36,10 @@ def cmd_ablation(args: argparse.Namespace) -> int:
     C.check_output(args.markdown, "--markdown")
     if args.table:
         problems = _problem_list(args.problems) or None
-        return print_ablation_table(args.out, args.tuning_seeds, args.markdown, problems)
+        env_kwargs = C.parse_assignments(args.env_kwargs, "--env-kwargs")
+        return print_ablation_table(
+            args.out, args.tuning_seeds, args.markdown, problems, env_kwargs or None
+        )
     if args.markdown is not None:
         raise C.CLIError("--markdown writes the table of --table; give --table with it")
     C.check_sweep_options(args)
@@ -128,7 +131,8 @@ def register(sub: Subparsers) -> None:
         "--table",
         action="store_true",
         help="print the ablation table from --out (runs nothing): per switch VOOT's and"
-        " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips",
+        " PW-UCT's claim metrics with 95%% intervals, and whether a verdict flips (with"
+        " --env-kwargs, of the runs in that domain)",
     )
     p.add_argument("--markdown", help="--table: also write the table here")
     C.add_backend_options(p)

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from voot.bench.cli.common import (
     CLIError,
@@ -285,11 +285,15 @@ def cmd_plot(args: argparse.Namespace) -> int:
 
 
 def print_ablation_table(
-    path: str, tuning_seeds: str, markdown: str | None, problems: Sequence[str] | None = None
+    path: str,
+    tuning_seeds: str,
+    markdown: str | None,
+    problems: Sequence[str] | None = None,
+    env_kwargs: Mapping[str, Any] | None = None,
 ) -> int:
     """Print (and write to ``markdown``) the ablation's table of the store at ``path``
     (:mod:`voot.bench.report.ablation_table`), settings selected on ``tuning_seeds``, of
-    ``problems`` only if given."""
+    ``problems`` only if given, of the runs in the domain ``env_kwargs`` if given."""
     from voot.bench.protocol.problems import normalize_problem, problem_label
     from voot.bench.report.ablation_table import ablation_table
 
@@ -297,7 +301,7 @@ def print_ablation_table(
     labels = [problem_label(normalize_problem(p)) for p in problems] if problems else None
     seeds = _tuning_seeds(tuning_seeds, rows)
     assert seeds is not None
-    text = ablation_table(rows, seeds, labels)
+    text = ablation_table(rows, seeds, labels, env_kwargs)
     print(text)
     if markdown:
         write_markdown(markdown, text + "\n")

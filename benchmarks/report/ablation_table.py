@@ -16,13 +16,15 @@ Two tables, both with the settings selected on the tuning seeds (the protocol):
 from __future__ import annotations
 
 import math
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
 from voot.bench.protocol.ablation import ABLATION_PLANNERS, BASELINE, SWITCHES
 from voot.bench.protocol.claims import NO_DATA, PAPER_CLAIMS, ClaimResult, measure
 from voot.bench.protocol.layouts import layout_means
+from voot.bench.protocol.problems import problem_label
 from voot.bench.protocol.select import planner_label
 from voot.bench.protocol.tuning import tuning_sentence
 from voot.bench.report.plan_runs import PlannerRuns, mean_ci, plan_data
@@ -138,12 +140,26 @@ def ranking_rows(runs: dict[tuple[str, str], PlannerRuns]) -> list[str]:
 
 
 def ablation_table(
-    rows: Iterable[Row], tuning_seeds: Collection[int], problems: Sequence[str] | None = None
+    rows: Iterable[Row],
+    tuning_seeds: Collection[int],
+    problems: Sequence[str] | None = None,
+    env_kwargs: Mapping[str, Any] | None = None,
 ) -> str:
     """Both tables as markdown, from the store's rows (settings selected on ``tuning_seeds``;
-    only ``problems``, display names such as ``kitchen_v1``, if given)."""
-    data = plan_data(list(rows), tuning_seeds=tuning_seeds, problems=problems)
-    runs = {(d.problem, d.planner): d for d in data if not d.dim}
+    only ``problems``, display names such as ``kitchen_v1``, if given).
+
+    With ``env_kwargs``, the table is of the runs in that domain (e.g. the authors' domain
+    of the conveyor, ``voot/ConveyorPacking-v3``'s keywords on ``conveyor_v1``), each
+    judged against the paper's claims and ranking of its problem; without, of the runs
+    without keywords.
+    """
+    names = list(problems) if problems is not None else None
+    labels: dict[str, str] | None = None
+    if env_kwargs:
+        labels = {problem_label(p, env_kwargs): p for p in names or RANKING}
+        names = list(labels)
+    data = plan_data(list(rows), tuning_seeds=tuning_seeds, problems=names)
+    runs = {((labels or {}).get(d.problem, d.problem), d.planner): d for d in data if not d.dim}
     if not runs:
         raise ValueError("no tuned plan runs of the ablation in these rows")
     head = [
@@ -168,6 +184,9 @@ def ablation_table(
         f"{tuning_sentence(tuning_seeds)} Each switch is selected and judged as its own"
         " planner; a switch that does not concern a planner leaves it at the v1 default."
     )
+    if env_kwargs:
+        domain = ", ".join(f"{k}={env_kwargs[k]}" for k in sorted(env_kwargs))
+        note += f" Every run is in the domain {domain}."
     return "\n".join([*head, *claims_rows(runs), *rank, "", note])
 
 

@@ -1,5 +1,5 @@
 """Redraw the ablations' tables from the committed stores into the docs, and resume the
-ablation in the authors' domain.
+ablations on the domain switches.
 
 The planner ablation: ``voot-bench ablation --out docs/data/ablation-v1 --table``
 (settings selected on the tuning seeds 1000-1004) for the problems whose runs are
@@ -8,16 +8,19 @@ of ``docs/results-planning.md``, so the page shows what the store holds:
 
     python docs/scripts/ablation_docs.py
 
-The same tuning in the authors' domain (issue 35: the faithful conveyor,
-``voot/ConveyorPacking-v3``'s settings as keywords of ``conveyor_v1``), for VOOT and
-PW-UCT with both widening tests (the switches :data:`AUTHORS_SWITCHES`), in
-``docs/data/ablation-authors-domain-v1``; resumed (every run not in the store yet) by
+The same tuning on a domain switch of issue 35 (:data:`DOMAINS`), for VOOT and PW-UCT
+with both widening tests (the switches :data:`SWITCHES_ON_DOMAINS`), each in its own
+store; resumed (every run not in the store yet) by
 
-    python docs/scripts/ablation_docs.py run-authors-domain
+    python docs/scripts/ablation_docs.py run-authors-domain     # the faithful conveyor
+    python docs/scripts/ablation_docs.py run-kitchen-footprint  # the kitchen, exact footprint
 
-Its evaluation runs at v1's settings are runs ``docs/data/domain-planners-v1`` already
-holds (the same run ids: the same problem, keywords, planner, setting, seed and
-simulations); :func:`copy_shared_rows` copies those rows rather than running them again.
+A domain's table sits between its ``<!-- STORE:table -->`` markers once its tuning is
+complete (:data:`TABLED`; the table counts the evaluation seeds each row holds), redrawn
+with the other. Its evaluation
+runs at v1's settings are runs ``docs/data/domain-planners-v1`` already holds (the same
+run ids: the same problem, keywords, planner, setting, seed and simulations);
+:func:`copy_shared_rows` copies those rows rather than running them again.
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from voot.bench.cli.main import main as bench
 from voot.bench.report import docs_pages
@@ -37,15 +40,40 @@ TUNING = "1000:1005"
 #: The problems whose ablation runs are all in the store.
 PROBLEMS = ("kitchen_v1", "conveyor_v1")
 
-#: The ablation in the authors' domain: its store, the store whose rows it shares, its
-#: switches (v1's defaults and PW-UCT's widening as the authors coded it) and domain (the
-#: keywords that make ``voot/ConveyorPacking-v3`` of v1).
-AUTHORS_STORE = Path("docs/data/ablation-authors-domain-v1")
+
+class DomainAblation(NamedTuple):
+    """The planner ablation on one domain switch: ``problem`` made with ``env_kwargs``,
+    its runs in ``store``."""
+
+    store: Path
+    problem: str
+    env_kwargs: dict[str, Any]
+
+    @property
+    def marker(self) -> str:
+        """The name of its table's markers in the page."""
+        return f"{self.store.name}:table"
+
+
+#: The store whose rows the domain ablations share (their evaluation runs at v1's
+#: settings), and their switches: v1's defaults and PW-UCT's widening as the authors
+#: coded it.
 SHARED_STORE = Path("docs/data/domain-planners-v1")
-AUTHORS_SWITCHES = ("v1", "pw_authors")
+SWITCHES_ON_DOMAINS = ("v1", "pw_authors")
+#: The authors' domain: the keywords that make ``voot/ConveyorPacking-v3`` of v1.
 AUTHORS_DOMAIN: dict[str, Any] = {
     k: v for k, v in CONVEYOR_PRESETS["v3"].items() if k not in CONVEYOR_PRESETS["v1"]
 }
+DOMAINS: dict[str, DomainAblation] = {
+    "authors-domain": DomainAblation(
+        Path("docs/data/ablation-authors-domain-v1"), "conveyor_v1", AUTHORS_DOMAIN
+    ),
+    "kitchen-footprint": DomainAblation(
+        Path("docs/data/ablation-kitchen-footprint-v1"), "kitchen_v1", {"base_model": "footprint"}
+    ),
+}
+#: The domains whose table is in the page (the authors' domain: its evaluation under way).
+TABLED: tuple[str, ...] = ("authors-domain",)
 
 
 def marked(text: str, name: str) -> str:
@@ -63,50 +91,90 @@ def render(store: str | Path = STORE) -> dict[str, str]:
         return {"table": md.read_text().strip() + "\n"}
 
 
-def authors_domain_command(store: str | Path = AUTHORS_STORE) -> list[str]:
-    """The ``voot-bench`` command line of the ablation in the authors' domain."""
-    kwargs = [
-        f"{k}={str(v).lower() if isinstance(v, bool) else v}" for k, v in AUTHORS_DOMAIN.items()
-    ]
+def render_domain(name: str, store: str | Path | None = None) -> dict[str, str]:
+    """The page's block of domain ``name`` (the ablation's table of its runs, settings
+    selected on the tuning seeds), from ``store`` (default: the domain's)."""
+    domain = DOMAINS[name]
+    with tempfile.TemporaryDirectory() as tmp:
+        md = Path(tmp) / "ablation.md"
+        argv = ["ablation", "--out", str(store or domain.store), "--tuning-seeds", TUNING]
+        argv += ["--table", "--problems", domain.problem, "--env-kwargs", *_assignments(domain)]
+        docs_pages.run_quietly(bench, [*argv, "--markdown", str(md)])
+        table = md.read_text().strip()
+    return {domain.marker: f"{table}\n\n{selected_line(store or domain.store)}\n"}
+
+
+def selected_line(store: str | Path) -> str:
+    """The setting each planner's tuning selected, as a sentence."""
+    from voot.bench.report.plan_runs import plan_data
+    from voot.bench.store.result_store import ResultStore
+
+    rows = ResultStore(store, create=False).load(kind="plan")
+    data = plan_data(rows, tuning_seeds=range(1000, 1005))
+    return "Selected settings: " + "; ".join(f"{d.planner} {d.label}" for d in data) + "."
+
+
+def _assignments(domain: DomainAblation) -> list[str]:
+    """The domain's keywords as ``NAME=VALUE`` arguments of ``--env-kwargs``."""
     return [
-        "ablation", "--out", str(store), "--compact", "--switches", *AUTHORS_SWITCHES,
-        "--problems", "conveyor_v1", "--tuning-seeds", TUNING, "--seeds", "0:20",
-        "--env-kwargs", *kwargs,
+        f"{k}={str(v).lower() if isinstance(v, bool) else v}" for k, v in domain.env_kwargs.items()
+    ]
+
+
+def domain_command(name: str, store: str | Path | None = None) -> list[str]:
+    """The ``voot-bench`` command line of the ablation on domain ``name``."""
+    domain = DOMAINS[name]
+    return [
+        "ablation", "--out", str(store or domain.store), "--compact",
+        "--switches", *SWITCHES_ON_DOMAINS, "--problems", domain.problem,
+        "--tuning-seeds", TUNING, "--seeds", "0:20", "--env-kwargs", *_assignments(domain),
     ]  # fmt: skip
 
 
-def authors_domain_specs() -> tuple[list[Any], list[Any]]:
-    """The ablation's runs in the authors' domain: ``(tuning runs, evaluation candidates)``
+def domain_specs(name: str) -> tuple[list[Any], list[Any]]:
+    """The ablation's runs on domain ``name``: ``(tuning runs, evaluation candidates)``
     (every setting on seeds 0-19; the sweep runs the setting selected on the tuning runs)."""
     from voot.bench.protocol.ablation import ablation_specs, check_switches
 
-    switches = check_switches(list(AUTHORS_SWITCHES))
+    domain = DOMAINS[name]
+    switches = check_switches(list(SWITCHES_ON_DOMAINS))
 
     def specs(seeds: range) -> list[Any]:
-        return ablation_specs(switches, seeds, problems=["conveyor_v1"], env_kwargs=AUTHORS_DOMAIN)
+        return ablation_specs(
+            switches, seeds, problems=[domain.problem], env_kwargs=domain.env_kwargs
+        )
 
     return specs(range(1000, 1005)), specs(range(20))
 
 
-def copy_shared_rows(store: str | Path = AUTHORS_STORE, shared: str | Path = SHARED_STORE) -> int:
-    """Copy into ``store`` (a compact store, made if missing) the rows of ``shared`` that
-    are evaluation runs of the ablation in the authors' domain; the number copied now."""
+def copy_shared_rows(
+    name: str, store: str | Path | None = None, shared: str | Path = SHARED_STORE
+) -> int:
+    """Copy into ``store`` (default: the domain's; a compact store, made if missing) the
+    rows of ``shared`` that are evaluation runs of the ablation on domain ``name``; the
+    number copied now."""
     from voot.bench.store.result_store import compact_store
 
-    wanted = {spec.run_id for spec in authors_domain_specs()[1]}
-    return compact_store(shared, store, run_ids=wanted)["copied"]
+    wanted = {spec.run_id for spec in domain_specs(name)[1]}
+    return compact_store(shared, store or DOMAINS[name].store, run_ids=wanted)["copied"]
 
 
 def main(argv: Sequence[str] = ()) -> None:
-    if list(argv) == ["run-authors-domain"]:
-        print(f"{AUTHORS_STORE}: {copy_shared_rows()} rows copied from {SHARED_STORE}")
-        command = authors_domain_command()
+    runs = {f"run-{name}": name for name in DOMAINS}
+    if len(argv) == 1 and argv[0] in runs:
+        name = runs[argv[0]]
+        store = DOMAINS[name].store
+        print(f"{store}: {copy_shared_rows(name)} rows copied from {SHARED_STORE}")
+        command = domain_command(name)
         print("voot-bench " + " ".join(command), flush=True)
         raise SystemExit(bench(command))
     if argv:
-        raise SystemExit(f"usage: {Path(__file__).name} [run-authors-domain]; got {' '.join(argv)}")
-    docs_pages.rewrite_page(PAGE, {f"ablation-v1:{n}": body for n, body in render().items()})
-    print(f"{PAGE}: ablation table redrawn from {STORE}")
+        raise SystemExit(f"usage: {Path(__file__).name} [{' | '.join(runs)}]; got {' '.join(argv)}")
+    blocks = {f"ablation-v1:{n}": body for n, body in render().items()}
+    for name in TABLED:
+        blocks.update(render_domain(name))
+    docs_pages.rewrite_page(PAGE, blocks)
+    print(f"{PAGE}: ablation tables redrawn from {STORE} and {', '.join(TABLED) or 'no domain'}")
 
 
 if __name__ == "__main__":

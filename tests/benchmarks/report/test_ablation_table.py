@@ -71,3 +71,21 @@ def test_problems_filter_keeps_only_those_problems() -> None:
     assert "| v1 | kitchen_v1 | voot |" in text
     with pytest.raises(ValueError, match="no tuned plan runs"):
         ablation_table(rows(), range(1000, 1003), problems=["conveyor_v1"])
+
+
+def test_env_kwargs_draws_the_table_of_that_domain_judged_as_its_problem() -> None:
+    domain = {"base_model": "footprint", "rooms": "authors"}
+    in_domain = []
+    for r in rows():
+        r = dict(r, config=dict(r["config"], env_kwargs=dict(domain)))
+        if r["config"]["planner"] == "voot":  # VOOT clears everything in this domain
+            r["objects_left"] = [0.0] * SIMS
+        in_domain.append(r)
+    text = ablation_table([*rows(), *in_domain], range(1000, 1003), env_kwargs=domain)
+    voot = next(x for x in text.splitlines() if x.startswith("| v1 | kitchen_v1 | voot |"))
+    assert "reproduced" in voot and "(6)" in voot
+    assert "in the domain base_model=footprint, rooms=authors" in text
+    plain = ablation_table([*rows(), *in_domain], range(1000, 1003))
+    assert "in the domain" not in plain and plain != text
+    with pytest.raises(ValueError, match="no tuned plan runs"):
+        ablation_table(rows(), range(1000, 1003), env_kwargs=domain)

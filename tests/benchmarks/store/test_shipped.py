@@ -186,15 +186,30 @@ def ablation_sweep() -> list[Any]:
     """The ablation as ``voot-bench ablation`` runs it: every variant's grid on the tuning
     seeds 1000-1004, its selected setting on seeds 0-19, on both v1 domains."""
     from voot.bench.protocol.ablation import ablation_specs, check_switches
-    from voot.bench.protocol.tuning import selected_specs, tuning_selections
 
     switches = check_switches(None)
-    tuning = ablation_specs(switches, range(1000, 1005))
-    rows = ResultStore(DATA / "ablation-v1", create=False).load(kind="plan")
-    evaluation = selected_specs(
-        ablation_specs(switches, range(20)), tuning_selections(tuning, rows)
+    return tuned_sweep(
+        "ablation-v1",
+        ablation_specs(switches, range(1000, 1005)),
+        ablation_specs(switches, range(20)),
     )
-    return [*tuning, *evaluation]
+
+
+def authors_domain_sweep() -> list[Any]:
+    """The ablation in the authors' domain as ``python docs/scripts/ablation_docs.py
+    run-authors-domain`` runs it (VOOT's and PW-UCT's grids, both widening tests)."""
+    return tuned_sweep(
+        "ablation-authors-domain-v1", *docs_script("ablation_docs").domain_specs("authors-domain")
+    )
+
+
+def tuned_sweep(store: str, tuning: list[Any], candidates: list[Any]) -> list[Any]:
+    """The ``tuning`` runs and those of ``candidates`` at the setting the committed store's
+    tuning runs select (the protocol of ``voot-bench ablation``)."""
+    from voot.bench.protocol.tuning import selected_specs, tuning_selections
+
+    rows = ResultStore(DATA / store, create=False).load(kind="plan")
+    return [*tuning, *selected_specs(candidates, tuning_selections(tuning, rows))]
 
 
 def assert_same_runs(rows: Sequence[Row], reference: dict[str, Row]) -> None:
@@ -259,7 +274,7 @@ def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are
     ``domain-planners-v1`` also holds (v1's settings on seeds 0-19, copied rather than
     re-run) have the same curves bit for bit."""
     docs = docs_script("ablation_docs")
-    tuning, candidates = docs.authors_domain_specs()
+    tuning, candidates = docs.domain_specs("authors-domain")
     rows = ResultStore(DATA / "ablation-authors-domain-v1", create=False).load(kind="plan")
     assert rows and {r["run_id"] for r in rows} <= {s.run_id for s in [*tuning, *candidates]}
     domain_planners = {
@@ -271,15 +286,30 @@ def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are
     assert_same_runs(shared, domain_planners)
 
 
+def test_the_authors_domain_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
+    root = DATA.parents[1]
+    docs = docs_script("ablation_docs")
+    with shipped.store_copy(DATA / "ablation-authors-domain-v1") as copy:
+        blocks = docs.render_domain("authors-domain", copy)
+    page = (root / "docs" / "results-planning.md").read_text()
+    for name, body in blocks.items():
+        assert docs_pages.marked(page, name) == body, "run python docs/scripts/ablation_docs.py"
+    # judged as the conveyor of the paper, in the authors' domain
+    table = blocks["ablation-authors-domain-v1:table"]
+    assert "| v1 | conveyor_v1 | voot |" in table and "| pw_authors | conveyor_v1 |" in table
+    assert "in the domain base_model=footprint, big_box_ban=True" in table
+
+
+@pytest.mark.parametrize("name", ["authors-domain", "kitchen-footprint"])
 def test_copy_shared_rows_copies_the_ablations_runs_of_the_domain_planner_store_once(
-    tmp_path: Path,
+    name: str, tmp_path: Path
 ) -> None:
     docs = docs_script("ablation_docs")
     store = tmp_path / "ablation"
-    assert docs.copy_shared_rows(store, DATA / "domain-planners-v1") == 40
-    assert docs.copy_shared_rows(store, DATA / "domain-planners-v1") == 0
+    assert docs.copy_shared_rows(name, store, DATA / "domain-planners-v1") == 40
+    assert docs.copy_shared_rows(name, store, DATA / "domain-planners-v1") == 0
     copied = {p.stem for p in ResultStore(store, create=False).row_files()}
-    assert copied <= {s.run_id for s in docs.authors_domain_specs()[1]}
+    assert copied <= {s.run_id for s in docs.domain_specs(name)[1]}
 
 
 @pytest.mark.parametrize("name", sorted(documented_sweeps()))
