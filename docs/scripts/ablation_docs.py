@@ -36,7 +36,9 @@ from voot.envs.conveyor.config import CONVEYOR_PRESETS
 
 STORE = "docs/data/ablation-v1"
 PAGE = Path("docs/results-planning.md")
-TUNING = "1000:1005"
+#: The tuning seeds and the evaluation seeds of every ablation here.
+TUNING_SEEDS, EVALUATION_SEEDS = range(1000, 1005), range(20)
+TUNING = f"{TUNING_SEEDS.start}:{TUNING_SEEDS.stop}"
 #: The problems whose ablation runs are all in the store.
 PROBLEMS = ("kitchen_v1", "conveyor_v1")
 
@@ -110,7 +112,7 @@ def selected_line(store: str | Path) -> str:
     from voot.bench.store.result_store import ResultStore
 
     rows = ResultStore(store, create=False).load(kind="plan")
-    data = plan_data(rows, tuning_seeds=range(1000, 1005))
+    data = plan_data(rows, tuning_seeds=TUNING_SEEDS)
     return "Selected settings: " + "; ".join(f"{d.planner} {d.label}" for d in data) + "."
 
 
@@ -127,7 +129,8 @@ def domain_command(name: str, store: str | Path | None = None) -> list[str]:
     return [
         "ablation", "--out", str(store or domain.store), "--compact",
         "--switches", *SWITCHES_ON_DOMAINS, "--problems", domain.problem,
-        "--tuning-seeds", TUNING, "--seeds", "0:20", "--env-kwargs", *_assignments(domain),
+        "--tuning-seeds", TUNING, "--seeds", f"{EVALUATION_SEEDS.start}:{EVALUATION_SEEDS.stop}",
+        "--env-kwargs", *_assignments(domain),
     ]  # fmt: skip
 
 
@@ -144,7 +147,7 @@ def domain_specs(name: str) -> tuple[list[Any], list[Any]]:
             switches, seeds, problems=[domain.problem], env_kwargs=domain.env_kwargs
         )
 
-    return specs(range(1000, 1005)), specs(range(20))
+    return specs(TUNING_SEEDS), specs(EVALUATION_SEEDS)
 
 
 def copy_shared_rows(

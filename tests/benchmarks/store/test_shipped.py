@@ -195,14 +195,6 @@ def ablation_sweep() -> list[Any]:
     )
 
 
-def authors_domain_sweep() -> list[Any]:
-    """The ablation in the authors' domain as ``python docs/scripts/ablation_docs.py
-    run-authors-domain`` runs it (VOOT's and PW-UCT's grids, both widening tests)."""
-    return tuned_sweep(
-        "ablation-authors-domain-v1", *docs_script("ablation_docs").domain_specs("authors-domain")
-    )
-
-
 def tuned_sweep(store: str, tuning: list[Any], candidates: list[Any]) -> list[Any]:
     """The ``tuning`` runs and those of ``candidates`` at the setting the committed store's
     tuning runs select (the protocol of ``voot-bench ablation``)."""
