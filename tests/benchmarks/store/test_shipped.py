@@ -76,6 +76,10 @@ def documented_sweeps() -> dict[str, list[Any]]:
     return {
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
+        "ablation-authors-domain-v1": tuned_sweep(
+            "ablation-authors-domain-v1",
+            *docs_script("ablation_docs").domain_specs("authors-domain"),
+        ),
         "heldout-kitchen-v2": heldout_sweep("kitchen_v2", 2000),
         "heldout-conveyor-v2": heldout_sweep("conveyor_v2", 3000),
         "ladder-kitchen-v2": ladder_sweep("kitchen_v2", 2000),
