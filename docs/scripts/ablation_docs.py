@@ -73,9 +73,12 @@ DOMAINS: dict[str, DomainAblation] = {
     "kitchen-footprint": DomainAblation(
         Path("docs/data/ablation-kitchen-footprint-v1"), "kitchen_v1", {"base_model": "footprint"}
     ),
+    "conveyor-footprint": DomainAblation(
+        Path("docs/data/ablation-conveyor-footprint-v1"), "conveyor_v1", {"base_model": "footprint"}
+    ),
 }
-#: The domains whose table is in the page (the authors' domain: its evaluation under way).
-TABLED: tuple[str, ...] = ("authors-domain",)
+#: The domains whose table is in the page (the conveyor's footprint switch: under way).
+TABLED: tuple[str, ...] = ("authors-domain", "kitchen-footprint")
 
 
 def marked(text: str, name: str) -> str:

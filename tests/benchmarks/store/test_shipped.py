@@ -68,6 +68,17 @@ class NeverRuns:
         return iter(())
 
 
+#: The domain ablations whose stores ship: name -> (store, problem, its domain's label).
+DOMAIN_ABLATIONS = {
+    "authors-domain": (
+        "ablation-authors-domain-v1",
+        "conveyor_v1",
+        "base_model=footprint, big_box_ban=True, footprint_heuristic=geodesic, rooms=authors",
+    ),
+    "kitchen-footprint": ("ablation-kitchen-footprint-v1", "kitchen_v1", "base_model=footprint"),
+}
+
+
 def documented_sweeps() -> dict[str, list[Any]]:
     """The specs of the commands docs/results-planning.md gives for each committed store."""
     from voot.bench.sweep.plan import build_plan_specs
@@ -76,10 +87,10 @@ def documented_sweeps() -> dict[str, list[Any]]:
     return {
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
-        "ablation-authors-domain-v1": tuned_sweep(
-            "ablation-authors-domain-v1",
-            *docs_script("ablation_docs").domain_specs("authors-domain"),
-        ),
+        **{
+            store: tuned_sweep(store, *docs_script("ablation_docs").domain_specs(name))
+            for name, (store, _, _) in DOMAIN_ABLATIONS.items()
+        },
         "heldout-kitchen-v2": heldout_sweep("kitchen_v2", 2000),
         "heldout-conveyor-v2": heldout_sweep("conveyor_v2", 3000),
         "ladder-kitchen-v2": ladder_sweep("kitchen_v2", 2000),
@@ -264,14 +275,15 @@ def test_the_domain_planner_tables_in_the_docs_are_what_the_store_redraws() -> N
     )
 
 
-def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are_the_same() -> None:
-    """``ablation-authors-domain-v1`` holds only runs of its ablation (every setting on the
+@pytest.mark.parametrize("name", sorted(DOMAIN_ABLATIONS))
+def test_a_domain_ablation_holds_only_its_runs_and_the_shared_rows_are_the_same(name: str) -> None:
+    """The domain ablation's store holds only runs of its ablation (every setting on the
     tuning seeds 1000-1004 and on the evaluation seeds 0-19), and its runs that
     ``domain-planners-v1`` also holds (v1's settings on seeds 0-19, copied rather than
     re-run) have the same curves bit for bit."""
     docs = docs_script("ablation_docs")
-    tuning, candidates = docs.domain_specs("authors-domain")
-    rows = ResultStore(DATA / "ablation-authors-domain-v1", create=False).load(kind="plan")
+    tuning, candidates = docs.domain_specs(name)
+    rows = ResultStore(DATA / DOMAIN_ABLATIONS[name][0], create=False).load(kind="plan")
     assert rows and {r["run_id"] for r in rows} <= {s.run_id for s in [*tuning, *candidates]}
     domain_planners = {
         r["run_id"]: r
@@ -282,21 +294,23 @@ def test_the_authors_domain_ablation_holds_only_its_runs_and_the_shared_rows_are
     assert_same_runs(shared, domain_planners)
 
 
-def test_the_authors_domain_ablation_table_in_the_docs_is_what_the_store_redraws() -> None:
-    root = DATA.parents[1]
+@pytest.mark.parametrize("name", sorted(DOMAIN_ABLATIONS))
+def test_a_domain_ablation_table_in_the_docs_is_what_the_store_redraws(name: str) -> None:
+    store, problem, domain = DOMAIN_ABLATIONS[name]
     docs = docs_script("ablation_docs")
-    with shipped.store_copy(DATA / "ablation-authors-domain-v1") as copy:
-        blocks = docs.render_domain("authors-domain", copy)
-    page = (root / "docs" / "results-planning.md").read_text()
-    for name, body in blocks.items():
-        assert docs_pages.marked(page, name) == body, "run python docs/scripts/ablation_docs.py"
-    # judged as the conveyor of the paper, in the authors' domain
-    table = blocks["ablation-authors-domain-v1:table"]
-    assert "| v1 | conveyor_v1 | voot |" in table and "| pw_authors | conveyor_v1 |" in table
-    assert "in the domain base_model=footprint, big_box_ban=True" in table
+    assert name in docs.TABLED
+    with shipped.store_copy(DATA / store) as copy:
+        blocks = docs.render_domain(name, copy)
+    page = (DATA.parents[1] / "docs" / "results-planning.md").read_text()
+    for marker, body in blocks.items():
+        assert docs_pages.marked(page, marker) == body, "run python docs/scripts/ablation_docs.py"
+    # judged as the paper's problem, in the domain
+    table = blocks[f"{store}:table"]
+    assert f"| v1 | {problem} | voot |" in table and f"| pw_authors | {problem} |" in table
+    assert f"Every run is in the domain {domain}." in table
 
 
-@pytest.mark.parametrize("name", ["authors-domain", "kitchen-footprint"])
+@pytest.mark.parametrize("name", sorted(DOMAIN_ABLATIONS))
 def test_copy_shared_rows_copies_the_ablations_runs_of_the_domain_planner_store_once(
     name: str, tmp_path: Path
 ) -> None:
