@@ -397,7 +397,8 @@ def test_every_committed_store_names_an_edited_or_truncated_row(name: str, tmp_p
     copy = tmp_path / name
     shutil.copytree(DATA / name, copy, ignore=shutil.ignore_patterns(INDEX_NAME))
     assert ResultStore(copy, create=False).checksums_required
-    row_file = sorted((copy / "runs").iterdir())[len(STORES)]
+    rows = sorted((copy / "runs").iterdir())
+    row_file = rows[len(rows) // 2]
     data = row_file.read_bytes()
     i = data.index(b'"wall_time":') + len(b'"wall_time":')
     digit = data[i : i + 1]
