@@ -68,14 +68,12 @@ class NeverRuns:
         return iter(())
 
 
-#: The domain ablations whose stores ship: name -> (store, problem, its domain's label).
+#: The domain ablations of ``ablation_docs.DOMAINS`` complete in their stores, and how
+#: their tables name the domain.
 DOMAIN_ABLATIONS = {
-    "authors-domain": (
-        "ablation-authors-domain-v1",
-        "conveyor_v1",
-        "base_model=footprint, big_box_ban=True, footprint_heuristic=geodesic, rooms=authors",
-    ),
-    "kitchen-footprint": ("ablation-kitchen-footprint-v1", "kitchen_v1", "base_model=footprint"),
+    "authors-domain": "base_model=footprint, big_box_ban=True, footprint_heuristic=geodesic, "
+    "rooms=authors",
+    "kitchen-footprint": "base_model=footprint",
 }
 
 
@@ -84,12 +82,15 @@ def documented_sweeps() -> dict[str, list[Any]]:
     from voot.bench.sweep.plan import build_plan_specs
 
     v1 = {"planners": ["voot", "pw_uct"], "seeds": range(5), "simulations": 2000}
+    ablation_docs = docs_script("ablation_docs")
     return {
         "protocol-v1": protocol_v1_sweep(),
         "ablation-v1": ablation_sweep(),
         **{
-            store: tuned_sweep(store, *docs_script("ablation_docs").domain_specs(name))
-            for name, (store, _, _) in DOMAIN_ABLATIONS.items()
+            ablation_docs.DOMAINS[name].store.name: tuned_sweep(
+                ablation_docs.DOMAINS[name].store.name, *ablation_docs.domain_specs(name)
+            )
+            for name in DOMAIN_ABLATIONS
         },
         "heldout-kitchen-v2": heldout_sweep("kitchen_v2", 2000),
         "heldout-conveyor-v2": heldout_sweep("conveyor_v2", 3000),
@@ -283,7 +284,7 @@ def test_a_domain_ablation_holds_only_its_runs_and_the_shared_rows_are_the_same(
     re-run) have the same curves bit for bit."""
     docs = docs_script("ablation_docs")
     tuning, candidates = docs.domain_specs(name)
-    rows = ResultStore(DATA / DOMAIN_ABLATIONS[name][0], create=False).load(kind="plan")
+    rows = ResultStore(DATA / docs.DOMAINS[name].store.name, create=False).load(kind="plan")
     assert rows and {r["run_id"] for r in rows} <= {s.run_id for s in [*tuning, *candidates]}
     domain_planners = {
         r["run_id"]: r
@@ -296,9 +297,9 @@ def test_a_domain_ablation_holds_only_its_runs_and_the_shared_rows_are_the_same(
 
 @pytest.mark.parametrize("name", sorted(DOMAIN_ABLATIONS))
 def test_a_domain_ablation_table_in_the_docs_is_what_the_store_redraws(name: str) -> None:
-    store, problem, domain = DOMAIN_ABLATIONS[name]
     docs = docs_script("ablation_docs")
     assert name in docs.TABLED
+    store, problem = docs.DOMAINS[name].store.name, docs.DOMAINS[name].problem
     with shipped.store_copy(DATA / store) as copy:
         blocks = docs.render_domain(name, copy)
     page = (DATA.parents[1] / "docs" / "results-planning.md").read_text()
@@ -307,7 +308,7 @@ def test_a_domain_ablation_table_in_the_docs_is_what_the_store_redraws(name: str
     # judged as the paper's problem, in the domain
     table = blocks[f"{store}:table"]
     assert f"| v1 | {problem} | voot |" in table and f"| pw_authors | {problem} |" in table
-    assert f"Every run is in the domain {domain}." in table
+    assert f"Every run is in the domain {DOMAIN_ABLATIONS[name]}." in table
 
 
 @pytest.mark.parametrize("name", sorted(DOMAIN_ABLATIONS))
