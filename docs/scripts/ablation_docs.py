@@ -14,6 +14,7 @@ store; resumed (every run not in the store yet) by
 
     python docs/scripts/ablation_docs.py run-authors-domain     # the faithful conveyor
     python docs/scripts/ablation_docs.py run-kitchen-footprint  # the kitchen, exact footprint
+    python docs/scripts/ablation_docs.py run-conveyor-footprint # the conveyor, exact footprint
 
 A domain's table sits between its ``<!-- STORE:table -->`` markers once its tuning is
 complete (:data:`TABLED`; the table counts the evaluation seeds each row holds), redrawn
