@@ -78,8 +78,8 @@ DOMAINS: dict[str, DomainAblation] = {
         Path("docs/data/ablation-conveyor-footprint-v1"), "conveyor_v1", {"base_model": "footprint"}
     ),
 }
-#: The domains whose table is in the page (the conveyor's footprint switch: under way).
-TABLED: tuple[str, ...] = ("authors-domain", "kitchen-footprint")
+#: The domains whose table is in the page.
+TABLED: tuple[str, ...] = ("authors-domain", "kitchen-footprint", "conveyor-footprint")
 
 
 def marked(text: str, name: str) -> str:

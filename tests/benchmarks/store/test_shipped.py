@@ -85,6 +85,7 @@ DOMAIN_ABLATIONS = {
         "base_model=footprint, big_box_ban=True, footprint_heuristic=geodesic, rooms=authors", 40
     ),
     "kitchen-footprint": DomainAblationExpected("base_model=footprint", 40),
+    "conveyor-footprint": DomainAblationExpected("base_model=footprint", 0),
 }
 
 
