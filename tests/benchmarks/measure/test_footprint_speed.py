@@ -15,8 +15,12 @@ def test_repeats_replay_the_same_queries_and_keep_the_least_times() -> None:
     assert len(r["queries"]) >= 1 and all(t > 0 for t in r["queries"])
     assert 0 < r["disc_cpu"] and 0 < r["exact_cpu"]
     assert r["exact_feasible"] >= r["disc_feasible"]  # a disc path is a footprint path
+    # a step stops at its first failing placement, never earlier with the footprint
+    assert r["exact_checked"] >= r["disc_checked"] >= r["steps"]
     text = F.report(r)
     assert "least of 2 repeats" in text
+    assert f"disc {r['disc_checked']}, footprint {r['exact_checked']}" in text
+    assert "if the exact search cost nothing" in text
     assert r["paths_sha256"][:16] in text
     # the answers are those of a single replay
     assert F.run(rollouts=1, seed=3)["paths_sha256"] == r["paths_sha256"]
